@@ -1,0 +1,92 @@
+// `hirsute derive`: the string cpfg derives from the same files, in cpfg's -str format.
+#include <cerrno>
+#include <cstring>
+#include <iostream>
+#include <optional>
+
+#include "command.h"
+#include "hirsute/lsys/derivation.h"
+#include "hirsute/lsys/evaluator.h"
+#include "hirsute/lsys/model.h"
+#include "hirsute/lsys/string_writer.h"
+#include "output_file.h"
+
+namespace hirsute::cli {
+namespace {
+
+struct DeriveOptions {
+  std::string lsystemFile;
+  std::string viewFile;
+  std::optional<int> steps;
+  bool homomorphism = false;
+  bool eachStep = false;
+  std::string output;
+  std::string format = "cpfg";
+  std::size_t maxModules = 100'000'000;
+  std::uint64_t maxLoopIterations = 10'000'000;
+};
+
+int runDerive(const DeriveOptions& o) {
+  Diagnostics diagnostics(&std::cerr);
+  try {
+    std::optional<std::filesystem::path> view;
+    if (!o.viewFile.empty()) view = o.viewFile;
+    Model model = loadModel(o.lsystemFile, view, diagnostics);
+    EvaluationLimits limits;
+    limits.maxLoopIterations = o.maxLoopIterations;
+    Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr, limits);
+    DerivationOptions options;
+    options.steps = o.steps;
+    options.maxModules = o.maxModules;
+    Derivation derivation(model.program, evaluator, diagnostics, options);
+
+    OutputFile out(o.output);
+    StringWriter writer(out.stream(), o.format == "compact" ? StringFormat::Compact : StringFormat::Cpfg);
+    derivation.start();
+    if (o.eachStep) {
+      // Every string from the axiom on; in the cpfg format they are separated by an empty line.
+      derivation.emit(writer, o.homomorphism);
+      writer.finish();
+      while (derivation.step()) {
+        if (o.format != "compact") std::fputc('\n', out.stream());
+        derivation.emit(writer, o.homomorphism);
+        writer.finish();
+      }
+    } else {
+      derivation.run();
+      derivation.emit(writer, o.homomorphism);
+    }
+    if (!writer.finish() || !out.commit()) {
+      std::cerr << (o.output.empty() ? "<stdout>" : o.output) << ": error: cannot write: "
+                << std::strerror(errno) << '\n';
+      return kExitIoError;
+    }
+    return kExitOk;
+  } catch (const DiagnosticError& e) {
+    std::cerr << e.diagnostic().text() << '\n';
+    return kExitBadInput;
+  }
+}
+
+}  // namespace
+
+void registerDeriveCommand(CLI::App& app, Action& action) {
+  auto options = std::make_shared<DeriveOptions>();
+  CLI::App* derive = app.add_subcommand("derive", "Derive the L-system and print the string as cpfg's -str does");
+  derive->add_option("lsystem", options->lsystemFile, "The .l file")->required()->check(CLI::ExistingFile);
+  derive->add_option("view", options->viewFile, "The .v file (its function: and function set: lines are used)")
+      ->check(CLI::ExistingFile);
+  derive->add_option("-n,--steps", options->steps, "Derivation steps (default: the file's derivation length)")
+      ->check(CLI::Range(0, 1000000000));
+  derive->add_flag("--homomorphism", options->homomorphism, "Apply the homomorphism to the output (cpfg -homo)");
+  derive->add_flag("--each-step", options->eachStep, "Print the string after every step, starting with the axiom");
+  derive->add_option("-o,--output", options->output, "Write to FILE instead of standard output");
+  derive->add_option("--format", options->format, "cpfg (cpfg's -str text) or compact (one line)")
+      ->check(CLI::IsMember({"cpfg", "compact"}));
+  derive->add_option("--max-modules", options->maxModules, "A longer string is an error (default 100000000)");
+  derive->add_option("--max-loop-iterations", options->maxLoopIterations,
+                     "Iterations of while/do loops per block run (default 10000000)");
+  derive->callback([options, &action] { action = [options] { return runDerive(*options); }; });
+}
+
+}  // namespace hirsute::cli

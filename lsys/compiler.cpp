@@ -1,0 +1,676 @@
+// Compiles the syntax tree into a Program: resolves names to frame or shared slots, checks
+// calls against the built-ins, evaluates the constant header items, and turns every block,
+// condition and successor into stack code.
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "hirsute/lsys/builtins.h"
+#include "hirsute/lsys/module_string.h"
+#include "hirsute/lsys/program.h"
+
+namespace hirsute {
+namespace {
+
+using NameMap = std::unordered_map<std::string, int>;
+
+int stackEffect(Op op, int count) {
+  switch (op) {
+    case Op::Constant: case Op::LoadLocal: case Op::LoadShared: return 1;
+    case Op::StoreLocal: case Op::StoreShared: case Op::Pop: case Op::JumpIfFalse: return -1;
+    case Op::LoadElement: return 1 - count;
+    case Op::StoreElement: return -1 - count;
+    case Op::Negate: case Op::Not: case Op::Truth: case Op::Jump: case Op::LoopBack: return 0;
+    case Op::Call: return 1 - count;
+    case Op::Scan: return count;  // pops the file id, pushes the result and `count` values
+    default: return -1;           // binary operators
+  }
+}
+
+// Collects the names assigned anywhere in a block (the targets of `x = …;`).
+void collectAssigned(const ast::Block& block, std::vector<std::string>& names) {
+  for (const auto& s : block) {
+    if (s->kind == ast::Stmt::Kind::Assign) names.push_back(s->target);
+    collectAssigned(s->body, names);
+    collectAssigned(s->otherwise, names);
+  }
+}
+
+bool isMathBuiltin(Builtin b) {
+  switch (b) {
+    case Builtin::Sin: case Builtin::Cos: case Builtin::Tan: case Builtin::Asin:
+    case Builtin::Acos: case Builtin::Atan: case Builtin::Exp: case Builtin::Log:
+    case Builtin::Sqrt: case Builtin::Fabs: case Builtin::Floor: case Builtin::Ceil:
+    case Builtin::Sign: case Builtin::Trunc:
+      return true;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+// Exposed to the evaluator, which applies the same math at run time.
+double applyMathBuiltin(Builtin b, const double* args, int count);
+
+namespace {
+
+class Compiler {
+ public:
+  Compiler(Program& program, Diagnostics& diagnostics) : program_(program), diagnostics_(diagnostics) {}
+
+  void compile(const ast::File& file);
+
+ private:
+  // ---- scopes ----
+  struct Scope {
+    NameMap* locals = nullptr;                   // production frame; null in header blocks
+    std::vector<std::string>* slotNames = nullptr;
+    const NameMap* shared = nullptr;             // this L-system's variables
+    const NameMap* arrays = nullptr;             // this L-system's arrays
+  };
+
+  // ---- code building ----
+  struct Builder {
+    Code code;
+    int depth = 0;
+    void emit(Op op, int count, std::int32_t operand, std::uint32_t where) {
+      code.instructions.push_back(Instruction{op, static_cast<std::uint8_t>(count), operand, where});
+      depth += stackEffect(op, count);
+      if (depth > code.maxStack) code.maxStack = depth;
+    }
+    int here() const { return static_cast<int>(code.instructions.size()); }
+    void patch(int at, int target) { code.instructions[static_cast<std::size_t>(at)].operand = target; }
+    void constant(double value, std::uint32_t where) {
+      auto& c = code.constants;
+      int index = -1;
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        if (std::memcmp(&c[i], &value, sizeof value) == 0) index = static_cast<int>(i);
+      }
+      if (index < 0) {
+        index = static_cast<int>(c.size());
+        c.push_back(value);
+      }
+      emit(Op::Constant, 0, index, where);
+    }
+  };
+
+  std::uint32_t location(const SourceLocation& where) {
+    program_.locations.push_back(where);
+    return static_cast<std::uint32_t>(program_.locations.size() - 1);
+  }
+
+  [[noreturn]] void fail(const SourceLocation& where, const std::string& message) {
+    throw DiagnosticError(where, message);
+  }
+
+  double constantValue(const ast::Expr& e, const std::string& what);
+  void compileExpr(const ast::Expr& e, const Scope& scope, Builder& b);
+  void compileCall(const ast::Expr& e, const Scope& scope, Builder& b);
+  void compileLoad(const std::string& name, const SourceLocation& where, const Scope& scope, Builder& b);
+  void compileStore(const std::string& name, const SourceLocation& where, const Scope& scope, Builder& b);
+  void compileBlock(const ast::Block& block, const Scope& scope, Builder& b);
+  void compileStmt(const ast::Stmt& s, const Scope& scope, Builder& b);
+  int arrayId(const std::string& name, const SourceLocation& where, const Scope& scope, std::size_t subscripts);
+  Code finish(Builder& b) {
+    if (b.code.maxStack > program_.maxStack) program_.maxStack = b.code.maxStack;
+    return std::move(b.code);
+  }
+  Code compileCode(const ast::Block& block, const Scope& scope) {
+    Builder b;
+    compileBlock(block, scope, b);
+    return finish(b);
+  }
+  Code compileValue(const ast::Expr* e, const Scope& scope) {
+    Builder b;
+    if (e) compileExpr(*e, scope, b);
+    return finish(b);
+  }
+
+  void compileLsystem(const ast::Lsystem& in, Lsystem& out, NameMap& shared, NameMap& arrays);
+  void compileModules(const ast::ModuleList& modules, const Scope& scope,
+                      std::vector<SuccessorModule>& out, Code& values);
+  void compileRuleSet(const std::vector<ast::Production>& in, RuleSet& out, const NameMap& shared,
+                      const NameMap& arrays, bool singleModulePredecessor, const char* section);
+  Production compileProduction(const ast::Production& in, const NameMap& shared, const NameMap& arrays);
+  void noteQueries(const ast::ModuleList& modules);
+
+  Program& program_;
+  Diagnostics& diagnostics_;
+  NameMap globals_;
+};
+
+double Compiler::constantValue(const ast::Expr& e, const std::string& what) {
+  using K = ast::Expr::Kind;
+  switch (e.kind) {
+    case K::Number:
+      return e.number;
+    case K::Unary: {
+      double v = constantValue(*e.operands[0], what);
+      if (e.unaryOp == ast::UnaryOp::Negate) return -v;
+      if (e.unaryOp == ast::UnaryOp::Not) return v == 0 ? 1 : 0;
+      break;
+    }
+    case K::Binary: {
+      double a = constantValue(*e.operands[0], what);
+      double c = constantValue(*e.operands[1], what);
+      switch (e.binaryOp) {
+        case ast::BinaryOp::Or: return (a != 0 || c != 0) ? 1 : 0;
+        case ast::BinaryOp::And: return (a != 0 && c != 0) ? 1 : 0;
+        case ast::BinaryOp::Equal: return a == c;
+        case ast::BinaryOp::NotEqual: return a != c;
+        case ast::BinaryOp::Less: return a < c;
+        case ast::BinaryOp::LessEqual: return a <= c;
+        case ast::BinaryOp::Greater: return a > c;
+        case ast::BinaryOp::GreaterEqual: return a >= c;
+        case ast::BinaryOp::Add: return a + c;
+        case ast::BinaryOp::Subtract: return a - c;
+        case ast::BinaryOp::Multiply: return a * c;
+        case ast::BinaryOp::Divide:
+          if (c == 0) fail(e.where, "division by zero in " + what);
+          return a / c;
+        case ast::BinaryOp::Modulo: {
+          long long ia = static_cast<long long>(a), ic = static_cast<long long>(c);
+          if (ic == 0) fail(e.where, "modulo by zero in " + what);
+          return static_cast<double>(ia % ic);
+        }
+        case ast::BinaryOp::Power: return std::pow(a, c);
+      }
+      break;
+    }
+    case K::Conditional:
+      return constantValue(*e.operands[0], what) != 0 ? constantValue(*e.operands[1], what)
+                                                      : constantValue(*e.operands[2], what);
+    case K::Call: {
+      const BuiltinInfo* info = findBuiltin(e.name);
+      if (info && isMathBuiltin(info->id) && static_cast<int>(e.operands.size()) >= info->minArguments &&
+          static_cast<int>(e.operands.size()) <= info->maxArguments) {
+        double args[2];
+        for (std::size_t i = 0; i < e.operands.size(); ++i) args[i] = constantValue(*e.operands[i], what);
+        return applyMathBuiltin(info->id, args, static_cast<int>(e.operands.size()));
+      }
+      break;
+    }
+    default:
+      break;
+  }
+  fail(e.where, what + " must be a constant expression (numbers, operators and math functions)");
+}
+
+int Compiler::arrayId(const std::string& name, const SourceLocation& where, const Scope& scope,
+                      std::size_t subscripts) {
+  auto it = scope.arrays->find(name);
+  if (it == scope.arrays->end()) fail(where, "'" + name + "' is not an array (arrays are declared in define:)");
+  const ArrayDefinition& def = program_.arrays[static_cast<std::size_t>(it->second)];
+  if (subscripts != def.dimensions.size()) {
+    fail(where, "array '" + name + "' has " + std::to_string(def.dimensions.size()) +
+                    " dimension(s) but is used with " + std::to_string(subscripts) + " subscript(s)");
+  }
+  return it->second;
+}
+
+void Compiler::compileLoad(const std::string& name, const SourceLocation& where, const Scope& scope,
+                           Builder& b) {
+  std::uint32_t loc = location(where);
+  if (scope.locals) {
+    auto it = scope.locals->find(name);
+    if (it != scope.locals->end()) return b.emit(Op::LoadLocal, 0, it->second, loc);
+  }
+  if (auto it = scope.shared->find(name); it != scope.shared->end()) {
+    return b.emit(Op::LoadShared, 0, it->second, loc);
+  }
+  if (auto it = globals_.find(name); it != globals_.end()) return b.emit(Op::LoadShared, 0, it->second, loc);
+  if (scope.arrays->count(name)) fail(where, "array '" + name + "' needs subscripts");
+  if (findBuiltin(name)) fail(where, "'" + name + "' is a function; call it with parentheses");
+  // cpfg: an undefined variable warns and reads as 0.
+  diagnostics_.warn(where, "variable '" + name + "' is never assigned; it reads as 0");
+  b.constant(0, loc);
+}
+
+void Compiler::compileStore(const std::string& name, const SourceLocation& where, const Scope& scope,
+                            Builder& b) {
+  std::uint32_t loc = location(where);
+  if (scope.arrays->count(name)) fail(where, "array '" + name + "' needs subscripts");
+  if (findBuiltin(name) || isUnsupportedBuiltin(name)) {
+    fail(where, "'" + name + "' is a built-in function and cannot be assigned");
+  }
+  if (scope.locals) {
+    auto it = scope.locals->find(name);
+    if (it != scope.locals->end()) return b.emit(Op::StoreLocal, 0, it->second, loc);
+  }
+  if (auto it = scope.shared->find(name); it != scope.shared->end()) {
+    return b.emit(Op::StoreShared, 0, it->second, loc);
+  }
+  if (auto it = globals_.find(name); it != globals_.end()) return b.emit(Op::StoreShared, 0, it->second, loc);
+  fail(where, "internal: no slot for '" + name + "'");
+}
+
+void Compiler::compileExpr(const ast::Expr& e, const Scope& scope, Builder& b) {
+  using K = ast::Expr::Kind;
+  switch (e.kind) {
+    case K::Number:
+      b.constant(e.number, location(e.where));
+      return;
+    case K::String:
+      fail(e.where, "a string is only allowed as the format of printf, fprintf, fscanf or a name for fopen");
+    case K::Variable:
+      compileLoad(e.name, e.where, scope, b);
+      return;
+    case K::Element: {
+      int id = arrayId(e.name, e.where, scope, e.operands.size());
+      for (const auto& s : e.operands) compileExpr(*s, scope, b);
+      b.emit(Op::LoadElement, static_cast<int>(e.operands.size()), id, location(e.where));
+      return;
+    }
+    case K::Unary:
+      if (e.unaryOp == ast::UnaryOp::AddressOf) {
+        fail(e.where, "'&' is only allowed for the variables that fscanf reads into");
+      }
+      compileExpr(*e.operands[0], scope, b);
+      b.emit(e.unaryOp == ast::UnaryOp::Negate ? Op::Negate : Op::Not, 0, 0, location(e.where));
+      return;
+    case K::Binary: {
+      std::uint32_t loc = location(e.where);
+      if (e.binaryOp == ast::BinaryOp::And || e.binaryOp == ast::BinaryOp::Or) {
+        // Short-circuit; the result is 0 or 1.
+        compileExpr(*e.operands[0], scope, b);
+        int test = b.here();
+        b.emit(Op::JumpIfFalse, 0, 0, loc);
+        if (e.binaryOp == ast::BinaryOp::And) {
+          compileExpr(*e.operands[1], scope, b);
+          b.emit(Op::Truth, 0, 0, loc);
+          int skip = b.here();
+          b.emit(Op::Jump, 0, 0, loc);
+          b.patch(test, b.here());
+          b.depth -= 1;
+          b.constant(0, loc);
+          b.patch(skip, b.here());
+        } else {
+          b.constant(1, loc);
+          int skip = b.here();
+          b.emit(Op::Jump, 0, 0, loc);
+          b.patch(test, b.here());
+          b.depth -= 1;
+          compileExpr(*e.operands[1], scope, b);
+          b.emit(Op::Truth, 0, 0, loc);
+          b.patch(skip, b.here());
+        }
+        return;
+      }
+      compileExpr(*e.operands[0], scope, b);
+      compileExpr(*e.operands[1], scope, b);
+      static const Op kOps[] = {Op::Jump, Op::Jump, Op::Equal, Op::NotEqual, Op::Less,
+                                Op::LessEqual, Op::Greater, Op::GreaterEqual, Op::Add,
+                                Op::Subtract, Op::Multiply, Op::Divide, Op::Modulo, Op::Power};
+      b.emit(kOps[static_cast<int>(e.binaryOp)], 0, 0, loc);
+      return;
+    }
+    case K::Conditional: {
+      std::uint32_t loc = location(e.where);
+      compileExpr(*e.operands[0], scope, b);
+      int test = b.here();
+      b.emit(Op::JumpIfFalse, 0, 0, loc);
+      compileExpr(*e.operands[1], scope, b);
+      int skip = b.here();
+      b.emit(Op::Jump, 0, 0, loc);
+      b.patch(test, b.here());
+      b.depth -= 1;
+      compileExpr(*e.operands[2], scope, b);
+      b.patch(skip, b.here());
+      return;
+    }
+    case K::Call:
+      compileCall(e, scope, b);
+      return;
+  }
+}
+
+void Compiler::compileCall(const ast::Expr& e, const Scope& scope, Builder& b) {
+  const BuiltinInfo* info = findBuiltin(e.name);
+  if (!info) {
+    if (isUnsupportedBuiltin(e.name)) fail(e.where, "function '" + e.name + "' is not supported by Hirsute");
+    fail(e.where, "unknown function '" + e.name + "'");
+  }
+  int count = static_cast<int>(e.operands.size());
+  if (count < info->minArguments || (info->maxArguments >= 0 && count > info->maxArguments)) {
+    std::string expected = info->minArguments == info->maxArguments
+                               ? std::to_string(info->minArguments)
+                               : info->maxArguments < 0 ? "at least " + std::to_string(info->minArguments)
+                                                        : std::to_string(info->minArguments) + " or " +
+                                                              std::to_string(info->maxArguments);
+    fail(e.where, "function '" + e.name + "' takes " + expected + " argument(s), not " + std::to_string(count));
+  }
+  if (count > 250) fail(e.where, "too many arguments");
+  std::uint32_t loc = location(e.where);
+  auto stringId = [&](const ast::Expr& arg) {
+    if (arg.kind != ast::Expr::Kind::String) {
+      fail(arg.where, "function '" + e.name + "' expects a string literal here");
+    }
+    program_.strings.push_back(arg.name);
+    return static_cast<int>(program_.strings.size() - 1);
+  };
+  if (info->id == Builtin::Fscanf) {
+    compileExpr(*e.operands[0], scope, b);
+    int format = stringId(*e.operands[1]);
+    int targets = count - 2;
+    b.emit(Op::Scan, targets, format, loc);
+    for (int i = 0; i < targets; ++i) {
+      const ast::Expr& target = *e.operands[static_cast<std::size_t>(2 + i)];
+      if (target.kind != ast::Expr::Kind::Unary || target.unaryOp != ast::UnaryOp::AddressOf ||
+          target.operands[0]->kind != ast::Expr::Kind::Variable) {
+        fail(target.where, "fscanf reads into variables written as '&name'");
+      }
+      compileStore(target.operands[0]->name, target.where, scope, b);
+    }
+    return;
+  }
+  for (int i = 0; i < count; ++i) {
+    const ast::Expr& arg = *e.operands[static_cast<std::size_t>(i)];
+    if (info->stringMask & (1u << i)) {
+      b.constant(stringId(arg), loc);
+    } else {
+      compileExpr(arg, scope, b);
+    }
+  }
+  b.emit(Op::Call, count, static_cast<int>(info->id), loc);
+}
+
+void Compiler::compileBlock(const ast::Block& block, const Scope& scope, Builder& b) {
+  for (const auto& s : block) compileStmt(*s, scope, b);
+}
+
+void Compiler::compileStmt(const ast::Stmt& s, const Scope& scope, Builder& b) {
+  using K = ast::Stmt::Kind;
+  std::uint32_t loc = location(s.where);
+  switch (s.kind) {
+    case K::Assign:
+      compileExpr(*s.value, scope, b);
+      compileStore(s.target, s.where, scope, b);
+      return;
+    case K::AssignElement: {
+      int id = arrayId(s.target, s.where, scope, s.subscripts.size());
+      for (const auto& e : s.subscripts) compileExpr(*e, scope, b);
+      compileExpr(*s.value, scope, b);
+      b.emit(Op::StoreElement, static_cast<int>(s.subscripts.size()), id, loc);
+      return;
+    }
+    case K::Evaluate:
+      compileExpr(*s.value, scope, b);
+      b.emit(Op::Pop, 0, 0, loc);
+      return;
+    case K::If: {
+      compileExpr(*s.value, scope, b);
+      int test = b.here();
+      b.emit(Op::JumpIfFalse, 0, 0, loc);
+      compileBlock(s.body, scope, b);
+      if (s.otherwise.empty()) {
+        b.patch(test, b.here());
+      } else {
+        int skip = b.here();
+        b.emit(Op::Jump, 0, 0, loc);
+        b.patch(test, b.here());
+        compileBlock(s.otherwise, scope, b);
+        b.patch(skip, b.here());
+      }
+      return;
+    }
+    case K::While: {
+      int top = b.here();
+      compileExpr(*s.value, scope, b);
+      int test = b.here();
+      b.emit(Op::JumpIfFalse, 0, 0, loc);
+      compileBlock(s.body, scope, b);
+      b.emit(Op::LoopBack, 0, top, loc);
+      b.patch(test, b.here());
+      return;
+    }
+    case K::DoWhile: {
+      int top = b.here();
+      compileBlock(s.body, scope, b);
+      compileExpr(*s.value, scope, b);
+      int test = b.here();
+      b.emit(Op::JumpIfFalse, 0, 0, loc);
+      b.emit(Op::LoopBack, 0, top, loc);
+      b.patch(test, b.here());
+      return;
+    }
+    case K::Arrays:
+      fail(s.where, "arrays are declared only in the define: block");
+  }
+}
+
+void Compiler::noteQueries(const ast::ModuleList& modules) {
+  for (std::size_t i = 0; i + 1 < modules.size(); ++i) {
+    if (modules[i].symbol != '?' || modules[i].hasParentheses) continue;
+    char next = modules[i + 1].symbol;
+    if (next == 'P' || next == 'H' || next == 'L' || next == 'U') program_.usesQueries = true;
+    if (next == 'E') program_.usesEnvironment = true;
+  }
+}
+
+void Compiler::compileModules(const ast::ModuleList& modules, const Scope& scope,
+                              std::vector<SuccessorModule>& out, Code& values) {
+  Builder b;
+  for (const ast::Module& m : modules) {
+    if (m.arguments.size() > kMaxModuleParameters) {
+      fail(m.where, "a module can have at most " + std::to_string(kMaxModuleParameters) + " parameters");
+    }
+    for (const auto& arg : m.arguments) compileExpr(*arg, scope, b);
+    out.push_back(SuccessorModule{m.symbol, static_cast<std::uint8_t>(m.arguments.size())});
+  }
+  noteQueries(modules);
+  values = finish(b);
+}
+
+Production Compiler::compileProduction(const ast::Production& in, const NameMap& shared,
+                                       const NameMap& arrays) {
+  Production out;
+  out.where = in.where;
+  NameMap locals;
+  auto bind = [&](const ast::ModuleList& patterns, std::vector<ModulePattern>& into) {
+    for (const ast::Module& m : patterns) {
+      if (m.formals.size() > kMaxModuleParameters) fail(m.where, "too many parameters");
+      ModulePattern p{m.symbol, static_cast<std::uint8_t>(m.formals.size()), {}};
+      for (const std::string& name : m.formals) {
+        if (findBuiltin(name)) fail(m.where, "'" + name + "' is a built-in function and cannot name a parameter");
+        auto [it, added] = locals.emplace(name, static_cast<int>(out.slotNames.size()));
+        if (added) out.slotNames.push_back(name);
+        p.slots.push_back(it->second);
+      }
+      into.push_back(std::move(p));
+    }
+  };
+  bind(in.left, out.left);
+  bind(in.strict, out.strict);
+  bind(in.right, out.right);
+  for (const auto& p : out.left) {
+    if (p.symbol == '[' || p.symbol == ']' || p.symbol == '=') {
+      fail(in.left.front().where, std::string("'") + p.symbol + "' in a left context is not supported");
+    }
+  }
+  std::vector<std::string> assigned;
+  collectAssigned(in.before, assigned);
+  collectAssigned(in.after, assigned);
+  for (const std::string& name : assigned) {
+    if (shared.count(name) || globals_.count(name)) continue;
+    auto [it, added] = locals.emplace(name, static_cast<int>(out.slotNames.size()));
+    if (added) out.slotNames.push_back(name);
+  }
+  Scope scope{&locals, &out.slotNames, &shared, &arrays};
+  out.before = compileCode(in.before, scope);
+  out.condition = compileValue(in.condition.get(), scope);
+  out.after = compileCode(in.after, scope);
+  compileModules(in.successor, scope, out.successor, out.successorValues);
+  out.probability = compileValue(in.probability.get(), scope);
+  out.frameSize = static_cast<int>(out.slotNames.size());
+  return out;
+}
+
+void Compiler::compileRuleSet(const std::vector<ast::Production>& in, RuleSet& out,
+                              const NameMap& shared, const NameMap& arrays,
+                              bool singleModulePredecessor, const char* section) {
+  for (const ast::Production& p : in) {
+    if (singleModulePredecessor && p.strict.size() != 1) {
+      fail(p.where, std::string("a ") + section + " production must have a one-module strict predecessor");
+    }
+    out.productions.push_back(compileProduction(p, shared, arrays));
+    char first = p.strict.front().symbol;
+    out.bySymbol[static_cast<unsigned char>(first) & 0x7f].push_back(
+        static_cast<std::uint32_t>(out.productions.size() - 1));
+  }
+}
+
+void Compiler::compileLsystem(const ast::Lsystem& in, Lsystem& out, NameMap& shared, NameMap& arrays) {
+  out.where = in.where;
+  out.label = in.label;
+  out.id = std::atof(in.label.c_str());
+  if (in.derivationLength) {
+    double n = constantValue(*in.derivationLength, "the derivation length");
+    if (!(n >= 0) || n > 1e9) fail(in.derivationLength->where, "the derivation length must be between 0 and 10^9");
+    out.derivationLength = static_cast<int>(n);
+    out.hasDerivationLength = true;
+  }
+  if (in.seed) {
+    out.stochastic = true;
+    out.seed = constantValue(*in.seed, "the seed");
+  }
+  out.ring = in.ring;
+  if (in.ignore && in.consider) {
+    fail(in.ignoreWhere, "an L-system takes 'ignore:' or 'consider:', not both");
+  }
+  if (in.ignore) {
+    for (char c : *in.ignore) {
+      if (c != ' ' && c != '\t') out.ignored[static_cast<unsigned char>(c) & 0x7f] = true;
+    }
+  } else if (in.consider) {
+    out.ignored.fill(true);
+    for (char c : *in.consider) {
+      if (c != ' ' && c != '\t') out.ignored[static_cast<unsigned char>(c) & 0x7f] = false;
+    }
+  }
+
+  // Arrays of define:, with their constant dimensions and initial values.
+  for (const auto& s : in.define) {
+    if (s->kind != ast::Stmt::Kind::Arrays) fail(s->where, "define: holds only 'array' declarations");
+    for (const ast::ArrayDeclaration& a : s->arrays) {
+      if (arrays.count(a.name)) fail(a.where, "array '" + a.name + "' is declared twice");
+      ArrayDefinition def{a.name, {}, a.where};
+      double cells = 1;
+      for (const auto& d : a.dimensions) {
+        double n = constantValue(*d, "an array dimension");
+        if (!(n >= 1) || n > 1e8) fail(d->where, "an array dimension must be between 1 and 10^8");
+        def.dimensions.push_back(static_cast<int>(n));
+        cells *= static_cast<int>(n);
+      }
+      if (cells > 1e8) fail(a.where, "array '" + a.name + "' is too large");
+      if (static_cast<double>(a.initializer.size()) > cells) {
+        fail(a.initializer[static_cast<std::size_t>(cells)]->where,
+             "array '" + a.name + "' has more initial values than elements");
+      }
+      arrays.emplace(a.name, static_cast<int>(program_.arrays.size()));
+      program_.arrays.push_back(def);
+    }
+  }
+
+  // Variables assigned in the header blocks are the L-system's own.
+  std::vector<std::string> names;
+  for (const ast::Block* block : {&in.start, &in.startEach, &in.endEach, &in.end}) collectAssigned(*block, names);
+  for (const std::string& name : names) {
+    if (globals_.count(name) || shared.count(name)) continue;
+    if (arrays.count(name)) continue;
+    shared.emplace(name, static_cast<int>(program_.sharedNames.size()));
+    program_.sharedNames.push_back(name);
+  }
+
+  Scope scope{nullptr, nullptr, &shared, &arrays};
+  // The define: block's initial values are compiled as element stores run before Start:.
+  {
+    Builder b;
+    for (const auto& s : in.define) {
+      for (const ast::ArrayDeclaration& a : s->arrays) {
+        int id = arrays.at(a.name);
+        const auto& dims = program_.arrays[static_cast<std::size_t>(id)].dimensions;
+        for (std::size_t i = 0; i < a.initializer.size(); ++i) {
+          std::size_t rest = i;
+          std::vector<int> index(dims.size());
+          for (std::size_t d = dims.size(); d-- > 0;) {
+            index[d] = static_cast<int>(rest % static_cast<std::size_t>(dims[d]));
+            rest /= static_cast<std::size_t>(dims[d]);
+          }
+          std::uint32_t loc = location(a.initializer[i]->where);
+          for (int x : index) b.constant(x, loc);
+          compileExpr(*a.initializer[i], scope, b);
+          b.emit(Op::StoreElement, static_cast<int>(dims.size()), id, loc);
+        }
+      }
+    }
+    out.define = finish(b);
+  }
+  out.start = compileCode(in.start, scope);
+  out.startEach = compileCode(in.startEach, scope);
+  out.endEach = compileCode(in.endEach, scope);
+  out.end = compileCode(in.end, scope);
+  if (!in.hasAxiom) fail(in.where, "L-system '" + in.label + "' has no 'Axiom:' line");
+  out.axiomWhere = in.axiomWhere;
+  compileModules(in.axiom, scope, out.axiom, out.axiomValues);
+
+  compileRuleSet(in.productions, out.productions, shared, arrays, false, "");
+  compileRuleSet(in.decomposition.productions, out.decomposition, shared, arrays, true, "decomposition");
+  compileRuleSet(in.homomorphism.productions, out.homomorphism, shared, arrays, true, "homomorphism");
+  for (auto [from, to] : {std::pair{&in.decomposition, &out.decomposition},
+                          std::pair{&in.homomorphism, &out.homomorphism}}) {
+    to->present = from->present;
+    to->warnings = from->warnings;
+    if (from->maximumDepth) {
+      double d = constantValue(*from->maximumDepth, "the maximum depth");
+      if (!(d >= 1) || d > 1000) fail(from->maximumDepth->where, "the maximum depth must be between 1 and 1000");
+      to->maximumDepth = static_cast<int>(d);
+    }
+    if (from->seed) {
+      to->hasSeed = true;
+      to->seed = constantValue(*from->seed, "the homomorphism seed");
+    }
+  }
+}
+
+void Compiler::compile(const ast::File& file) {
+  // The hidden globals of cpfg: Q is the current step, Z the derivation length.
+  program_.stepSlot = 0;
+  program_.lengthSlot = 1;
+  program_.sharedNames = {"Q", "Z"};
+  globals_ = {{"Q", 0}, {"Z", 1}};
+  for (const ast::Lsystem& in : file.lsystems) {
+    NameMap shared, arrays;
+    program_.lsystems.emplace_back();
+    compileLsystem(in, program_.lsystems.back(), shared, arrays);
+  }
+  for (std::size_t i = 0; i < program_.lsystems.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (program_.lsystems[i].id == program_.lsystems[j].id) {
+        fail(program_.lsystems[i].where, "two L-systems have the label " + program_.lsystems[i].label);
+      }
+    }
+  }
+  if (!program_.lsystems.front().hasDerivationLength) {
+    diagnostics_.warn(program_.lsystems.front().where, "no 'derivation length:'; the axiom is the result");
+  }
+}
+
+}  // namespace
+
+int Program::lsystemIndex(double id) const {
+  for (std::size_t i = 0; i < lsystems.size(); ++i) {
+    if (lsystems[i].id == id) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+Program compileProgram(const ast::File& file, Diagnostics& diagnostics) {
+  Program program;
+  Compiler(program, diagnostics).compile(file);
+  return program;
+}
+
+}  // namespace hirsute

@@ -1,0 +1,509 @@
+#include "hirsute/lsys/derivation.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace hirsute {
+namespace {
+
+// Deepest recursion of decomposition and homomorphism; each level holds a module on the stack.
+constexpr int kMaxRecursionDepth = 1000;
+
+// cpfg: seed48({seed, 0, 155}) for a non-zero seed; drand48's unseeded state otherwise.
+Rand48 choiceStream(const Lsystem& main) {
+  auto seed = main.stochastic ? static_cast<std::uint16_t>(static_cast<long long>(main.seed)) : std::uint16_t{0};
+  return seed != 0 ? Rand48::seed48(seed, 0, 155) : Rand48(0, 0, 0);
+}
+
+bool isSubLsystemStart(ModuleRef m) { return m.symbol() == '?' && m.parameterCount() > 0; }
+
+std::size_t defaultStringLimit() {
+  long pages = sysconf(_SC_PHYS_PAGES);
+  long pageSize = sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || pageSize <= 0) return std::size_t{8} << 30;
+  // Two strings live at once; together they may take 80% of the machine's memory.
+  return static_cast<std::size_t>(pages) * static_cast<std::size_t>(pageSize) / 5 * 2;
+}
+
+// The position of the `]` that closes the branch containing `at` (or the end of the string).
+std::size_t branchEnd(const ModuleString& s, std::size_t at) {
+  int depth = 0;
+  for (std::size_t p = at; p < s.end(); p = s.next(p)) {
+    char c = s.at(p).symbol();
+    if (c == '[') {
+      ++depth;
+    } else if (c == ']') {
+      if (depth == 0) return p;
+      --depth;
+    }
+  }
+  return s.end();
+}
+
+// The position after the `]` matching the `[` at `at`, or the end of the string.
+std::size_t afterBranch(const ModuleString& s, std::size_t at) {
+  std::size_t close = branchEnd(s, s.next(at));
+  return close < s.end() ? s.next(close) : close;
+}
+
+const RuleSet& ruleSet(const Lsystem& l, int set) {
+  return set == 0 ? l.productions : set == 1 ? l.decomposition : l.homomorphism;
+}
+
+void bind(const ModulePattern& pattern, ModuleRef m, double* frame) {
+  for (std::size_t i = 0; i < pattern.slots.size(); ++i) frame[pattern.slots[i]] = m.parameter(i);
+}
+
+}  // namespace
+
+Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics& diagnostics,
+                       DerivationOptions options)
+    : program_(program),
+      evaluator_(evaluator),
+      diagnostics_(diagnostics),
+      options_(options),
+      choice_(choiceStream(program.lsystems.front())) {
+  if (options_.maxStringBytes == 0) options_.maxStringBytes = defaultStringLimit();
+  current_.setByteLimit(options_.maxStringBytes);
+  next_.setByteLimit(options_.maxStringBytes);
+  // One frame per production, kept between uses as cpfg keeps production variables.
+  std::size_t total = 0;
+  for (const Lsystem& l : program_.lsystems) {
+    for (int set = 0; set < 3; ++set) {
+      std::vector<std::size_t> offsets;
+      for (const Production& p : ruleSet(l, set).productions) {
+        offsets.push_back(total);
+        total += static_cast<std::size_t>(p.frameSize);
+      }
+      frameOffsets_.push_back(std::move(offsets));
+    }
+  }
+  frames_.assign(total + 1, 0.0);
+}
+
+void Derivation::start() {
+  if (started_) return;
+  started_ = true;
+  const Lsystem& main = program_.lsystems.front();
+  totalSteps_ = options_.steps ? *options_.steps : main.derivationLength;
+  evaluator_.shared()[static_cast<std::size_t>(program_.lengthSlot)] = totalSteps_;
+  evaluator_.shared()[static_cast<std::size_t>(program_.stepSlot)] = 0;
+  for (const Lsystem& l : program_.lsystems) evaluator_.run(l.define, nullptr);
+  for (const Lsystem& l : program_.lsystems) evaluator_.run(l.start, nullptr);
+  // The axiom's parameters are evaluated after Start:, so they may use its variables.
+  const double* v = evaluator_.values(main.axiomValues, nullptr, 0);
+  std::vector<double> values(v, v + [&] {
+    std::size_t n = 0;
+    for (const SuccessorModule& m : main.axiom) n += m.parameterCount;
+    return n;
+  }());
+  std::size_t k = 0;
+  for (const SuccessorModule& m : main.axiom) {
+    current_.appendRounded(m.symbol, std::span<const double>(values.data() + k, m.parameterCount));
+    k += m.parameterCount;
+  }
+  if (totalSteps_ == 0) {
+    evaluator_.run(main.end, nullptr);
+    stopped_ = true;
+  }
+}
+
+bool Derivation::step() {
+  start();
+  if (stopped_ || stepsDone_ >= totalSteps_) return false;
+  const Lsystem& main = program_.lsystems.front();
+  evaluator_.shared()[static_cast<std::size_t>(program_.stepSlot)] = stepsDone_ + 1;
+  evaluator_.run(main.startEach, nullptr);
+  rewriteStep();
+  current_.swap(next_);
+  next_.clear();
+  ++stepsDone_;
+  evaluator_.run(main.endEach, nullptr);
+  if (evaluator_.stopRequested() || stepsDone_ >= totalSteps_) {
+    stopped_ = true;
+    evaluator_.run(main.end, nullptr);
+  }
+  return true;
+}
+
+bool Derivation::matchStrict(const Production& p, const ModuleString& s, std::size_t at,
+                             std::size_t& end, double* frame) const {
+  std::size_t pos = at;
+  for (const ModulePattern& pattern : p.strict) {
+    if (pos >= s.end()) return false;
+    ModuleRef m = s.at(pos);
+    if (m.symbol() != pattern.symbol || m.parameterCount() != pattern.parameterCount) return false;
+    bind(pattern, m, frame);
+    pos = s.next(pos);
+  }
+  end = pos;
+  return true;
+}
+
+bool Derivation::matchRight(const std::vector<ModulePattern>& patterns, const Lsystem& l,
+                            const ModuleString& s, std::size_t from, double* frame) const {
+  std::size_t pos = from;
+  bool wrapped = false;
+  for (const ModulePattern& pattern : patterns) {
+    if (pattern.symbol == '=' && pattern.parameterCount == 0) {
+      // cpfg's wildcard: the rest of the current branch.
+      pos = branchEnd(s, pos);
+      continue;
+    }
+    if (pattern.symbol == ']' && pattern.parameterCount == 0) {
+      // The end of the current branch, whatever remains in it.
+      pos = branchEnd(s, pos);
+      if (pos >= s.end()) return false;
+      pos = s.next(pos);
+      continue;
+    }
+    ModuleRef m;
+    for (;;) {
+      if (pos >= s.end()) {
+        if (!l.ring || wrapped) return false;
+        wrapped = true;
+        pos = 0;
+        if (s.empty()) return false;
+      }
+      m = s.at(pos);
+      char c = m.symbol();
+      if (l.ignored[static_cast<unsigned char>(c)]) {
+        pos = s.next(pos);
+        continue;
+      }
+      if (c == '[' && pattern.symbol != '[') {
+        pos = afterBranch(s, pos);  // branches to the right are skipped
+        continue;
+      }
+      if (c == ']' && pattern.symbol != ']') return false;  // the branch ends
+      break;
+    }
+    if (m.symbol() != pattern.symbol || m.parameterCount() != pattern.parameterCount) return false;
+    bind(pattern, m, frame);
+    pos = s.next(pos);
+  }
+  return true;
+}
+
+bool Derivation::matchLeft(const std::vector<ModulePattern>& patterns, const Lsystem& l,
+                           const ModuleString& s, std::size_t before, double* frame) const {
+  std::size_t pos = before;
+  bool wrapped = false;
+  for (std::size_t i = patterns.size(); i-- > 0;) {
+    const ModulePattern& pattern = patterns[i];
+    ModuleRef m;
+    for (;;) {
+      if (pos == 0) {
+        if (!l.ring || wrapped || s.empty()) return false;
+        wrapped = true;
+        pos = s.end();
+      }
+      std::size_t q = s.previous(pos);
+      m = s.at(q);
+      char c = m.symbol();
+      if (l.ignored[static_cast<unsigned char>(c)]) {
+        pos = q;
+        continue;
+      }
+      if (c == ']') {
+        // A complete branch to the left is skipped.
+        int depth = 0;
+        std::size_t r = q;
+        for (;;) {
+          char d = s.at(r).symbol();
+          if (d == ']') ++depth;
+          if (d == '[' && --depth == 0) break;
+          if (r == 0) return false;
+          r = s.previous(r);
+        }
+        pos = r;
+        continue;
+      }
+      if (c == '[') {
+        pos = q;  // the branch's start: its left neighbour is the parent's module
+        continue;
+      }
+      pos = q;
+      break;
+    }
+    if (m.symbol() != pattern.symbol || m.parameterCount() != pattern.parameterCount) return false;
+    bind(pattern, m, frame);
+  }
+  return true;
+}
+
+bool Derivation::matchContexts(const Production& p, const Lsystem& l, const ModuleString& s,
+                               std::size_t at, std::size_t end, double* frame) const {
+  // cpfg tests the right context before the left one.
+  if (!p.right.empty() && !matchRight(p.right, l, s, end, frame)) return false;
+  if (!p.left.empty() && !matchLeft(p.left, l, s, at, frame)) return false;
+  return true;
+}
+
+bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match) {
+  const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
+  const RuleSet& rules = ruleSet(l, set);
+  const auto& ids = rules.bySymbol[static_cast<unsigned char>(s.at(at).symbol())];
+  if (ids.empty()) return false;
+  const bool stochastic = set == 0 && l.stochastic;
+  candidates_.clear();
+  std::vector<double> weights;
+  for (std::uint32_t id : ids) {
+    const Production& p = rules.productions[id];
+    double* frame = frames_.data() + frameOffset(lsystem, set, id);
+    std::size_t end = 0;
+    if (!matchStrict(p, s, at, end, frame)) continue;
+    if (p.hasContext() && !matchContexts(p, l, s, at, end, frame)) continue;
+    if (!p.before.empty()) evaluator_.run(p.before, frame);
+    if (!evaluator_.isTrue(p.condition, frame)) continue;
+    if (!stochastic) {
+      match = Match{&p, end, frame};
+      return true;
+    }
+    candidates_.push_back(Match{&p, end, frame});
+    weights.push_back(p.probability.empty() ? 1.0 : evaluator_.run(p.probability, frame));
+  }
+  if (candidates_.empty()) return false;
+  double sum = 0;
+  for (double w : weights) sum += w;
+  double r = choice_.next() * sum;
+  double accumulated = 0;
+  std::size_t chosen = candidates_.size() - 1;
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    accumulated += weights[i];
+    if (r < accumulated) {
+      chosen = i;
+      break;
+    }
+  }
+  match = candidates_[chosen];
+  return true;
+}
+
+std::size_t Derivation::skipCut(const ModuleString& s, std::size_t at) const {
+  // cpfg's cut: `%` removes itself and the rest of its branch, up to the closing `]`, the `$`
+  // that ends the current sub-L-system, or the end of the string.
+  int depth = 0, nested = 0;
+  std::size_t pos = s.next(at);
+  for (; pos < s.end(); pos = s.next(pos)) {
+    ModuleRef m = s.at(pos);
+    char c = m.symbol();
+    if (c == '[') {
+      ++depth;
+    } else if (c == ']') {
+      if (depth == 0) break;
+      --depth;
+    } else if (isSubLsystemStart(m)) {
+      ++nested;
+    } else if (c == '$') {
+      if (nested == 0 && depth == 0 && subLsystems_.size() > 1) break;
+      if (nested > 0) --nested;
+    }
+  }
+  return pos;
+}
+
+void Derivation::checkSize(const SourceLocation& where) {
+  if (next_.moduleCount() > options_.maxModules) {
+    throw DiagnosticError(where, "the string grew past " + std::to_string(options_.maxModules) +
+                                     " modules in step " + std::to_string(stepsDone_ + 1) +
+                                     " (the limit is set with --max-modules)");
+  }
+}
+
+void Derivation::appendModule(char symbol, const double* values, std::size_t count, int lsystem,
+                              std::size_t anchor, int level) {
+  float params[kMaxModuleParameters];
+  for (std::size_t i = 0; i < count; ++i) params[i] = static_cast<float>(values[i]);
+  const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
+  const RuleSet& rules = l.decomposition;
+  const auto& ids = rules.bySymbol[static_cast<unsigned char>(symbol)];
+  if (ids.empty()) {
+    next_.append(symbol, std::span<const float>(params, count));
+    return;
+  }
+  for (std::uint32_t id : ids) {
+    const Production& p = rules.productions[id];
+    if (p.strict.front().parameterCount != count) continue;
+    if (level > rules.maximumDepth) {
+      if (rules.warnings) {
+        diagnostics_.warn(p.where, "decomposition reached its maximum depth (" +
+                                       std::to_string(rules.maximumDepth) + ") with this production still applicable");
+      }
+      break;
+    }
+    double* frame = frames_.data() + frameOffset(lsystem, 1, id);
+    for (std::size_t i = 0; i < count; ++i) frame[p.strict.front().slots[i]] = params[i];
+    if (p.hasContext() && anchor < current_.end() &&
+        !matchContexts(p, l, current_, anchor, current_.next(anchor), frame)) {
+      continue;
+    }
+    if (!p.before.empty()) evaluator_.run(p.before, frame);
+    if (!evaluator_.isTrue(p.condition, frame)) continue;
+    if (!p.after.empty()) evaluator_.run(p.after, frame);
+    std::size_t total = 0;
+    for (const SuccessorModule& m : p.successor) total += m.parameterCount;
+    const double* v = evaluator_.values(p.successorValues, frame, total);
+    std::size_t base = scratch_.size();
+    scratch_.insert(scratch_.end(), v, v + total);
+    std::size_t k = 0;
+    for (const SuccessorModule& m : p.successor) {
+      appendModule(m.symbol, scratch_.data() + base + k, m.parameterCount, lsystem, anchor, level + 1);
+      k += m.parameterCount;
+    }
+    scratch_.resize(base);
+    checkSize(p.where);
+    return;
+  }
+  next_.append(symbol, std::span<const float>(params, count));
+}
+
+void Derivation::appendSuccessor(const Production& p, double* frame, int lsystem, std::size_t anchor) {
+  std::size_t total = 0;
+  for (const SuccessorModule& m : p.successor) total += m.parameterCount;
+  const double* v = evaluator_.values(p.successorValues, frame, total);
+  const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
+  if (l.decomposition.productions.empty()) {
+    std::size_t k = 0;
+    for (const SuccessorModule& m : p.successor) {
+      next_.appendRounded(m.symbol, std::span<const double>(v + k, m.parameterCount));
+      k += m.parameterCount;
+    }
+  } else {
+    std::size_t base = scratch_.size();
+    scratch_.insert(scratch_.end(), v, v + total);
+    std::size_t k = 0;
+    for (const SuccessorModule& m : p.successor) {
+      appendModule(m.symbol, scratch_.data() + base + k, m.parameterCount, lsystem, anchor, 1);
+      k += m.parameterCount;
+    }
+    scratch_.resize(base);
+  }
+  checkSize(p.where);
+}
+
+void Derivation::rewriteStep() {
+  subLsystems_.assign(1, 0);
+  std::vector<double> copied;
+  const ModuleString& s = current_;
+  std::size_t pos = 0;
+  try {
+    while (pos < s.end()) {
+      ModuleRef m = s.at(pos);
+      int lsystem = subLsystems_.back();
+      const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
+      std::size_t after;
+      Match match;
+      if (choose(lsystem, 0, s, pos, match)) {
+        if (!match.production->after.empty()) evaluator_.run(match.production->after, match.frame);
+        appendSuccessor(*match.production, match.frame, lsystem, pos);
+        after = match.end;
+      } else if (m.symbol() == '%' && m.parameterCount() == 0) {
+        after = skipCut(s, pos);
+      } else {
+        if (l.decomposition.productions.empty()) {
+          next_.append(m);
+        } else {
+          copied.resize(m.parameterCount());
+          for (std::size_t i = 0; i < copied.size(); ++i) copied[i] = m.parameter(i);
+          appendModule(m.symbol(), copied.data(), copied.size(), lsystem, pos, 1);
+        }
+        if (next_.moduleCount() > options_.maxModules) checkSize(l.axiomWhere);
+        after = s.next(pos);
+      }
+      // Sub-L-systems: `?(id,…)` switches to L-system `id` until its `$`.
+      for (std::size_t q = pos; q < after; q = s.next(q)) {
+        ModuleRef consumed = s.at(q);
+        if (isSubLsystemStart(consumed)) {
+          int index = program_.lsystemIndex(consumed.parameter(0));
+          if (index < 0) {
+            throw DiagnosticError(program_.lsystems.front().where,
+                                  "the string calls sub-L-system " + std::to_string(consumed.parameter(0)) +
+                                      " with ?(…), but no L-system has that label");
+          }
+          subLsystems_.push_back(index);
+        } else if (consumed.symbol() == '$' && subLsystems_.size() > 1) {
+          subLsystems_.pop_back();
+        }
+      }
+      pos = after;
+    }
+  } catch (const ModuleStringTooLarge& e) {
+    throw DiagnosticError(program_.lsystems.front().where,
+                          "the string needs more than " + std::to_string(e.bytes >> 20) +
+                              " MiB in step " + std::to_string(stepsDone_ + 1) + ", more than this machine allows");
+  }
+}
+
+void Derivation::homomorphism(ModuleSink& sink, int lsystem, char symbol, const float* values,
+                              std::size_t count, std::size_t anchor, int level) {
+  const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
+  const RuleSet& rules = l.homomorphism;
+  const auto& ids = rules.bySymbol[static_cast<unsigned char>(symbol)];
+  for (std::uint32_t id : ids) {
+    const Production& p = rules.productions[id];
+    if (p.strict.front().parameterCount != count) continue;
+    if (level > rules.maximumDepth) {
+      if (rules.warnings) {
+        diagnostics_.warn(p.where, "homomorphism reached its maximum depth (" +
+                                       std::to_string(rules.maximumDepth) + ") with this production still applicable");
+      }
+      break;
+    }
+    double* frame = frames_.data() + frameOffset(lsystem, 2, id);
+    for (std::size_t i = 0; i < count; ++i) frame[p.strict.front().slots[i]] = values[i];
+    if (p.hasContext() && !matchContexts(p, l, current_, anchor, current_.next(anchor), frame)) continue;
+    if (!p.before.empty()) evaluator_.run(p.before, frame);
+    if (!evaluator_.isTrue(p.condition, frame)) continue;
+    if (!p.after.empty()) evaluator_.run(p.after, frame);
+    std::size_t total = 0;
+    for (const SuccessorModule& m : p.successor) total += m.parameterCount;
+    const double* v = evaluator_.values(p.successorValues, frame, total);
+    std::vector<float> rounded(v, v + total);
+    std::size_t k = 0;
+    for (const SuccessorModule& m : p.successor) {
+      homomorphism(sink, lsystem, m.symbol, rounded.data() + k, m.parameterCount, anchor, level + 1);
+      k += m.parameterCount;
+    }
+    return;
+  }
+  sink.module(symbol, values, count);
+}
+
+void Derivation::emit(ModuleSink& sink, bool applyHomomorphism) {
+  start();
+  std::vector<int> stack(1, 0);
+  std::vector<BlockRandom> ownStreams;
+  float params[kMaxModuleParameters];
+  for (std::size_t pos = 0; pos < current_.end(); pos = current_.next(pos)) {
+    ModuleRef m = current_.at(pos);
+    int lsystem = stack.back();
+    const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
+    std::size_t count = m.parameterCount();
+    for (std::size_t i = 0; i < count; ++i) params[i] = m.parameter(i);
+    if (applyHomomorphism && !l.homomorphism.productions.empty()) {
+      if (l.homomorphism.hasSeed) {
+        // The homomorphism's own random stream, restarted at every interpretation.
+        if (ownStreams.empty()) {
+          ownStreams.emplace_back();
+          ownStreams.back().srand(l.homomorphism.seed);
+        }
+        evaluator_.useRandom(&ownStreams.back());
+      }
+      homomorphism(sink, lsystem, m.symbol(), params, count, pos, 1);
+      evaluator_.useRandom(nullptr);
+    } else {
+      sink.module(m.symbol(), params, count);
+    }
+    if (isSubLsystemStart(m)) {
+      int index = program_.lsystemIndex(m.parameter(0));
+      stack.push_back(index < 0 ? lsystem : index);
+    } else if (m.symbol() == '$' && stack.size() > 1) {
+      stack.pop_back();
+    }
+  }
+}
+
+}  // namespace hirsute

@@ -1,0 +1,348 @@
+#include "hirsute/lsys/evaluator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "hirsute/lsys/builtins.h"
+#include "hirsute/lsys/function_curve.h"
+
+namespace hirsute {
+
+namespace {
+constexpr double kDegree = M_PI / 180.0;
+}
+
+// The math built-ins, shared with the compiler's constant folding. Angles are degrees (cpfg).
+double applyMathBuiltin(Builtin b, const double* a, int count) {
+  switch (b) {
+    case Builtin::Sin: return std::sin(a[0] * kDegree);
+    case Builtin::Cos: return std::cos(a[0] * kDegree);
+    case Builtin::Tan: return std::tan(a[0] * kDegree);
+    case Builtin::Asin: return std::asin(a[0]) / kDegree;
+    case Builtin::Acos: return std::acos(a[0]) / kDegree;
+    case Builtin::Atan: return (count == 2 ? std::atan2(a[0], a[1]) : std::atan(a[0])) / kDegree;
+    case Builtin::Exp: return std::exp(a[0]);
+    case Builtin::Log: return std::log(a[0]);
+    case Builtin::Sqrt: return std::sqrt(a[0]);
+    case Builtin::Fabs: return std::fabs(a[0]);
+    case Builtin::Floor: return std::floor(a[0]);
+    case Builtin::Ceil: return std::ceil(a[0]);
+    case Builtin::Sign: return a[0] > 0 ? 1.0 : a[0] < 0 ? -1.0 : 0.0;
+    // cpfg: trunc rounds to the nearest integer.
+    case Builtin::Trunc: return std::floor(a[0] + 0.5);
+    default: return 0;
+  }
+}
+
+Evaluator::Evaluator(const Program& program, Diagnostics& diagnostics, const ViewFunctions* functions,
+                     std::filesystem::path modelFolder, std::ostream& printOut, EvaluationLimits limits)
+    : program_(program),
+      diagnostics_(diagnostics),
+      functions_(functions),
+      modelFolder_(std::move(modelFolder)),
+      printOut_(printOut),
+      limits_(limits),
+      shared_(program.sharedNames.size(), 0.0),
+      stack_(static_cast<std::size_t>(program.maxStack) + 8, 0.0) {
+  for (const ArrayDefinition& def : program.arrays) {
+    std::size_t cells = 1;
+    for (int d : def.dimensions) cells *= static_cast<std::size_t>(d);
+    arrays_.emplace_back(cells, 0.0);
+  }
+}
+
+Evaluator::~Evaluator() {
+  for (std::FILE* f : files_) {
+    if (f) std::fclose(f);
+  }
+}
+
+void Evaluator::fail(std::uint32_t where, const std::string& message) const {
+  throw DiagnosticError(program_.locations[where], message);
+}
+
+std::size_t Evaluator::elementIndex(std::int32_t array, const double* subscripts, int count,
+                                    std::uint32_t where) {
+  const auto& dims = program_.arrays[static_cast<std::size_t>(array)].dimensions;
+  std::size_t index = 0;
+  for (int i = 0; i < count; ++i) {
+    double s = subscripts[i];
+    long long k = std::isfinite(s) ? static_cast<long long>(s) : 0;
+    // cpfg clamps out-of-range subscripts, with a warning.
+    if (k < 0 || k >= dims[static_cast<std::size_t>(i)]) {
+      diagnostics_.warn(program_.locations[where],
+                        "subscript " + std::to_string(k) + " of array '" +
+                            program_.arrays[static_cast<std::size_t>(array)].name + "' is out of range");
+      k = std::clamp<long long>(k, 0, dims[static_cast<std::size_t>(i)] - 1);
+    }
+    index = index * static_cast<std::size_t>(dims[static_cast<std::size_t>(i)]) + static_cast<std::size_t>(k);
+  }
+  return index;
+}
+
+const double* Evaluator::values(const Code& code, double* frame, std::size_t count) {
+  run(code, frame);
+  (void)count;
+  return stack_.data();
+}
+
+double Evaluator::run(const Code& code, double* frame) {
+  double* stack = stack_.data();
+  double* top = stack;  // one past the top value
+  const Instruction* instructions = code.instructions.data();
+  const std::size_t size = code.instructions.size();
+  std::uint64_t iterations = 0;
+  for (std::size_t pc = 0; pc < size; ++pc) {
+    const Instruction& in = instructions[pc];
+    switch (in.op) {
+      case Op::Constant: *top++ = code.constants[static_cast<std::size_t>(in.operand)]; break;
+      case Op::LoadLocal: *top++ = frame[in.operand]; break;
+      case Op::StoreLocal: frame[in.operand] = *--top; break;
+      case Op::LoadShared: *top++ = shared_[static_cast<std::size_t>(in.operand)]; break;
+      case Op::StoreShared: shared_[static_cast<std::size_t>(in.operand)] = *--top; break;
+      case Op::LoadElement: {
+        top -= in.count;
+        std::size_t i = elementIndex(in.operand, top, in.count, in.where);
+        *top++ = arrays_[static_cast<std::size_t>(in.operand)][i];
+        break;
+      }
+      case Op::StoreElement: {
+        double value = *--top;
+        top -= in.count;
+        std::size_t i = elementIndex(in.operand, top, in.count, in.where);
+        arrays_[static_cast<std::size_t>(in.operand)][i] = value;
+        break;
+      }
+      case Op::Pop: --top; break;
+      case Op::Negate: top[-1] = -top[-1]; break;
+      case Op::Not: top[-1] = top[-1] == 0 ? 1.0 : 0.0; break;
+      case Op::Truth: top[-1] = top[-1] != 0 ? 1.0 : 0.0; break;
+      case Op::Add: --top; top[-1] += *top; break;
+      case Op::Subtract: --top; top[-1] -= *top; break;
+      case Op::Multiply: --top; top[-1] *= *top; break;
+      case Op::Divide:
+        --top;
+        if (*top == 0) fail(in.where, "division by zero");
+        top[-1] /= *top;
+        break;
+      case Op::Modulo: {
+        --top;
+        // cpfg: integer modulo of the truncated operands.
+        double a = top[-1], b = *top;
+        if (!std::isfinite(a) || !std::isfinite(b) || std::fabs(a) > 9e18 || std::fabs(b) > 9e18) {
+          fail(in.where, "modulo of a value out of the integer range");
+        }
+        long long ib = static_cast<long long>(b);
+        if (ib == 0) fail(in.where, "modulo by zero");
+        top[-1] = static_cast<double>(static_cast<long long>(a) % ib);
+        break;
+      }
+      case Op::Power: --top; top[-1] = std::pow(top[-1], *top); break;
+      case Op::Equal: --top; top[-1] = top[-1] == *top; break;
+      case Op::NotEqual: --top; top[-1] = top[-1] != *top; break;
+      case Op::Less: --top; top[-1] = top[-1] < *top; break;
+      case Op::LessEqual: --top; top[-1] = top[-1] <= *top; break;
+      case Op::Greater: --top; top[-1] = top[-1] > *top; break;
+      case Op::GreaterEqual: --top; top[-1] = top[-1] >= *top; break;
+      case Op::Jump: pc = static_cast<std::size_t>(in.operand) - 1; break;
+      case Op::JumpIfFalse:
+        if (*--top == 0) pc = static_cast<std::size_t>(in.operand) - 1;
+        break;
+      case Op::LoopBack:
+        if (++iterations > limits_.maxLoopIterations) {
+          fail(in.where, "the loop ran more than " + std::to_string(limits_.maxLoopIterations) +
+                             " iterations (raise --max-loop-iterations if it is meant to)");
+        }
+        pc = static_cast<std::size_t>(in.operand) - 1;
+        break;
+      case Op::Call: {
+        top -= in.count;
+        double result = call(static_cast<Builtin>(in.operand), top, in.count, in.where);
+        *top++ = result;
+        break;
+      }
+      case Op::Scan: {
+        double id = *--top;
+        std::FILE* f = file(id, in.where);
+        const std::string& fmt = program_.strings[static_cast<std::size_t>(in.operand)];
+        // Each conversion reads one number into a double.
+        std::vector<double> read;
+        std::size_t pos = 0;
+        int result = 0;
+        bool failed = false;
+        while (pos < fmt.size() && !failed) {
+          char c = fmt[pos];
+          if (c == '%' && pos + 1 < fmt.size() && fmt[pos + 1] != '%') {
+            std::size_t end = fmt.find_first_of("eEfgGdiuxX", pos + 1);
+            if (end == std::string::npos) break;
+            std::string spec = "%lf";
+            if (static_cast<int>(read.size()) >= in.count) break;
+            double v = 0;
+            if (std::fscanf(f, spec.c_str(), &v) == 1) {
+              read.push_back(v);
+              ++result;
+            } else {
+              failed = true;
+            }
+            pos = end + 1;
+          } else if (std::isspace(static_cast<unsigned char>(c))) {
+            std::fscanf(f, " ");
+            ++pos;
+          } else {
+            int got = std::fgetc(f);
+            if (got != c) {
+              if (got != EOF) std::ungetc(got, f);
+              failed = true;
+            }
+            pos += (c == '%') ? 2 : 1;
+          }
+        }
+        *top++ = (result == 0 && std::feof(f)) ? -1.0 : result;
+        // Values for targets that got nothing keep their value: push a marker-free copy.
+        for (int i = in.count; i-- > 0;) *top++ = i < static_cast<int>(read.size()) ? read[static_cast<std::size_t>(i)] : 0.0;
+        break;
+      }
+    }
+  }
+  return top > stack ? top[-1] : 0.0;
+}
+
+double Evaluator::call(Builtin id, const double* a, int count, std::uint32_t where) {
+  switch (id) {
+    case Builtin::Ran: return random_->ran(a[0]);
+    case Builtin::Nran: return random_->nran(a[0], a[1]);
+    case Builtin::Bran: return random_->bran(a[0], a[1]);
+    case Builtin::Biran: return random_->biran(a[0], a[1]);
+    case Builtin::Srand: random_->srand(a[0]); return 0;
+    case Builtin::Func: {
+      int index = static_cast<int>(a[0]);
+      if (!functions_ || index < 1 || index > static_cast<int>(functions_->functions.size())) {
+        fail(where, "func(" + std::to_string(index) + ", …): the view file declares " +
+                        std::to_string(functions_ ? functions_->functions.size() : 0) +
+                        " function(s) with 'function:' or 'function set:'");
+      }
+      return functions_->functions[static_cast<std::size_t>(index - 1)].evaluate(a[1]);
+    }
+    case Builtin::CurveX: case Builtin::CurveY: case Builtin::CurveZ: case Builtin::CurveGal: {
+      int index = static_cast<int>(a[0]);
+      if (!functions_ || index < 1 || index > static_cast<int>(functions_->curves.size())) {
+        fail(where, "curve " + std::to_string(index) + " is not declared with 'curve:' in the view file");
+      }
+      const ContourCurve& curve = functions_->curves[static_cast<std::size_t>(index - 1)];
+      if (id == Builtin::CurveGal) return curve.length();
+      auto p = curve.point(a[1]);
+      return p[id == Builtin::CurveX ? 0 : id == Builtin::CurveY ? 1 : 2];
+    }
+    case Builtin::Printf: {
+      printOut_ << format(program_.strings[static_cast<std::size_t>(a[0])], a + 1, count - 1, where);
+      printOut_.flush();
+      return 0;
+    }
+    case Builtin::Fopen:
+      return openFile(program_.strings[static_cast<std::size_t>(a[0])],
+                      program_.strings[static_cast<std::size_t>(a[1])], where);
+    case Builtin::Fclose: {
+      std::FILE* f = file(a[0], where);
+      std::fclose(f);
+      files_[static_cast<std::size_t>(a[0]) - 1] = nullptr;
+      return 0;
+    }
+    case Builtin::Fflush: std::fflush(file(a[0], where)); return 0;
+    case Builtin::Fprintf: {
+      std::string text = format(program_.strings[static_cast<std::size_t>(a[1])], a + 2, count - 2, where);
+      std::fwrite(text.data(), 1, text.size(), file(a[0], where));
+      return 0;
+    }
+    case Builtin::Stop: stopRequested_ = true; return 0;
+    case Builtin::Fscanf: return 0;  // compiled to Op::Scan
+    default: return applyMathBuiltin(id, a, count);
+  }
+}
+
+std::string Evaluator::format(const std::string& fmt, const double* args, int count, std::uint32_t where) {
+  // cpfg applies the format one conversion at a time, each with the next value as a double.
+  std::string out;
+  int next = 0;
+  std::size_t pos = 0;
+  char buffer[512];
+  while (pos < fmt.size()) {
+    char c = fmt[pos];
+    if (c != '%') {
+      out += c;
+      ++pos;
+      continue;
+    }
+    if (pos + 1 < fmt.size() && fmt[pos + 1] == '%') {
+      out += '%';
+      pos += 2;
+      continue;
+    }
+    std::size_t end = pos + 1;
+    while (end < fmt.size() && std::strchr("-+ #0123456789.", fmt[end])) ++end;
+    std::string flags = fmt.substr(pos, end - pos);
+    while (end < fmt.size() && std::strchr("hlLqjzt", fmt[end])) ++end;  // length modifiers are ignored
+    if (end >= fmt.size() || flags.size() > 20) {
+      out += fmt.substr(pos);
+      break;
+    }
+    char conversion = fmt[end];
+    if (!std::strchr("diouxXcfFeEgGaA", conversion)) {
+      out += fmt.substr(pos, end + 1 - pos);
+      pos = end + 1;
+      continue;
+    }
+    if (next >= count) fail(where, "the format has more conversions than values");
+    double v = args[next++];
+    if (std::strchr("diouxXc", conversion)) {
+      long long i = std::isfinite(v) && std::fabs(v) < 9e18 ? static_cast<long long>(v) : 0;
+      std::string spec = flags + "ll" + conversion;
+      if (conversion == 'c') spec = flags + "c";
+      if (conversion == 'c') std::snprintf(buffer, sizeof buffer, spec.c_str(), static_cast<int>(i));
+      else std::snprintf(buffer, sizeof buffer, spec.c_str(), i);
+    } else {
+      std::string spec = flags + conversion;
+      std::snprintf(buffer, sizeof buffer, spec.c_str(), v);
+    }
+    out += buffer;
+    pos = end + 1;
+  }
+  return out;
+}
+
+double Evaluator::openFile(const std::string& name, const std::string& mode, std::uint32_t where) {
+  // Files are confined to the model's folder: a plain relative name, no way up or out.
+  std::filesystem::path path(name);
+  if (name.empty() || path.is_absolute()) fail(where, "fopen: '" + name + "' must be a file name in the model's folder");
+  for (const auto& part : path) {
+    if (part == "..") fail(where, "fopen: '" + name + "' leaves the model's folder");
+  }
+  if (mode.empty() || !std::strchr("rwa", mode[0]) || mode.find_first_not_of("rwab+") != std::string::npos) {
+    fail(where, "fopen: mode '" + mode + "' is not one of r, w, a (with + or b)");
+  }
+  std::size_t open = static_cast<std::size_t>(std::count_if(files_.begin(), files_.end(), [](auto* f) { return f; }));
+  if (static_cast<int>(open) >= limits_.maxOpenFiles) fail(where, "fopen: too many open files");
+  std::FILE* f = std::fopen((modelFolder_ / path).c_str(), mode.c_str());
+  if (!f) {
+    diagnostics_.warn(program_.locations[where], "fopen: cannot open '" + name + "': " + std::strerror(errno));
+    return 0;
+  }
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    if (!files_[i]) {
+      files_[i] = f;
+      return static_cast<double>(i + 1);
+    }
+  }
+  files_.push_back(f);
+  return static_cast<double>(files_.size());
+}
+
+std::FILE* Evaluator::file(double id, std::uint32_t where) {
+  long long i = std::isfinite(id) ? static_cast<long long>(id) : 0;
+  if (i < 1 || i > static_cast<long long>(files_.size()) || !files_[static_cast<std::size_t>(i - 1)]) {
+    fail(where, "file id " + std::to_string(i) + " is not an open file (fopen returns the id)");
+  }
+  return files_[static_cast<std::size_t>(i - 1)];
+}
+
+}  // namespace hirsute

@@ -1,0 +1,821 @@
+#include "hirsute/lsys/function_curve.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "hirsute/lsys/diagnostic.h"
+
+namespace hirsute {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Reading the text files of funcedit and cuspy: whitespace-separated words on numbered lines.
+
+struct TextLine {
+  int number = 0;                      // 1-based line in the file
+  std::vector<std::string_view> words;  // never empty: blank lines are skipped
+  std::string_view text;                // the whole line, for `name:` values with spaces
+};
+
+std::vector<std::string_view> splitWords(std::string_view text) {
+  std::vector<std::string_view> words;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) ++i;
+    const std::size_t start = i;
+    while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r') ++i;
+    if (i > start) words.push_back(text.substr(start, i - start));
+  }
+  return words;
+}
+
+std::optional<double> parseDouble(std::string_view word) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+  if (error != std::errc() || end != word.data() + word.size()) return std::nullopt;
+  return value;
+}
+
+std::optional<int> parseInt(std::string_view word) {
+  int value = 0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+  if (error != std::errc() || end != word.data() + word.size()) return std::nullopt;
+  return value;
+}
+
+std::string quoted(std::string_view word) { return "'" + std::string(word) + "'"; }
+
+// The non-blank lines of one file, read front to back, with errors located in that file.
+class LineReader {
+ public:
+  LineReader(std::string_view text, const std::string& fileName)
+      : file_(std::make_shared<const std::string>(fileName)) {
+    int number = 0;
+    std::size_t start = 0;
+    while (start < text.size()) {
+      std::size_t end = text.find('\n', start);
+      if (end == std::string_view::npos) end = text.size();
+      ++number;
+      const std::string_view line = text.substr(start, end - start);
+      std::vector<std::string_view> words = splitWords(line);
+      if (!words.empty()) lines_.push_back(TextLine{number, std::move(words), line});
+      lastNumber_ = number;
+      start = end + 1;
+    }
+  }
+
+  bool atEnd() const { return next_ >= lines_.size(); }
+  const TextLine& peek() const { return lines_[next_]; }
+
+  // The next line; `what` says what was expected when the file ends instead.
+  const TextLine& take(const std::string& what) {
+    if (atEnd()) fail(std::max(1, lastNumber_), "the file ends where " + what + " was expected");
+    return lines_[next_++];
+  }
+
+  [[noreturn]] void fail(int line, const std::string& message) const {
+    throw DiagnosticError(SourceLocation{file_, line, 0}, message);
+  }
+
+  // The line must be `label` followed by exactly `count` numbers.
+  std::vector<double> numbersAfter(const TextLine& line, std::string_view label, std::size_t count,
+                                   const std::string& description) const {
+    if (line.words[0] != label || line.words.size() != count + 1) {
+      fail(line.number, "expected " + quoted(label) + " followed by " + description);
+    }
+    std::vector<double> values;
+    for (std::size_t i = 1; i <= count; ++i) {
+      const std::optional<double> value = parseDouble(line.words[i]);
+      if (!value) fail(line.number, "expected " + quoted(label) + " followed by " + description);
+      values.push_back(*value);
+    }
+    return values;
+  }
+
+  int countAfter(const TextLine& line, std::string_view label, const std::string& what) const {
+    std::optional<int> count;
+    if (line.words[0] == label && line.words.size() == 2) count = parseInt(line.words[1]);
+    if (!count || *count < 0) fail(line.number, "expected " + quoted(label) + " followed by " + what);
+    return *count;
+  }
+
+  // The text after the label, trimmed (names may contain spaces).
+  static std::string restAfterLabel(const TextLine& line) {
+    const std::size_t labelEnd =
+        static_cast<std::size_t>(line.words[0].data() + line.words[0].size() - line.text.data());
+    std::string_view rest = line.text.substr(labelEnd);
+    const std::size_t first = rest.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos) return std::string();
+    rest = rest.substr(first);
+    return std::string(rest.substr(0, rest.find_last_not_of(" \t\r") + 1));
+  }
+
+  // Skips the `m` lines of a `markers: m` block: editor marks with no meaning for cpfg.
+  void skipMarkers(const TextLine& markersLine) {
+    const int count = countAfter(markersLine, "markers:", "a count");
+    for (int i = 0; i < count; ++i) take("marker " + std::to_string(i + 1));
+  }
+
+ private:
+  std::shared_ptr<const std::string> file_;
+  std::vector<TextLine> lines_;
+  std::size_t next_ = 0;
+  int lastNumber_ = 0;
+};
+
+std::string readFile(const std::filesystem::path& file, const std::string& kind) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(file.string()), 0, 0},
+                          "cannot open " + kind + " file");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// cpfg reads control points into float variables; the B-spline is then computed in double.
+// Keeping the rounding makes func() agree with cpfg in the last printed digit (tools-LilyLeaf).
+double asStoredByCpfg(double value) { return static_cast<double>(static_cast<float>(value)); }
+
+// ---------------------------------------------------------------------------------------------
+// Function files.
+
+struct FunctionData {
+  std::string name;
+  int samples = 0;
+  std::vector<std::array<double, 2>> points;
+};
+
+// `points: n` and the n rows `x y [multiplicity]` after it.
+void readFunctionPoints(LineReader& reader, const TextLine& pointsLine, FunctionData& data) {
+  const int count = reader.countAfter(pointsLine, "points:", "a count");
+  for (int i = 0; i < count; ++i) {
+    const TextLine& row = reader.take("control point " + std::to_string(i + 1) + " of " +
+                                      std::to_string(count));
+    const std::string expected = "control point " + std::to_string(i + 1) + " as 'x y' or 'x y multiplicity'";
+    if (row.words.size() != 2 && row.words.size() != 3) reader.fail(row.number, "expected " + expected);
+    const std::optional<double> x = parseDouble(row.words[0]);
+    const std::optional<double> y = parseDouble(row.words[1]);
+    if (!x || !y) reader.fail(row.number, "expected " + expected);
+    int multiplicity = 1;
+    if (row.words.size() == 3) {
+      const std::optional<int> m = parseInt(row.words[2]);
+      if (!m || *m < 1) reader.fail(row.number, "expected a multiplicity of 1 or more");
+      multiplicity = *m;
+    }
+    for (int k = 0; k < multiplicity; ++k) {
+      data.points.push_back({asStoredByCpfg(*x), asStoredByCpfg(*y)});
+    }
+  }
+  if (data.points.size() < 4) {
+    reader.fail(pointsLine.number,
+                "a function needs at least 4 control points (counting multiplicities), found " +
+                    std::to_string(data.points.size()));
+  }
+}
+
+// funcedit v1.01 (`fver 1 1`): name, samples, optional background and markers, flip, points.
+// The file's own `samples:` is used; the count on the view's `function:` line is ignored.
+FunctionData readVersion1Function(LineReader& reader) {
+  const TextLine& header = reader.take("'fver 1 1'");
+  if (header.words.size() != 3 || header.words[0] != "fver" || header.words[1] != "1" ||
+      !parseInt(header.words[2])) {
+    reader.fail(header.number, "expected 'fver 1 1' at the start of a function");
+  }
+  FunctionData data;
+  bool hasName = false;
+  bool hasSamples = false;
+  for (;;) {
+    const TextLine& line = reader.take("'points:'");
+    const std::string_view label = line.words[0];
+    if (label == "name:") {
+      data.name = LineReader::restAfterLabel(line);
+      hasName = true;
+    } else if (label == "samples:") {
+      data.samples = reader.countAfter(line, "samples:", "a count");
+      hasSamples = true;
+    } else if (label == "flip:") {
+      if (line.words.size() != 2) reader.fail(line.number, "expected 'flip:' followed by on or off");
+    } else if (label == "background:") {
+      // The editor's backdrop image; nothing for cpfg.
+    } else if (label == "backgroundXY:") {
+      reader.numbersAfter(line, "backgroundXY:", 2, "two coordinates");
+    } else if (label == "markers:") {
+      reader.skipMarkers(line);
+    } else if (label == "points:") {
+      if (!hasName) reader.fail(line.number, "missing 'name:' before 'points:'");
+      if (!hasSamples) reader.fail(line.number, "missing 'samples:' before 'points:'");
+      readFunctionPoints(reader, line, data);
+      return data;
+    } else {
+      reader.fail(line.number, "unexpected " + quoted(label) + " in a function; expected 'points:'");
+    }
+  }
+}
+
+// funcedit v1.0: `range: a b`, `points: n`, points. cpfg ignores the range (the domain is always
+// [0, 1]) and takes the sample count from the view's `function:` line.
+FunctionData readVersion0Function(LineReader& reader, int viewSamples) {
+  const TextLine& rangeLine = reader.take("'range:'");
+  reader.numbersAfter(rangeLine, "range:", 2, "two numbers");
+  FunctionData data;
+  data.samples = viewSamples;
+  readFunctionPoints(reader, reader.take("'points:'"), data);
+  return data;
+}
+
+FunctionData readFunction(LineReader& reader, int viewSamples) {
+  if (reader.atEnd()) reader.fail(1, "empty function file; expected 'fver 1 1' or 'range:'");
+  const std::string_view first = reader.peek().words[0];
+  if (first == "fver") return readVersion1Function(reader);
+  if (first == "range:") return readVersion0Function(reader, viewSamples);
+  reader.fail(reader.peek().number, "expected 'fver 1 1' or 'range:' at the start of a function");
+}
+
+void expectEnd(const LineReader& reader, const std::string& what) {
+  if (!reader.atEnd()) {
+    reader.fail(reader.peek().number, "unexpected " + quoted(reader.peek().words[0]) + " after " + what);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Contour files.
+
+struct ContourData {
+  std::string name;
+  bool closed = false;
+  std::vector<std::array<double, 3>> points;
+};
+
+bool contourTypeIsClosed(const LineReader& reader, const TextLine& line) {
+  if (line.words.size() == 2) {
+    const std::string_view type = line.words[1];
+    // cuspy: or/cr open/closed regular; the deprecated oe/ce (endpoint interpolation) are read
+    // as regular by cpfg; cver 1.1 spells them open/closed.
+    if (type == "or" || type == "oe" || type == "open") return false;
+    if (type == "cr" || type == "ce" || type == "closed") return true;
+  }
+  reader.fail(line.number, "expected 'type:' followed by or, cr, oe, ce, open or closed");
+}
+
+// A control-point row of `dimension` numbers: x y, x y z or x y z multiplicity.
+void readContourRow(const LineReader& reader, const TextLine& row, std::size_t dimension,
+                    ContourData& data) {
+  const std::string expected = dimension == 4   ? "'x y z multiplicity'"
+                               : dimension == 3 ? "'x y z'"
+                                                : "'x y'";
+  if (row.words.size() != dimension) reader.fail(row.number, "expected a control point as " + expected);
+  std::array<double, 3> point{0.0, 0.0, 0.0};
+  for (std::size_t i = 0; i < std::min<std::size_t>(dimension, 3); ++i) {
+    const std::optional<double> value = parseDouble(row.words[i]);
+    if (!value) reader.fail(row.number, "expected a control point as " + expected);
+    point[i] = *value;
+  }
+  int multiplicity = 1;
+  if (dimension == 4) {
+    const std::optional<int> m = parseInt(row.words[3]);
+    if (!m || *m < 1) reader.fail(row.number, "expected a multiplicity of 1 or more");
+    multiplicity = *m;
+  }
+  for (int k = 0; k < multiplicity; ++k) data.points.push_back(point);
+}
+
+bool startsWithNumber(const TextLine& line) { return parseDouble(line.words[0]).has_value(); }
+
+// cuspy `cver 1 x`: labelled lines (name, points n1 n2, type, samples, background, markers) and
+// n1 rows `x y z multiplicity`. cver 1.3 puts type and samples before the rows, 1.1 and 1.2 put
+// type after them, so labels are accepted in any order around the rows.
+ContourData readCverContour(LineReader& reader) {
+  const TextLine& header = reader.take("'cver 1 3'");
+  if (header.words.size() != 3 || header.words[1] != "1" || !parseInt(header.words[2])) {
+    reader.fail(header.number, "expected 'cver 1 n' at the start of a contour");
+  }
+  ContourData data;
+  std::optional<int> pointsLineNumber;
+  int distinctPoints = 0;
+  int totalPoints = 0;
+  int rows = 0;
+  bool hasType = false;
+  while (!reader.atEnd()) {
+    const TextLine& line = reader.take("a line");
+    const std::string_view label = line.words[0];
+    if (startsWithNumber(line)) {
+      if (!pointsLineNumber) reader.fail(line.number, "control point before 'points:'");
+      if (rows == distinctPoints) {
+        reader.fail(line.number, "more control points than the " + std::to_string(distinctPoints) +
+                                     " given by 'points:'");
+      }
+      readContourRow(reader, line, 4, data);
+      ++rows;
+    } else if (label == "name:") {
+      data.name = LineReader::restAfterLabel(line);
+    } else if (label == "points:") {
+      const std::vector<double> counts =
+          reader.numbersAfter(line, "points:", 2, "the number of points and their total multiplicity");
+      distinctPoints = static_cast<int>(counts[0]);
+      totalPoints = static_cast<int>(counts[1]);
+      if (distinctPoints != counts[0] || totalPoints != counts[1] || distinctPoints < 1) {
+        reader.fail(line.number, "expected 'points:' followed by two whole numbers");
+      }
+      pointsLineNumber = line.number;
+    } else if (label == "type:") {
+      data.closed = contourTypeIsClosed(reader, line);
+      hasType = true;
+    } else if (label == "samples:") {
+      // cpfg reads it and ignores it: the sample count comes from the view file.
+      reader.countAfter(line, "samples:", "a count");
+    } else if (label == "background:") {
+      // The editor's backdrop image; nothing for cpfg.
+    } else if (label == "backgroundXY:") {
+      reader.numbersAfter(line, "backgroundXY:", 2, "two coordinates");
+    } else if (label == "markers:") {
+      reader.skipMarkers(line);
+    } else {
+      reader.fail(line.number, "unexpected " + quoted(label) + " in a contour");
+    }
+  }
+  if (!pointsLineNumber) reader.fail(header.number, "missing 'points:' in the contour");
+  if (rows != distinctPoints) {
+    reader.fail(*pointsLineNumber, "'points:' announces " + std::to_string(distinctPoints) +
+                                       " control points, the file has " + std::to_string(rows));
+  }
+  if (static_cast<int>(data.points.size()) != totalPoints) {
+    reader.fail(*pointsLineNumber, "'points:' announces a total multiplicity of " +
+                                       std::to_string(totalPoints) + ", the rows add up to " +
+                                       std::to_string(data.points.size()));
+  }
+  if (!hasType) reader.fail(header.number, "missing 'type:' in the contour");
+  return data;
+}
+
+// The older curve format (`version: 1.4`, as cpfg-Ridley's profile.con): labelled lines
+// contact, end, heading, up, size, points, range, dimension, type, then the rows. cpfg's curveX/Y
+// use the rows as they are (Ridley's positions match only untransformed), so the placement labels
+// are read and not applied; with dimension 4 the fourth number is the multiplicity.
+ContourData readVersion14Curve(LineReader& reader) {
+  const TextLine& header = reader.take("'version:'");
+  if (header.words.size() != 2 || !parseDouble(header.words[1])) {
+    reader.fail(header.number, "expected 'version:' followed by a number");
+  }
+  ContourData data;
+  std::optional<int> pointsLineNumber;
+  int count = 0;
+  int rows = 0;
+  std::size_t dimension = 3;
+  while (!reader.atEnd()) {
+    const TextLine& line = reader.take("a line");
+    const std::string_view label = line.words[0];
+    if (startsWithNumber(line)) {
+      if (!pointsLineNumber) reader.fail(line.number, "control point before 'points:'");
+      if (rows == count) {
+        reader.fail(line.number,
+                    "more control points than the " + std::to_string(count) + " given by 'points:'");
+      }
+      readContourRow(reader, line, dimension, data);
+      ++rows;
+    } else if (label == "contact:" || label == "end:" || label == "heading:" || label == "up:") {
+      reader.numbersAfter(line, label, 3, "three coordinates");
+    } else if (label == "size:") {
+      reader.numbersAfter(line, "size:", 1, "a number");
+    } else if (label == "range:") {
+      reader.numbersAfter(line, "range:", 2, "two numbers");
+    } else if (label == "dimension:") {
+      const int value = reader.countAfter(line, "dimension:", "2, 3 or 4");
+      if (value < 2 || value > 4) reader.fail(line.number, "expected 'dimension:' followed by 2, 3 or 4");
+      if (rows > 0) reader.fail(line.number, "'dimension:' must come before the control points");
+      dimension = static_cast<std::size_t>(value);
+    } else if (label == "type:") {
+      if (line.words.size() != 2 || line.words[1] != "bspline") {
+        reader.fail(line.number, "expected 'type: bspline'");
+      }
+    } else if (label == "points:") {
+      count = reader.countAfter(line, "points:", "a count");
+      pointsLineNumber = line.number;
+    } else {
+      reader.fail(line.number, "unexpected " + quoted(label) + " in a curve");
+    }
+  }
+  if (!pointsLineNumber) reader.fail(header.number, "missing 'points:' in the curve");
+  if (rows != count) {
+    reader.fail(*pointsLineNumber, "'points:' announces " + std::to_string(count) +
+                                       " control points, the file has " + std::to_string(rows));
+  }
+  return data;
+}
+
+// cuspy v1.0: a header `n dim open|closed`, then n rows of dim coordinates.
+ContourData readVersion10Contour(LineReader& reader) {
+  const TextLine& header = reader.take("a header");
+  std::optional<int> count;
+  std::optional<int> dimension;
+  if (header.words.size() == 3) {
+    count = parseInt(header.words[0]);
+    dimension = parseInt(header.words[1]);
+  }
+  const bool typeKnown =
+      header.words.size() == 3 && (header.words[2] == "open" || header.words[2] == "closed");
+  if (!count || !dimension || *count < 1 || (*dimension != 2 && *dimension != 3) || !typeKnown) {
+    reader.fail(header.number,
+                "expected 'cver 1 3', 'version:' or a header 'count dimension open|closed'");
+  }
+  ContourData data;
+  data.closed = header.words[2] == "closed";
+  for (int i = 0; i < *count; ++i) {
+    readContourRow(reader, reader.take("control point " + std::to_string(i + 1)),
+                   static_cast<std::size_t>(*dimension), data);
+  }
+  expectEnd(reader, "the last control point");
+  return data;
+}
+
+ContourData readContour(LineReader& reader) {
+  if (reader.atEnd()) reader.fail(1, "empty contour file");
+  const std::string_view first = reader.peek().words[0];
+  ContourData data;
+  if (first == "cver") {
+    data = readCverContour(reader);
+  } else if (first == "version:") {
+    data = readVersion14Curve(reader);
+  } else {
+    data = readVersion10Contour(reader);
+  }
+  const std::size_t needed = data.closed ? 3 : 4;
+  if (data.points.size() < needed) {
+    reader.fail(1, std::string(data.closed ? "a closed" : "an open") + " contour needs at least " +
+                       std::to_string(needed) + " control points (counting multiplicities), found " +
+                       std::to_string(data.points.size()));
+  }
+  return data;
+}
+
+// Uniform cubic B-spline segment (Bartels, Beatty, Barsky, "An Introduction to Splines", eq. 4.4).
+std::array<double, 3> uniformSegment(const std::array<double, 3>& p0, const std::array<double, 3>& p1,
+                                     const std::array<double, 3>& p2, const std::array<double, 3>& p3,
+                                     double t) {
+  const double t2 = t * t;
+  const double t3 = t2 * t;
+  const double b0 = (1.0 - t) * (1.0 - t) * (1.0 - t) / 6.0;
+  const double b1 = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0;
+  const double b2 = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0;
+  const double b3 = t3 / 6.0;
+  std::array<double, 3> out{};
+  for (int k = 0; k < 3; ++k) out[k] = b0 * p0[k] + b1 * p1[k] + b2 * p2[k] + b3 * p3[k];
+  return out;
+}
+
+double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  const double dx = b[0] - a[0];
+  const double dy = b[1] - a[1];
+  const double dz = b[2] - a[2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+// NaN reads as 0, everything else is clamped to [0, 1].
+double clampUnit(double value) {
+  if (!(value > 0.0)) return 0.0;
+  return value > 1.0 ? 1.0 : value;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The view file.
+
+bool isIdentifier(const std::string& word) {
+  if (word.empty() || std::isdigit(static_cast<unsigned char>(word[0]))) return false;
+  return std::all_of(word.begin(), word.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+// A cpp line marker `# 12 "plant.v" 1` or `#line 12 "plant.v"`: the number of the next line and
+// the file it comes from.
+std::optional<std::pair<int, std::string>> lineMarker(std::string_view line) {
+  if (line.empty() || line[0] != '#') return std::nullopt;
+  std::vector<std::string_view> words = splitWords(line.substr(1));
+  if (!words.empty() && words[0] == "line") words.erase(words.begin());
+  if (words.empty()) return std::nullopt;
+  const std::optional<int> number = parseInt(words[0]);
+  if (!number) return std::nullopt;
+  std::string file;
+  if (words.size() > 1 && words[1].size() >= 2 && words[1].front() == '"' && words[1].back() == '"') {
+    file = std::string(words[1].substr(1, words[1].size() - 2));
+  }
+  return std::make_pair(*number, file);
+}
+
+struct ViewLine {
+  std::string_view label;  // up to and including the first ':'
+  std::vector<std::string_view> arguments;
+  std::vector<int> columns;  // 1-based column of each argument
+};
+
+// cpfg's label: from the first non-space character (tabs are not skipped) up to and including
+// the first ':', compared with strcmp, so the spelling must be exact.
+std::optional<ViewLine> splitViewLine(std::string_view line) {
+  const std::size_t start = line.find_first_not_of(' ');
+  if (start == std::string_view::npos) return std::nullopt;
+  const std::size_t colon = line.find(':', start);
+  if (colon == std::string_view::npos) return std::nullopt;
+  ViewLine out;
+  out.label = line.substr(start, colon + 1 - start);
+  const std::string_view rest = line.substr(colon + 1);
+  for (std::string_view word : splitWords(rest)) {
+    out.arguments.push_back(word);
+    out.columns.push_back(static_cast<int>(word.data() - line.data()) + 1);
+  }
+  return out;
+}
+
+// A loader's error, re-reported at the view line that named the file; the message keeps the
+// place in the loaded file.
+[[noreturn]] void failAtViewLine(const SourceLocation& where, const std::string& kind,
+                                 std::string_view fileName, const DiagnosticError& inner) {
+  const Diagnostic& d = inner.diagnostic();
+  throw DiagnosticError(where, kind + " file " + quoted(fileName) + " is broken: " + d.where.text() +
+                                   ": " + d.message);
+}
+
+// The view names a file that is not there.
+void requireFile(const SourceLocation& where, const std::string& kind,
+                 const std::filesystem::path& path, std::string_view fileName) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw DiagnosticError(where, "cannot open " + kind + " file " + quoted(fileName) + " (looked for " +
+                                     path.string() + ")");
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// FunctionCurve
+
+FunctionCurve::FunctionCurve(std::string name, int samples, std::vector<std::array<double, 2>> points)
+    : name_(std::move(name)), samples_(samples), points_(std::move(points)) {
+  // cpfg: with more than 2 samples, func() interpolates linearly in a table of `samples` values at
+  // x = i/(samples-1) (tools-LeafPosition: the values at 0, 1/3, 2/3, 1 are exact solutions, the
+  // ones between are interpolated).
+  if (samples_ > 2) {
+    table_.reserve(static_cast<std::size_t>(samples_));
+    for (int i = 0; i < samples_; ++i) {
+      table_.push_back(solveForX(static_cast<double>(i) / (samples_ - 1)));
+    }
+  }
+}
+
+FunctionCurve FunctionCurve::parse(std::string_view text, const std::string& fileName,
+                                   int viewSamples) {
+  LineReader reader(text, fileName);
+  FunctionData data = readFunction(reader, viewSamples);
+  expectEnd(reader, "the last control point");
+  return FunctionCurve(std::move(data.name), data.samples, std::move(data.points));
+}
+
+std::vector<FunctionCurve> FunctionCurve::parseSet(std::string_view text,
+                                                   const std::string& fileName) {
+  LineReader reader(text, fileName);
+  const TextLine& header = reader.take("'funcgalleryver 1 1'");
+  if (header.words.size() != 3 || header.words[0] != "funcgalleryver" || header.words[1] != "1") {
+    reader.fail(header.number, "expected 'funcgalleryver 1 1' at the start of a function set");
+  }
+  const int count = reader.countAfter(reader.take("'items:'"), "items:", "a count");
+  std::vector<FunctionCurve> functions;
+  for (int i = 0; i < count; ++i) {
+    if (reader.atEnd()) {
+      reader.take("function " + std::to_string(i + 1) + " of " + std::to_string(count));
+    }
+    // Each item is a complete v1.01 function with its own sample count.
+    if (reader.peek().words[0] != "fver") {
+      reader.fail(reader.peek().number, "expected 'fver 1 1' at the start of function " +
+                                            std::to_string(i + 1) + " of " + std::to_string(count));
+    }
+    FunctionData data = readVersion1Function(reader);
+    functions.push_back(FunctionCurve(std::move(data.name), data.samples, std::move(data.points)));
+  }
+  expectEnd(reader, "the last of the " + std::to_string(count) + " functions");
+  return functions;
+}
+
+FunctionCurve FunctionCurve::load(const std::filesystem::path& file, int viewSamples) {
+  return parse(readFile(file, "function"), file.string(), viewSamples);
+}
+
+std::vector<FunctionCurve> FunctionCurve::loadSet(const std::filesystem::path& fset) {
+  return parseSet(readFile(fset, "function set"), fset.string());
+}
+
+// The clamped uniform cubic B-spline (knots 0,0,0,0,1,…,n−3,n−3,n−3,n−3) at u ∈ [0, 1] of the
+// whole curve, by de Boor's algorithm.
+std::array<double, 2> FunctionCurve::pointAt(double u) const {
+  const int n = static_cast<int>(points_.size());
+  const double knotU = u * (n - 3);
+  const auto knot = [n](int j) -> double {
+    if (j <= 3) return 0.0;
+    if (j >= n) return n - 3;
+    return j - 3;
+  };
+  const int span = std::clamp(static_cast<int>(std::floor(knotU)) + 3, 3, n - 1);
+  std::array<std::array<double, 2>, 4> d{};
+  for (int j = 0; j < 4; ++j) d[j] = points_[span - 3 + j];
+  for (int r = 1; r <= 3; ++r) {
+    for (int j = 3; j >= r; --j) {
+      const int i = j + span - 3;
+      const double alpha = (knotU - knot(i)) / (knot(i + 4 - r) - knot(i));
+      for (int k = 0; k < 2; ++k) d[j][k] = (1.0 - alpha) * d[j - 1][k] + alpha * d[j][k];
+    }
+  }
+  return d[3];
+}
+
+// cpfg: bisection on the curve parameter, starting at its middle, until x(u) is within
+// kTolerance of x; y there is the value. The answer is therefore off by up to the tolerance even
+// at the ends (func(1,1) of tools-LeafRandom's internode is 1.00316, the last point 1.003176).
+// When x is out of reach (a curve not spanning [0, 1]) the bisection ends where the parameter
+// interval stops shrinking, at the nearest end.
+double FunctionCurve::solveForX(double x) const {
+  constexpr int kMaxSteps = 80;  // enough to exhaust a double's precision on [0, 1]
+  double low = 0.0;
+  double high = 1.0;
+  std::array<double, 2> p{};
+  for (int step = 0; step < kMaxSteps; ++step) {
+    const double u = 0.5 * (low + high);
+    p = pointAt(u);
+    if (std::fabs(p[0] - x) < kTolerance) break;
+    if (p[0] < x) {
+      low = u;
+    } else {
+      high = u;
+    }
+  }
+  return p[1];
+}
+
+double FunctionCurve::evaluate(double x) const {
+  x = clampUnit(x);
+  if (table_.empty()) return solveForX(x);
+  const double position = x * (samples_ - 1);
+  const int index = static_cast<int>(position);
+  if (index >= samples_ - 1) return table_.back();
+  const double fraction = position - index;
+  return table_[index] + fraction * (table_[index + 1] - table_[index]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// ContourCurve
+
+ContourCurve::ContourCurve(std::string name, bool closed, std::vector<std::array<double, 3>> points,
+                           int samples)
+    : name_(std::move(name)), closed_(closed), points_(std::move(points)), samples_(samples) {
+  if (samples_ < 2) throw std::invalid_argument("a curve needs at least 2 samples");
+  // cpfg: the curve is sampled at `samples` parameters spread evenly over all segments and the
+  // chord lengths summed; curveGAL is that polyline's length (cpfg-Ridley: with 100 samples the
+  // 495 primordia land where cpfg put them, with 99 or 101 they do not).
+  cumulativeLength_.reserve(static_cast<std::size_t>(samples_));
+  cumulativeLength_.push_back(0.0);
+  std::array<double, 3> previous = pointAtParameter(0.0);
+  for (int i = 1; i < samples_; ++i) {
+    const std::array<double, 3> current =
+        pointAtParameter(static_cast<double>(segmentCount()) * i / (samples_ - 1));
+    cumulativeLength_.push_back(cumulativeLength_.back() + distance(previous, current));
+    previous = current;
+  }
+}
+
+ContourCurve ContourCurve::parse(std::string_view text, const std::string& fileName, int samples) {
+  LineReader reader(text, fileName);
+  ContourData data = readContour(reader);
+  return ContourCurve(std::move(data.name), data.closed, std::move(data.points), samples);
+}
+
+ContourCurve ContourCurve::load(const std::filesystem::path& file, int samples) {
+  return parse(readFile(file, "contour"), file.string(), samples);
+}
+
+// Open: n−3 segments, the ends interpolated when their points have multiplicity 3. Closed:
+// periodic, one segment per control point.
+int ContourCurve::segmentCount() const {
+  const int n = static_cast<int>(points_.size());
+  return closed_ ? n : n - 3;
+}
+
+std::array<double, 3> ContourCurve::pointAtParameter(double u) const {
+  const int n = static_cast<int>(points_.size());
+  const int segments = segmentCount();
+  const int segment = std::clamp(static_cast<int>(std::floor(u)), 0, segments - 1);
+  const double t = u - segment;
+  const auto at = [&](int i) -> const std::array<double, 3>& { return points_[(segment + i) % n]; };
+  return uniformSegment(at(0), at(1), at(2), at(3), t);
+}
+
+// cpfg: the arc length t·L is located in the sample table, the parameter interpolated linearly
+// between the two samples around it, and the spline evaluated exactly there. (Interpolating the
+// sampled positions instead leaves cpfg-Ridley's primordia up to 1e-4 off along the curve.)
+std::array<double, 3> ContourCurve::point(double t) const {
+  const double target = clampUnit(t) * length();
+  auto above = std::lower_bound(cumulativeLength_.begin() + 1, cumulativeLength_.end(), target);
+  if (above == cumulativeLength_.end()) --above;
+  const int i = static_cast<int>(above - cumulativeLength_.begin());
+  const double chord = cumulativeLength_[i] - cumulativeLength_[i - 1];
+  const double fraction = chord > 0.0 ? (target - cumulativeLength_[i - 1]) / chord : 0.0;
+  return pointAtParameter(static_cast<double>(segmentCount()) * (i - 1 + fraction) /
+                          (samples_ - 1));
+}
+
+// ---------------------------------------------------------------------------------------------
+// readViewFunctions
+
+ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
+                                const std::filesystem::path& viewFile) {
+  ViewFunctions out;
+  const std::filesystem::path folder = viewFile.parent_path();
+  std::shared_ptr<const std::string> currentFile =
+      std::make_shared<const std::string>(viewFile.string());
+  int lineNumber = 0;
+  std::string_view text = preprocessedViewText;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view line = text.substr(start, end - start);
+    start = end + 1;
+    if (const auto marker = lineMarker(line)) {
+      lineNumber = marker->first - 1;
+      if (!marker->second.empty() && marker->second != *currentFile) {
+        currentFile = std::make_shared<const std::string>(marker->second);
+      }
+      continue;
+    }
+    ++lineNumber;
+    const std::optional<ViewLine> parts = splitViewLine(line);
+    if (!parts) continue;
+    const bool isFunction = parts->label == "function:";
+    const bool isFunctionSet = parts->label == "function set:";
+    const bool isCurve = parts->label == "curve:";
+    if (!isFunction && !isFunctionSet && !isCurve) continue;
+
+    const SourceLocation labelAt{currentFile, lineNumber, 0};
+    if (parts->arguments.empty()) {
+      throw DiagnosticError(labelAt, "expected a file name after " + quoted(parts->label));
+    }
+    const std::string_view fileName = parts->arguments[0];
+    const SourceLocation fileAt{currentFile, lineNumber, parts->columns[0]};
+    std::optional<int> samples;
+    if (isFunctionSet == false && parts->arguments.size() > 1) {
+      samples = parseInt(parts->arguments[1]);
+      if (!samples) {
+        throw DiagnosticError(SourceLocation{currentFile, lineNumber, parts->columns[1]},
+                              "expected a sample count after the file name, found " +
+                                  quoted(parts->arguments[1]));
+      }
+    }
+    const std::filesystem::path path = folder / std::filesystem::path(std::string(fileName));
+
+    requireFile(fileAt, isFunction ? "function" : isFunctionSet ? "function set" : "curve", path,
+                fileName);
+    if (isFunction) {
+      try {
+        out.functions.push_back(FunctionCurve::load(path, samples.value_or(0)));
+      } catch (const DiagnosticError& error) {
+        failAtViewLine(fileAt, "function", fileName, error);
+      }
+    } else if (isFunctionSet) {
+      // cpfg: `function set:` replaces the function list; its names become preprocessor macros.
+      try {
+        out.functions = FunctionCurve::loadSet(path);
+      } catch (const DiagnosticError& error) {
+        failAtViewLine(fileAt, "function set", fileName, error);
+      }
+      out.macroDefinitions.clear();
+      for (std::size_t i = 0; i < out.functions.size(); ++i) {
+        // A name that is no identifier (`leaf-length`) cannot be a macro; it is left out rather
+        // than handed to the preprocessor as a broken -D.
+        if (isIdentifier(out.functions[i].name())) {
+          out.macroDefinitions.emplace_back(out.functions[i].name(), std::to_string(i + 1));
+        }
+      }
+    } else {
+      const int curveSamples = samples.value_or(ContourCurve::kDefaultSamples);
+      if (curveSamples < 2) {
+        throw DiagnosticError(SourceLocation{currentFile, lineNumber, parts->columns[1]},
+                              "a curve needs at least 2 samples, found " +
+                                  std::to_string(curveSamples));
+      }
+      try {
+        out.curves.push_back(ContourCurve::load(path, curveSamples));
+      } catch (const DiagnosticError& error) {
+        failAtViewLine(fileAt, "curve", fileName, error);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace hirsute

@@ -1,0 +1,101 @@
+// Derivation with cpfg's semantics: parallel rewriting in file order, contexts with
+// ignore/consider and branch skipping, conditions and blocks, stochastic choice, decomposition
+// after each step, the cut, sub-L-systems, Start/StartEach/EndEach/End; and the homomorphism
+// applied when the string is handed to a sink.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/lsys/evaluator.h"
+#include "hirsute/lsys/module_sink.h"
+#include "hirsute/lsys/module_string.h"
+#include "hirsute/lsys/program.h"
+#include "hirsute/lsys/random_streams.h"
+
+namespace hirsute {
+
+struct DerivationOptions {
+  std::optional<int> steps;                  // overrides `derivation length:`
+  std::size_t maxModules = 100'000'000;      // a longer string is an error
+  std::size_t maxStringBytes = 0;            // 0: a share of the machine's memory
+};
+
+class Derivation {
+ public:
+  Derivation(const Program& program, Evaluator& evaluator, Diagnostics& diagnostics,
+             DerivationOptions options = {});
+
+  // Runs define:, Start: and builds the axiom. Called once before the first step.
+  void start();
+  // Performs one derivation step; returns false when the derivation has ended (all steps done
+  // or stop() called), without changing the string.
+  bool step();
+  // Steps until the end; calls `afterStep` (if given) after every step.
+  template <typename AfterStep>
+  void run(AfterStep afterStep) {
+    while (step()) afterStep(*this);
+  }
+  void run() {
+    while (step()) {
+    }
+  }
+
+  int stepsDone() const { return stepsDone_; }
+  int totalSteps() const { return totalSteps_; }
+  const ModuleString& string() const { return current_; }
+
+  // Hands every module of the current string to `sink`, after the main L-system's
+  // homomorphism when `applyHomomorphism` (recursively, with contexts in the string).
+  void emit(ModuleSink& sink, bool applyHomomorphism);
+
+ private:
+  struct Match {
+    const Production* production = nullptr;
+    std::size_t end = 0;  // position after the strict predecessor
+    double* frame = nullptr;
+  };
+
+  std::size_t frameOffset(int lsystem, int set, std::size_t production) const {
+    return frameOffsets_[static_cast<std::size_t>(lsystem * 3 + set)][production];
+  }
+  bool matchStrict(const Production& p, const ModuleString& s, std::size_t at, std::size_t& end,
+                   double* frame) const;
+  bool matchRight(const std::vector<ModulePattern>& patterns, const Lsystem& l, const ModuleString& s,
+                  std::size_t from, double* frame) const;
+  bool matchLeft(const std::vector<ModulePattern>& patterns, const Lsystem& l, const ModuleString& s,
+                 std::size_t before, double* frame) const;
+  bool matchContexts(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
+                     std::size_t end, double* frame) const;
+  // Finds the production to apply at `at`, running pre-condition blocks and conditions.
+  bool choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match);
+  void rewriteStep();
+  void appendSuccessor(const Production& p, double* frame, int lsystem, std::size_t anchor);
+  void appendModule(char symbol, const double* values, std::size_t count, int lsystem,
+                    std::size_t anchor, int level);
+  void checkSize(const SourceLocation& where);
+  std::size_t skipCut(const ModuleString& s, std::size_t at) const;
+  void homomorphism(ModuleSink& sink, int lsystem, char symbol, const float* values, std::size_t count,
+                    std::size_t anchor, int level);
+
+  const Program& program_;
+  Evaluator& evaluator_;
+  Diagnostics& diagnostics_;
+  DerivationOptions options_;
+  ModuleString current_, next_;
+  std::vector<std::vector<std::size_t>> frameOffsets_;
+  std::vector<double> frames_;
+  Rand48 choice_;  // cpfg's drand48 stream for stochastic productions
+  int stepsDone_ = 0;
+  int totalSteps_ = 0;
+  bool started_ = false;
+  bool stopped_ = false;
+  std::vector<int> subLsystems_;  // the L-system stack while scanning the string
+  std::vector<Match> candidates_;
+  std::vector<double> scratch_;   // successor values while decomposition recurses
+};
+
+}  // namespace hirsute

@@ -1,0 +1,66 @@
+// Diagnostics: the one error mechanism of Hirsute. Every stage reports problems as a Diagnostic
+// with a location in the user's own file; errors are thrown as DiagnosticError and printed by the
+// command line as `file:line:col: error: message`.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace hirsute {
+
+struct SourceLocation {
+  std::shared_ptr<const std::string> file;  // shared: every location of one file points to one name
+  int line = 0;                              // 1-based; 0 when unknown
+  int column = 0;                            // 1-based; 0 when unknown
+
+  std::string fileName() const { return file ? *file : std::string(); }
+  // "file:line:col", "file:line" or "file", as much as is known.
+  std::string text() const;
+};
+
+enum class Severity { Warning, Error };
+
+struct Diagnostic {
+  Severity severity = Severity::Error;
+  SourceLocation where;
+  std::string message;
+
+  // "file:line:col: error: message"
+  std::string text() const;
+};
+
+// Thrown for every error that ends a run; the command line prints it and exits with code 2.
+class DiagnosticError : public std::runtime_error {
+ public:
+  explicit DiagnosticError(Diagnostic diagnostic);
+  DiagnosticError(const SourceLocation& where, const std::string& message);
+  const Diagnostic& diagnostic() const { return diagnostic_; }
+
+ private:
+  Diagnostic diagnostic_;
+};
+
+// Collects warnings; prints each as it arrives when given a stream. A warning repeated at the same
+// location is printed once, and after kMaxPrinted distinct warnings the rest are only counted.
+class Diagnostics {
+ public:
+  static constexpr std::size_t kMaxPrinted = 50;
+
+  explicit Diagnostics(std::ostream* echo = nullptr) : echo_(echo) {}
+
+  void warn(const SourceLocation& where, const std::string& message);
+  const std::vector<Diagnostic>& warnings() const { return warnings_; }
+  std::size_t suppressed() const { return suppressed_; }
+  void setEcho(std::ostream* echo) { echo_ = echo; }
+
+ private:
+  std::ostream* echo_;
+  std::vector<Diagnostic> warnings_;
+  std::size_t suppressed_ = 0;
+};
+
+}  // namespace hirsute

@@ -1,0 +1,77 @@
+// The evaluator: runs compiled code against the state of one derivation (variables, arrays,
+// random stream, user functions, open files).
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <ostream>
+#include <vector>
+
+#include "hirsute/lsys/builtins.h"
+#include "hirsute/lsys/code.h"
+#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/lsys/program.h"
+#include "hirsute/lsys/random_streams.h"
+
+namespace hirsute {
+
+struct ViewFunctions;
+
+struct EvaluationLimits {
+  // Iterations of while and do-while loops per run of one block; a runaway loop is an error.
+  std::uint64_t maxLoopIterations = 10'000'000;
+  // Files one model may have open at once.
+  int maxOpenFiles = 32;
+};
+
+class Evaluator {
+ public:
+  Evaluator(const Program& program, Diagnostics& diagnostics, const ViewFunctions* functions,
+            std::filesystem::path modelFolder, std::ostream& printOut, EvaluationLimits limits = {});
+  ~Evaluator();
+  Evaluator(const Evaluator&) = delete;
+  Evaluator& operator=(const Evaluator&) = delete;
+
+  // Runs statements; returns the value left by an expression (0 when none).
+  double run(const Code& code, double* frame);
+  // Runs code that leaves `count` values; returns them (valid until the next run).
+  const double* values(const Code& code, double* frame, std::size_t count);
+  bool isTrue(const Code& condition, double* frame) {
+    return condition.empty() || run(condition, frame) != 0;
+  }
+
+  std::vector<double>& shared() { return shared_; }
+  BlockRandom& random() { return *random_; }
+  // Swaps in another random stream (the homomorphism's own, when it has a seed).
+  void useRandom(BlockRandom* stream) { random_ = stream ? stream : &ownRandom_; }
+  bool stopRequested() const { return stopRequested_; }
+  void clearStop() { stopRequested_ = false; }
+  const Program& program() const { return program_; }
+  const SourceLocation& location(std::uint32_t where) const { return program_.locations[where]; }
+
+ private:
+  double call(Builtin id, const double* args, int count, std::uint32_t where);
+  double openFile(const std::string& name, const std::string& mode, std::uint32_t where);
+  std::FILE* file(double id, std::uint32_t where);
+  std::string format(const std::string& format, const double* args, int count, std::uint32_t where);
+  std::size_t elementIndex(std::int32_t array, const double* subscripts, int count, std::uint32_t where);
+  [[noreturn]] void fail(std::uint32_t where, const std::string& message) const;
+
+  const Program& program_;
+  Diagnostics& diagnostics_;
+  const ViewFunctions* functions_;
+  std::filesystem::path modelFolder_;
+  std::ostream& printOut_;
+  EvaluationLimits limits_;
+  std::vector<double> shared_;
+  std::vector<std::vector<double>> arrays_;
+  std::vector<double> stack_;
+  BlockRandom ownRandom_;
+  BlockRandom* random_ = &ownRandom_;
+  std::vector<std::FILE*> files_;
+  bool stopRequested_ = false;
+};
+
+}  // namespace hirsute

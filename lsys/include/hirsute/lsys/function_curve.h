@@ -1,0 +1,109 @@
+// User functions and curves of a cpfg model: the `.func`/`.fset` files behind `func(id, x)` and
+// the `.con` files behind `curveX/curveY/curveZ(id, t)` and `curveGAL(id)`, as named by the
+// view file's `function:`, `function set:` and `curve:` lines.
+//
+// The numbers these return feed module parameters, so they follow cpfg's arithmetic, not just its
+// intent: both were checked against cpfg's output for tools-LeafPosition, tools-LilyLeaf and
+// cpfg-Ridley in the conformance set.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace hirsute {
+
+// A function y(x) on [0, 1] drawn with vlab's funcedit: a clamped uniform cubic B-spline whose
+// control points have non-decreasing x.
+class FunctionCurve {
+ public:
+  // cpfg: y(x) is found by bisection until x(u) is within this distance of x.
+  static constexpr double kTolerance = 1e-3;
+
+  // Reads a `.func` file. `viewSamples` is the count given on the view file's `function:` line
+  // (0 when absent); cpfg uses it only for version 0 files, v1.01 files carry their own.
+  // Throws DiagnosticError at the line of the file where it is broken.
+  static FunctionCurve load(const std::filesystem::path& file, int viewSamples);
+  // Reads a `.fset` function gallery: the functions in file order (ids 1, 2, …).
+  static std::vector<FunctionCurve> loadSet(const std::filesystem::path& fset);
+
+  // The same from text already in memory; `fileName` is used in messages.
+  static FunctionCurve parse(std::string_view text, const std::string& fileName, int viewSamples);
+  static std::vector<FunctionCurve> parseSet(std::string_view text, const std::string& fileName);
+
+  // The `name:` of the file; empty for version 0 files, which have none.
+  const std::string& name() const { return name_; }
+  // The number of precomputed values; evaluation interpolates them when there are more than 2.
+  int samples() const { return samples_; }
+  // Control points with multiplicities expanded, as cpfg stores them (float precision).
+  const std::vector<std::array<double, 2>>& controlPoints() const { return points_; }
+
+  // y at x, with x clamped to [0, 1] (NaN reads as 0).
+  double evaluate(double x) const;
+
+ private:
+  FunctionCurve(std::string name, int samples, std::vector<std::array<double, 2>> points);
+  std::array<double, 2> pointAt(double u) const;  // u in [0, 1] over the whole curve
+  double solveForX(double x) const;
+
+  std::string name_;
+  int samples_ = 0;
+  std::vector<std::array<double, 2>> points_;
+  std::vector<double> table_;  // samples_ values at x = i/(samples_-1), when samples_ > 2
+};
+
+// A planar or spatial curve drawn with vlab's cuspy (`.con`), used by the view's `curve:` line:
+// a uniform cubic B-spline (periodic when closed), measured by arc length.
+class ContourCurve {
+ public:
+  static constexpr int kDefaultSamples = 100;
+
+  // Reads a `.con` file in any of cuspy's versions (cver 1.0 to 1.3, and the older
+  // `version: 1.4` curve format). `samples` is the view's count (cpfg ignores the file's); fewer
+  // than 2 is a programming error (std::invalid_argument), the view reader reports it first.
+  static ContourCurve load(const std::filesystem::path& file, int samples = kDefaultSamples);
+  static ContourCurve parse(std::string_view text, const std::string& fileName,
+                            int samples = kDefaultSamples);
+
+  const std::string& name() const { return name_; }
+  bool closed() const { return closed_; }
+  // Control points with multiplicities expanded.
+  const std::vector<std::array<double, 3>>& controlPoints() const { return points_; }
+
+  // The point at arc-length fraction t of the curve, t clamped to [0, 1] (NaN reads as 0).
+  std::array<double, 3> point(double t) const;
+  // The length of the curve (curveGAL).
+  double length() const { return cumulativeLength_.back(); }
+
+ private:
+  ContourCurve(std::string name, bool closed, std::vector<std::array<double, 3>> points,
+               int samples);
+  int segmentCount() const;
+  std::array<double, 3> pointAtParameter(double u) const;  // u in [0, segmentCount()]
+
+  std::string name_;
+  bool closed_ = false;
+  std::vector<std::array<double, 3>> points_;
+  int samples_ = kDefaultSamples;
+  std::vector<double> cumulativeLength_;  // chord lengths of samples_ points uniform in u
+};
+
+// What a view file declares for func() and curveX/Y/Z/GAL().
+struct ViewFunctions {
+  std::vector<FunctionCurve> functions;  // func id k is functions[k-1]
+  std::vector<ContourCurve> curves;      // curve id k is curves[k-1]
+  // `function set:` names with their ids ({"growth", "1"}), to define for the `.l` preprocessor.
+  std::vector<std::pair<std::string, std::string>> macroDefinitions;
+};
+
+// Reads the `function:`, `function set:` and `curve:` lines of a preprocessed view file and loads
+// the files they name (relative to the view file's folder). Line numbers follow the `# n "file"`
+// markers of the preprocessor. Throws DiagnosticError at the view line for a missing or broken
+// file.
+ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
+                                const std::filesystem::path& viewFile);
+
+}  // namespace hirsute

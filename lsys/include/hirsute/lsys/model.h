@@ -1,0 +1,26 @@
+// Loading a model as cpfg does: the view file first (its `function:`, `function set:` and
+// `curve:` lines), then the `.l` through the preprocessor with the function-set names defined,
+// then parsing and compiling.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/lsys/function_curve.h"
+#include "hirsute/lsys/program.h"
+
+namespace hirsute {
+
+struct Model {
+  std::filesystem::path lsystemFile;
+  std::optional<std::filesystem::path> viewFile;
+  std::filesystem::path folder;  // the `.l` file's folder: includes and fopen are relative to it
+  ViewFunctions functions;
+  Program program;
+};
+
+Model loadModel(const std::filesystem::path& lsystemFile,
+                const std::optional<std::filesystem::path>& viewFile, Diagnostics& diagnostics);
+
+}  // namespace hirsute

@@ -1,0 +1,35 @@
+// The C preprocessor pass that cpfg runs over `.l` and `.v` files.
+//
+// cpfg pipes its input through GNU cpp with C++ comments enabled and keeps the `# line "file"`
+// markers, so every later message can point into the user's own file. We run Debian's `cpp` in
+// traditional mode, which passes cpfg's module text through untouched (quotes, `#(w)` after
+// indentation, `\\` roll modules), after a pass of our own that does what traditional mode lacks:
+// `//` comments are removed and indented directives are moved to column 1.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hirsute/lsys/diagnostic.h"
+
+namespace hirsute {
+
+struct PreprocessorOptions {
+  // Object-like macros defined before the file is read (cpfg: `function set:` names of the .v).
+  std::vector<std::pair<std::string, std::string>> defines;
+  // The preprocessor program; `cpp` on the PATH by default.
+  std::string program = "cpp";
+};
+
+// The preprocessed text with line markers, ready for a lexer that understands them.
+// Throws DiagnosticError with the location of the problem in the user's file.
+std::string preprocessFile(const std::filesystem::path& file, const PreprocessorOptions& options,
+                           Diagnostics& diagnostics);
+
+// Removes `//` comments (outside strings and `/* */` comments) and moves indented
+// preprocessor directives to column 1; the number of lines is unchanged.
+std::string prepareForTraditionalCpp(const std::string& text);
+
+}  // namespace hirsute

@@ -1,0 +1,100 @@
+// A compiled `.l` file: what the derivation runs. Built by compileProgram() from the syntax tree;
+// immutable afterwards, so one Program can be derived many times.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hirsute/lsys/ast.h"
+#include "hirsute/lsys/code.h"
+#include "hirsute/lsys/diagnostic.h"
+
+namespace hirsute {
+
+// A module of a predecessor or context: its symbol, parameter count, and the frame slots its
+// formal parameters are bound to.
+struct ModulePattern {
+  char symbol = 0;
+  std::uint8_t parameterCount = 0;
+  std::vector<int> slots;  // one per parameter
+};
+
+// A successor module: symbol and parameter count; values come from the successor's code.
+struct SuccessorModule {
+  char symbol = 0;
+  std::uint8_t parameterCount = 0;
+};
+
+struct Production {
+  SourceLocation where;
+  std::vector<ModulePattern> left;   // in string order
+  std::vector<ModulePattern> strict;
+  std::vector<ModulePattern> right;
+  Code before;                       // pre-condition statements
+  Code condition;                    // empty: always true
+  Code after;                        // post-condition statements
+  std::vector<SuccessorModule> successor;
+  Code successorValues;              // pushes every successor parameter, left to right
+  Code probability;                  // empty: weight 1
+  int frameSize = 0;                 // formal parameters and local variables
+  std::vector<std::string> slotNames;
+  bool hasContext() const { return !left.empty() || !right.empty(); }
+};
+
+struct RuleSet {
+  std::vector<Production> productions;
+  // Productions by the first symbol of their strict predecessor, in file order.
+  std::array<std::vector<std::uint32_t>, 128> bySymbol;
+  int maximumDepth = 1;
+  bool warnings = true;
+  bool present = false;
+  bool hasSeed = false;
+  double seed = 0;
+};
+
+struct Lsystem {
+  SourceLocation where;
+  std::string label;
+  double id = 0;                  // atof(label), as cpfg numbers sub-L-systems
+  int derivationLength = 0;
+  bool hasDerivationLength = false;
+  bool stochastic = false;        // `seed:` given
+  double seed = 0;
+  std::array<bool, 128> ignored{};  // symbols skipped in context matching
+  bool ring = false;
+  Code define;                    // array initializers
+  Code start, startEach, endEach, end;
+  std::vector<SuccessorModule> axiom;
+  Code axiomValues;
+  SourceLocation axiomWhere;
+  RuleSet productions, decomposition, homomorphism;
+};
+
+struct ArrayDefinition {
+  std::string name;
+  std::vector<int> dimensions;
+  SourceLocation where;
+};
+
+struct Program {
+  std::vector<Lsystem> lsystems;  // [0] is the main L-system
+  std::vector<std::string> sharedNames;  // L-system and global variables, by slot
+  int stepSlot = 0;                      // the hidden global Q (current step)
+  int lengthSlot = 0;                    // the hidden global Z (derivation length)
+  std::vector<ArrayDefinition> arrays;
+  std::vector<std::string> strings;      // string literals, by id
+  std::vector<SourceLocation> locations; // by Instruction::where
+  int maxStack = 0;
+  bool usesQueries = false;              // ?P ?H ?L ?U modules appear
+  bool usesEnvironment = false;          // ?E modules appear
+
+  int lsystemIndex(double id) const;     // -1 when absent
+};
+
+// Compiles a parsed file. Throws DiagnosticError; warnings go to `diagnostics`.
+Program compileProgram(const ast::File& file, Diagnostics& diagnostics);
+
+}  // namespace hirsute

@@ -1,0 +1,27 @@
+#include "hirsute/lsys/model.h"
+
+#include "hirsute/lsys/parser.h"
+#include "hirsute/lsys/preprocessor.h"
+
+namespace hirsute {
+
+Model loadModel(const std::filesystem::path& lsystemFile,
+                const std::optional<std::filesystem::path>& viewFile, Diagnostics& diagnostics) {
+  Model model;
+  model.lsystemFile = lsystemFile;
+  model.viewFile = viewFile;
+  model.folder = lsystemFile.parent_path().empty() ? std::filesystem::path(".") : lsystemFile.parent_path();
+  PreprocessorOptions options;
+  if (viewFile) {
+    std::string viewText = preprocessFile(*viewFile, options, diagnostics);
+    model.functions = readViewFunctions(viewText, *viewFile);
+    // cpfg defines every function-set name for the preprocessor before reading the `.l`.
+    options.defines = model.functions.macroDefinitions;
+  }
+  std::string text = preprocessFile(lsystemFile, options, diagnostics);
+  ast::File file = parseLsystemText(text, lsystemFile.string());
+  model.program = compileProgram(file, diagnostics);
+  return model;
+}
+
+}  // namespace hirsute

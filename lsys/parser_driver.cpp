@@ -1,0 +1,42 @@
+#include <memory>
+
+#include "hirsute/lsys/parser.h"
+#include "lexer.hpp"
+#include "lexer_context.h"
+#include "parser.hpp"
+
+namespace hirsute {
+namespace {
+
+// Owns a Flex scanner for the duration of one parse, also when the parse throws.
+class Scanner {
+ public:
+  explicit Scanner(detail::LexerContext& ctx) {
+    if (hirsute_lsys_lex_init_extra(&ctx, &scanner_) != 0) throw std::bad_alloc();
+  }
+  ~Scanner() { hirsute_lsys_lex_destroy(scanner_); }
+  Scanner(const Scanner&) = delete;
+  Scanner& operator=(const Scanner&) = delete;
+  yyscan_t get() const { return scanner_; }
+
+ private:
+  yyscan_t scanner_ = nullptr;
+};
+
+}  // namespace
+
+ast::File parseLsystemText(const std::string& text, const std::string& fileName) {
+  detail::LexerContext ctx;
+  ctx.file = std::make_shared<const std::string>(fileName);
+  Scanner scanner(ctx);
+  hirsute_lsys__scan_bytes(text.data(), static_cast<int>(text.size()), scanner.get());
+  detail::Parser parser(scanner.get(), ctx);
+  parser.parse();
+  if (ctx.result.lsystems.empty()) {
+    throw DiagnosticError(SourceLocation{ctx.file, ctx.line, 0},
+                          "no L-system in the file (it must start with `Lsystem: label`)");
+  }
+  return std::move(ctx.result);
+}
+
+}  // namespace hirsute

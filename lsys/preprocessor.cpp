@@ -1,0 +1,217 @@
+#include "hirsute/lsys/preprocessor.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+extern char** environ;
+
+namespace hirsute {
+namespace {
+
+std::string readWholeFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+bool isDirectiveName(const std::string& word) {
+  static const char* const kNames[] = {"define", "undef", "include", "if",    "ifdef", "ifndef",
+                                       "else",   "elif",  "endif",   "error", "line",  "pragma"};
+  for (const char* name : kNames) {
+    if (word == name) return true;
+  }
+  return false;
+}
+
+// A temporary file removed when it goes out of scope.
+class TemporaryFile {
+ public:
+  TemporaryFile() {
+    const char* dir = std::getenv("TMPDIR");
+    path_ = std::string(dir && *dir ? dir : "/tmp") + "/hirsute-cpp-XXXXXX";
+    fd_ = mkstemp(path_.data());
+    if (fd_ < 0) throw DiagnosticError({}, "cannot create a temporary file: " + std::string(std::strerror(errno)));
+  }
+  ~TemporaryFile() {
+    if (fd_ >= 0) close(fd_);
+    unlink(path_.c_str());
+  }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+
+  const std::string& path() const { return path_; }
+  int fd() const { return fd_; }
+  void write(const std::string& text) {
+    const char* p = text.data();
+    std::size_t left = text.size();
+    while (left) {
+      ssize_t n = ::write(fd_, p, left);
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        throw DiagnosticError({}, "cannot write a temporary file: " + std::string(std::strerror(errno)));
+      }
+      p += n;
+      left -= static_cast<std::size_t>(n);
+    }
+  }
+  std::string read() const { return readWholeFile(path_); }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
+// Turns cpp's messages into diagnostics: the first error is thrown, warnings are passed on.
+void reportCppMessages(const std::string& messages, bool failed, const std::string& fallbackFile,
+                       Diagnostics& diagnostics) {
+  static const std::regex kLine(R"(^(.*?):(\d+):(?:(\d+):)? *(fatal error|error|warning): (.*)$)");
+  std::istringstream lines(messages);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::smatch m;
+    if (!std::regex_match(line, m, kLine)) continue;
+    SourceLocation where{std::make_shared<const std::string>(m[1].str()), std::stoi(m[2].str()),
+                         m[3].matched ? std::stoi(m[3].str()) : 0};
+    if (m[4].str() == "warning") {
+      diagnostics.warn(where, m[5].str());
+    } else {
+      throw DiagnosticError(where, m[5].str());
+    }
+  }
+  if (failed) {
+    throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(fallbackFile), 0, 0},
+                          "the C preprocessor failed: " + messages);
+  }
+}
+
+}  // namespace
+
+std::string prepareForTraditionalCpp(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  bool inBlockComment = false;
+  std::size_t i = 0;
+  const std::size_t n = text.size();
+  while (i < n) {
+    // At a line start outside comments: an indented directive moves to column 1.
+    if (!inBlockComment && (i == 0 || text[i - 1] == '\n')) {
+      std::size_t j = i;
+      while (j < n && (text[j] == ' ' || text[j] == '\t')) ++j;
+      if (j > i && j < n && text[j] == '#') {
+        std::size_t k = j + 1;
+        while (k < n && (text[k] == ' ' || text[k] == '\t')) ++k;
+        std::size_t w = k;
+        while (w < n && std::isalpha(static_cast<unsigned char>(text[w]))) ++w;
+        if (isDirectiveName(text.substr(k, w - k))) i = j;
+      }
+    }
+    char c = text[i];
+    if (inBlockComment) {
+      out += c;
+      if (c == '*' && i + 1 < n && text[i + 1] == '/') {
+        out += '/';
+        i += 2;
+        inBlockComment = false;
+        continue;
+      }
+      ++i;
+      continue;
+    }
+    if (c == '/' && i + 1 < n && text[i + 1] == '*') {
+      out += "/*";
+      i += 2;
+      inBlockComment = true;
+      continue;
+    }
+    if (c == '/' && i + 1 < n && text[i + 1] == '/') {
+      while (i < n && text[i] != '\n') ++i;
+      continue;
+    }
+    if (c == '"') {
+      // A string literal runs to its closing quote or the end of the line.
+      out += c;
+      ++i;
+      while (i < n && text[i] != '"' && text[i] != '\n') {
+        if (text[i] == '\\' && i + 1 < n && text[i + 1] != '\n') out += text[i++];
+        out += text[i++];
+      }
+      if (i < n && text[i] == '"') out += text[i++];
+      continue;
+    }
+    out += c;
+    ++i;
+  }
+  return out;
+}
+
+std::string preprocessFile(const std::filesystem::path& file, const PreprocessorOptions& options,
+                           Diagnostics& diagnostics) {
+  const std::string name = file.string();
+  auto fileLocation = SourceLocation{std::make_shared<const std::string>(name), 0, 0};
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw DiagnosticError(fileLocation, "no such file");
+  if (std::filesystem::is_directory(file, ec)) throw DiagnosticError(fileLocation, "is a directory, not a file");
+  std::ifstream probe(file, std::ios::binary);
+  if (!probe) throw DiagnosticError(fileLocation, "cannot read the file");
+  probe.close();
+
+  std::string text = readWholeFile(file);
+  if (text.find('\0') != std::string::npos) {
+    // Find the line of the first NUL byte for the message.
+    std::size_t at = text.find('\0');
+    int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+    throw DiagnosticError(SourceLocation{fileLocation.file, line, 0},
+                          "the file contains NUL bytes; it is not an L-system text file");
+  }
+
+  TemporaryFile input, output, errors;
+  // A line marker first, so cpp names the user's file in its own markers and messages.
+  std::string marked = "# 1 \"" + name + "\"\n" + prepareForTraditionalCpp(text);
+  if (!marked.empty() && marked.back() != '\n') marked += '\n';
+  input.write(marked);
+
+  std::vector<std::string> args = {options.program, "-traditional-cpp", "-undef", "-nostdinc",
+                                   "-x", "c", "-fno-diagnostics-show-caret"};
+  std::filesystem::path folder = file.parent_path();
+  args.push_back("-I" + (folder.empty() ? std::string(".") : folder.string()));
+  for (const auto& [macro, value] : options.defines) args.push_back("-D" + macro + "=" + value);
+  args.push_back("-");
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, input.path().c_str(), O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, output.fd(), 1);
+  posix_spawn_file_actions_adddup2(&actions, errors.fd(), 2);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  int spawned = posix_spawnp(&pid, options.program.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
+    throw DiagnosticError(fileLocation, "cannot run the C preprocessor '" + options.program +
+                                            "': " + std::strerror(spawned) +
+                                            " (scripts/install-deps.sh installs it)");
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  bool failed = !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  reportCppMessages(errors.read(), failed, name, diagnostics);
+  return output.read();
+}
+
+}  // namespace hirsute
