@@ -133,7 +133,7 @@ class Compiler {
   void compileModules(const ast::ModuleList& modules, const Scope& scope,
                       std::vector<SuccessorModule>& out, Code& values);
   void compileRuleSet(const std::vector<ast::Production>& in, RuleSet& out, const NameMap& shared,
-                      const NameMap& arrays, bool singleModulePredecessor, const char* section);
+                      const NameMap& arrays);
   Production compileProduction(const ast::Production& in, const NameMap& shared, const NameMap& arrays);
   void noteQueries(const ast::ModuleList& modules);
 
@@ -509,12 +509,8 @@ Production Compiler::compileProduction(const ast::Production& in, const NameMap&
 }
 
 void Compiler::compileRuleSet(const std::vector<ast::Production>& in, RuleSet& out,
-                              const NameMap& shared, const NameMap& arrays,
-                              bool singleModulePredecessor, const char* section) {
+                              const NameMap& shared, const NameMap& arrays) {
   for (const ast::Production& p : in) {
-    if (singleModulePredecessor && p.strict.size() != 1) {
-      fail(p.where, std::string("a ") + section + " production must have a one-module strict predecessor");
-    }
     out.productions.push_back(compileProduction(p, shared, arrays));
     char first = p.strict.front().symbol;
     out.bySymbol[static_cast<unsigned char>(first) & 0x7f].push_back(
@@ -616,16 +612,16 @@ void Compiler::compileLsystem(const ast::Lsystem& in, Lsystem& out, NameMap& sha
   out.axiomWhere = in.axiomWhere;
   compileModules(in.axiom, scope, out.axiom, out.axiomValues);
 
-  compileRuleSet(in.productions, out.productions, shared, arrays, false, "");
-  compileRuleSet(in.decomposition.productions, out.decomposition, shared, arrays, true, "decomposition");
-  compileRuleSet(in.homomorphism.productions, out.homomorphism, shared, arrays, true, "homomorphism");
+  compileRuleSet(in.productions, out.productions, shared, arrays);
+  compileRuleSet(in.decomposition.productions, out.decomposition, shared, arrays);
+  compileRuleSet(in.homomorphism.productions, out.homomorphism, shared, arrays);
   for (auto [from, to] : {std::pair{&in.decomposition, &out.decomposition},
                           std::pair{&in.homomorphism, &out.homomorphism}}) {
     to->present = from->present;
     to->warnings = from->warnings;
     if (from->maximumDepth) {
       double d = constantValue(*from->maximumDepth, "the maximum depth");
-      if (!(d >= 1) || d > 1000) fail(from->maximumDepth->where, "the maximum depth must be between 1 and 1000");
+      if (!(d >= 1) || d > 10000) fail(from->maximumDepth->where, "the maximum depth must be between 1 and 10000");
       to->maximumDepth = static_cast<int>(d);
     }
     if (from->seed) {

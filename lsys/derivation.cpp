@@ -8,8 +8,8 @@
 namespace hirsute {
 namespace {
 
-// Deepest recursion of decomposition and homomorphism; each level holds a module on the stack.
-constexpr int kMaxRecursionDepth = 1000;
+// Deepest recursion of decomposition and homomorphism (each level is a C++ call).
+constexpr int kMaxRecursionDepth = 10000;
 
 // cpfg: seed48({seed, 0, 155}) for a non-zero seed; drand48's unseeded state otherwise.
 Rand48 choiceStream(const Lsystem& main) {
@@ -313,80 +313,67 @@ void Derivation::checkSize(const SourceLocation& where) {
   }
 }
 
-void Derivation::appendModule(char symbol, const double* values, std::size_t count, int lsystem,
-                              std::size_t anchor, int level) {
-  float params[kMaxModuleParameters];
-  for (std::size_t i = 0; i < count; ++i) params[i] = static_cast<float>(values[i]);
-  const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
-  const RuleSet& rules = l.decomposition;
-  const auto& ids = rules.bySymbol[static_cast<unsigned char>(symbol)];
-  if (ids.empty()) {
-    next_.append(symbol, std::span<const float>(params, count));
-    return;
+void Derivation::appendValues(const Production& p, const double* values, ModuleString& out) {
+  std::size_t k = 0;
+  for (const SuccessorModule& m : p.successor) {
+    out.appendRounded(m.symbol, std::span<const double>(values + k, m.parameterCount));
+    k += m.parameterCount;
   }
+}
+
+ModuleString& Derivation::levelBuffer(int level) {
+  while (levelBuffers_.size() <= static_cast<std::size_t>(level)) levelBuffers_.emplace_back();
+  ModuleString& buffer = levelBuffers_[static_cast<std::size_t>(level)];
+  buffer.clear();
+  return buffer;
+}
+
+bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_t at, bool inMainString,
+                         std::size_t anchor, int level, std::size_t& end, ModuleSink& out) {
+  const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
+  const RuleSet& rules = ruleSet(l, set);
+  const auto& ids = rules.bySymbol[static_cast<unsigned char>(s.at(at).symbol())];
   for (std::uint32_t id : ids) {
     const Production& p = rules.productions[id];
-    if (p.strict.front().parameterCount != count) continue;
+    double* frame = frames_.data() + frameOffset(lsystem, set, id);
+    if (!matchStrict(p, s, at, end, frame)) continue;
     if (level > rules.maximumDepth) {
       if (rules.warnings) {
-        diagnostics_.warn(p.where, "decomposition reached its maximum depth (" +
-                                       std::to_string(rules.maximumDepth) + ") with this production still applicable");
+        diagnostics_.warn(p.where, std::string(set == 1 ? "decomposition" : "homomorphism") +
+                                       " reached its maximum depth (" + std::to_string(rules.maximumDepth) +
+                                       ") with this production still applicable");
       }
-      break;
+      return false;
     }
-    double* frame = frames_.data() + frameOffset(lsystem, 1, id);
-    for (std::size_t i = 0; i < count; ++i) frame[p.strict.front().slots[i]] = params[i];
-    if (p.hasContext() && anchor < current_.end() &&
-        !matchContexts(p, l, current_, anchor, current_.next(anchor), frame)) {
-      continue;
+    if (p.hasContext()) {
+      // Contexts are those of the derived string, also for modules a rule has produced.
+      bool ok = inMainString ? matchContexts(p, l, s, at, end, frame)
+                             : anchor < current_.end() &&
+                                   matchContexts(p, l, current_, anchor, current_.next(anchor), frame);
+      if (!ok) continue;
     }
     if (!p.before.empty()) evaluator_.run(p.before, frame);
     if (!evaluator_.isTrue(p.condition, frame)) continue;
     if (!p.after.empty()) evaluator_.run(p.after, frame);
-    std::size_t total = 0;
-    for (const SuccessorModule& m : p.successor) total += m.parameterCount;
-    const double* v = evaluator_.values(p.successorValues, frame, total);
-    std::size_t base = scratch_.size();
-    scratch_.insert(scratch_.end(), v, v + total);
-    std::size_t k = 0;
-    for (const SuccessorModule& m : p.successor) {
-      appendModule(m.symbol, scratch_.data() + base + k, m.parameterCount, lsystem, anchor, level + 1);
-      k += m.parameterCount;
+    if (level >= kMaxRecursionDepth) {
+      throw DiagnosticError(p.where, "rules nest deeper than " + std::to_string(kMaxRecursionDepth) + " levels");
     }
-    scratch_.resize(base);
-    checkSize(p.where);
-    return;
+    ModuleString& produced = levelBuffer(level);
+    appendValues(p, evaluator_.values(p.successorValues, frame, 0), produced);
+    std::size_t from = inMainString ? at : anchor;
+    for (std::size_t q = 0, e = 0; q < produced.end(); q = e) {
+      if (!applyAt(set, lsystem, produced, q, false, from, level + 1, e, out)) {
+        e = produced.next(q);
+        out.module(produced.at(q));
+      }
+    }
+    return true;
   }
-  next_.append(symbol, std::span<const float>(params, count));
-}
-
-void Derivation::appendSuccessor(const Production& p, double* frame, int lsystem, std::size_t anchor) {
-  std::size_t total = 0;
-  for (const SuccessorModule& m : p.successor) total += m.parameterCount;
-  const double* v = evaluator_.values(p.successorValues, frame, total);
-  const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
-  if (l.decomposition.productions.empty()) {
-    std::size_t k = 0;
-    for (const SuccessorModule& m : p.successor) {
-      next_.appendRounded(m.symbol, std::span<const double>(v + k, m.parameterCount));
-      k += m.parameterCount;
-    }
-  } else {
-    std::size_t base = scratch_.size();
-    scratch_.insert(scratch_.end(), v, v + total);
-    std::size_t k = 0;
-    for (const SuccessorModule& m : p.successor) {
-      appendModule(m.symbol, scratch_.data() + base + k, m.parameterCount, lsystem, anchor, 1);
-      k += m.parameterCount;
-    }
-    scratch_.resize(base);
-  }
-  checkSize(p.where);
+  return false;
 }
 
 void Derivation::rewriteStep() {
   subLsystems_.assign(1, 0);
-  std::vector<double> copied;
   const ModuleString& s = current_;
   std::size_t pos = 0;
   try {
@@ -396,19 +383,29 @@ void Derivation::rewriteStep() {
       const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
       std::size_t after;
       Match match;
+      const bool decomposes = !l.decomposition.productions.empty();
       if (choose(lsystem, 0, s, pos, match)) {
-        if (!match.production->after.empty()) evaluator_.run(match.production->after, match.frame);
-        appendSuccessor(*match.production, match.frame, lsystem, pos);
+        const Production& p = *match.production;
+        if (!p.after.empty()) evaluator_.run(p.after, match.frame);
+        const double* values = evaluator_.values(p.successorValues, match.frame, 0);
+        if (!decomposes) {
+          appendValues(p, values, next_);
+        } else {
+          ModuleString& produced = levelBuffer(0);
+          appendValues(p, values, produced);
+          decompose(lsystem, produced, pos);
+        }
+        checkSize(p.where);
         after = match.end;
       } else if (m.symbol() == '%' && m.parameterCount() == 0) {
         after = skipCut(s, pos);
       } else {
-        if (l.decomposition.productions.empty()) {
+        if (!decomposes) {
           next_.append(m);
         } else {
-          copied.resize(m.parameterCount());
-          for (std::size_t i = 0; i < copied.size(); ++i) copied[i] = m.parameter(i);
-          appendModule(m.symbol(), copied.data(), copied.size(), lsystem, pos, 1);
+          ModuleString& copied = levelBuffer(0);
+          copied.append(m);
+          decompose(lsystem, copied, pos);
         }
         if (next_.moduleCount() > options_.maxModules) checkSize(l.axiomWhere);
         after = s.next(pos);
@@ -437,71 +434,63 @@ void Derivation::rewriteStep() {
   }
 }
 
-void Derivation::homomorphism(ModuleSink& sink, int lsystem, char symbol, const float* values,
-                              std::size_t count, std::size_t anchor, int level) {
-  const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
-  const RuleSet& rules = l.homomorphism;
-  const auto& ids = rules.bySymbol[static_cast<unsigned char>(symbol)];
-  for (std::uint32_t id : ids) {
-    const Production& p = rules.productions[id];
-    if (p.strict.front().parameterCount != count) continue;
-    if (level > rules.maximumDepth) {
-      if (rules.warnings) {
-        diagnostics_.warn(p.where, "homomorphism reached its maximum depth (" +
-                                       std::to_string(rules.maximumDepth) + ") with this production still applicable");
-      }
-      break;
-    }
-    double* frame = frames_.data() + frameOffset(lsystem, 2, id);
-    for (std::size_t i = 0; i < count; ++i) frame[p.strict.front().slots[i]] = values[i];
-    if (p.hasContext() && !matchContexts(p, l, current_, anchor, current_.next(anchor), frame)) continue;
-    if (!p.before.empty()) evaluator_.run(p.before, frame);
-    if (!evaluator_.isTrue(p.condition, frame)) continue;
-    if (!p.after.empty()) evaluator_.run(p.after, frame);
-    std::size_t total = 0;
-    for (const SuccessorModule& m : p.successor) total += m.parameterCount;
-    const double* v = evaluator_.values(p.successorValues, frame, total);
-    std::vector<float> rounded(v, v + total);
-    std::size_t k = 0;
-    for (const SuccessorModule& m : p.successor) {
-      homomorphism(sink, lsystem, m.symbol, rounded.data() + k, m.parameterCount, anchor, level + 1);
-      k += m.parameterCount;
-    }
-    return;
+namespace {
+// Appends modules to a string: the sink decomposition writes into.
+class StringSink : public ModuleSink {
+ public:
+  explicit StringSink(ModuleString& out) : out_(out) {}
+  void module(char symbol, const float* parameters, std::size_t count) override {
+    out_.append(symbol, std::span<const float>(parameters, count));
   }
-  sink.module(symbol, values, count);
+  void module(ModuleRef m) override { out_.append(m); }
+
+ private:
+  ModuleString& out_;
+};
+}  // namespace
+
+void Derivation::decompose(int lsystem, const ModuleString& produced, std::size_t anchor) {
+  StringSink sink(next_);
+  for (std::size_t q = 0, e = 0; q < produced.end(); q = e) {
+    if (!applyAt(1, lsystem, produced, q, false, anchor, 1, e, sink)) {
+      e = produced.next(q);
+      next_.append(produced.at(q));
+    }
+  }
 }
 
 void Derivation::emit(ModuleSink& sink, bool applyHomomorphism) {
   start();
   std::vector<int> stack(1, 0);
-  std::vector<BlockRandom> ownStreams;
-  float params[kMaxModuleParameters];
-  for (std::size_t pos = 0; pos < current_.end(); pos = current_.next(pos)) {
-    ModuleRef m = current_.at(pos);
+  std::optional<BlockRandom> ownStream;
+  for (std::size_t pos = 0, after = 0; pos < current_.end(); pos = after) {
     int lsystem = stack.back();
     const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
-    std::size_t count = m.parameterCount();
-    for (std::size_t i = 0; i < count; ++i) params[i] = m.parameter(i);
+    bool rewritten = false;
     if (applyHomomorphism && !l.homomorphism.productions.empty()) {
       if (l.homomorphism.hasSeed) {
         // The homomorphism's own random stream, restarted at every interpretation.
-        if (ownStreams.empty()) {
-          ownStreams.emplace_back();
-          ownStreams.back().srand(l.homomorphism.seed);
+        if (!ownStream) {
+          ownStream.emplace();
+          ownStream->srand(l.homomorphism.seed);
         }
-        evaluator_.useRandom(&ownStreams.back());
+        evaluator_.useRandom(&*ownStream);
       }
-      homomorphism(sink, lsystem, m.symbol(), params, count, pos, 1);
+      rewritten = applyAt(2, lsystem, current_, pos, true, pos, 1, after, sink);
       evaluator_.useRandom(nullptr);
-    } else {
-      sink.module(m.symbol(), params, count);
     }
-    if (isSubLsystemStart(m)) {
-      int index = program_.lsystemIndex(m.parameter(0));
-      stack.push_back(index < 0 ? lsystem : index);
-    } else if (m.symbol() == '$' && stack.size() > 1) {
-      stack.pop_back();
+    if (!rewritten) {
+      after = current_.next(pos);
+      sink.module(current_.at(pos));
+    }
+    for (std::size_t q = pos; q < after; q = current_.next(q)) {
+      ModuleRef m = current_.at(q);
+      if (isSubLsystemStart(m)) {
+        int index = program_.lsystemIndex(m.parameter(0));
+        stack.push_back(index < 0 ? lsystem : index);
+      } else if (m.symbol() == '$' && stack.size() > 1) {
+        stack.pop_back();
+      }
     }
   }
 }

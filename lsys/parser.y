@@ -147,8 +147,8 @@ header
 header_item
   : DERIVATION_LENGTH expr EOL { ctx.current().derivationLength = std::move($2); }
   | SEED expr EOL              { ctx.current().seed = std::move($2); }
-  | IGNORE EOL                 { ctx.current().ignore = $1; ctx.current().ignoreWhere = @1; }
-  | CONSIDER EOL               { ctx.current().consider = $1; ctx.current().ignoreWhere = @1; }
+  | IGNORE                     { ctx.current().ignore = $1; ctx.current().ignoreWhere = @1; }
+  | CONSIDER                   { ctx.current().consider = $1; ctx.current().ignoreWhere = @1; }
   | RING EOL                   { ctx.current().ring = true; }
   | DEFINE block               { for (auto& s : $2) ctx.current().define.push_back(std::move(s)); }
   | START block                { for (auto& s : $2) ctx.current().start.push_back(std::move(s)); }

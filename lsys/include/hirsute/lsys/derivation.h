@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <vector>
 
@@ -73,13 +74,16 @@ class Derivation {
   // Finds the production to apply at `at`, running pre-condition blocks and conditions.
   bool choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match);
   void rewriteStep();
-  void appendSuccessor(const Production& p, double* frame, int lsystem, std::size_t anchor);
-  void appendModule(char symbol, const double* values, std::size_t count, int lsystem,
-                    std::size_t anchor, int level);
+  void appendValues(const Production& p, const double* values, ModuleString& out);
+  ModuleString& levelBuffer(int level);
+  // Applies the first matching rule of `set` (1 decomposition, 2 homomorphism) at `at` in `s`,
+  // recursively to its successor; results go to `out`. `anchor` is the position in the derived
+  // string whose contexts count when `s` is not that string.
+  bool applyAt(int set, int lsystem, const ModuleString& s, std::size_t at, bool inMainString,
+               std::size_t anchor, int level, std::size_t& end, ModuleSink& out);
+  void decompose(int lsystem, const ModuleString& produced, std::size_t anchor);
   void checkSize(const SourceLocation& where);
   std::size_t skipCut(const ModuleString& s, std::size_t at) const;
-  void homomorphism(ModuleSink& sink, int lsystem, char symbol, const float* values, std::size_t count,
-                    std::size_t anchor, int level);
 
   const Program& program_;
   Evaluator& evaluator_;
@@ -95,7 +99,7 @@ class Derivation {
   bool stopped_ = false;
   std::vector<int> subLsystems_;  // the L-system stack while scanning the string
   std::vector<Match> candidates_;
-  std::vector<double> scratch_;   // successor values while decomposition recurses
+  std::deque<ModuleString> levelBuffers_;  // successors by recursion level (stable references)
 };
 
 }  // namespace hirsute

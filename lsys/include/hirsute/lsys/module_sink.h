@@ -3,12 +3,21 @@
 
 #include <cstddef>
 
+#include "hirsute/lsys/module_string.h"
+
 namespace hirsute {
 
 class ModuleSink {
  public:
   virtual ~ModuleSink() = default;
   virtual void module(char symbol, const float* parameters, std::size_t count) = 0;
+  // A module of a string; sinks that can copy it whole override this.
+  virtual void module(ModuleRef m) {
+    float values[kMaxModuleParameters];
+    std::size_t count = m.parameterCount();
+    for (std::size_t i = 0; i < count; ++i) values[i] = m.parameter(i);
+    module(m.symbol(), values, count);
+  }
 };
 
 }  // namespace hirsute

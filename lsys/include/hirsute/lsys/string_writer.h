@@ -23,6 +23,7 @@ class StringWriter : public ModuleSink {
   StringWriter(const StringWriter&) = delete;
   StringWriter& operator=(const StringWriter&) = delete;
 
+  using ModuleSink::module;
   void module(char symbol, const float* parameters, std::size_t count) override;
   // Ends the string (a final newline) and flushes; returns false on a write error.
   bool finish();
