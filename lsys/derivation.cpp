@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hirsute/lsys/string_writer.h"
+
 namespace hirsute {
 namespace {
 
@@ -81,6 +83,7 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
     }
   }
   frames_.assign(total + 1, 0.0);
+  for (const Lsystem& l : program_.lsystems) hasDecomposition_ |= !l.decomposition.productions.empty();
 }
 
 void Derivation::start() {
@@ -117,7 +120,12 @@ bool Derivation::step() {
   evaluator_.shared()[static_cast<std::size_t>(program_.stepSlot)] = stepsDone_ + 1;
   evaluator_.run(main.startEach, nullptr);
   rewriteStep();
-  current_.swap(next_);
+  if (hasDecomposition_) {
+    current_.clear();
+    decompose(next_, current_);
+  } else {
+    current_.swap(next_);
+  }
   next_.clear();
   ++stepsDone_;
   evaluator_.run(main.endEach, nullptr);
@@ -305,8 +313,8 @@ std::size_t Derivation::skipCut(const ModuleString& s, std::size_t at) const {
   return pos;
 }
 
-void Derivation::checkSize(const SourceLocation& where) {
-  if (next_.moduleCount() > options_.maxModules) {
+void Derivation::checkSize(const ModuleString& s, const SourceLocation& where) {
+  if (s.moduleCount() > options_.maxModules) {
     throw DiagnosticError(where, "the string grew past " + std::to_string(options_.maxModules) +
                                      " modules in step " + std::to_string(stepsDone_ + 1) +
                                      " (the limit is set with --max-modules)");
@@ -347,9 +355,9 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
     }
     if (p.hasContext()) {
       // Contexts are those of the derived string, also for modules a rule has produced.
+      const ModuleString& whole = *contextString_;
       bool ok = inMainString ? matchContexts(p, l, s, at, end, frame)
-                             : anchor < current_.end() &&
-                                   matchContexts(p, l, current_, anchor, current_.next(anchor), frame);
+                             : anchor < whole.end() && matchContexts(p, l, whole, anchor, whole.next(anchor), frame);
       if (!ok) continue;
     }
     if (!p.before.empty()) evaluator_.run(p.before, frame);
@@ -383,48 +391,20 @@ void Derivation::rewriteStep() {
       const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
       std::size_t after;
       Match match;
-      const bool decomposes = !l.decomposition.productions.empty();
       if (choose(lsystem, 0, s, pos, match)) {
         const Production& p = *match.production;
         if (!p.after.empty()) evaluator_.run(p.after, match.frame);
-        const double* values = evaluator_.values(p.successorValues, match.frame, 0);
-        if (!decomposes) {
-          appendValues(p, values, next_);
-        } else {
-          ModuleString& produced = levelBuffer(0);
-          appendValues(p, values, produced);
-          decompose(lsystem, produced, pos);
-        }
-        checkSize(p.where);
+        appendValues(p, evaluator_.values(p.successorValues, match.frame, 0), next_);
+        checkSize(next_, p.where);
         after = match.end;
       } else if (m.symbol() == '%' && m.parameterCount() == 0) {
         after = skipCut(s, pos);
       } else {
-        if (!decomposes) {
-          next_.append(m);
-        } else {
-          ModuleString& copied = levelBuffer(0);
-          copied.append(m);
-          decompose(lsystem, copied, pos);
-        }
-        if (next_.moduleCount() > options_.maxModules) checkSize(l.axiomWhere);
+        next_.append(m);
+        if (next_.moduleCount() > options_.maxModules) checkSize(next_, l.axiomWhere);
         after = s.next(pos);
       }
-      // Sub-L-systems: `?(id,…)` switches to L-system `id` until its `$`.
-      for (std::size_t q = pos; q < after; q = s.next(q)) {
-        ModuleRef consumed = s.at(q);
-        if (isSubLsystemStart(consumed)) {
-          int index = program_.lsystemIndex(consumed.parameter(0));
-          if (index < 0) {
-            throw DiagnosticError(program_.lsystems.front().where,
-                                  "the string calls sub-L-system " + std::to_string(consumed.parameter(0)) +
-                                      " with ?(…), but no L-system has that label");
-          }
-          subLsystems_.push_back(index);
-        } else if (consumed.symbol() == '$' && subLsystems_.size() > 1) {
-          subLsystems_.pop_back();
-        }
-      }
+      trackSubLsystems(s, pos, after, subLsystems_);
       pos = after;
     }
   } catch (const ModuleStringTooLarge& e) {
@@ -449,12 +429,40 @@ class StringSink : public ModuleSink {
 };
 }  // namespace
 
-void Derivation::decompose(int lsystem, const ModuleString& produced, std::size_t anchor) {
-  StringSink sink(next_);
-  for (std::size_t q = 0, e = 0; q < produced.end(); q = e) {
-    if (!applyAt(1, lsystem, produced, q, false, anchor, 1, e, sink)) {
-      e = produced.next(q);
-      next_.append(produced.at(q));
+void Derivation::decompose(const ModuleString& from, ModuleString& into) {
+  // cpfg decomposes the new string after each step: rules apply to module sequences of it,
+  // recursively to their own successors, with contexts in that string.
+  StringSink sink(into);
+  contextString_ = &from;
+  std::vector<int> stack(1, 0);
+  for (std::size_t pos = 0, after = 0; pos < from.end(); pos = after) {
+    int lsystem = stack.back();
+    const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
+    bool rewritten = !l.decomposition.productions.empty() && applyAt(1, lsystem, from, pos, true, pos, 1, after, sink);
+    if (!rewritten) {
+      after = from.next(pos);
+      into.append(from.at(pos));
+    }
+    checkSize(into, l.axiomWhere);
+    trackSubLsystems(from, pos, after, stack);
+  }
+}
+
+void Derivation::trackSubLsystems(const ModuleString& s, std::size_t from, std::size_t to,
+                                  std::vector<int>& stack) const {
+  // Sub-L-systems: `?(id,…)` switches to L-system `id` until its `$`.
+  for (std::size_t q = from; q < to; q = s.next(q)) {
+    ModuleRef m = s.at(q);
+    if (isSubLsystemStart(m)) {
+      int index = program_.lsystemIndex(m.parameter(0));
+      if (index < 0) {
+        throw DiagnosticError(program_.lsystems.front().where,
+                              "the string calls sub-L-system " + formatParameter(m.parameter(0)) +
+                                  " with ?(…), but no L-system has that label");
+      }
+      stack.push_back(index);
+    } else if (m.symbol() == '$' && stack.size() > 1) {
+      stack.pop_back();
     }
   }
 }
@@ -463,6 +471,7 @@ void Derivation::emit(ModuleSink& sink, bool applyHomomorphism) {
   start();
   std::vector<int> stack(1, 0);
   std::optional<BlockRandom> ownStream;
+  contextString_ = &current_;
   for (std::size_t pos = 0, after = 0; pos < current_.end(); pos = after) {
     int lsystem = stack.back();
     const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
@@ -483,15 +492,7 @@ void Derivation::emit(ModuleSink& sink, bool applyHomomorphism) {
       after = current_.next(pos);
       sink.module(current_.at(pos));
     }
-    for (std::size_t q = pos; q < after; q = current_.next(q)) {
-      ModuleRef m = current_.at(q);
-      if (isSubLsystemStart(m)) {
-        int index = program_.lsystemIndex(m.parameter(0));
-        stack.push_back(index < 0 ? lsystem : index);
-      } else if (m.symbol() == '$' && stack.size() > 1) {
-        stack.pop_back();
-      }
-    }
+    trackSubLsystems(current_, pos, after, stack);
   }
 }
 

@@ -20,7 +20,7 @@ namespace {
 // Reading the text files of funcedit and cuspy: whitespace-separated words on numbered lines.
 
 struct TextLine {
-  int number = 0;                      // 1-based line in the file
+  int number = 0;                       // 1-based line in the file
   std::vector<std::string_view> words;  // never empty: blank lines are skipped
   std::string_view text;                // the whole line, for `name:` values with spaces
 };
@@ -51,7 +51,9 @@ std::optional<int> parseInt(std::string_view word) {
   return value;
 }
 
-std::string quoted(std::string_view word) { return "'" + std::string(word) + "'"; }
+std::string quoted(std::string_view word) {
+  return "'" + std::string(word) + "'";
+}
 
 // The non-blank lines of one file, read front to back, with errors located in that file.
 class LineReader {
@@ -103,7 +105,8 @@ class LineReader {
   int countAfter(const TextLine& line, std::string_view label, const std::string& what) const {
     std::optional<int> count;
     if (line.words[0] == label && line.words.size() == 2) count = parseInt(line.words[1]);
-    if (!count || *count < 0) fail(line.number, "expected " + quoted(label) + " followed by " + what);
+    if (!count || *count < 0)
+      fail(line.number, "expected " + quoted(label) + " followed by " + what);
     return *count;
   }
 
@@ -144,7 +147,9 @@ std::string readFile(const std::filesystem::path& file, const std::string& kind)
 
 // cpfg reads control points into float variables; the B-spline is then computed in double.
 // Keeping the rounding makes func() agree with cpfg in the last printed digit (tools-LilyLeaf).
-double asStoredByCpfg(double value) { return static_cast<double>(static_cast<float>(value)); }
+double asStoredByCpfg(double value) {
+  return static_cast<double>(static_cast<float>(value));
+}
 
 // ---------------------------------------------------------------------------------------------
 // Function files.
@@ -159,10 +164,12 @@ struct FunctionData {
 void readFunctionPoints(LineReader& reader, const TextLine& pointsLine, FunctionData& data) {
   const int count = reader.countAfter(pointsLine, "points:", "a count");
   for (int i = 0; i < count; ++i) {
-    const TextLine& row = reader.take("control point " + std::to_string(i + 1) + " of " +
-                                      std::to_string(count));
-    const std::string expected = "control point " + std::to_string(i + 1) + " as 'x y' or 'x y multiplicity'";
-    if (row.words.size() != 2 && row.words.size() != 3) reader.fail(row.number, "expected " + expected);
+    const TextLine& row =
+        reader.take("control point " + std::to_string(i + 1) + " of " + std::to_string(count));
+    const std::string expected =
+        "control point " + std::to_string(i + 1) + " as 'x y' or 'x y multiplicity'";
+    if (row.words.size() != 2 && row.words.size() != 3)
+      reader.fail(row.number, "expected " + expected);
     const std::optional<double> x = parseDouble(row.words[0]);
     const std::optional<double> y = parseDouble(row.words[1]);
     if (!x || !y) reader.fail(row.number, "expected " + expected);
@@ -204,7 +211,8 @@ FunctionData readVersion1Function(LineReader& reader) {
       data.samples = reader.countAfter(line, "samples:", "a count");
       hasSamples = true;
     } else if (label == "flip:") {
-      if (line.words.size() != 2) reader.fail(line.number, "expected 'flip:' followed by on or off");
+      if (line.words.size() != 2)
+        reader.fail(line.number, "expected 'flip:' followed by on or off");
     } else if (label == "background:") {
       // The editor's backdrop image; nothing for cpfg.
     } else if (label == "backgroundXY:") {
@@ -217,7 +225,8 @@ FunctionData readVersion1Function(LineReader& reader) {
       readFunctionPoints(reader, line, data);
       return data;
     } else {
-      reader.fail(line.number, "unexpected " + quoted(label) + " in a function; expected 'points:'");
+      reader.fail(line.number,
+                  "unexpected " + quoted(label) + " in a function; expected 'points:'");
     }
   }
 }
@@ -243,7 +252,8 @@ FunctionData readFunction(LineReader& reader, int viewSamples) {
 
 void expectEnd(const LineReader& reader, const std::string& what) {
   if (!reader.atEnd()) {
-    reader.fail(reader.peek().number, "unexpected " + quoted(reader.peek().words[0]) + " after " + what);
+    reader.fail(reader.peek().number,
+                "unexpected " + quoted(reader.peek().words[0]) + " after " + what);
   }
 }
 
@@ -273,7 +283,8 @@ void readContourRow(const LineReader& reader, const TextLine& row, std::size_t d
   const std::string expected = dimension == 4   ? "'x y z multiplicity'"
                                : dimension == 3 ? "'x y z'"
                                                 : "'x y'";
-  if (row.words.size() != dimension) reader.fail(row.number, "expected a control point as " + expected);
+  if (row.words.size() != dimension)
+    reader.fail(row.number, "expected a control point as " + expected);
   std::array<double, 3> point{0.0, 0.0, 0.0};
   for (std::size_t i = 0; i < std::min<std::size_t>(dimension, 3); ++i) {
     const std::optional<double> value = parseDouble(row.words[i]);
@@ -289,7 +300,9 @@ void readContourRow(const LineReader& reader, const TextLine& row, std::size_t d
   for (int k = 0; k < multiplicity; ++k) data.points.push_back(point);
 }
 
-bool startsWithNumber(const TextLine& line) { return parseDouble(line.words[0]).has_value(); }
+bool startsWithNumber(const TextLine& line) {
+  return parseDouble(line.words[0]).has_value();
+}
 
 // cuspy `cver 1 x`: labelled lines (name, points n1 n2, type, samples, background, markers) and
 // n1 rows `x y z multiplicity`. cver 1.3 puts type and samples before the rows, 1.1 and 1.2 put
@@ -319,8 +332,8 @@ ContourData readCverContour(LineReader& reader) {
     } else if (label == "name:") {
       data.name = LineReader::restAfterLabel(line);
     } else if (label == "points:") {
-      const std::vector<double> counts =
-          reader.numbersAfter(line, "points:", 2, "the number of points and their total multiplicity");
+      const std::vector<double> counts = reader.numbersAfter(
+          line, "points:", 2, "the number of points and their total multiplicity");
       distinctPoints = static_cast<int>(counts[0]);
       totalPoints = static_cast<int>(counts[1]);
       if (distinctPoints != counts[0] || totalPoints != counts[1] || distinctPoints < 1) {
@@ -377,8 +390,8 @@ ContourData readVersion14Curve(LineReader& reader) {
     if (startsWithNumber(line)) {
       if (!pointsLineNumber) reader.fail(line.number, "control point before 'points:'");
       if (rows == count) {
-        reader.fail(line.number,
-                    "more control points than the " + std::to_string(count) + " given by 'points:'");
+        reader.fail(line.number, "more control points than the " + std::to_string(count) +
+                                     " given by 'points:'");
       }
       readContourRow(reader, line, dimension, data);
       ++rows;
@@ -390,7 +403,8 @@ ContourData readVersion14Curve(LineReader& reader) {
       reader.numbersAfter(line, "range:", 2, "two numbers");
     } else if (label == "dimension:") {
       const int value = reader.countAfter(line, "dimension:", "2, 3 or 4");
-      if (value < 2 || value > 4) reader.fail(line.number, "expected 'dimension:' followed by 2, 3 or 4");
+      if (value < 2 || value > 4)
+        reader.fail(line.number, "expected 'dimension:' followed by 2, 3 or 4");
       if (rows > 0) reader.fail(line.number, "'dimension:' must come before the control points");
       dimension = static_cast<std::size_t>(value);
     } else if (label == "type:") {
@@ -451,16 +465,18 @@ ContourData readContour(LineReader& reader) {
   const std::size_t needed = data.closed ? 3 : 4;
   if (data.points.size() < needed) {
     reader.fail(1, std::string(data.closed ? "a closed" : "an open") + " contour needs at least " +
-                       std::to_string(needed) + " control points (counting multiplicities), found " +
+                       std::to_string(needed) +
+                       " control points (counting multiplicities), found " +
                        std::to_string(data.points.size()));
   }
   return data;
 }
 
 // Uniform cubic B-spline segment (Bartels, Beatty, Barsky, "An Introduction to Splines", eq. 4.4).
-std::array<double, 3> uniformSegment(const std::array<double, 3>& p0, const std::array<double, 3>& p1,
-                                     const std::array<double, 3>& p2, const std::array<double, 3>& p3,
-                                     double t) {
+std::array<double, 3> uniformSegment(const std::array<double, 3>& p0,
+                                     const std::array<double, 3>& p1,
+                                     const std::array<double, 3>& p2,
+                                     const std::array<double, 3>& p3, double t) {
   const double t2 = t * t;
   const double t3 = t2 * t;
   const double b0 = (1.0 - t) * (1.0 - t) * (1.0 - t) / 6.0;
@@ -505,7 +521,8 @@ std::optional<std::pair<int, std::string>> lineMarker(std::string_view line) {
   const std::optional<int> number = parseInt(words[0]);
   if (!number) return std::nullopt;
   std::string file;
-  if (words.size() > 1 && words[1].size() >= 2 && words[1].front() == '"' && words[1].back() == '"') {
+  if (words.size() > 1 && words[1].size() >= 2 && words[1].front() == '"' &&
+      words[1].back() == '"') {
     file = std::string(words[1].substr(1, words[1].size() - 2));
   }
   return std::make_pair(*number, file);
@@ -539,8 +556,8 @@ std::optional<ViewLine> splitViewLine(std::string_view line) {
 [[noreturn]] void failAtViewLine(const SourceLocation& where, const std::string& kind,
                                  std::string_view fileName, const DiagnosticError& inner) {
   const Diagnostic& d = inner.diagnostic();
-  throw DiagnosticError(where, kind + " file " + quoted(fileName) + " is broken: " + d.where.text() +
-                                   ": " + d.message);
+  throw DiagnosticError(where, kind + " file " + quoted(fileName) +
+                                   " is broken: " + d.where.text() + ": " + d.message);
 }
 
 // The view names a file that is not there.
@@ -548,8 +565,8 @@ void requireFile(const SourceLocation& where, const std::string& kind,
                  const std::filesystem::path& path, std::string_view fileName) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
-    throw DiagnosticError(where, "cannot open " + kind + " file " + quoted(fileName) + " (looked for " +
-                                     path.string() + ")");
+    throw DiagnosticError(where, "cannot open " + kind + " file " + quoted(fileName) +
+                                     " (looked for " + path.string() + ")");
   }
 }
 
@@ -558,7 +575,8 @@ void requireFile(const SourceLocation& where, const std::string& kind,
 // ---------------------------------------------------------------------------------------------
 // FunctionCurve
 
-FunctionCurve::FunctionCurve(std::string name, int samples, std::vector<std::array<double, 2>> points)
+FunctionCurve::FunctionCurve(std::string name, int samples,
+                             std::vector<std::array<double, 2>> points)
     : name_(std::move(name)), samples_(samples), points_(std::move(points)) {
   // cpfg: with more than 2 samples, func() interpolates linearly in a table of `samples` values at
   // x = i/(samples-1) (tools-LeafPosition: the values at 0, 1/3, 2/3, 1 are exact solutions, the
@@ -771,15 +789,18 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
     if (isFunctionSet == false && parts->arguments.size() > 1) {
       samples = parseInt(parts->arguments[1]);
       if (!samples) {
-        throw DiagnosticError(SourceLocation{currentFile, lineNumber, parts->columns[1]},
-                              "expected a sample count after the file name, found " +
-                                  quoted(parts->arguments[1]));
+        throw DiagnosticError(
+            SourceLocation{currentFile, lineNumber, parts->columns[1]},
+            "expected a sample count after the file name, found " + quoted(parts->arguments[1]));
       }
     }
     const std::filesystem::path path = folder / std::filesystem::path(std::string(fileName));
 
-    requireFile(fileAt, isFunction ? "function" : isFunctionSet ? "function set" : "curve", path,
-                fileName);
+    requireFile(fileAt,
+                isFunction      ? "function"
+                : isFunctionSet ? "function set"
+                                : "curve",
+                path, fileName);
     if (isFunction) {
       try {
         out.functions.push_back(FunctionCurve::load(path, samples.value_or(0)));
@@ -804,9 +825,9 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
     } else {
       const int curveSamples = samples.value_or(ContourCurve::kDefaultSamples);
       if (curveSamples < 2) {
-        throw DiagnosticError(SourceLocation{currentFile, lineNumber, parts->columns[1]},
-                              "a curve needs at least 2 samples, found " +
-                                  std::to_string(curveSamples));
+        throw DiagnosticError(
+            SourceLocation{currentFile, lineNumber, parts->columns[1]},
+            "a curve needs at least 2 samples, found " + std::to_string(curveSamples));
       }
       try {
         out.curves.push_back(ContourCurve::load(path, curveSamples));

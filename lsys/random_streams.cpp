@@ -54,7 +54,9 @@ void BlockRandom::srand(double seed) {
   hasSavedDeviate_ = false;
 }
 
-double BlockRandom::ran(double x) { return x * uniform(); }
+double BlockRandom::ran(double x) {
+  return x * uniform();
+}
 
 double BlockRandom::nran(double mean, double sd) {
   // Numerical Recipes in C, 2nd ed., Sec. 7.2, gasdev: polar form of Box–Muller. Each pair of

@@ -81,8 +81,9 @@ class Derivation {
   // string whose contexts count when `s` is not that string.
   bool applyAt(int set, int lsystem, const ModuleString& s, std::size_t at, bool inMainString,
                std::size_t anchor, int level, std::size_t& end, ModuleSink& out);
-  void decompose(int lsystem, const ModuleString& produced, std::size_t anchor);
-  void checkSize(const SourceLocation& where);
+  void decompose(const ModuleString& from, ModuleString& into);
+  void trackSubLsystems(const ModuleString& s, std::size_t from, std::size_t to, std::vector<int>& stack) const;
+  void checkSize(const ModuleString& s, const SourceLocation& where);
   std::size_t skipCut(const ModuleString& s, std::size_t at) const;
 
   const Program& program_;
@@ -97,6 +98,8 @@ class Derivation {
   int totalSteps_ = 0;
   bool started_ = false;
   bool stopped_ = false;
+  bool hasDecomposition_ = false;
+  const ModuleString* contextString_ = &current_;  // where rules find their contexts
   std::vector<int> subLsystems_;  // the L-system stack while scanning the string
   std::vector<Match> candidates_;
   std::deque<ModuleString> levelBuffers_;  // successors by recursion level (stable references)
