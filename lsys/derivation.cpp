@@ -253,9 +253,12 @@ bool Derivation::matchContexts(const Production& p, const Lsystem& l, const Modu
 bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match) {
   const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
   const RuleSet& rules = ruleSet(l, set);
+  const bool stochastic = set == 0 && l.stochastic;
+  // cpfg draws one number per module of the string in a stochastic L-system, whether or not a
+  // production applies there.
+  const double draw = stochastic ? choice_.next() : 0.0;
   const auto& ids = rules.bySymbol[static_cast<unsigned char>(s.at(at).symbol())];
   if (ids.empty()) return false;
-  const bool stochastic = set == 0 && l.stochastic;
   candidates_.clear();
   std::vector<double> weights;
   for (std::uint32_t id : ids) {
@@ -276,7 +279,7 @@ bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t
   if (candidates_.empty()) return false;
   double sum = 0;
   for (double w : weights) sum += w;
-  double r = choice_.next() * sum;
+  double r = draw * sum;
   double accumulated = 0;
   std::size_t chosen = candidates_.size() - 1;
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
