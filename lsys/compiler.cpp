@@ -29,10 +29,25 @@ int stackEffect(Op op, int count) {
   }
 }
 
-// Collects the names assigned anywhere in a block (the targets of `x = …;`).
+// Collects the variables fscanf reads into (`&x`) anywhere in an expression.
+void collectScanned(const ast::Expr* e, std::vector<std::string>& names) {
+  if (!e) return;
+  if (e->kind == ast::Expr::Kind::Call && e->name == "fscanf") {
+    for (const auto& arg : e->operands) {
+      if (arg->kind == ast::Expr::Kind::Unary && arg->unaryOp == ast::UnaryOp::AddressOf &&
+          arg->operands[0]->kind == ast::Expr::Kind::Variable) {
+        names.push_back(arg->operands[0]->name);
+      }
+    }
+  }
+  for (const auto& operand : e->operands) collectScanned(operand.get(), names);
+}
+
+// Collects the names assigned anywhere in a block (`x = …;` and fscanf's `&x`).
 void collectAssigned(const ast::Block& block, std::vector<std::string>& names) {
   for (const auto& s : block) {
     if (s->kind == ast::Stmt::Kind::Assign) names.push_back(s->target);
+    collectScanned(s->value.get(), names);
     collectAssigned(s->body, names);
     collectAssigned(s->otherwise, names);
   }

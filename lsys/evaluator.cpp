@@ -218,9 +218,12 @@ double Evaluator::call(Builtin id, const double* a, int count, std::uint32_t whe
     case Builtin::Func: {
       int index = static_cast<int>(a[0]);
       if (!functions_ || index < 1 || index > static_cast<int>(functions_->functions.size())) {
-        fail(where, "func(" + std::to_string(index) + ", …): the view file declares " +
-                        std::to_string(functions_ ? functions_->functions.size() : 0) +
-                        " function(s) with 'function:' or 'function set:'");
+        // cpfg: an unknown function id warns and reads as 0.
+        diagnostics_.warn(program_.locations[where],
+                          "func(" + std::to_string(index) + ", …): the view file declares " +
+                              std::to_string(functions_ ? functions_->functions.size() : 0) +
+                              " function(s) with 'function:' or 'function set:'; it reads as 0");
+        return 0;
       }
       return functions_->functions[static_cast<std::size_t>(index - 1)].evaluate(a[1]);
     }

@@ -51,6 +51,9 @@ std::optional<int> parseInt(std::string_view word) {
   return value;
 }
 
+// cuspy writes multiplicities 1 to 3; cpfg accepts any, so only absurd ones are refused.
+constexpr int kMaxMultiplicity = 1000;
+
 std::string quoted(std::string_view word) {
   return "'" + std::string(word) + "'";
 }
@@ -176,7 +179,10 @@ void readFunctionPoints(LineReader& reader, const TextLine& pointsLine, Function
     int multiplicity = 1;
     if (row.words.size() == 3) {
       const std::optional<int> m = parseInt(row.words[2]);
-      if (!m || *m < 1) reader.fail(row.number, "expected a multiplicity of 1 or more");
+      if (!m || *m < 1 || *m > kMaxMultiplicity) {
+        reader.fail(row.number,
+                    "expected a multiplicity from 1 to " + std::to_string(kMaxMultiplicity));
+      }
       multiplicity = *m;
     }
     for (int k = 0; k < multiplicity; ++k) {
@@ -209,6 +215,10 @@ FunctionData readVersion1Function(LineReader& reader) {
       hasName = true;
     } else if (label == "samples:") {
       data.samples = reader.countAfter(line, "samples:", "a count");
+      if (data.samples > kMaxCurveSamples) {
+        reader.fail(line.number, "at most " + std::to_string(kMaxCurveSamples) +
+                                     " samples, found " + std::to_string(data.samples));
+      }
       hasSamples = true;
     } else if (label == "flip:") {
       if (line.words.size() != 2)
@@ -294,7 +304,10 @@ void readContourRow(const LineReader& reader, const TextLine& row, std::size_t d
   int multiplicity = 1;
   if (dimension == 4) {
     const std::optional<int> m = parseInt(row.words[3]);
-    if (!m || *m < 1) reader.fail(row.number, "expected a multiplicity of 1 or more");
+    if (!m || *m < 1 || *m > kMaxMultiplicity) {
+      reader.fail(row.number,
+                  "expected a multiplicity from 1 to " + std::to_string(kMaxMultiplicity));
+    }
     multiplicity = *m;
   }
   for (int k = 0; k < multiplicity; ++k) data.points.push_back(point);
@@ -332,13 +345,19 @@ ContourData readCverContour(LineReader& reader) {
     } else if (label == "name:") {
       data.name = LineReader::restAfterLabel(line);
     } else if (label == "points:") {
-      const std::vector<double> counts = reader.numbersAfter(
-          line, "points:", 2, "the number of points and their total multiplicity");
-      distinctPoints = static_cast<int>(counts[0]);
-      totalPoints = static_cast<int>(counts[1]);
-      if (distinctPoints != counts[0] || totalPoints != counts[1] || distinctPoints < 1) {
-        reader.fail(line.number, "expected 'points:' followed by two whole numbers");
+      std::optional<int> distinct;
+      std::optional<int> total;
+      if (line.words.size() == 3) {
+        distinct = parseInt(line.words[1]);
+        total = parseInt(line.words[2]);
       }
+      if (!distinct || !total || *distinct < 1 || *total < *distinct) {
+        reader.fail(line.number,
+                    "expected 'points:' followed by the number of points and their total "
+                    "multiplicity");
+      }
+      distinctPoints = *distinct;
+      totalPoints = *total;
       pointsLineNumber = line.number;
     } else if (label == "type:") {
       data.closed = contourTypeIsClosed(reader, line);
@@ -472,7 +491,8 @@ ContourData readContour(LineReader& reader) {
   return data;
 }
 
-// Uniform cubic B-spline segment (Bartels, Beatty, Barsky, "An Introduction to Splines", eq. 4.4).
+// One segment of a uniform cubic B-spline in basis-function form, the same polynomial as cpfg's
+// generalized cylinders use (reference/cpfg-generalized-cylinders.md, section 5).
 std::array<double, 3> uniformSegment(const std::array<double, 3>& p0,
                                      const std::array<double, 3>& p1,
                                      const std::array<double, 3>& p2,
@@ -512,18 +532,22 @@ bool isIdentifier(const std::string& word) {
 }
 
 // A cpp line marker `# 12 "plant.v" 1` or `#line 12 "plant.v"`: the number of the next line and
-// the file it comes from.
+// the file it comes from (empty when the marker names none).
 std::optional<std::pair<int, std::string>> lineMarker(std::string_view line) {
   if (line.empty() || line[0] != '#') return std::nullopt;
-  std::vector<std::string_view> words = splitWords(line.substr(1));
-  if (!words.empty() && words[0] == "line") words.erase(words.begin());
-  if (words.empty()) return std::nullopt;
-  const std::optional<int> number = parseInt(words[0]);
+  std::string_view rest = line.substr(1);
+  const std::vector<std::string_view> words = splitWords(rest);
+  std::size_t numberWord = 0;
+  if (!words.empty() && words[0] == "line") numberWord = 1;
+  if (words.size() <= numberWord) return std::nullopt;
+  const std::optional<int> number = parseInt(words[numberWord]);
   if (!number) return std::nullopt;
+  rest = rest.substr(static_cast<std::size_t>(words[numberWord].data() - rest.data()));
   std::string file;
-  if (words.size() > 1 && words[1].size() >= 2 && words[1].front() == '"' &&
-      words[1].back() == '"') {
-    file = std::string(words[1].substr(1, words[1].size() - 2));
+  const std::size_t open = rest.find('"');
+  const std::size_t close = rest.rfind('"');
+  if (open != std::string_view::npos && close > open) {
+    file = std::string(rest.substr(open + 1, close - open - 1));
   }
   return std::make_pair(*number, file);
 }
@@ -578,6 +602,7 @@ void requireFile(const SourceLocation& where, const std::string& kind,
 FunctionCurve::FunctionCurve(std::string name, int samples,
                              std::vector<std::array<double, 2>> points)
     : name_(std::move(name)), samples_(samples), points_(std::move(points)) {
+  if (samples_ > kMaxCurveSamples) throw std::invalid_argument("too many function samples");
   // cpfg: with more than 2 samples, func() interpolates linearly in a table of `samples` values at
   // x = i/(samples-1) (tools-LeafPosition: the values at 0, 1/3, 2/3, 1 are exact solutions, the
   // ones between are interpolated).
@@ -692,7 +717,9 @@ double FunctionCurve::evaluate(double x) const {
 ContourCurve::ContourCurve(std::string name, bool closed, std::vector<std::array<double, 3>> points,
                            int samples)
     : name_(std::move(name)), closed_(closed), points_(std::move(points)), samples_(samples) {
-  if (samples_ < 2) throw std::invalid_argument("a curve needs at least 2 samples");
+  if (samples_ < 2 || samples_ > kMaxCurveSamples) {
+    throw std::invalid_argument("a curve needs 2 to kMaxCurveSamples samples");
+  }
   // cpfg: the curve is sampled at `samples` parameters spread evenly over all segments and the
   // chord lengths summed; curveGAL is that polyline's length (cpfg-Ridley: with 100 samples the
   // 495 primordia land where cpfg put them, with 99 or 101 they do not).
@@ -792,6 +819,11 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
         throw DiagnosticError(
             SourceLocation{currentFile, lineNumber, parts->columns[1]},
             "expected a sample count after the file name, found " + quoted(parts->arguments[1]));
+      }
+      if (*samples > kMaxCurveSamples) {
+        throw DiagnosticError(SourceLocation{currentFile, lineNumber, parts->columns[1]},
+                              "at most " + std::to_string(kMaxCurveSamples) + " samples, found " +
+                                  std::to_string(*samples));
       }
     }
     const std::filesystem::path path = folder / std::filesystem::path(std::string(fileName));

@@ -6,7 +6,8 @@
 namespace hirsute {
 
 Model loadModel(const std::filesystem::path& lsystemFile,
-                const std::optional<std::filesystem::path>& viewFile, Diagnostics& diagnostics) {
+                const std::optional<std::filesystem::path>& viewFile, Diagnostics& diagnostics,
+                const ModelOptions& modelOptions) {
   Model model;
   model.lsystemFile = lsystemFile;
   model.viewFile = viewFile;
@@ -16,7 +17,7 @@ Model loadModel(const std::filesystem::path& lsystemFile,
     std::string viewText = preprocessFile(*viewFile, options, diagnostics);
     model.functions = readViewFunctions(viewText, *viewFile);
     // cpfg defines every function-set name for the preprocessor before reading the `.l`.
-    options.defines = model.functions.macroDefinitions;
+    if (modelOptions.defineFunctionSetNames) options.defines = model.functions.macroDefinitions;
   }
   std::string text = preprocessFile(lsystemFile, options, diagnostics);
   ast::File file = parseLsystemText(text, lsystemFile.string());

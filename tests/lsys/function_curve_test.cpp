@@ -283,6 +283,14 @@ TEST(ViewFunctionsTest, BrokenFileIsReportedAtTheViewLineWithItsOwnPlace) {
   EXPECT_NE(d.message.find("wrong_multiplicity.con:3"), std::string::npos) << d.message;
 }
 
+TEST(ViewFunctionsTest, AbsurdSampleCountIsReportedAtItsColumn) {
+  const std::filesystem::path view = kFixtures / "too_many_samples.v";
+  const Diagnostic d = diagnosticOf([&] { readViewFunctions(readText(view), view); });
+  EXPECT_EQ(d.where.line, 2);
+  EXPECT_EQ(d.where.column, 21);
+  EXPECT_EQ(d.message, "at most 1000000 samples, found 5000000");
+}
+
 TEST(ViewFunctionsTest, LineMarkersGiveTheUsersLineNumbers) {
   // The text as the preprocessor leaves it: `# 7 "plant.v"` makes the next line line 7.
   const Diagnostic d = diagnosticOf(
@@ -351,6 +359,23 @@ TEST(ConformanceFilesTest, FunctionValuesMatchCpfgLeafPosition) {
     EXPECT_EQ(printedAsCpfg(internode.evaluate(n / 15.0)), internodeByCpfg[n]) << "n = " << n;
     EXPECT_EQ(printedAsCpfg(leaf.evaluate(n / 15.0)), leafByCpfg[n]) << "n = " << n;
   }
+}
+
+TEST(ConformanceFilesTest, FunctionSetValuesMatchCpfgLilyLeaf) {
+  // tools-LilyLeaf: the axiom's #(0.05*func(1,0)) and the first step at x = 0.02 print
+  // +(1000*func(2,x)*0.02) &(100*func(3,x)*0.02) /(3000*func(4,x)*0.02) #(0.05*func(1,x)).
+  // TURN has 8 control points, WIDTH 7: this checks the knot vector beyond the Bézier case and
+  // cpfg's float control points.
+  if (!haveConformance()) GTEST_SKIP() << "no conformance set at " << kConformance;
+  const std::vector<FunctionCurve> set =
+      FunctionCurve::loadSet(kConformance / "tools-LilyLeaf" / "functions.fset");
+  ASSERT_EQ(set.size(), 5u);
+  const double x = 0.02;
+  EXPECT_EQ(printedAsCpfg(0.05 * set[0].evaluate(0.0)), "0.00360324");
+  EXPECT_EQ(printedAsCpfg(1000 * set[1].evaluate(x) * 0.02), "0.686907");
+  EXPECT_EQ(printedAsCpfg(100 * set[2].evaluate(x) * 0.02), "0.0268115");
+  EXPECT_EQ(printedAsCpfg(3000 * set[3].evaluate(x) * 0.02), "-0.246652");
+  EXPECT_EQ(printedAsCpfg(0.05 * set[0].evaluate(x)), "0.00398886");
 }
 
 TEST(ConformanceFilesTest, CurvePositionsMatchCpfgRidley) {

@@ -16,6 +16,10 @@
 
 namespace hirsute {
 
+// The most samples a function table or a curve may have: far above any model (cpfg's defaults
+// are 100), low enough that a stray digit in a file cannot exhaust memory.
+inline constexpr int kMaxCurveSamples = 1000000;
+
 // A function y(x) on [0, 1] drawn with vlab's funcedit: a clamped uniform cubic B-spline whose
 // control points have non-decreasing x.
 class FunctionCurve {
@@ -24,8 +28,9 @@ class FunctionCurve {
   static constexpr double kTolerance = 1e-3;
 
   // Reads a `.func` file. `viewSamples` is the count given on the view file's `function:` line
-  // (0 when absent); cpfg uses it only for version 0 files, v1.01 files carry their own.
-  // Throws DiagnosticError at the line of the file where it is broken.
+  // (0 when absent); cpfg uses it only for version 0 files, v1.01 files carry their own. More
+  // than kMaxCurveSamples is a programming error (std::invalid_argument); the view reader
+  // reports it first. Throws DiagnosticError at the line of the file where it is broken.
   static FunctionCurve load(const std::filesystem::path& file, int viewSamples);
   // Reads a `.fset` function gallery: the functions in file order (ids 1, 2, …).
   static std::vector<FunctionCurve> loadSet(const std::filesystem::path& fset);
@@ -63,7 +68,8 @@ class ContourCurve {
 
   // Reads a `.con` file in any of cuspy's versions (cver 1.0 to 1.3, and the older
   // `version: 1.4` curve format). `samples` is the view's count (cpfg ignores the file's); fewer
-  // than 2 is a programming error (std::invalid_argument), the view reader reports it first.
+  // than 2 or more than kMaxCurveSamples is a programming error (std::invalid_argument), the
+  // view reader reports it first.
   static ContourCurve load(const std::filesystem::path& file, int samples = kDefaultSamples);
   static ContourCurve parse(std::string_view text, const std::string& fileName,
                             int samples = kDefaultSamples);

@@ -20,7 +20,14 @@ struct Model {
   Program program;
 };
 
+struct ModelOptions {
+  // cpfg defines the view file's function-set names for the preprocessor; its batch mode (-g)
+  // reads the `.l` first and does not. Off reproduces that mode.
+  bool defineFunctionSetNames = true;
+};
+
 Model loadModel(const std::filesystem::path& lsystemFile,
-                const std::optional<std::filesystem::path>& viewFile, Diagnostics& diagnostics);
+                const std::optional<std::filesystem::path>& viewFile, Diagnostics& diagnostics,
+                const ModelOptions& modelOptions = {});
 
 }  // namespace hirsute

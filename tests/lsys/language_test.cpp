@@ -1,0 +1,140 @@
+// The language, construct by construct: each fixture model in tests/fixtures/lsys has the
+// string it must derive beside it (NAME.expected, and NAME.homo.expected after the
+// homomorphism), written by hand from cpfg's semantics.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "hirsute/lsys/derivation.h"
+#include "hirsute/lsys/evaluator.h"
+#include "hirsute/lsys/model.h"
+#include "hirsute/lsys/string_writer.h"
+
+namespace hirsute {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fixtures() { return fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "lsys"; }
+
+std::string readLine(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+struct Derived {
+  std::string text;
+  std::string printed;  // what printf wrote
+  std::vector<Diagnostic> warnings;
+};
+
+Derived derive(const fs::path& lfile, bool homomorphism, std::optional<int> steps = std::nullopt) {
+  Diagnostics diagnostics;
+  std::optional<fs::path> view;
+  fs::path v = fs::path(lfile).replace_extension(".v");
+  if (fs::exists(v)) view = v;
+  Model model = loadModel(lfile, view, diagnostics);
+  std::ostringstream printed;
+  Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, printed);
+  DerivationOptions options;
+  options.steps = steps;
+  Derivation derivation(model.program, evaluator, diagnostics, options);
+  derivation.run();
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  std::FILE* memory = open_memstream(&buffer, &size);
+  {
+    StringWriter writer(memory, StringFormat::Compact);
+    derivation.emit(writer, homomorphism);
+    writer.finish();
+  }
+  std::fclose(memory);
+  std::string text(buffer, size);
+  std::free(buffer);
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  return {text, printed.str(), diagnostics.warnings()};
+}
+
+std::vector<std::string> fixtureNames() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(fixtures())) {
+    if (entry.path().extension() == ".l" && fs::exists(fs::path(entry.path()).replace_extension(".expected"))) {
+      names.push_back(entry.path().stem().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+class FixtureModel : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(FixtureModel, DerivesTheExpectedString) {
+  fs::path l = fixtures() / (GetParam() + ".l");
+  EXPECT_EQ(derive(l, false).text, readLine(fs::path(l).replace_extension(".expected")));
+  fs::path homo = fixtures() / (GetParam() + ".homo.expected");
+  if (fs::exists(homo)) {
+    EXPECT_EQ(derive(l, true).text, readLine(homo));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Lsys, FixtureModel, ::testing::ValuesIn(fixtureNames()),
+                         [](const auto& info) { return info.param; });
+
+TEST(Stochastic, WeightsAreNormalisedByTheirSum) {
+  std::string text = derive(fixtures() / "stochastic.l", false).text;
+  double b = static_cast<double>(std::count(text.begin(), text.end(), 'B'));
+  double c = static_cast<double>(std::count(text.begin(), text.end(), 'C'));
+  double n = b + c;
+  ASSERT_GT(n, 1000);
+  // Binomial with p = 1/4: four standard deviations either way.
+  double sd = std::sqrt(n * 0.25 * 0.75);
+  EXPECT_NEAR(b, n * 0.25, 4 * sd);
+}
+
+TEST(Stochastic, TheSeedMakesTheChoiceReproducible) {
+  EXPECT_EQ(derive(fixtures() / "stochastic.l", false).text, derive(fixtures() / "stochastic.l", false).text);
+}
+
+TEST(Steps, StepsOverrideTheDerivationLength) {
+  EXPECT_EQ(derive(fixtures() / "parametric.l", false, 0).text, "A(1)B");
+  EXPECT_EQ(derive(fixtures() / "parametric.l", false, 1).text, "A(2)C(2,-2)B");
+}
+
+TEST(Printf, FormatsEachConversionWithTheNextValue) {
+  fs::path l = fixtures() / "printf.l";
+  EXPECT_EQ(derive(l, false).printed, "x=1.5 n=3 100%\nvalues 2 and 0.25\n");
+}
+
+TEST(Variables, ReadingAnUnassignedVariableWarnsAndReadsZero) {
+  Derived d = derive(fixtures() / "undefined_variable.l", false);
+  EXPECT_EQ(d.text, "R(0)");
+  ASSERT_FALSE(d.warnings.empty());
+  EXPECT_NE(d.warnings.front().message.find("'nothing'"), std::string::npos);
+  EXPECT_EQ(d.warnings.front().where.line, 5);
+}
+
+TEST(Derivation, EachStepGivesTheStringOfThatStep) {
+  Diagnostics diagnostics;
+  Model model = loadModel(fixtures() / "parametric.l", std::nullopt, diagnostics);
+  std::ostringstream printed;
+  Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, printed);
+  Derivation derivation(model.program, evaluator, diagnostics);
+  derivation.start();
+  EXPECT_EQ(derivation.string().moduleCount(), 2u);
+  ASSERT_TRUE(derivation.step());
+  EXPECT_EQ(derivation.string().moduleCount(), 3u);
+  ASSERT_TRUE(derivation.step());
+  EXPECT_EQ(derivation.string().moduleCount(), 4u);
+  EXPECT_FALSE(derivation.step());
+  EXPECT_EQ(derivation.stepsDone(), 2);
+}
+
+}  // namespace
+}  // namespace hirsute
