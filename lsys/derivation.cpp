@@ -332,6 +332,22 @@ void Derivation::appendValues(const Production& p, const double* values, ModuleS
   }
 }
 
+bool Derivation::ruleContextsMatch(const Production& p, const Lsystem& l, const ModuleString& s,
+                                   std::size_t at, std::size_t end, bool inMainString, std::size_t anchor,
+                                   double* frame) const {
+  if (inMainString) return matchContexts(p, l, s, at, end, frame);
+  // Modules a rule has produced take the contexts of the module they came from.
+  const ModuleString& whole = *contextString_;
+  return anchor < whole.end() && matchContexts(p, l, whole, anchor, whole.next(anchor), frame);
+}
+
+bool Derivation::wouldApply(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
+                            std::size_t end, bool inMainString, std::size_t anchor, double* frame) {
+  if (p.hasContext() && !ruleContextsMatch(p, l, s, at, end, inMainString, anchor, frame)) return false;
+  // A pre-condition block may have effects, so its production counts as applicable untested.
+  return !p.before.empty() || evaluator_.isTrue(p.condition, frame);
+}
+
 ModuleString& Derivation::levelBuffer(int level) {
   while (levelBuffers_.size() <= static_cast<std::size_t>(level)) levelBuffers_.emplace_back();
   ModuleString& buffer = levelBuffers_[static_cast<std::size_t>(level)];
@@ -349,7 +365,7 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
     double* frame = frames_.data() + frameOffset(lsystem, set, id);
     if (!matchStrict(p, s, at, end, frame)) continue;
     if (level > rules.maximumDepth) {
-      if (rules.warnings) {
+      if (rules.warnings && wouldApply(p, l, s, at, end, inMainString, anchor, frame)) {
         diagnostics_.warn(p.where, std::string(set == 1 ? "decomposition" : "homomorphism") +
                                        " reached its maximum depth (" + std::to_string(rules.maximumDepth) +
                                        ") with this production still applicable");
@@ -358,10 +374,7 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
     }
     if (p.hasContext()) {
       // Contexts are those of the derived string, also for modules a rule has produced.
-      const ModuleString& whole = *contextString_;
-      bool ok = inMainString ? matchContexts(p, l, s, at, end, frame)
-                             : anchor < whole.end() && matchContexts(p, l, whole, anchor, whole.next(anchor), frame);
-      if (!ok) continue;
+      if (!ruleContextsMatch(p, l, s, at, end, inMainString, anchor, frame)) continue;
     }
     if (!p.before.empty()) evaluator_.run(p.before, frame);
     if (!evaluator_.isTrue(p.condition, frame)) continue;

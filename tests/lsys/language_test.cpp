@@ -138,3 +138,25 @@ TEST(Derivation, EachStepGivesTheStringOfThatStep) {
 
 }  // namespace
 }  // namespace hirsute
+
+namespace hirsute {
+namespace {
+
+// Every model shipped in models/ derives cleanly: no error and no warning.
+TEST(ShippedModels, DeriveWithoutErrorsOrWarnings) {
+  fs::path models = fs::path(HIRSUTE_SOURCE_DIR) / "models";
+  int count = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(models)) {
+    if (entry.path().extension() != ".l" || entry.path().string().find("/bench/") != std::string::npos) continue;
+    SCOPED_TRACE(entry.path().string());
+    Derived d;
+    ASSERT_NO_THROW(d = derive(entry.path(), true));
+    EXPECT_FALSE(d.text.empty());
+    for (const Diagnostic& w : d.warnings) ADD_FAILURE() << w.text();
+    ++count;
+  }
+  EXPECT_GT(count, 0);
+}
+
+}  // namespace
+}  // namespace hirsute

@@ -76,6 +76,11 @@ class Derivation {
   void rewriteStep();
   void appendValues(const Production& p, const double* values, ModuleString& out);
   ModuleString& levelBuffer(int level);
+  bool ruleContextsMatch(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
+                         std::size_t end, bool inMainString, std::size_t anchor, double* frame) const;
+  // Whether `p` would rewrite here (for the maximum-depth warning).
+  bool wouldApply(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
+                  std::size_t end, bool inMainString, std::size_t anchor, double* frame);
   // Applies the first matching rule of `set` (1 decomposition, 2 homomorphism) at `at` in `s`,
   // recursively to its successor; results go to `out`. `anchor` is the position in the derived
   // string whose contexts count when `s` is not that string.
