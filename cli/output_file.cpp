@@ -1,5 +1,6 @@
 #include "output_file.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -20,6 +21,10 @@ OutputFile::OutputFile(const std::string& path) : target_(path) {
   temporary_ = folder + "/." + target.filename().string() + ".tmp-XXXXXX";
   int fd = mkstemp(temporary_.data());
   if (fd < 0) throw std::runtime_error(path + ": cannot create the output file: " + std::strerror(errno));
+  // mkstemp creates the file private (0600); the result gets the usual mode under the umask.
+  mode_t mask = umask(0);
+  umask(mask);
+  fchmod(fd, 0666 & ~mask);
   stream_ = fdopen(fd, "wb");
   if (!stream_) {
     close(fd);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,7 +21,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path fixtures() { return fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "lsys"; }
+// A private copy of tests/fixtures: some fixture models write files into their folder.
+fs::path fixtures() {
+  static const fs::path copy = [] {
+    fs::path root = fs::temp_directory_path() / ("hirsute-fixtures-" + std::to_string(::getpid()));
+    fs::remove_all(root);
+    fs::copy(fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures", root, fs::copy_options::recursive);
+    return root / "lsys";
+  }();
+  return copy;
+}
 
 std::string readLine(const fs::path& file) {
   std::ifstream in(file);
