@@ -83,7 +83,15 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
     }
   }
   frames_.assign(total + 1, 0.0);
-  for (const Lsystem& l : program_.lsystems) hasDecomposition_ |= !l.decomposition.productions.empty();
+  for (const Lsystem& l : program_.lsystems) {
+    hasDecomposition_ |= !l.decomposition.productions.empty();
+    // Symbols no production starts with are copied as they are, except the cut and the
+    // sub-L-system brackets, which the loop must see.
+    std::array<bool, 128> copied{};
+    for (std::size_t c = 0; c < copied.size(); ++c) copied[c] = l.productions.bySymbol[c].empty();
+    copied['%'] = copied['?'] = copied['$'] = false;
+    isCopiedAsIs_.push_back(copied);
+  }
 }
 
 void Derivation::start() {
@@ -398,13 +406,28 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
 
 void Derivation::rewriteStep() {
   subLsystems_.assign(1, 0);
+  const bool nested = program_.lsystems.size() > 1;
   const ModuleString& s = current_;
   std::size_t pos = 0;
   try {
     while (pos < s.end()) {
-      ModuleRef m = s.at(pos);
       int lsystem = subLsystems_.back();
       const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
+      if (!l.stochastic) {
+        // A run of modules that no production can rewrite is copied in one piece.
+        std::size_t from = pos, count = 0;
+        while (pos < s.end() && isCopiedAsIs_[static_cast<std::size_t>(lsystem)][static_cast<unsigned char>(s.at(pos).symbol())]) {
+          pos = s.next(pos);
+          ++count;
+        }
+        if (count) {
+          next_.appendRange(s, from, pos, count);
+          if (next_.moduleCount() > options_.maxModules) checkSize(next_, l.axiomWhere);
+          continue;
+        }
+        if (pos >= s.end()) break;
+      }
+      ModuleRef m = s.at(pos);
       std::size_t after;
       Match match;
       if (choose(lsystem, 0, s, pos, match)) {
@@ -420,7 +443,7 @@ void Derivation::rewriteStep() {
         if (next_.moduleCount() > options_.maxModules) checkSize(next_, l.axiomWhere);
         after = s.next(pos);
       }
-      trackSubLsystems(s, pos, after, subLsystems_);
+      if (nested) trackSubLsystems(s, pos, after, subLsystems_);
       pos = after;
     }
   } catch (const ModuleStringTooLarge& e) {

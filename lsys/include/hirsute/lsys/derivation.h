@@ -4,6 +4,7 @@
 // applied when the string is handed to a sink.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -104,6 +105,7 @@ class Derivation {
   bool started_ = false;
   bool stopped_ = false;
   bool hasDecomposition_ = false;
+  std::vector<std::array<bool, 128>> isCopiedAsIs_;  // per L-system: symbols without productions
   const ModuleString* contextString_ = &current_;  // where rules find their contexts
   std::vector<int> subLsystems_;  // the L-system stack while scanning the string
   std::vector<Match> candidates_;
