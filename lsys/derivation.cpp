@@ -531,7 +531,7 @@ void Derivation::emit(ModuleSink& sink, bool applyHomomorphism) {
       after = current_.next(pos);
       sink.module(current_.at(pos));
     }
-    trackSubLsystems(current_, pos, after, stack);
+    if (program_.lsystems.size() > 1) trackSubLsystems(current_, pos, after, stack);
   }
 }
 

@@ -4,7 +4,6 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -516,13 +515,6 @@ double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) 
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-unsigned long variantBits() {
-  static const unsigned long bits = [] { const char* e = std::getenv("HV"); return e ? std::strtoul(e, nullptr, 0) : 0ul; }();
-  return bits;
-}
-bool V(int b) { return (variantBits() >> b) & 1ul; }
-float F(double x) { return static_cast<float>(x); }
-
 // NaN reads as 0, everything else is clamped to [0, 1].
 double clampUnit(double value) {
   if (!(value > 0.0)) return 0.0;
@@ -728,23 +720,16 @@ ContourCurve::ContourCurve(std::string name, bool closed, std::vector<std::array
   if (samples_ < 2 || samples_ > kMaxCurveSamples) {
     throw std::invalid_argument("a curve needs 2 to kMaxCurveSamples samples");
   }
-  if (V(0)) for (auto& p : points_) for (auto& c : p) c = F(c);
+  // cpfg: the curve is sampled at `samples` parameters spread evenly over all segments and the
+  // chord lengths summed; curveGAL is that polyline's length (cpfg-Ridley: with 100 samples the
+  // 495 primordia land where cpfg put them, with 99 or 101 they do not).
   cumulativeLength_.reserve(static_cast<std::size_t>(samples_));
   cumulativeLength_.push_back(0.0);
   std::array<double, 3> previous = pointAtParameter(0.0);
-  if (V(6)) for (auto& c : previous) c = F(c);
   for (int i = 1; i < samples_; ++i) {
-    double u = static_cast<double>(segmentCount()) * i / (samples_ - 1);
-    if (V(7)) u = F(F(segmentCount()) * F(i) / F(samples_ - 1));
-    if (V(12)) u = F(F(i) / F(samples_ - 1)) * segmentCount();
-    std::array<double, 3> current = pointAtParameter(u);
-    if (V(6)) for (auto& c : current) c = F(c);
-    double d = distance(previous, current);
-    if (V(8)) { float dx=F(current[0])-F(previous[0]), dy=F(current[1])-F(previous[1]), dz=F(current[2])-F(previous[2]); d = std::sqrt(dx*dx+dy*dy+dz*dz); }
-    if (V(13)) { float dx=F(current[0])-F(previous[0]), dy=F(current[1])-F(previous[1]), dz=F(current[2])-F(previous[2]); d = sqrtf(dx*dx+dy*dy+dz*dz); }
-    double sum = cumulativeLength_.back() + d;
-    if (V(2)) sum = F(F(cumulativeLength_.back()) + F(d));
-    cumulativeLength_.push_back(sum);
+    const std::array<double, 3> current =
+        pointAtParameter(static_cast<double>(segmentCount()) * i / (samples_ - 1));
+    cumulativeLength_.push_back(cumulativeLength_.back() + distance(previous, current));
     previous = current;
   }
 }
@@ -770,51 +755,23 @@ std::array<double, 3> ContourCurve::pointAtParameter(double u) const {
   const int n = static_cast<int>(points_.size());
   const int segments = segmentCount();
   const int segment = std::clamp(static_cast<int>(std::floor(u)), 0, segments - 1);
-  double t = u - segment;
-  if (V(5)) t = F(t);
+  const double t = u - segment;
   const auto at = [&](int i) -> const std::array<double, 3>& { return points_[(segment + i) % n]; };
-  std::array<double, 3> r;
-  if (V(1)) {
-    float tf = F(t);
-    float t2 = tf*tf, t3 = t2*tf;
-    float b0 = (1.0f - tf) * (1.0f - tf) * (1.0f - tf) / 6.0f;
-    float b1 = (3.0f * t3 - 6.0f * t2 + 4.0f) / 6.0f;
-    float b2 = (-3.0f * t3 + 3.0f * t2 + 3.0f * tf + 1.0f) / 6.0f;
-    float b3 = t3 / 6.0f;
-    for (int k = 0; k < 3; ++k) r[k] = b0 * F(at(0)[k]) + b1 * F(at(1)[k]) + b2 * F(at(2)[k]) + b3 * F(at(3)[k]);
-  } else if (V(9)) {
-    // basis in float, sum in double
-    float tf = F(t);
-    float t2 = tf*tf, t3 = t2*tf;
-    float b0 = (1.0f - tf) * (1.0f - tf) * (1.0f - tf) / 6.0f;
-    float b1 = (3.0f * t3 - 6.0f * t2 + 4.0f) / 6.0f;
-    float b2 = (-3.0f * t3 + 3.0f * t2 + 3.0f * tf + 1.0f) / 6.0f;
-    float b3 = t3 / 6.0f;
-    for (int k = 0; k < 3; ++k) r[k] = (double)b0 * at(0)[k] + (double)b1 * at(1)[k] + (double)b2 * at(2)[k] + (double)b3 * at(3)[k];
-  } else {
-    r = uniformSegment(at(0), at(1), at(2), at(3), t);
-  }
-  if (V(3)) for (auto& c : r) c = F(c);
-  return r;
+  return uniformSegment(at(0), at(1), at(2), at(3), t);
 }
 
+// cpfg: the arc length t·L is located in the sample table, the parameter interpolated linearly
+// between the two samples around it, and the spline evaluated exactly there. (Interpolating the
+// sampled positions instead leaves cpfg-Ridley's primordia up to 1e-4 off along the curve.)
 std::array<double, 3> ContourCurve::point(double t) const {
-  double target = clampUnit(t) * length();
-  if (V(4)) target = F(F(clampUnit(t)) * F(length()));
-  if (V(14)) target = F(target);
+  const double target = clampUnit(t) * length();
   auto above = std::lower_bound(cumulativeLength_.begin() + 1, cumulativeLength_.end(), target);
-  if (V(10)) above = std::upper_bound(cumulativeLength_.begin() + 1, cumulativeLength_.end(), target);
   if (above == cumulativeLength_.end()) --above;
   const int i = static_cast<int>(above - cumulativeLength_.begin());
   const double chord = cumulativeLength_[i] - cumulativeLength_[i - 1];
-  double fraction = chord > 0.0 ? (target - cumulativeLength_[i - 1]) / chord : 0.0;
-  if (V(11)) fraction = F(F(F(target) - F(cumulativeLength_[i - 1])) / F(F(cumulativeLength_[i]) - F(cumulativeLength_[i - 1])));
-  double u = static_cast<double>(segmentCount()) * (i - 1 + fraction) / (samples_ - 1);
-  if (V(15)) u = F(u);
-  if (V(16)) u = F(F(F(i - 1) + F(fraction)) / F(samples_ - 1)) * segmentCount();
-  auto r = pointAtParameter(u);
-  if (V(17)) for (auto& c : r) c = F(c);
-  return r;
+  const double fraction = chord > 0.0 ? (target - cumulativeLength_[i - 1]) / chord : 0.0;
+  return pointAtParameter(static_cast<double>(segmentCount()) * (i - 1 + fraction) /
+                          (samples_ - 1));
 }
 
 // ---------------------------------------------------------------------------------------------
