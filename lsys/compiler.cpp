@@ -518,6 +518,20 @@ Production Compiler::compileProduction(const ast::Production& in, const NameMap&
   out.condition = compileValue(in.condition.get(), scope);
   out.after = compileCode(in.after, scope);
   compileModules(in.successor, scope, out.successor, out.successorValues);
+  ModuleString encoded;
+  for (const SuccessorModule& m : out.successor) {
+    if (m.parameterCount == 0) {
+      encoded.append(m.symbol);
+      continue;
+    }
+    std::size_t start = encoded.byteSize();
+    std::vector<float> zeros(m.parameterCount, 0.0f);
+    encoded.append(m.symbol, zeros);
+    for (std::size_t i = 0; i < m.parameterCount; ++i) {
+      out.parameterOffsets.push_back(static_cast<std::uint32_t>(start + 2 + 4 * i));
+    }
+  }
+  out.successorBytes.assign(encoded.bytes(), encoded.bytes() + encoded.byteSize());
   out.probability = compileValue(in.probability.get(), scope);
   out.frameSize = static_cast<int>(out.slotNames.size());
   return out;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "hirsute/lsys/string_writer.h"
 
@@ -333,10 +334,11 @@ void Derivation::checkSize(const ModuleString& s, const SourceLocation& where) {
 }
 
 void Derivation::appendValues(const Production& p, const double* values, ModuleString& out) {
-  std::size_t k = 0;
-  for (const SuccessorModule& m : p.successor) {
-    out.appendRounded(m.symbol, std::span<const double>(values + k, m.parameterCount));
-    k += m.parameterCount;
+  std::uint8_t* at = out.appendEncoded(p.successorBytes.size(), p.successor.size());
+  std::memcpy(at, p.successorBytes.data(), p.successorBytes.size());
+  for (std::size_t i = 0; i < p.parameterOffsets.size(); ++i) {
+    float value = static_cast<float>(values[i]);  // cpfg stores parameters as float32
+    std::memcpy(at + p.parameterOffsets[i], &value, sizeof value);
   }
 }
 

@@ -85,6 +85,16 @@ class ModuleString {
   // Copies modules [from, to) of another string verbatim.
   void appendRange(const ModuleString& source, std::size_t from, std::size_t to, std::size_t count);
 
+  // Appends `bytes` encoded bytes holding `modules` modules and returns where to write them.
+  std::uint8_t* appendEncoded(std::size_t bytes, std::size_t modules) {
+    reserveMore(bytes);
+    std::uint8_t* at = data_ + size_;
+    size_ += bytes;
+    modules_ += modules;
+    return at;
+  }
+  const std::uint8_t* bytes() const { return data_; }
+
   void clear() {
     size_ = 0;
     modules_ = 0;

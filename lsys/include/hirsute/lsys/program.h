@@ -38,6 +38,10 @@ struct Production {
   Code after;                        // post-condition statements
   std::vector<SuccessorModule> successor;
   Code successorValues;              // pushes every successor parameter, left to right
+  // The successor already encoded as module-string bytes, with the byte offset of each
+  // parameter's float: emitting it is one copy and a float store per parameter.
+  std::vector<std::uint8_t> successorBytes;
+  std::vector<std::uint32_t> parameterOffsets;
   Code probability;                  // empty: weight 1
   int frameSize = 0;                 // formal parameters and local variables
   std::vector<std::string> slotNames;
