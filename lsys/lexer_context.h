@@ -14,6 +14,7 @@ struct LexerContext {
   int line = 1;
   int column = 1;
   SourceLocation tokenStart;
+  int blockDepth = 0;     // `{` open inside blocks
   int argumentDepth = 0;  // parentheses open inside module arguments
   bool pendingWarnings = true;  // the `warnings` word of the section being read
 

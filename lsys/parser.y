@@ -13,6 +13,7 @@
 %locations
 
 %code requires {
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,18 +42,26 @@ ExprPtr makeExpr(ast::Expr::Kind kind, const SourceLocation& where) {
   e->where = where;
   return e;
 }
+// Records the nesting of `e` from its operands; too deep is an error.
+ExprPtr nested(ExprPtr e) {
+  for (const auto& operand : e->operands) e->depth = std::max(e->depth, operand->depth + 1);
+  if (e->depth > ast::kMaxNesting) {
+    throw DiagnosticError(e->where, "the expression nests deeper than " + std::to_string(ast::kMaxNesting) + " levels");
+  }
+  return e;
+}
 ExprPtr binary(ast::BinaryOp op, ExprPtr a, ExprPtr b, const SourceLocation& where) {
   auto e = makeExpr(ast::Expr::Kind::Binary, where);
   e->binaryOp = op;
   e->operands.push_back(std::move(a));
   e->operands.push_back(std::move(b));
-  return e;
+  return nested(std::move(e));
 }
 ExprPtr unary(ast::UnaryOp op, ExprPtr a, const SourceLocation& where) {
   auto e = makeExpr(ast::Expr::Kind::Unary, where);
   e->unaryOp = op;
   e->operands.push_back(std::move(a));
-  return e;
+  return nested(std::move(e));
 }
 ast::StmtPtr makeStmt(ast::Stmt::Kind kind, const SourceLocation& where) {
   auto s = std::make_unique<ast::Stmt>();
@@ -390,11 +399,13 @@ expr
       $$ = makeExpr(ast::Expr::Kind::Element, @1);
       $$->name = $1;
       $$->operands = std::move($2);
+      $$ = nested(std::move($$));
     }
   | IDENT LPAREN args RPAREN {
       $$ = makeExpr(ast::Expr::Kind::Call, @1);
       $$->name = $1;
       $$->operands = std::move($3);
+      $$ = nested(std::move($$));
     }
   | LPAREN expr RPAREN            { $$ = std::move($2); }
   | MINUS expr %prec UMINUS       { $$ = unary(ast::UnaryOp::Negate, std::move($2), @1); }
@@ -419,6 +430,7 @@ expr
       $$->operands.push_back(std::move($1));
       $$->operands.push_back(std::move($3));
       $$->operands.push_back(std::move($5));
+      $$ = nested(std::move($$));
     }
   ;
 

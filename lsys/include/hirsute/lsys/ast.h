@@ -19,10 +19,15 @@ enum class UnaryOp { Negate, Not, AddressOf };
 enum class BinaryOp { Or, And, Equal, NotEqual, Less, LessEqual, Greater, GreaterEqual, Add,
                       Subtract, Multiply, Divide, Modulo, Power };
 
+// Deepest nesting of an expression or of blocks; deeper input is an error, so that compiling
+// and freeing the tree stays within the C++ stack.
+inline constexpr int kMaxNesting = 500;
+
 struct Expr {
   enum class Kind { Number, String, Variable, Element, Unary, Binary, Conditional, Call };
   Kind kind;
   SourceLocation where;
+  int depth = 1;                  // nesting of this expression
   double number = 0;              // Number
   std::string name;               // Variable, Element (array name), Call (function), String (text)
   UnaryOp unaryOp{};              // Unary
