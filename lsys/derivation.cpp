@@ -12,7 +12,9 @@ namespace hirsute {
 namespace {
 
 // Deepest recursion of decomposition and homomorphism (each level is a C++ call).
-constexpr int kMaxRecursionDepth = 10000;
+// A level takes about 1.3 KB of stack in a sanitizer build; 4000 stay well inside the 8 MB of a
+// main thread (10000 overflowed it). Real models nest a few hundred levels at most.
+constexpr int kMaxRecursionDepth = 4000;
 
 // cpfg: seed48({seed, 0, 155}) for a non-zero seed; drand48's unseeded state otherwise.
 Rand48 choiceStream(const Lsystem& main) {
@@ -53,6 +55,19 @@ std::size_t afterBranch(const ModuleString& s, std::size_t at) {
 
 const RuleSet& ruleSet(const Lsystem& l, int set) {
   return set == 0 ? l.productions : set == 1 ? l.decomposition : l.homomorphism;
+}
+
+// Every `?(id…)` from byte `from` on must name an L-system of the file; the error points at
+// the production (or axiom) that made it, not at the step that later reads it.
+void requireKnownLsystems(const Program& program, const ModuleString& s, std::size_t from,
+                          const SourceLocation& where) {
+  for (std::size_t q = from; q < s.end(); q = s.next(q)) {
+    ModuleRef m = s.at(q);
+    if (isSubLsystemStart(m) && program.lsystemIndex(m.parameter(0)) < 0) {
+      throw DiagnosticError(where, "the string calls sub-L-system " + formatParameter(m.parameter(0)) +
+                                       " with ?(…), but no L-system has that label");
+    }
+  }
 }
 
 void bind(const ModulePattern& pattern, ModuleRef m, double* frame) {
@@ -116,6 +131,7 @@ void Derivation::start() {
     current_.appendRounded(m.symbol, std::span<const double>(values.data() + k, m.parameterCount));
     k += m.parameterCount;
   }
+  requireKnownLsystems(program_, current_, 0, main.axiomWhere);
   if (totalSteps_ == 0) {
     evaluator_.run(main.end, nullptr);
     stopped_ = true;
@@ -131,7 +147,13 @@ bool Derivation::step() {
   rewriteStep();
   if (hasDecomposition_) {
     current_.clear();
-    decompose(next_, current_);
+    try {
+      decompose(next_, current_);
+    } catch (const ModuleStringTooLarge& e) {
+      throw DiagnosticError(main.where, "the decomposed string needs more than " + std::to_string(e.bytes >> 20) +
+                                            " MiB in step " + std::to_string(stepsDone_ + 1) +
+                                            ", more than this machine allows");
+    }
   } else {
     current_.swap(next_);
   }
@@ -269,7 +291,8 @@ bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t
   const auto& ids = rules.bySymbol[static_cast<unsigned char>(s.at(at).symbol())];
   if (ids.empty()) return false;
   candidates_.clear();
-  std::vector<double> weights;
+  std::vector<double>& weights = weights_;  // reused: no allocation per module
+  weights.clear();
   for (std::uint32_t id : ids) {
     const Production& p = rules.productions[id];
     double* frame = frames_.data() + frameOffset(lsystem, set, id);
@@ -334,12 +357,15 @@ void Derivation::checkSize(const ModuleString& s, const SourceLocation& where) {
 }
 
 void Derivation::appendValues(const Production& p, const double* values, ModuleString& out) {
+  const std::size_t start = out.byteSize();
   std::uint8_t* at = out.appendEncoded(p.successorBytes.size(), p.successor.size());
-  std::memcpy(at, p.successorBytes.data(), p.successorBytes.size());
+  // An empty successor (`*`) has no bytes, and memcpy may not be given its null pointer.
+  if (!p.successorBytes.empty()) std::memcpy(at, p.successorBytes.data(), p.successorBytes.size());
   for (std::size_t i = 0; i < p.parameterOffsets.size(); ++i) {
     float value = static_cast<float>(values[i]);  // cpfg stores parameters as float32
     std::memcpy(at + p.parameterOffsets[i], &value, sizeof value);
   }
+  if (p.callsSubLsystem) requireKnownLsystems(program_, out, start, p.where);
 }
 
 bool Derivation::ruleContextsMatch(const Production& p, const Lsystem& l, const ModuleString& s,
@@ -398,6 +424,12 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
     for (std::size_t q = 0, e = 0; q < produced.end(); q = e) {
       if (!applyAt(set, lsystem, produced, q, false, from, level + 1, e, out)) {
         e = produced.next(q);
+        // Rules that double their module at every level must not run for ever.
+        if (++ruleOutput_ > options_.maxModules) {
+          throw DiagnosticError(p.where, std::string(set == 1 ? "decomposition" : "the homomorphism") +
+                                             " produced more than " + std::to_string(options_.maxModules) +
+                                             " modules (the limit is set with --max-modules)");
+        }
         out.module(produced.at(q));
       }
     }
@@ -475,6 +507,7 @@ void Derivation::decompose(const ModuleString& from, ModuleString& into) {
   // recursively to their own successors, with contexts in that string.
   StringSink sink(into);
   contextString_ = &from;
+  ruleOutput_ = 0;
   std::vector<int> stack(1, 0);
   for (std::size_t pos = 0, after = 0; pos < from.end(); pos = after) {
     int lsystem = stack.back();
@@ -510,9 +543,16 @@ void Derivation::trackSubLsystems(const ModuleString& s, std::size_t from, std::
 
 void Derivation::emit(ModuleSink& sink, bool applyHomomorphism) {
   start();
+  const Lsystem& main = program_.lsystems.front();
+  if (program_.lsystems.size() == 1 && (!applyHomomorphism || main.homomorphism.productions.empty())) {
+    // Nothing to rewrite and no sub-L-systems to track: the string goes out in one piece.
+    sink.modules(current_, current_.begin(), current_.end());
+    return;
+  }
   std::vector<int> stack(1, 0);
   std::optional<BlockRandom> ownStream;
   contextString_ = &current_;
+  ruleOutput_ = 0;
   for (std::size_t pos = 0, after = 0; pos < current_.end(); pos = after) {
     int lsystem = stack.back();
     const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];

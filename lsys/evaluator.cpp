@@ -11,7 +11,19 @@ namespace hirsute {
 
 namespace {
 constexpr double kDegree = M_PI / 180.0;
+
+// A value used as an index or id, truncated as C's cast would, but clamped first so that the
+// cast is defined for every double (NaN reads as 0).
+long long toInteger(double v) {
+  return v == v ? static_cast<long long>(std::clamp(v, -9e18, 9e18)) : 0;
 }
+
+// Shapes beyond this make Cheng's beta generator overflow (2ab) and never accept a variate.
+constexpr double kMaxBetaShape = 1e150;
+
+// Sin … Trunc: pure functions of their arguments (applyMathBuiltin).
+bool isMathBuiltin(Builtin id) { return id <= Builtin::Trunc; }
+}  // namespace
 
 // The math built-ins, shared with the compiler's constant folding. Angles are degrees (cpfg).
 double applyMathBuiltin(Builtin b, const double* a, int count) {
@@ -68,7 +80,7 @@ std::size_t Evaluator::elementIndex(std::int32_t array, const double* subscripts
   std::size_t index = 0;
   for (int i = 0; i < count; ++i) {
     double s = subscripts[i];
-    long long k = std::isfinite(s) ? static_cast<long long>(s) : 0;
+    long long k = toInteger(s);
     // cpfg clamps out-of-range subscripts, with a warning.
     if (k < 0 || k >= dims[static_cast<std::size_t>(i)]) {
       diagnostics_.warn(program_.locations[where],
@@ -87,137 +99,180 @@ const double* Evaluator::values(const Code& code, double* frame, std::size_t cou
   return stack_.data();
 }
 
+// The hot loop: the cases that run for every module stay small so that the stack, frame and
+// code pointers live in registers; arrays, modulo, fscanf and every error leave through
+// out-of-line helpers. Dispatch is threaded (GCC's labels as values): each case jumps straight
+// to the next instruction's case, so the branch predictor sees one indirect jump per case.
 double Evaluator::run(const Code& code, double* frame) {
-  double* stack = stack_.data();
+  static constexpr void* kCases[] = {
+      &&constant, &&loadLocal, &&storeLocal, &&loadShared, &&storeShared, &&loadElement,
+      &&storeElement, &&pop, &&negate, &&logicalNot, &&truth, &&add, &&subtract, &&multiply,
+      &&divide, &&modulo, &&power, &&equal, &&notEqual, &&less, &&lessEqual, &&greater,
+      &&greaterEqual, &&jump, &&jumpIfFalse, &&loopBack, &&call, &&scan};
+  static_assert(std::size(kCases) == static_cast<std::size_t>(Op::Scan) + 1, "one case per Op");
+  double* const stack = stack_.data();
   double* top = stack;  // one past the top value
-  const Instruction* instructions = code.instructions.data();
-  const std::size_t size = code.instructions.size();
+  double* const shared = shared_.data();
+  const double* const constants = code.constants.data();
+  const Instruction* const first = code.instructions.data();
+  const Instruction* const last = first + code.instructions.size();
+  const Instruction* in = first;
   std::uint64_t iterations = 0;
-  for (std::size_t pc = 0; pc < size; ++pc) {
-    const Instruction& in = instructions[pc];
-    switch (in.op) {
-      case Op::Constant: *top++ = code.constants[static_cast<std::size_t>(in.operand)]; break;
-      case Op::LoadLocal: *top++ = frame[in.operand]; break;
-      case Op::StoreLocal: frame[in.operand] = *--top; break;
-      case Op::LoadShared: *top++ = shared_[static_cast<std::size_t>(in.operand)]; break;
-      case Op::StoreShared: shared_[static_cast<std::size_t>(in.operand)] = *--top; break;
-      case Op::LoadElement: {
-        top -= in.count;
-        std::size_t i = elementIndex(in.operand, top, in.count, in.where);
-        *top++ = arrays_[static_cast<std::size_t>(in.operand)][i];
-        break;
+  const std::uint64_t maxIterations = limits_.maxLoopIterations;
+#define HIRSUTE_NEXT()                                   \
+  do {                                                   \
+    if (++in == last) goto done;                         \
+    goto* kCases[static_cast<std::size_t>(in->op)];      \
+  } while (0)
+#define HIRSUTE_GO_TO(target)                            \
+  do {                                                   \
+    in = first + (target);                               \
+    if (in == last) goto done;                           \
+    goto* kCases[static_cast<std::size_t>(in->op)];      \
+  } while (0)
+  if (in == last) goto done;
+  goto* kCases[static_cast<std::size_t>(in->op)];
+constant: *top++ = constants[in->operand]; HIRSUTE_NEXT();
+loadLocal: *top++ = frame[in->operand]; HIRSUTE_NEXT();
+storeLocal: frame[in->operand] = *--top; HIRSUTE_NEXT();
+loadShared: *top++ = shared[in->operand]; HIRSUTE_NEXT();
+storeShared: shared[in->operand] = *--top; HIRSUTE_NEXT();
+loadElement: top = this->loadElement(*in, top); HIRSUTE_NEXT();
+storeElement: top = this->storeElement(*in, top); HIRSUTE_NEXT();
+pop: --top; HIRSUTE_NEXT();
+negate: top[-1] = -top[-1]; HIRSUTE_NEXT();
+logicalNot: top[-1] = top[-1] == 0 ? 1.0 : 0.0; HIRSUTE_NEXT();
+truth: top[-1] = top[-1] != 0 ? 1.0 : 0.0; HIRSUTE_NEXT();
+add: --top; top[-1] += *top; HIRSUTE_NEXT();
+subtract: --top; top[-1] -= *top; HIRSUTE_NEXT();
+multiply: --top; top[-1] *= *top; HIRSUTE_NEXT();
+divide:
+  --top;
+  if (*top == 0) fail(in->where, "division by zero");
+  top[-1] /= *top;
+  HIRSUTE_NEXT();
+modulo: --top; top[-1] = this->modulo(top[-1], *top, in->where); HIRSUTE_NEXT();
+power: --top; top[-1] = std::pow(top[-1], *top); HIRSUTE_NEXT();
+equal: --top; top[-1] = top[-1] == *top; HIRSUTE_NEXT();
+notEqual: --top; top[-1] = top[-1] != *top; HIRSUTE_NEXT();
+less: --top; top[-1] = top[-1] < *top; HIRSUTE_NEXT();
+lessEqual: --top; top[-1] = top[-1] <= *top; HIRSUTE_NEXT();
+greater: --top; top[-1] = top[-1] > *top; HIRSUTE_NEXT();
+greaterEqual: --top; top[-1] = top[-1] >= *top; HIRSUTE_NEXT();
+jump: HIRSUTE_GO_TO(in->operand);
+jumpIfFalse:
+  if (*--top == 0) HIRSUTE_GO_TO(in->operand);
+  HIRSUTE_NEXT();
+loopBack:
+  if (++iterations > maxIterations) failLoop(in->where);
+  HIRSUTE_GO_TO(in->operand);
+call: {
+  top -= in->count;
+  Builtin id = static_cast<Builtin>(in->operand);
+  // The math built-ins go straight to libm; the rest need the evaluator's state.
+  double result = isMathBuiltin(id) ? applyMathBuiltin(id, top, in->count) : this->call(id, top, in->count, in->where);
+  *top++ = result;
+  HIRSUTE_NEXT();
+}
+scan: top = this->scan(*in, top); HIRSUTE_NEXT();
+#undef HIRSUTE_NEXT
+#undef HIRSUTE_GO_TO
+done:
+  return top > stack ? top[-1] : 0.0;
+}
+
+double* Evaluator::loadElement(const Instruction& in, double* top) {
+  top -= in.count;
+  std::size_t i = elementIndex(in.operand, top, in.count, in.where);
+  *top++ = arrays_[static_cast<std::size_t>(in.operand)][i];
+  return top;
+}
+
+double* Evaluator::storeElement(const Instruction& in, double* top) {
+  double value = *--top;
+  top -= in.count;
+  std::size_t i = elementIndex(in.operand, top, in.count, in.where);
+  arrays_[static_cast<std::size_t>(in.operand)][i] = value;
+  return top;
+}
+
+double Evaluator::modulo(double a, double b, std::uint32_t where) const {
+  // cpfg: integer modulo of the truncated operands.
+  if (!std::isfinite(a) || !std::isfinite(b) || std::fabs(a) > 9e18 || std::fabs(b) > 9e18) {
+    fail(where, "modulo of a value out of the integer range");
+  }
+  long long ib = static_cast<long long>(b);
+  if (ib == 0) fail(where, "modulo by zero");
+  return static_cast<double>(static_cast<long long>(a) % ib);
+}
+
+void Evaluator::failLoop(std::uint32_t where) const {
+  fail(where, "the loop ran more than " + std::to_string(limits_.maxLoopIterations) +
+                  " iterations (raise --max-loop-iterations if it is meant to)");
+}
+
+double* Evaluator::scan(const Instruction& in, double* top) {
+  double id = *--top;
+  std::FILE* f = file(id, in.where);
+  const std::string& fmt = program_.strings[static_cast<std::size_t>(in.operand)];
+  // Each conversion reads one number into a double.
+  std::vector<double> read;
+  std::size_t pos = 0;
+  int result = 0;
+  bool failed = false;
+  while (pos < fmt.size() && !failed) {
+    char c = fmt[pos];
+    if (c == '%' && pos + 1 < fmt.size() && fmt[pos + 1] != '%') {
+      std::size_t end = fmt.find_first_of("eEfgGdiuxX", pos + 1);
+      if (end == std::string::npos) break;
+      std::string spec = "%lf";
+      if (static_cast<int>(read.size()) >= in.count) break;
+      double v = 0;
+      if (std::fscanf(f, spec.c_str(), &v) == 1) {
+        read.push_back(v);
+        ++result;
+      } else {
+        failed = true;
       }
-      case Op::StoreElement: {
-        double value = *--top;
-        top -= in.count;
-        std::size_t i = elementIndex(in.operand, top, in.count, in.where);
-        arrays_[static_cast<std::size_t>(in.operand)][i] = value;
-        break;
+      pos = end + 1;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      std::fscanf(f, " ");
+      ++pos;
+    } else {
+      int got = std::fgetc(f);
+      if (got != c) {
+        if (got != EOF) std::ungetc(got, f);
+        failed = true;
       }
-      case Op::Pop: --top; break;
-      case Op::Negate: top[-1] = -top[-1]; break;
-      case Op::Not: top[-1] = top[-1] == 0 ? 1.0 : 0.0; break;
-      case Op::Truth: top[-1] = top[-1] != 0 ? 1.0 : 0.0; break;
-      case Op::Add: --top; top[-1] += *top; break;
-      case Op::Subtract: --top; top[-1] -= *top; break;
-      case Op::Multiply: --top; top[-1] *= *top; break;
-      case Op::Divide:
-        --top;
-        if (*top == 0) fail(in.where, "division by zero");
-        top[-1] /= *top;
-        break;
-      case Op::Modulo: {
-        --top;
-        // cpfg: integer modulo of the truncated operands.
-        double a = top[-1], b = *top;
-        if (!std::isfinite(a) || !std::isfinite(b) || std::fabs(a) > 9e18 || std::fabs(b) > 9e18) {
-          fail(in.where, "modulo of a value out of the integer range");
-        }
-        long long ib = static_cast<long long>(b);
-        if (ib == 0) fail(in.where, "modulo by zero");
-        top[-1] = static_cast<double>(static_cast<long long>(a) % ib);
-        break;
-      }
-      case Op::Power: --top; top[-1] = std::pow(top[-1], *top); break;
-      case Op::Equal: --top; top[-1] = top[-1] == *top; break;
-      case Op::NotEqual: --top; top[-1] = top[-1] != *top; break;
-      case Op::Less: --top; top[-1] = top[-1] < *top; break;
-      case Op::LessEqual: --top; top[-1] = top[-1] <= *top; break;
-      case Op::Greater: --top; top[-1] = top[-1] > *top; break;
-      case Op::GreaterEqual: --top; top[-1] = top[-1] >= *top; break;
-      case Op::Jump: pc = static_cast<std::size_t>(in.operand) - 1; break;
-      case Op::JumpIfFalse:
-        if (*--top == 0) pc = static_cast<std::size_t>(in.operand) - 1;
-        break;
-      case Op::LoopBack:
-        if (++iterations > limits_.maxLoopIterations) {
-          fail(in.where, "the loop ran more than " + std::to_string(limits_.maxLoopIterations) +
-                             " iterations (raise --max-loop-iterations if it is meant to)");
-        }
-        pc = static_cast<std::size_t>(in.operand) - 1;
-        break;
-      case Op::Call: {
-        top -= in.count;
-        double result = call(static_cast<Builtin>(in.operand), top, in.count, in.where);
-        *top++ = result;
-        break;
-      }
-      case Op::Scan: {
-        double id = *--top;
-        std::FILE* f = file(id, in.where);
-        const std::string& fmt = program_.strings[static_cast<std::size_t>(in.operand)];
-        // Each conversion reads one number into a double.
-        std::vector<double> read;
-        std::size_t pos = 0;
-        int result = 0;
-        bool failed = false;
-        while (pos < fmt.size() && !failed) {
-          char c = fmt[pos];
-          if (c == '%' && pos + 1 < fmt.size() && fmt[pos + 1] != '%') {
-            std::size_t end = fmt.find_first_of("eEfgGdiuxX", pos + 1);
-            if (end == std::string::npos) break;
-            std::string spec = "%lf";
-            if (static_cast<int>(read.size()) >= in.count) break;
-            double v = 0;
-            if (std::fscanf(f, spec.c_str(), &v) == 1) {
-              read.push_back(v);
-              ++result;
-            } else {
-              failed = true;
-            }
-            pos = end + 1;
-          } else if (std::isspace(static_cast<unsigned char>(c))) {
-            std::fscanf(f, " ");
-            ++pos;
-          } else {
-            int got = std::fgetc(f);
-            if (got != c) {
-              if (got != EOF) std::ungetc(got, f);
-              failed = true;
-            }
-            pos += (c == '%') ? 2 : 1;
-          }
-        }
-        *top++ = (result == 0 && std::feof(f)) ? -1.0 : result;
-        // Values for targets that got nothing keep their value: push a marker-free copy.
-        for (int i = in.count; i-- > 0;) *top++ = i < static_cast<int>(read.size()) ? read[static_cast<std::size_t>(i)] : 0.0;
-        break;
-      }
+      pos += (c == '%') ? 2 : 1;
     }
   }
-  return top > stack ? top[-1] : 0.0;
+  *top++ = (result == 0 && std::feof(f)) ? -1.0 : result;
+  // Values for targets that got nothing keep their value: push a marker-free copy.
+  for (int i = in.count; i-- > 0;) *top++ = i < static_cast<int>(read.size()) ? read[static_cast<std::size_t>(i)] : 0.0;
+  return top;
 }
 
 double Evaluator::call(Builtin id, const double* a, int count, std::uint32_t where) {
   switch (id) {
     case Builtin::Ran: return random_->ran(a[0]);
     case Builtin::Nran: return random_->nran(a[0], a[1]);
-    case Builtin::Bran: return random_->bran(a[0], a[1]);
-    case Builtin::Biran: return random_->biran(a[0], a[1]);
+    case Builtin::Bran:
+      if (!(a[0] <= kMaxBetaShape && a[1] <= kMaxBetaShape)) {
+        fail(where, "bran: shapes above 1e150 (or infinite) have no usable beta variate");
+      }
+      return random_->bran(a[0], a[1]);
+    case Builtin::Biran:
+      // One draw per trial: a count beyond the loop limit would run as long as a runaway loop.
+      if (a[0] > static_cast<double>(limits_.maxLoopIterations)) {
+        fail(where, "biran: more than " + std::to_string(limits_.maxLoopIterations) +
+                        " trials (raise --max-loop-iterations if it is meant to)");
+      }
+      return random_->biran(a[0], a[1]);
     case Builtin::Srand: random_->srand(a[0]); return 0;
     case Builtin::Func: {
-      int index = static_cast<int>(a[0]);
-      if (!functions_ || index < 1 || index > static_cast<int>(functions_->functions.size())) {
+      long long index = toInteger(a[0]);
+      if (!functions_ || index < 1 || index > static_cast<long long>(functions_->functions.size())) {
         // cpfg: an unknown function id warns and reads as 0.
         diagnostics_.warn(program_.locations[where],
                           "func(" + std::to_string(index) + ", …): the view file declares " +
@@ -228,8 +283,8 @@ double Evaluator::call(Builtin id, const double* a, int count, std::uint32_t whe
       return functions_->functions[static_cast<std::size_t>(index - 1)].evaluate(a[1]);
     }
     case Builtin::CurveX: case Builtin::CurveY: case Builtin::CurveZ: case Builtin::CurveGal: {
-      int index = static_cast<int>(a[0]);
-      if (!functions_ || index < 1 || index > static_cast<int>(functions_->curves.size())) {
+      long long index = toInteger(a[0]);
+      if (!functions_ || index < 1 || index > static_cast<long long>(functions_->curves.size())) {
         fail(where, "curve " + std::to_string(index) + " is not declared with 'curve:' in the view file");
       }
       const ContourCurve& curve = functions_->curves[static_cast<std::size_t>(index - 1)];
@@ -341,7 +396,7 @@ double Evaluator::openFile(const std::string& name, const std::string& mode, std
 }
 
 std::FILE* Evaluator::file(double id, std::uint32_t where) {
-  long long i = std::isfinite(id) ? static_cast<long long>(id) : 0;
+  long long i = toInteger(id);
   if (i < 1 || i > static_cast<long long>(files_.size()) || !files_[static_cast<std::size_t>(i - 1)]) {
     fail(where, "file id " + std::to_string(i) + " is not an open file (fopen returns the id)");
   }

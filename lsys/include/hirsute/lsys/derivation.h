@@ -109,7 +109,9 @@ class Derivation {
   const ModuleString* contextString_ = &current_;  // where rules find their contexts
   std::vector<int> subLsystems_;  // the L-system stack while scanning the string
   std::vector<Match> candidates_;
+  std::vector<double> weights_;  // the candidates' weights, beside candidates_
   std::deque<ModuleString> levelBuffers_;  // successors by recursion level (stable references)
+  std::size_t ruleOutput_ = 0;  // modules decomposition or homomorphism produced in this pass
 };
 
 }  // namespace hirsute

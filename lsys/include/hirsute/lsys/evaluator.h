@@ -53,6 +53,12 @@ class Evaluator {
 
  private:
   double call(Builtin id, const double* args, int count, std::uint32_t where);
+  // Out of run()'s loop, so that its common cases keep their pointers in registers.
+  [[gnu::noinline]] double* loadElement(const Instruction& in, double* top);
+  [[gnu::noinline]] double* storeElement(const Instruction& in, double* top);
+  [[gnu::noinline]] double modulo(double a, double b, std::uint32_t where) const;
+  [[gnu::noinline]] double* scan(const Instruction& in, double* top);
+  [[noreturn, gnu::cold, gnu::noinline]] void failLoop(std::uint32_t where) const;
   double openFile(const std::string& name, const std::string& mode, std::uint32_t where);
   std::FILE* file(double id, std::uint32_t where);
   std::string format(const std::string& format, const double* args, int count, std::uint32_t where);

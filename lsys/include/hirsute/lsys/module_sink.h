@@ -18,6 +18,11 @@ class ModuleSink {
     for (std::size_t i = 0; i < count; ++i) values[i] = m.parameter(i);
     module(m.symbol(), values, count);
   }
+  // Modules [from, to) of a string, unchanged; sinks that can walk the bytes themselves
+  // override this and save a virtual call per module.
+  virtual void modules(const ModuleString& s, std::size_t from, std::size_t to) {
+    for (std::size_t p = from; p < to; p = s.next(p)) module(s.at(p));
+  }
 };
 
 }  // namespace hirsute

@@ -15,6 +15,9 @@ enum class StringFormat {
   Compact,  // the same modules on one line
 };
 
+// The longest `%g` text of a float ("-1.17549e-38"), with room to spare.
+inline constexpr std::size_t kMaxParameterText = 15;
+
 // Streams modules to a FILE through a buffer; nothing is built as one big text.
 class StringWriter : public ModuleSink {
  public:
@@ -23,37 +26,57 @@ class StringWriter : public ModuleSink {
   StringWriter(const StringWriter&) = delete;
   StringWriter& operator=(const StringWriter&) = delete;
 
-  using ModuleSink::module;
   void module(char symbol, const float* parameters, std::size_t count) override;
+  // Read the parameters straight from the string's bytes.
+  void module(ModuleRef m) override;
+  void modules(const ModuleString& s, std::size_t from, std::size_t to) override;
   // Ends the string (a final newline) and flushes; returns false on a write error.
   bool finish();
 
  private:
-  void put(const char* text, std::size_t n) {
+  // Room for the longest module: symbol, parentheses, numbers and commas, a newline.
+  static constexpr std::size_t roomFor(std::size_t count) {
+    return 4 + count * (kMaxParameterText + 1);
+  }
+  char* reserve(std::size_t n) {
     if (used_ + n > sizeof buffer_) flush();
-    std::memcpy(buffer_ + used_, text, n);
+    return buffer_ + used_;
+  }
+  template <typename ParameterAt>
+  char* writeModule(char* p, bool cpfg, int& lineCount, char symbol, std::size_t count,
+                    ParameterAt parameterAt);
+  void put(const char* text, std::size_t n) {
+    std::memcpy(reserve(n), text, n);
     used_ += n;
   }
   void flush();
+  // Writes `%g` of `value` at `out` (which has kMaxParameterText + 1 bytes of room); returns the
+  // length. May write past the length within that room.
   std::size_t formatNumber(float value, char* out);
 
   std::FILE* out_;
   StringFormat format_;
   char buffer_[1 << 16];
   std::size_t used_ = 0;
-  int lineCount_ = 0;  // cpfg's count for the line being written
+  // cpfg's count for the line being written; 0 exactly when the line is empty (a compact line
+  // counts 1 once it has a module).
+  int lineCount_ = 0;
   bool failed_ = false;
-  bool atLineStart_ = true;
-  // A small cache of formatted values: strings repeat the same few numbers.
+  // A small cache of formatted values: strings repeat the same few numbers. An entry is 24
+  // bytes, so its text is copied with one fixed-size move. Entries start out as 0.0f, "0".
   struct CacheEntry {
-    std::uint32_t bits = 0xffffffffu;
-    std::uint8_t length = 0;
-    char text[23];
+    std::uint32_t bits = 0;
+    std::uint8_t length = 1;
+    char text[kMaxParameterText + 4] = {'0'};
   };
-  CacheEntry cache_[1024];
+  static_assert(sizeof(CacheEntry) == 24);
+  CacheEntry cache_[2048];
 };
 
 // `%g` of a float as cpfg prints it (the float promoted to double).
 std::string formatParameter(float value);
+// The same into `out`, which must have room for kMaxParameterText + 1 bytes; returns the length
+// (no terminating zero). Exact: byte-identical to printf's `%g` of the value as a double.
+std::size_t formatParameter(float value, char* out);
 
 }  // namespace hirsute

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Builds Hirsute in Release (without the tests) and prints the derivation benchmark's figures.
+# Arguments go to the benchmark: --model NAME, --repeat N, --models DIR.
+#   scripts/bench.sh --repeat 5
+# BUILD_DIR overrides the build folder; JOBS the build's parallel jobs (default: all cores).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build="${BUILD_DIR:-build/bench}"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DHIRSUTE_BUILD_TESTS=OFF \
+  -DHIRSUTE_BUILD_BENCH=ON >/dev/null
+cmake --build "$build" --target hirsute_derive_bench -j "${JOBS:-$(nproc)}"
+"$build/bench/hirsute_derive_bench" "$@"
