@@ -144,6 +144,9 @@ bool Derivation::step() {
   const Lsystem& main = program_.lsystems.front();
   evaluator_.shared()[static_cast<std::size_t>(program_.stepSlot)] = stepsDone_ + 1;
   evaluator_.run(main.startEach, nullptr);
+  // cpfg: query modules (?P ?H ?L ?U) are filled by an interpretation of the string before
+  // it is rewritten.
+  if (queryPass_ && program_.usesQueries) queryPass_(*this);
   rewriteStep();
   if (hasDecomposition_) {
     current_.clear();
@@ -557,6 +560,7 @@ void Derivation::emit(ModuleSink& sink, bool applyHomomorphism) {
     int lsystem = stack.back();
     const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
     bool rewritten = false;
+    sink.beginSource(pos);
     if (applyHomomorphism && !l.homomorphism.productions.empty()) {
       if (l.homomorphism.hasSeed) {
         // The homomorphism's own random stream, restarted at every interpretation.

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -45,6 +46,11 @@ class Derivation {
     while (step()) {
     }
   }
+
+  // The turtle's query pass, run before each rewriting when the program has query modules; it
+  // interprets the string (emit) and writes positions and orientations into it.
+  void setQueryPass(std::function<void(Derivation&)> pass) { queryPass_ = std::move(pass); }
+  ModuleString& mutableString() { return current_; }
 
   int stepsDone() const { return stepsDone_; }
   int totalSteps() const { return totalSteps_; }
@@ -105,6 +111,7 @@ class Derivation {
   bool started_ = false;
   bool stopped_ = false;
   bool hasDecomposition_ = false;
+  std::function<void(Derivation&)> queryPass_;
   std::vector<std::array<bool, 128>> isCopiedAsIs_;  // per L-system: symbols without productions
   const ModuleString* contextString_ = &current_;  // where rules find their contexts
   std::vector<int> subLsystems_;  // the L-system stack while scanning the string

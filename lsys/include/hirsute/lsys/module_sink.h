@@ -21,8 +21,15 @@ class ModuleSink {
   // Modules [from, to) of a string, unchanged; sinks that can walk the bytes themselves
   // override this and save a virtual call per module.
   virtual void modules(const ModuleString& s, std::size_t from, std::size_t to) {
-    for (std::size_t p = from; p < to; p = s.next(p)) module(s.at(p));
+    for (std::size_t p = from; p < to; p = s.next(p)) {
+      beginSource(p);
+      module(s.at(p));
+    }
   }
+  // Called before the modules that come from the string's module at `position` (itself, or
+  // what the homomorphism made of it). The turtle's query pass uses it to find the module
+  // whose parameters it fills.
+  virtual void beginSource(std::size_t /*position*/) {}
 };
 
 }  // namespace hirsute

@@ -94,6 +94,10 @@ class ModuleString {
     return at;
   }
   const std::uint8_t* bytes() const { return data_; }
+  // Overwrites parameter `i` of the module at `position` (the query pass fills ?P and the like).
+  void setParameter(std::size_t position, std::size_t i, float value) {
+    std::memcpy(data_ + position + 2 + 4 * i, &value, sizeof value);
+  }
 
   void clear() {
     size_ = 0;
