@@ -1,0 +1,43 @@
+// The steps every geometry command shares: load the model and its files, derive (with the
+// turtle's query pass when the model has query modules), interpret into a Scene.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/lsys/model.h"
+
+namespace hirsute::cli {
+
+struct ModelOptions {
+  std::string lsystemFile;
+  std::string viewFile;
+  std::optional<int> steps;
+  std::vector<std::string> colormaps;  // -m FILE or -m N:FILE (bank N)
+  std::vector<std::string> materials;  // -M FILE or -M N:FILE
+  std::size_t maxModules = 100'000'000;
+  std::uint64_t maxLoopIterations = 10'000'000;
+};
+
+// Adds the model arguments and options shared by render and export to `command`.
+void addModelOptions(CLI::App& command, ModelOptions& options);
+
+struct BuiltScene {
+  Model model;
+  ModelResources resources;
+  Scene scene;
+};
+
+// Throws DiagnosticError on bad input.
+BuiltScene buildScene(const ModelOptions& options, Diagnostics& diagnostics);
+
+// The colour files: those given, or else the single .map or .mat in the model's folder.
+ColorFiles colorFilesFor(const ModelOptions& options, Diagnostics& diagnostics);
+
+}  // namespace hirsute::cli

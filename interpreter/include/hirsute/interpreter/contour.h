@@ -1,0 +1,47 @@
+// Cross-section contours of generalized cylinders: cpfg's `.con` files (`contour: id file`) and
+// the built-in circle, resampled to a number of sides as cpfg does
+// (cpfg-generalized-cylinders.md §3).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace hirsute {
+
+// A contour resampled to `sides` points: positions and outward normals in the contour plane
+// (x along the turtle's U, y along -L). Closed contours have `sides` points (the seam is not
+// repeated); open contours have sides + 1, from one edge to the other.
+struct ContourSamples {
+  std::vector<glm::dvec2> points;
+  std::vector<glm::dvec2> normals;
+  bool closed = true;
+  double length = 0;  // perimeter (closed) or edge-to-edge length (open), for a radius of 1
+};
+
+// A contour as read from its file: the B-spline control points with multiplicities expanded.
+struct Contour {
+  std::string name;
+  bool closed = true;
+  std::vector<glm::dvec3> controlPoints;
+};
+
+class ContourLibrary {
+ public:
+  void add(int id, Contour contour);
+  bool has(int id) const { return contours_.count(id) != 0; }
+  // The samples of contour `id` (0 or unknown: the unit circle) with `sides` sides; computed
+  // once per (id, sides).
+  const ContourSamples& samples(int id, int sides) const;
+
+ private:
+  std::map<int, Contour> contours_;
+  mutable std::map<std::pair<int, int>, ContourSamples> cache_;
+};
+
+// Reads a `.con` file (versions 1.0 to 1.4). Throws DiagnosticError at the broken line.
+Contour loadContour(const std::string& file);
+
+}  // namespace hirsute

@@ -1,0 +1,142 @@
+// The Scene: the single interface between interpretation and every output (GL preview,
+// headless PNG, POV-Ray, OBJ). The turtle and the appendages write into it; outputs only read it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace hirsute {
+
+// A surface appearance: from a colour map (.map: the colour as ambient and diffuse) or a
+// material file (.mat). Colours are linear 0..1.
+struct Material {
+  glm::vec3 ambient{0.2f};
+  glm::vec3 diffuse{0.8f};
+  glm::vec3 specular{0.0f};
+  glm::vec3 emission{0.0f};
+  float shininess = 0.0f;    // 0..128
+  float transparency = 0.0f; // 0 opaque .. 1 clear
+};
+
+// Triangles sharing one material (and texture). Vertices carry normals, and texture coordinates
+// when `texture` >= 0. Indices are triangles (3 per face), counter-clockwise seen from the front.
+struct TriangleMesh {
+  int material = 0;          // index into Scene::materials
+  int texture = -1;          // index into Scene::textures, -1 none
+  bool twoSided = true;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> texcoords;  // empty, or one per vertex
+  std::vector<std::uint32_t> indices;
+
+  std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// How a line segment is drawn (cpfg's `line style:`).
+enum class LineStyle { Pixel, Polygon, Cylinder };
+
+// Lines drawn as lines (pixel style: width in pixels) or flat ribbons (polygon style: width in
+// world units). Cylinder-style lines are meshes instead. One entry per segment keeps tapering
+// (width and colour at each end).
+struct LineSegment {
+  glm::vec3 from, to;
+  float widthFrom = 1, widthTo = 1;
+  int material = 0;
+};
+
+struct Sphere {
+  glm::vec3 center;
+  float radius = 1;
+  int material = 0;
+};
+
+// A flat disc (cpfg's @o is screen-aligned, @c lies in the turtle's HL plane).
+struct Disc {
+  glm::vec3 center;
+  glm::vec3 normal;   // zero for screen-aligned discs
+  float radius = 1;
+  int material = 0;
+};
+
+struct Label {
+  glm::vec3 position;
+  std::string text;
+  int material = 0;
+};
+
+// One frame of a generalized cylinder: the turtle's position and orientation at a ring.
+struct ControlFrame {
+  glm::vec3 position{0.0f};
+  glm::vec3 heading{0, 1, 0};
+  glm::vec3 left{-1, 0, 0};
+  glm::vec3 up{0, 0, -1};
+};
+
+// A segment of a generalized cylinder between two control points, as appendages need it
+// (DESIGN.md): its two control frames, the contour points around it at each end (in the ring's
+// plane, contour x along U and y along -L, already multiplied by the radius), open or closed,
+// the girth (contour length) at each end and the arc length along the axis accumulated from @Gs.
+struct CylinderSegment {
+  ControlFrame start, end;
+  float radiusStart = 0, radiusEnd = 0;
+  std::vector<glm::vec2> contourStart, contourEnd;  // same count; closed contours repeat no point
+  bool closed = true;
+  float girthStart = 0, girthEnd = 0;
+  float axisStart = 0, axisLength = 0;
+  int mesh = -1;                 // the TriangleMesh holding its triangles
+  std::uint32_t firstIndex = 0;  // its first triangle index within that mesh
+  std::uint32_t indexCount = 0;
+  int strips = 1;                // rings between the two control frames, minus one
+  int tube = 0;                  // segments of one @Gs…@Ge tube share this number
+};
+
+struct Texture {
+  std::string file;     // as named by the view file, resolved against the model's folder
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;  // decoded pixels, row 0 at the top
+};
+
+struct Bounds {
+  glm::vec3 min{1e30f}, max{-1e30f};
+  bool empty() const { return min.x > max.x; }
+  void add(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  void add(const Bounds& b) {
+    if (!b.empty()) {
+      add(b.min);
+      add(b.max);
+    }
+  }
+  glm::vec3 center() const { return (min + max) * 0.5f; }
+  float diagonal() const { return empty() ? 0.0f : glm::length(max - min); }
+};
+
+class Scene {
+ public:
+  std::vector<Material> materials;        // by colour index (cpfg: 256 per bank)
+  std::vector<TriangleMesh> meshes;
+  std::vector<LineSegment> lines;
+  LineStyle lineStyle = LineStyle::Pixel; // how `lines` are drawn
+  std::vector<Sphere> spheres;
+  std::vector<Disc> discs;
+  std::vector<Label> labels;
+  std::vector<CylinderSegment> cylinderSegments;
+  std::vector<Texture> textures;
+
+  // The mesh for a material and texture, created on first use.
+  TriangleMesh& meshFor(int material, int texture = -1);
+  Bounds bounds() const;
+  std::size_t triangleCount() const;
+  void clear();
+
+ private:
+  std::vector<std::array<int, 3>> meshIndex_;  // (material, texture, mesh)
+};
+
+}  // namespace hirsute
