@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -15,6 +16,9 @@ namespace hirsute {
 namespace {
 
 using NameMap = std::unordered_map<std::string, int>;
+
+// Subscripts travel in an instruction's one-byte count; real models use one or two.
+constexpr std::size_t kMaxArrayDimensions = 16;
 
 int stackEffect(Op op, int count) {
   switch (op) {
@@ -92,6 +96,8 @@ class Compiler {
     Code code;
     int depth = 0;
     void emit(Op op, int count, std::int32_t operand, std::uint32_t where) {
+      // The count travels in a byte; callers bound it (arguments, subscripts, fscanf targets).
+      if (count < 0 || count > 255) throw std::logic_error("instruction count out of range");
       code.instructions.push_back(Instruction{op, static_cast<std::uint8_t>(count), operand, where});
       depth += stackEffect(op, count);
       if (depth > code.maxStack) code.maxStack = depth;
@@ -155,6 +161,7 @@ class Compiler {
   Program& program_;
   Diagnostics& diagnostics_;
   NameMap globals_;
+  double arrayCells_ = 0;  // elements of all arrays declared so far
 };
 
 double Compiler::constantValue(const ast::Expr& e, const std::string& what) {
@@ -187,6 +194,9 @@ double Compiler::constantValue(const ast::Expr& e, const std::string& what) {
           if (c == 0) fail(e.where, "division by zero in " + what);
           return a / c;
         case ast::BinaryOp::Modulo: {
+          if (!std::isfinite(a) || !std::isfinite(c) || std::fabs(a) > 9e18 || std::fabs(c) > 9e18) {
+            fail(e.where, "modulo of a value out of the integer range in " + what);
+          }
           long long ia = static_cast<long long>(a), ic = static_cast<long long>(c);
           if (ic == 0) fail(e.where, "modulo by zero in " + what);
           return static_cast<double>(ia % ic);
@@ -486,7 +496,9 @@ Production Compiler::compileProduction(const ast::Production& in, const NameMap&
   NameMap locals;
   auto bind = [&](const ast::ModuleList& patterns, std::vector<ModulePattern>& into) {
     for (const ast::Module& m : patterns) {
-      if (m.formals.size() > kMaxModuleParameters) fail(m.where, "too many parameters");
+      if (m.formals.size() > kMaxModuleParameters) {
+        fail(m.where, "a module can have at most " + std::to_string(kMaxModuleParameters) + " parameters");
+      }
       ModulePattern p{m.symbol, static_cast<std::uint8_t>(m.formals.size()), {}};
       for (const std::string& name : m.formals) {
         if (findBuiltin(name)) fail(m.where, "'" + name + "' is a built-in function and cannot name a parameter");
@@ -518,6 +530,7 @@ Production Compiler::compileProduction(const ast::Production& in, const NameMap&
   out.condition = compileValue(in.condition.get(), scope);
   out.after = compileCode(in.after, scope);
   compileModules(in.successor, scope, out.successor, out.successorValues);
+  for (const SuccessorModule& m : out.successor) out.callsSubLsystem |= m.symbol == '?' && m.parameterCount > 0;
   ModuleString encoded;
   for (const SuccessorModule& m : out.successor) {
     if (m.parameterCount == 0) {
@@ -560,6 +573,8 @@ void Compiler::compileLsystem(const ast::Lsystem& in, Lsystem& out, NameMap& sha
   if (in.seed) {
     out.stochastic = true;
     out.seed = constantValue(*in.seed, "the seed");
+    // The derivation converts it to an integer (cpfg: seed48 of its low bits).
+    if (!(std::fabs(out.seed) < 9e18)) fail(in.seed->where, "the seed is out of the integer range");
   }
   out.ring = in.ring;
   if (in.ignore && in.consider) {
@@ -582,6 +597,9 @@ void Compiler::compileLsystem(const ast::Lsystem& in, Lsystem& out, NameMap& sha
     for (const ast::ArrayDeclaration& a : s->arrays) {
       if (arrays.count(a.name)) fail(a.where, "array '" + a.name + "' is declared twice");
       ArrayDefinition def{a.name, {}, a.where};
+      if (a.dimensions.size() > kMaxArrayDimensions) {
+        fail(a.where, "array '" + a.name + "' has more than " + std::to_string(kMaxArrayDimensions) + " dimensions");
+      }
       double cells = 1;
       for (const auto& d : a.dimensions) {
         double n = constantValue(*d, "an array dimension");
@@ -590,6 +608,8 @@ void Compiler::compileLsystem(const ast::Lsystem& in, Lsystem& out, NameMap& sha
         cells *= static_cast<int>(n);
       }
       if (cells > 1e8) fail(a.where, "array '" + a.name + "' is too large");
+      arrayCells_ += cells;
+      if (arrayCells_ > 1e8) fail(a.where, "the arrays together have more than 10^8 elements");
       if (static_cast<double>(a.initializer.size()) > cells) {
         fail(a.initializer[static_cast<std::size_t>(cells)]->where,
              "array '" + a.name + "' has more initial values than elements");

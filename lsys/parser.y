@@ -9,11 +9,12 @@
 %define api.value.type variant
 %define api.token.constructor
 %define api.location.type {hirsute::SourceLocation}
-%define parse.error detailed
+%define parse.error custom
 %locations
 
 %code requires {
 #include <algorithm>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -438,4 +439,86 @@ expr
 
 void hirsute::detail::Parser::error(const location_type& where, const std::string& message) {
   throw hirsute::DiagnosticError(where, message);
+}
+
+namespace {
+
+using Kind = hirsute::detail::Parser::symbol_kind_type;
+using SymbolKind = hirsute::detail::Parser::symbol_kind;
+
+// The token as a user reads it: "'F'", "the end of the line".
+std::string describeToken(const hirsute::detail::Parser::context& c) {
+  const auto& token = c.lookahead();
+  switch (c.token()) {
+    case SymbolKind::S_YYEOF: return "the end of the file";
+    case SymbolKind::S_EOL: return "the end of the line";
+    case SymbolKind::S_SYMBOL: return std::string("module symbol '") + token.value.as<char>() + "'";
+    case SymbolKind::S_IDENT: return "identifier '" + token.value.as<std::string>() + "'";
+    case SymbolKind::S_STRING: return "a string";
+    case SymbolKind::S_NUMBER: {
+      char text[32];
+      std::snprintf(text, sizeof text, "%g", token.value.as<double>());
+      return std::string("number ") + text;
+    }
+    default: return std::string("'") + hirsute::detail::Parser::symbol_name(c.token()) + "'";
+  }
+}
+
+// Tokens that end a line, statement, block or section: an open bracket cannot continue past them.
+bool endsConstruct(Kind kind) {
+  switch (kind) {
+    case SymbolKind::S_YYEOF: case SymbolKind::S_EOL: case SymbolKind::S_ARROW:
+    case SymbolKind::S_SEMICOLON: case SymbolKind::S_RBRACE: case SymbolKind::S_AXIOM:
+    case SymbolKind::S_END_LSYSTEM: case SymbolKind::S_LABEL:
+      return true;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+// Bison finds where the input stops making sense; the message says what the writer most likely
+// missed, at the place where it is missing (an unclosed bracket, the axiom, `-->`, `endlsystem`).
+void hirsute::detail::Parser::report_syntax_error(const context& c) const {
+  const SourceLocation& where = c.location();
+  const Kind kind = c.token();
+  const std::string found = describeToken(c);
+  // A block's `{` is never blamed here: lines and statements end inside blocks, and the lexer
+  // reports a `{` still open at a keyword, `-->` or the end of the file.
+  if (!ctx.open.empty() && ctx.open.back().bracket != '{') {
+    const SourceLocation& open = ctx.open.back().where;
+    bool laterLine = where.line > open.line || where.fileName() != open.fileName();
+    if (endsConstruct(kind) || laterLine) throw DiagnosticError(open, ctx.unclosedMessage() + " before " + found);
+  }
+  Kind expected[YYNTOKENS];
+  int count = c.expected_tokens(expected, YYNTOKENS);
+  auto expects = [&](Kind k) { return std::find(expected, expected + count, k) != expected + count; };
+  if (kind == SymbolKind::S_YYEOF && !ctx.result.lsystems.empty()) {
+    const ast::Lsystem& last = ctx.result.lsystems.back();
+    throw DiagnosticError(last.where, "L-system '" + last.label + "' has no 'endlsystem' before the end of the file");
+  }
+  if (expects(SymbolKind::S_LABEL) && expects(SymbolKind::S_YYEOF)) {
+    throw DiagnosticError(where, "expected 'Lsystem: label' to start an L-system, found " + found);
+  }
+  if (expects(SymbolKind::S_AXIOM) && !ctx.result.lsystems.empty()) {
+    throw DiagnosticError(where, "L-system '" + ctx.result.lsystems.back().label +
+                                     "' has no 'Axiom:' line before this (found " + found + ")");
+  }
+  if (expects(SymbolKind::S_ARROW)) {
+    throw DiagnosticError(where, std::string(expects(SymbolKind::S_PLUS) ? "expected an operator or '-->'" : "expected '-->'") +
+                                     ", found " + found);
+  }
+  if (expects(SymbolKind::S_SEMICOLON) && kind != SymbolKind::S_RPAREN && kind != SymbolKind::S_RBRACKET) {
+    throw DiagnosticError(where, std::string(expects(SymbolKind::S_PLUS) ? "expected an operator or ';'" : "expected ';'") +
+                                     " to end the statement, found " + found);
+  }
+  std::string message = "syntax error, unexpected " + found;
+  if (count > 0 && count <= 4) {
+    for (int i = 0; i < count; ++i) {
+      message += (i == 0 ? ", expecting " : i + 1 == count ? " or " : ", ");
+      message += symbol_name(expected[i]);
+    }
+  }
+  throw DiagnosticError(where, message);
 }

@@ -1,3 +1,4 @@
+#include <limits>
 #include <memory>
 
 #include "hirsute/lsys/parser.h"
@@ -28,12 +29,16 @@ class Scanner {
 ast::File parseLsystemText(const std::string& text, const std::string& fileName) {
   detail::LexerContext ctx;
   ctx.file = std::make_shared<const std::string>(fileName);
+  if (text.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / 2)) {
+    throw DiagnosticError(SourceLocation{ctx.file, 0, 0}, "the file is too large to be an L-system");
+  }
   Scanner scanner(ctx);
   hirsute_lsys__scan_bytes(text.data(), static_cast<int>(text.size()), scanner.get());
   detail::Parser parser(scanner.get(), ctx);
   parser.parse();
   if (ctx.result.lsystems.empty()) {
-    throw DiagnosticError(SourceLocation{ctx.file, ctx.line, 0},
+    // Nothing but comments and blank lines: the file's start is where `Lsystem:` belongs.
+    throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(fileName), 1, 1},
                           "no L-system in the file (it must start with `Lsystem: label`)");
   }
   return std::move(ctx.result);

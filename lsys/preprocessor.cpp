@@ -74,6 +74,29 @@ class TemporaryFile {
   int fd_ = -1;
 };
 
+// Traditional-mode cpp reports a missing `#include` file one line late, at the word `include`.
+// Moves `where` to the file name on the directive's own line, as the user would look for it.
+void locateMissingInclude(SourceLocation& where, const std::string& header) {
+  std::ifstream in(where.fileName(), std::ios::binary);
+  std::string text;
+  for (int number = 1; std::getline(in, text) && number <= where.line; ++number) {
+    if (number < where.line - 1) continue;
+    std::size_t directive = text.find('#');
+    std::size_t include = text.find("include", directive == std::string::npos ? 0 : directive);
+    if (directive == std::string::npos || include == std::string::npos) continue;
+    std::size_t name = text.find(header, include);
+    if (name == std::string::npos || name == 0) continue;
+    where.line = number;
+    where.column = static_cast<int>(name);  // the opening quote or angle bracket, 1-based
+    return;
+  }
+}
+
+// A line number or column as cpp printed it; absurd values (a `#line` beyond int) read as 0.
+int cppNumber(const std::string& digits) {
+  return digits.size() > 9 ? 0 : std::stoi(digits);
+}
+
 // Turns cpp's messages into diagnostics: the first error is thrown, warnings are passed on.
 void reportCppMessages(const std::string& messages, bool failed, const std::string& fallbackFile,
                        Diagnostics& diagnostics) {
@@ -83,13 +106,19 @@ void reportCppMessages(const std::string& messages, bool failed, const std::stri
   while (std::getline(lines, line)) {
     std::smatch m;
     if (!std::regex_match(line, m, kLine)) continue;
-    SourceLocation where{std::make_shared<const std::string>(m[1].str()), std::stoi(m[2].str()),
-                         m[3].matched ? std::stoi(m[3].str()) : 0};
+    SourceLocation where{std::make_shared<const std::string>(m[1].str()), cppNumber(m[2].str()),
+                         m[3].matched ? cppNumber(m[3].str()) : 0};
+    const std::string message = m[5].str();
     if (m[4].str() == "warning") {
-      diagnostics.warn(where, m[5].str());
-    } else {
-      throw DiagnosticError(where, m[5].str());
+      diagnostics.warn(where, message);
+      continue;
     }
+    static const std::string kMissing = ": No such file or directory";
+    if (message.size() > kMissing.size() &&
+        message.compare(message.size() - kMissing.size(), kMissing.size(), kMissing) == 0) {
+      locateMissingInclude(where, message.substr(0, message.size() - kMissing.size()));
+    }
+    throw DiagnosticError(where, message);
   }
   if (failed) {
     throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(fallbackFile), 0, 0},
@@ -173,7 +202,9 @@ std::string preprocessFile(const std::filesystem::path& file, const Preprocessor
     // Find the line of the first NUL byte for the message.
     std::size_t at = text.find('\0');
     int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
-    throw DiagnosticError(SourceLocation{fileLocation.file, line, 0},
+    std::size_t lineStart = text.rfind('\n', at);
+    int column = static_cast<int>(at - (lineStart == std::string::npos ? 0 : lineStart + 1)) + 1;
+    throw DiagnosticError(SourceLocation{fileLocation.file, line, column},
                           "the file contains NUL bytes; it is not an L-system text file");
   }
 

@@ -43,6 +43,7 @@ struct Production {
   std::vector<std::uint8_t> successorBytes;
   std::vector<std::uint32_t> parameterOffsets;
   Code probability;                  // empty: weight 1
+  bool callsSubLsystem = false;      // the successor has a `?(id…)` module: its id is checked
   int frameSize = 0;                 // formal parameters and local variables
   std::vector<std::string> slotNames;
   bool hasContext() const { return !left.empty() || !right.empty(); }

@@ -1,0 +1,2 @@
+/* Its names become preprocessor macros for the .l file, as in cpfg. */
+function set: widths.fset

@@ -1,0 +1,393 @@
+// The command line on broken input: every `.l` in tests/bad_input must end `hirsute derive` with
+// exit code 2 and the `file:line:col: error: message` its first line announces, without a crash
+// and without hanging.
+//
+// A corpus file states its expectation in its first line, as a C comment:
+//   /* expect: LINE:COL: substring of the message */
+//   /* expect: LINE: substring */                      (any column, or none)
+//   /* expect: NAME:LINE:COL: substring */             (the error is in NAME beside it: an included
+//                                                       file, the view file)
+// Its second line may give more arguments:   /* args: --max-modules 100000 */
+// A `.v` of the same name is passed as the view file.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr auto kKillAfter = std::chrono::seconds(5);
+constexpr double kSlowSeconds = 1.0;  // worth a warning line, not a failure: timing is no test
+
+struct RunResult {
+  bool killed = false;  // still running after kKillAfter
+  bool exited = false;
+  int exitCode = -1;
+  int signal = 0;
+  double seconds = 0;
+  std::string out;
+  std::string err;
+};
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A folder of its own for one test, removed afterwards.
+class TemporaryFolder {
+ public:
+  TemporaryFolder() {
+    std::string pattern = (fs::path(testing::TempDir()) / "hirsute-cli-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TemporaryFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TemporaryFolder(const TemporaryFolder&) = delete;
+  TemporaryFolder& operator=(const TemporaryFolder&) = delete;
+  const fs::path& path() const { return path_; }
+
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(path_)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+ private:
+  fs::path path_;
+};
+
+// Runs `hirsute ARGS…` with its output in files; kills it after kKillAfter.
+RunResult runHirsute(const std::vector<std::string>& arguments) {
+  TemporaryFolder capture;
+  const std::string outPath = (capture.path() / "stdout").string();
+  const std::string errPath = (capture.path() / "stderr").string();
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> argv = {HIRSUTE_BINARY};
+  argv.insert(argv.end(), arguments.begin(), arguments.end());
+  std::vector<char*> pointers;
+  for (std::string& a : argv) pointers.push_back(a.data());
+  pointers.push_back(nullptr);
+
+  RunResult result;
+  const auto start = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  int spawned = posix_spawn(&pid, HIRSUTE_BINARY, &actions, nullptr, pointers.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw std::runtime_error(std::string("cannot run ") + HIRSUTE_BINARY);
+  int status = 0;
+  for (;;) {
+    pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (std::chrono::steady_clock::now() - start > kKillAfter) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      result.killed = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.exited = WIFEXITED(status);
+  result.exitCode = result.exited ? WEXITSTATUS(status) : -1;
+  result.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  result.out = readFile(outPath);
+  result.err = readFile(errPath);
+  return result;
+}
+
+struct Expectation {
+  std::string file;  // empty: the `.l` itself; else a file beside it
+  int line = 0;
+  std::optional<int> column;
+  std::string message;  // a substring of the error's message
+};
+
+// The first line's `/* expect: … */`; nullopt when the file has none.
+std::optional<Expectation> readExpectation(const std::string& firstLine) {
+  static const std::regex kExpect(R"(^/\* expect: (?:([A-Za-z0-9_.\-]*[A-Za-z_.\-][A-Za-z0-9_.\-]*):)?(\d+):(?:(\d+):)?(?: (.*?))? ?\*/\s*$)");
+  std::smatch m;
+  if (!std::regex_match(firstLine, m, kExpect)) return std::nullopt;
+  Expectation e;
+  e.file = m[1].str();
+  e.line = std::stoi(m[2].str());
+  if (m[3].matched) e.column = std::stoi(m[3].str());
+  e.message = m[4].str();
+  return e;
+}
+
+// The second line's `/* args: … */`, split at spaces.
+std::vector<std::string> readArguments(const std::string& secondLine) {
+  static const std::regex kArgs(R"(^/\* args: (.*?) \*/\s*$)");
+  std::smatch m;
+  std::vector<std::string> words;
+  if (!std::regex_match(secondLine, m, kArgs)) return words;
+  std::istringstream in(m[1].str());
+  for (std::string word; in >> word;) words.push_back(word);
+  return words;
+}
+
+std::vector<std::string> firstLines(const fs::path& file, std::size_t count) {
+  std::ifstream in(file, std::ios::binary);
+  std::vector<std::string> lines;
+  for (std::string line; lines.size() < count && std::getline(in, line);) lines.push_back(line);
+  lines.resize(count);
+  return lines;
+}
+
+// The message of the error reported at `where` ("path:line:" plus, when given, "col:"), if any.
+std::optional<std::string> errorAt(const std::string& stderrText, const std::string& path, int line,
+                                   std::optional<int> column) {
+  static const std::regex kRest(R"(^(?:(\d+):)? error: (.*)$)");
+  const std::string prefix = path + ":" + std::to_string(line) + ":";
+  std::istringstream lines(stderrText);
+  for (std::string text; std::getline(lines, text);) {
+    if (text.compare(0, prefix.size(), prefix) != 0) continue;
+    std::smatch m;
+    const std::string rest = text.substr(prefix.size());
+    if (!std::regex_match(rest, m, kRest)) continue;
+    if (column && (!m[1].matched || std::stoi(m[1].str()) != *column)) continue;
+    return m[2].str();
+  }
+  return std::nullopt;
+}
+
+fs::path corpusFolder() { return fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "bad_input"; }
+
+std::vector<std::string> corpusCases() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(corpusFolder())) {
+    if (entry.path().extension() == ".l") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// The corpus runs on a private copy, so that no case can write into the source tree.
+class BadInputTest : public testing::TestWithParam<std::string> {
+ protected:
+  static void SetUpTestSuite() {
+    copy_ = new TemporaryFolder;
+    fs::copy(corpusFolder(), copy_->path() / "bad_input", fs::copy_options::recursive);
+  }
+  static void TearDownTestSuite() {
+    delete copy_;
+    copy_ = nullptr;
+  }
+  static fs::path casePath(const std::string& name) { return copy_->path() / "bad_input" / (name + ".l"); }
+
+  static TemporaryFolder* copy_;
+};
+
+TemporaryFolder* BadInputTest::copy_ = nullptr;
+
+TEST_P(BadInputTest, EndsWithTheAnnouncedError) {
+  const fs::path file = casePath(GetParam());
+  const std::vector<std::string> head = firstLines(file, 2);
+  const std::optional<Expectation> expected = readExpectation(head[0]);
+  ASSERT_TRUE(expected) << file << ": the first line must be /* expect: LINE[:COL]: message */, found: "
+                        << head[0];
+
+  std::vector<std::string> arguments = {"derive", file.string()};
+  fs::path view = fs::path(file).replace_extension(".v");
+  if (fs::exists(view)) arguments.push_back(view.string());
+  for (const std::string& a : readArguments(head[1])) arguments.push_back(a);
+
+  const RunResult run = runHirsute(arguments);
+  ASSERT_FALSE(run.killed) << GetParam() << " still ran after " << kKillAfter.count() << " s; stderr:\n"
+                           << run.err.substr(0, 2000);
+  if (run.seconds > kSlowSeconds) {
+    std::printf("[ WARNING  ] %s took %.2f s (more than %.0f s)\n", GetParam().c_str(), run.seconds, kSlowSeconds);
+  }
+  ASSERT_TRUE(run.exited) << GetParam() << " died of signal " << run.signal << " after " << run.seconds
+                          << " s; stderr:\n" << run.err.substr(0, 4000);
+  EXPECT_EQ(run.exitCode, 2) << "stderr:\n" << run.err.substr(0, 2000);
+  EXPECT_EQ(run.err.find("Sanitizer"), std::string::npos) << run.err.substr(0, 4000);
+
+  const std::string path = expected->file.empty() ? file.string() : (file.parent_path() / expected->file).string();
+  const std::optional<std::string> message = errorAt(run.err, path, expected->line, expected->column);
+  std::string where = path + ":" + std::to_string(expected->line) +
+                      (expected->column ? ":" + std::to_string(*expected->column) : std::string()) + ": error: ";
+  ASSERT_TRUE(message) << "expected an error at " << where << "… (in " << run.seconds << " s); stderr:\n"
+                       << run.err.substr(0, 2000);
+  EXPECT_NE(message->find(expected->message), std::string::npos)
+      << "the error at " << where << " says \"" << *message << "\", expected it to contain \""
+      << expected->message << "\"";
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, BadInputTest, testing::ValuesIn(corpusCases()),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+
+TEST(BadInputCorpus, HasACaseForEachKindOfMistake) {
+  // The issue asks for at least 45 broken inputs; each must announce its error.
+  const std::vector<std::string> names = corpusCases();
+  EXPECT_GE(names.size(), 45u);
+  for (const std::string& name : names) {
+    EXPECT_TRUE(readExpectation(firstLines(corpusFolder() / (name + ".l"), 1)[0])) << name;
+  }
+}
+
+TEST(BadInputCorpus, ExpectationLinesAreRead) {
+  auto e = readExpectation("/* expect: 12:7: unknown function 'grow' */");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file, "");
+  EXPECT_EQ(e->line, 12);
+  EXPECT_EQ(e->column, 7);
+  EXPECT_EQ(e->message, "unknown function 'grow'");
+  e = readExpectation("/* expect: 3: the file contains NUL bytes */");
+  ASSERT_TRUE(e);
+  EXPECT_FALSE(e->column);
+  EXPECT_EQ(e->message, "the file contains NUL bytes");
+  e = readExpectation("/* expect: shared.inc:4:12: unknown function */");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file, "shared.inc");
+  EXPECT_EQ(e->line, 4);
+  EXPECT_FALSE(readExpectation("/* a comment */"));
+  EXPECT_EQ(readArguments("/* args: --max-modules 1000 --homomorphism */"),
+            (std::vector<std::string>{"--max-modules", "1000", "--homomorphism"}));
+}
+
+TEST(BadInputCorpus, ErrorsAreFoundOnlyAtTheirPlace) {
+  const std::string err = "warning: x\n/m.l:4:12: error: unknown function 'grow'\n";
+  EXPECT_EQ(errorAt(err, "/m.l", 4, 12), "unknown function 'grow'");
+  EXPECT_EQ(errorAt(err, "/m.l", 4, std::nullopt), "unknown function 'grow'");
+  EXPECT_FALSE(errorAt(err, "/m.l", 4, 11));
+  EXPECT_FALSE(errorAt(err, "/m.l", 5, std::nullopt));
+  EXPECT_FALSE(errorAt(err, "/other.l", 4, 12));
+  EXPECT_EQ(errorAt("/m.l:3: error: unterminated comment\n", "/m.l", 3, std::nullopt), "unterminated comment");
+}
+
+TEST(BadInputCorpus, AnEmptyFileHasNoLsystem) {
+  // A file of zero bytes cannot announce its own error; it is made here.
+  TemporaryFolder folder;
+  const fs::path file = folder.path() / "empty.l";
+  std::ofstream(file).close();
+  const RunResult run = runHirsute({"derive", file.string()});
+  ASSERT_FALSE(run.killed);
+  EXPECT_EQ(run.exitCode, 2);
+  const auto message = errorAt(run.err, file.string(), 1, 1);
+  ASSERT_TRUE(message) << run.err;
+  EXPECT_NE(message->find("no L-system in the file"), std::string::npos) << *message;
+}
+
+TEST(BadInputCorpus, RandomBytesEndInADiagnostic) {
+  // Seeded garbage, with and without NUL bytes: every file gets exit code 2 and a message that
+  // names it, never a crash.
+  TemporaryFolder folder;
+  std::uint32_t state = 2026;
+  auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<unsigned char>(state >> 24);
+  };
+  for (int i = 0; i < 12; ++i) {
+    const fs::path file = folder.path() / ("garbage" + std::to_string(i) + ".l");
+    std::string bytes;
+    for (int k = 0; k < 1500; ++k) {
+      unsigned char c = next();
+      if (i % 2 == 0 && c == 0) c = '\n';  // even files have no NUL byte
+      bytes += static_cast<char>(c);
+    }
+    std::ofstream(file, std::ios::binary) << bytes;
+    const RunResult run = runHirsute({"derive", file.string()});
+    ASSERT_FALSE(run.killed) << file;
+    ASSERT_TRUE(run.exited) << file << " died of signal " << run.signal << ":\n" << run.err.substr(0, 2000);
+    EXPECT_EQ(run.exitCode, 2) << file << ":\n" << run.err.substr(0, 2000);
+    EXPECT_EQ(run.err.rfind(file.string() + ":", 0), 0u) << run.err.substr(0, 2000);
+    EXPECT_NE(run.err.find(": error: "), std::string::npos) << run.err.substr(0, 2000);
+  }
+}
+
+// ---- -o: an output file appears complete or not at all ----
+
+// `derive CASE -o OUTPUT ARGUMENTS…` for a case of the corpus.
+RunResult deriveInto(const std::string& caseName, const fs::path& output, std::vector<std::string> more = {}) {
+  std::vector<std::string> arguments = {"derive", (corpusFolder() / (caseName + ".l")).string(), "-o", output.string()};
+  arguments.insert(arguments.end(), more.begin(), more.end());
+  return runHirsute(arguments);
+}
+
+// The homomorphism doubles every module 60 times: with this limit it fails after some 200 KB of
+// the string have gone out through the writer's 64 KB buffer, into the temporary file.
+const std::vector<std::string> kFailWhileWriting = {"--homomorphism", "--max-modules", "200000"};
+
+TEST(OutputFile, BadInputLeavesNoFile) {
+  struct Case {
+    const char* name;
+    std::vector<std::string> arguments;
+  };
+  // A parse error, an error in the first step, one in a later step, and one while writing.
+  const Case cases[] = {{"missing_axiom", {}},
+                        {"division_by_zero", {}},
+                        {"exponential_growth", {"--max-modules", "100000"}},
+                        {"homomorphism_explosion", kFailWhileWriting}};
+  for (const Case& c : cases) {
+    TemporaryFolder folder;
+    const RunResult run = deriveInto(c.name, folder.path() / "out.str", c.arguments);
+    ASSERT_FALSE(run.killed) << c.name;
+    EXPECT_EQ(run.exitCode, 2) << c.name << ":\n" << run.err;
+    EXPECT_EQ(folder.entries(), std::vector<std::string>{}) << c.name << " left files behind";
+  }
+}
+
+TEST(OutputFile, BadInputKeepsThePreviousFile) {
+  TemporaryFolder folder;
+  const fs::path output = folder.path() / "out.str";
+  std::ofstream(output) << "F(1)\n";
+  const RunResult run = deriveInto("homomorphism_explosion", output, kFailWhileWriting);
+  ASSERT_FALSE(run.killed);
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_EQ(readFile(output), "F(1)\n");
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"out.str"});
+}
+
+TEST(OutputFile, GoodModelWritesTheWholeString) {
+  const fs::path model = fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "cli" / "branching.l";
+  const std::string expected = "F(1)[+F(0.5)[+A(0.25)]A(1.5)]F(2)[+A(1)]A(3)\n";
+  TemporaryFolder folder;
+  const fs::path output = folder.path() / "out.str";
+  std::ofstream(output) << "an older string\n";  // replaced in one piece
+
+  const RunResult run = runHirsute({"derive", model.string(), "-o", output.string()});
+  ASSERT_FALSE(run.killed);
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(run.out, "");
+  EXPECT_EQ(readFile(output), expected);
+  // Nothing but the target: the temporary file it was written to has been renamed into place.
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"out.str"});
+
+  const RunResult toStdout = runHirsute({"derive", model.string()});
+  EXPECT_EQ(toStdout.exitCode, 0) << toStdout.err;
+  EXPECT_EQ(toStdout.out, expected);
+}
+
+}  // namespace
