@@ -16,5 +16,7 @@ inline constexpr int kExitIoError = 1;
 inline constexpr int kExitBadInput = 2;
 
 void registerDeriveCommand(CLI::App& app, Action& action);
+void registerRenderCommand(CLI::App& app, Action& action);
+void registerExportCommand(CLI::App& app, Action& action);
 
 }  // namespace hirsute::cli

@@ -5,6 +5,8 @@
 #include <optional>
 
 #include "command.h"
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
@@ -38,7 +40,15 @@ int runDerive(const DeriveOptions& o) {
     DerivationOptions options;
     options.steps = o.steps;
     options.maxModules = o.maxModules;
+    // ?P ?H ?L ?U take the turtle's values before every step (cpfg manual §6.9), so a model
+    // with queries needs its view file's turtle settings; colours play no part in them. The
+    // resources outlive the derivation whose query pass reads them.
+    ModelResources resources;
     Derivation derivation(model.program, evaluator, diagnostics, options);
+    if (model.program.usesQueries) {
+      resources = loadModelResources(view, {}, diagnostics);
+      installQueryPass(derivation, resources, diagnostics);
+    }
 
     OutputFile out(o.output);
     StringWriter writer(out.stream(), o.format == "compact" ? StringFormat::Compact : StringFormat::Cpfg);

@@ -9,6 +9,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "hirsute 0.1.0");
   hirsute::cli::Action action;
   hirsute::cli::registerDeriveCommand(app, action);
+  hirsute::cli::registerRenderCommand(app, action);
+  hirsute::cli::registerExportCommand(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

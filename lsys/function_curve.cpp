@@ -12,6 +12,8 @@
 #include <system_error>
 
 #include "hirsute/lsys/diagnostic.h"
+#include "hirsute/lsys/uniform_bspline.h"
+#include "hirsute/lsys/view_file_lines.h"
 
 namespace hirsute {
 namespace {
@@ -491,23 +493,6 @@ ContourData readContour(LineReader& reader) {
   return data;
 }
 
-// One segment of a uniform cubic B-spline in basis-function form, the same polynomial as cpfg's
-// generalized cylinders use (reference/cpfg-generalized-cylinders.md, section 5).
-std::array<double, 3> uniformSegment(const std::array<double, 3>& p0,
-                                     const std::array<double, 3>& p1,
-                                     const std::array<double, 3>& p2,
-                                     const std::array<double, 3>& p3, double t) {
-  const double t2 = t * t;
-  const double t3 = t2 * t;
-  const double b0 = (1.0 - t) * (1.0 - t) * (1.0 - t) / 6.0;
-  const double b1 = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0;
-  const double b2 = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0;
-  const double b3 = t3 / 6.0;
-  std::array<double, 3> out{};
-  for (int k = 0; k < 3; ++k) out[k] = b0 * p0[k] + b1 * p1[k] + b2 * p2[k] + b3 * p3[k];
-  return out;
-}
-
 double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
   const double dx = b[0] - a[0];
   const double dy = b[1] - a[1];
@@ -529,59 +514,6 @@ bool isIdentifier(const std::string& word) {
   return std::all_of(word.begin(), word.end(), [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
   });
-}
-
-// A cpp line marker `# 12 "plant.v" 1` or `#line 12 "plant.v"`: the number of the next line and
-// the file it comes from (empty when the marker names none).
-std::optional<std::pair<int, std::string>> lineMarker(std::string_view line) {
-  if (line.empty() || line[0] != '#') return std::nullopt;
-  std::string_view rest = line.substr(1);
-  const std::vector<std::string_view> words = splitWords(rest);
-  std::size_t numberWord = 0;
-  if (!words.empty() && words[0] == "line") numberWord = 1;
-  if (words.size() <= numberWord) return std::nullopt;
-  const std::optional<int> number = parseInt(words[numberWord]);
-  if (!number) return std::nullopt;
-  rest = rest.substr(static_cast<std::size_t>(words[numberWord].data() - rest.data()));
-  std::string file;
-  const std::size_t open = rest.find('"');
-  const std::size_t close = rest.rfind('"');
-  if (open != std::string_view::npos && close > open) {
-    file = std::string(rest.substr(open + 1, close - open - 1));
-  }
-  return std::make_pair(*number, file);
-}
-
-struct ViewLine {
-  std::string_view label;  // up to and including the first ':'
-  std::vector<std::string_view> arguments;
-  std::vector<int> columns;  // 1-based column of each argument
-};
-
-// cpfg's label: from the first non-space character (tabs are not skipped) up to and including
-// the first ':', compared with strcmp, so the spelling must be exact.
-std::optional<ViewLine> splitViewLine(std::string_view line) {
-  const std::size_t start = line.find_first_not_of(' ');
-  if (start == std::string_view::npos) return std::nullopt;
-  const std::size_t colon = line.find(':', start);
-  if (colon == std::string_view::npos) return std::nullopt;
-  ViewLine out;
-  out.label = line.substr(start, colon + 1 - start);
-  const std::string_view rest = line.substr(colon + 1);
-  for (std::string_view word : splitWords(rest)) {
-    out.arguments.push_back(word);
-    out.columns.push_back(static_cast<int>(word.data() - line.data()) + 1);
-  }
-  return out;
-}
-
-// A loader's error, re-reported at the view line that named the file; the message keeps the
-// place in the loaded file.
-[[noreturn]] void failAtViewLine(const SourceLocation& where, const std::string& kind,
-                                 std::string_view fileName, const DiagnosticError& inner) {
-  const Diagnostic& d = inner.diagnostic();
-  throw DiagnosticError(where, kind + " file " + quoted(fileName) +
-                                   " is broken: " + d.where.text() + ": " + d.message);
 }
 
 // The view names a file that is not there.
@@ -757,7 +689,7 @@ std::array<double, 3> ContourCurve::pointAtParameter(double u) const {
   const int segment = std::clamp(static_cast<int>(std::floor(u)), 0, segments - 1);
   const double t = u - segment;
   const auto at = [&](int i) -> const std::array<double, 3>& { return points_[(segment + i) % n]; };
-  return uniformSegment(at(0), at(1), at(2), at(3), t);
+  return uniformBSplinePoint(at(0), at(1), at(2), at(3), t);
 }
 
 // cpfg: the arc length t·L is located in the sample table, the parameter interpolated linearly
@@ -781,47 +713,31 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
                                 const std::filesystem::path& viewFile) {
   ViewFunctions out;
   const std::filesystem::path folder = viewFile.parent_path();
-  std::shared_ptr<const std::string> currentFile =
-      std::make_shared<const std::string>(viewFile.string());
-  int lineNumber = 0;
-  std::string_view text = preprocessedViewText;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(start, end - start);
-    start = end + 1;
-    if (const auto marker = lineMarker(line)) {
-      lineNumber = marker->first - 1;
-      if (!marker->second.empty() && marker->second != *currentFile) {
-        currentFile = std::make_shared<const std::string>(marker->second);
-      }
-      continue;
-    }
-    ++lineNumber;
-    const std::optional<ViewLine> parts = splitViewLine(line);
-    if (!parts) continue;
-    const bool isFunction = parts->label == "function:";
-    const bool isFunctionSet = parts->label == "function set:";
-    const bool isCurve = parts->label == "curve:";
+  for (const ViewFileLine& line : viewFileLines(preprocessedViewText, viewFile)) {
+    const bool isFunction = line.label == "function:";
+    const bool isFunctionSet = line.label == "function set:";
+    const bool isCurve = line.label == "curve:";
     if (!isFunction && !isFunctionSet && !isCurve) continue;
 
-    const SourceLocation labelAt{currentFile, lineNumber, 0};
-    if (parts->arguments.empty()) {
-      throw DiagnosticError(labelAt, "expected a file name after " + quoted(parts->label));
+    const std::vector<ViewWord> arguments = viewWords(line);
+    if (arguments.empty()) {
+      throw DiagnosticError(line.where, "expected a file name after " + quoted(line.label));
     }
-    const std::string_view fileName = parts->arguments[0];
-    const SourceLocation fileAt{currentFile, lineNumber, parts->columns[0]};
+    const auto argumentAt = [&line](const ViewWord& word) {
+      return SourceLocation{line.where.file, line.where.line, word.column};
+    };
+    const std::string_view fileName = arguments[0].text;
+    const SourceLocation fileAt = argumentAt(arguments[0]);
     std::optional<int> samples;
-    if (isFunctionSet == false && parts->arguments.size() > 1) {
-      samples = parseInt(parts->arguments[1]);
+    if (isFunctionSet == false && arguments.size() > 1) {
+      samples = parseInt(arguments[1].text);
       if (!samples) {
         throw DiagnosticError(
-            SourceLocation{currentFile, lineNumber, parts->columns[1]},
-            "expected a sample count after the file name, found " + quoted(parts->arguments[1]));
+            argumentAt(arguments[1]),
+            "expected a sample count after the file name, found " + quoted(arguments[1].text));
       }
       if (*samples > kMaxCurveSamples) {
-        throw DiagnosticError(SourceLocation{currentFile, lineNumber, parts->columns[1]},
+        throw DiagnosticError(argumentAt(arguments[1]),
                               "at most " + std::to_string(kMaxCurveSamples) + " samples, found " +
                                   std::to_string(*samples));
       }
@@ -837,14 +753,14 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
       try {
         out.functions.push_back(FunctionCurve::load(path, samples.value_or(0)));
       } catch (const DiagnosticError& error) {
-        failAtViewLine(fileAt, "function", fileName, error);
+        rethrowAtViewLine(fileAt, "function", fileName, error);
       }
     } else if (isFunctionSet) {
       // cpfg: `function set:` replaces the function list; its names become preprocessor macros.
       try {
         out.functions = FunctionCurve::loadSet(path);
       } catch (const DiagnosticError& error) {
-        failAtViewLine(fileAt, "function set", fileName, error);
+        rethrowAtViewLine(fileAt, "function set", fileName, error);
       }
       out.macroDefinitions.clear();
       for (std::size_t i = 0; i < out.functions.size(); ++i) {
@@ -857,14 +773,13 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
     } else {
       const int curveSamples = samples.value_or(ContourCurve::kDefaultSamples);
       if (curveSamples < 2) {
-        throw DiagnosticError(
-            SourceLocation{currentFile, lineNumber, parts->columns[1]},
-            "a curve needs at least 2 samples, found " + std::to_string(curveSamples));
+        throw DiagnosticError(argumentAt(arguments[1]), "a curve needs at least 2 samples, found " +
+                                                            std::to_string(curveSamples));
       }
       try {
         out.curves.push_back(ContourCurve::load(path, curveSamples));
       } catch (const DiagnosticError& error) {
-        failAtViewLine(fileAt, "curve", fileName, error);
+        rethrowAtViewLine(fileAt, "curve", fileName, error);
       }
     }
   }

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build cpp flex bison
   libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
-  libglm-dev libosmesa6-dev libpng-dev libstb-dev povray
+  libglm-dev libosmesa6-dev libpng-dev libstb-dev povray zlib1g-dev pkg-config
 )
 
 missing=()

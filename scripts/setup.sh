@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds Hirsute (Release), and runs the main job on a shipped model.
+# Installs what is missing, builds Hirsute (Release), and renders a shipped model to PNG.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -8,7 +8,5 @@ cmake --preset release >/dev/null
 cmake --build --preset release -j "$(nproc)"
 
 mkdir -p out
-build/release/cli/hirsute derive models/herb/herb.l models/herb/herb.v -o out/herb.str
-echo "Derived models/herb/herb.l into out/herb.str ($(wc -c < out/herb.str) bytes):"
-head -c 400 out/herb.str
-echo "…"
+build/release/cli/hirsute render models/herb/herb.l models/herb/herb.v -o out/herb.png
+echo "Rendered models/herb/herb.l into out/herb.png ($(wc -c < out/herb.png) bytes)"

@@ -17,9 +17,17 @@ namespace hirsute {
 struct ContourSamples {
   std::vector<glm::dvec2> points;
   std::vector<glm::dvec2> normals;
+  // The contour's z at each sample: cpfg adds z·H/len to ring vertices
+  // (cpfg-generalized-cylinders.md §2). Zero for the circle and for cuspy's planar contours.
+  std::vector<double> z;
   bool closed = true;
-  double length = 0;  // perimeter (closed) or edge-to-edge length (open), for a radius of 1
+  // Perimeter (closed) or edge-to-edge length (open) of the resampled polygon, for a radius of
+  // 1: the girth of the faces actually drawn.
+  double length = 0;
 };
+
+// Side counts are clamped to [3, kMaxContourSides] (cpfg: fewer than 3 sides read as 3).
+inline constexpr int kMaxContourSides = 4096;
 
 // A contour as read from its file: the B-spline control points with multiplicities expanded.
 struct Contour {
@@ -33,7 +41,8 @@ class ContourLibrary {
   void add(int id, Contour contour);
   bool has(int id) const { return contours_.count(id) != 0; }
   // The samples of contour `id` (0 or unknown: the unit circle) with `sides` sides; computed
-  // once per (id, sides).
+  // once per (id, sides). The reference stays valid while the library lives. Not thread-safe:
+  // the cache fills on first use.
   const ContourSamples& samples(int id, int sides) const;
 
  private:

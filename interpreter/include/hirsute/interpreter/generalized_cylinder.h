@@ -17,6 +17,9 @@ class GeneralizedCylinderBuilder {
   ~GeneralizedCylinderBuilder();
 
   bool active() const;
+  // cpfg's spline_flag 1: a tube started by @Gc rather than @Gs makes every F and f add a
+  // control point with 4 strips, until @Ge (§1). False while no tube is active.
+  bool addsPointsOnMoves() const;
   void start(const TurtleState& state);                   // @Gs
   void point(const TurtleState& state, int strips);       // @Gc(n); starts a tube when none is active
   void end(const TurtleState& state, int strips);         // @Ge(n)

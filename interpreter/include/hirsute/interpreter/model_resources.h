@@ -29,8 +29,13 @@ struct ModelResources {
   bool materialMode = false;         // materials (.mat) rather than a colour map (.map)
   ContourLibrary contours;
   std::map<char, Surface> surfaces;
-  std::vector<Texture> textures;     // by texture id - 1
+  // By texture id - 1. A texture whose file is missing (a warning) has no pixels (width 0) and
+  // is drawn as no texture.
+  std::vector<Texture> textures;
 };
+
+// cpfg's -m/-M banks run from 1 to 12.
+inline constexpr int kMaxColorBanks = 12;
 
 // Reads the view file (through the preprocessor) and every file it and `colors` name.
 // Without a colour file, a default palette is used. Throws DiagnosticError (file:line).
@@ -41,8 +46,17 @@ ModelResources loadModelResources(const std::optional<std::filesystem::path>& vi
 ViewSettings parseViewFile(const std::string& preprocessedText, const std::filesystem::path& viewFile,
                            Diagnostics& diagnostics);
 
+// A colour map: exactly 768 bytes, 256 RGB triples; each colour becomes a Material with
+// ambient = diffuse = the colour (cpfg's colour-map mode draws colours as they are; the renderer
+// shows them unlit when ModelResources::materialMode is false). Throws DiagnosticError.
 std::vector<Material> loadColorMap(const std::filesystem::path& file);   // 256 entries
+// A material file: 15-byte records {index, transparency, ambient, diffuse, emission, specular,
+// shininess}; indices without a record keep OpenGL's default material (Material{}).
+// Throws DiagnosticError.
 std::vector<Material> loadMaterials(const std::filesystem::path& file);  // 256 entries
+// Colours for a model given without colour files (docs/files.md): index 0 black (background),
+// 1–7 the classic red, green, yellow, blue, magenta, cyan, white, and 8–255 a hue circle with
+// cpfg's default initial colour 128 at green.
 std::vector<Material> defaultPalette();
 
 }  // namespace hirsute

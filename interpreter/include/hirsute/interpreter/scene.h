@@ -76,6 +76,17 @@ struct ControlFrame {
   glm::vec3 up{0, 0, -1};
 };
 
+// One ring of a generalized-cylinder segment (cpfg-generalized-cylinders.md §2): the centre and
+// frame the contour is placed in (heading = the axis tangent there), its radius, and where it lies
+// along the axis and in texture space. Appendages use the rings to map (u, v) onto the strips.
+struct CylinderRing {
+  ControlFrame frame;
+  float radius = 0;
+  float axisParameter = 0;  // the Hermite parameter t of the axis (0 at the start, 1 at the end)
+  float axisDistance = 0;   // arc length from @Gs, along the polyline through the ring centres
+  float textureT = 0;       // the texture coordinate t (§4)
+};
+
 // A segment of a generalized cylinder between two control points, as appendages need it
 // (DESIGN.md): its two control frames, the contour points around it at each end (in the ring's
 // plane, contour x along U and y along -L, already multiplied by the radius), open or closed,
@@ -92,6 +103,14 @@ struct CylinderSegment {
   std::uint32_t indexCount = 0;
   int strips = 1;                // rings between the two control frames, minus one
   int tube = 0;                  // segments of one @Gs…@Ge tube share this number
+  // The strips + 1 rings from start to end. When drawn as a tube, ring k's vertices are
+  // firstVertex + k·(sides + 1) + j, j = 0..sides (j = sides repeats the seam of closed
+  // contours), and the 2·sides triangles of strip k (rings k-1, k) follow those of strip k-1
+  // in the index range.
+  std::vector<CylinderRing> rings;
+  int sides = 0;                 // contour samples around the ring (the @! of the first point)
+  std::uint32_t firstVertex = 0;
+  std::uint32_t vertexCount = 0;
 };
 
 struct Texture {

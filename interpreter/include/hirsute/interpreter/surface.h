@@ -19,14 +19,25 @@ struct BezierPatch {
   std::array<std::string, 8> neighbours;
 };
 
+// cpfg's tessellation of a patch when neither the file (PRECISION) nor the view's `surface:`
+// line gives one: S_COUNT/2 = 5 quads each way, as cpfg's rayshade output of cpfg-Sedge shows
+// (50 triangles per patch).
+inline constexpr int kDefaultSurfacePrecision = 5;
+
+// cpfg reads at most this many patches per surface; Hirsute reads more and warns.
+inline constexpr int kCpfgMaxPatches = 65;
+
 struct Surface {
   char id = 0;
   std::string file;
-  glm::dvec3 contact{0.0}, endPoint{0.0}, heading{0, 1, 0}, up{0, 0, 1};
+  glm::dvec3 contact{0.0}, endPoint{0.0}, heading{0, 1, 0}, up{0, 0, 1};  // as in the file
+  glm::dvec3 boundsMin{0.0}, boundsMax{0.0};  // the first line: xmin xmax ymin ymax zmin zmax
   double fileSize = 1;   // SIZE: in the file
   double viewSize = 1;   // size: in the view file's `surface:` line
-  int sPrecision = 0, tPrecision = 0;
-  int texture = 0;
+  // Quads per patch along s and t: the view's `surface:` line, else the file's PRECISION, else
+  // kDefaultSurfacePrecision. Never 0 once loaded.
+  int sPrecision = kDefaultSurfacePrecision, tPrecision = kDefaultSurfacePrecision;
+  int texture = 0;       // 1-based, 0 none (the view's `surface:` line)
   std::vector<BezierPatch> patches;
 };
 

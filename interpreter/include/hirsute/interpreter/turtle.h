@@ -4,8 +4,14 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
+#include <set>
+#include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
+#include "hirsute/interpreter/generalized_cylinder.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/turtle_state.h"
@@ -25,13 +31,80 @@ class Turtle : public ModuleSink {
 
   using ModuleSink::module;
   void module(char symbol, const float* parameters, std::size_t count) override;
+  // A module of the source string: knows whether it came unchanged from the string (see
+  // setSourceString).
+  void module(ModuleRef m) override;
   void beginSource(std::size_t position) override { source_ = position; }
   // Closes what is open (a pending segment, polygons, a tube) at the end of the string.
   void finish();
 
+  // The string whose modules reach the turtle (Derivation::mutableString()). cpfg ignores a `%`
+  // made by the homomorphism, so `%` cuts only when it comes from this string; in query mode
+  // (scene null) ?P ?H ?L ?U write into the module of this string they came from.
+  void setSourceString(ModuleString* string) { sourceString_ = string; }
+
   const TurtleState& state() const { return state_; }
 
+  // What the turtle drew, by kind: the ray parity test compares these with cpfg's primitives
+  // (generalized cylinders are counted through Scene::cylinderSegments).
+  struct Counts {
+    std::size_t segments = 0;  // F and G segments (lines, or cylinders and cones)
+    std::size_t polygons = 0;  // { } polygons
+    std::size_t polygonTriangles = 0;
+    std::size_t surfaces = 0;  // ~X surface instances
+    std::size_t surfaceTriangles = 0;
+  };
+  const Counts& counts() const { return counts_; }
+
  private:
+  // A segment begun by F or G, drawn when the next node closes it (cpfg's EndNode): its end
+  // width is the width at that time.
+  struct PendingSegment {
+    TurtleState start;
+    bool open = false;
+  };
+  // What `[` saves besides the TurtleState (stack_ holds that, in step with this).
+  struct BranchExtras {
+    std::shared_ptr<GeneralizedCylinderBuilder::Saved> tube;
+    bool subLsystem = false;  // pushed by ?(id,s) rather than [
+  };
+  // A polygon being collected between { and }.
+  struct OpenPolygon {
+    std::vector<glm::dvec3> vertices;
+    int tubeType = 0;  // {(t): a generalized cylinder of type t instead (1 to 4)
+    int strips = 4;    // {(t,strips)
+    std::optional<TurtleState> firstPoint;  // closed tubes return to their first point at }
+  };
+
+  void dispatch(char symbol, const float* parameters, std::size_t count);
+  void atModule(char first, char second, const float* parameters, std::size_t count);
+  // ?P ?H ?L ?U with `count` parameters (the values are the turtle's, not the module's).
+  void query(char which, std::size_t count);
+  void move(double distance, bool draws, bool addsVertex);
+  void closeSegment();
+  void drawSegment(const TurtleState& start, const TurtleState& end);
+  void pushBranch(bool subLsystem);
+  void popBranch(bool subLsystem);
+  void openPolygon(const float* parameters, std::size_t count);
+  void closePolygon();
+  void drawSurface(char id, const float* parameters, std::size_t count);
+  void drawDisc(double diameter, const glm::dvec3& normal, bool ring);
+  int material(int color) const;
+  void warnOnce(const std::string& key, const std::string& message);
+
+  PendingSegment pending_;
+  std::vector<BranchExtras> branchExtras_;
+  std::vector<OpenPolygon> polygons_;
+  std::string prefix_;  // @, @X, ~ or ? waiting for the module's last character
+  // After `%` with `interpretation past %: off`: skipping the rest of the branch, through
+  // skipDepth_ nested branches.
+  bool skipping_ = false;
+  std::size_t skipDepth_ = 0;
+  bool fromSourceString_ = false;  // the module being handled came unchanged from sourceString_
+  ModuleString* sourceString_ = nullptr;
+  std::set<std::string> warned_;
+  Counts counts_;
+
   // (implementation state: the state stack, pending segment, polygon stack, multi-character
   // module prefix, the cylinder builder …)
   const ModelResources& resources_;

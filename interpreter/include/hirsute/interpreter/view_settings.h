@@ -1,6 +1,7 @@
 // Everything a cpfg view file (.v) sets, with cpfg's defaults (cpfg-features.md (e)).
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -8,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/diagnostic.h"
 
 namespace hirsute {
 
@@ -15,8 +17,10 @@ enum class Projection { Parallel, Perspective };
 enum class RenderMode { Wireframe, Filled, Flat, Interpolated, Shaded, Fast, Shadows };
 
 struct LightSource {
+  // LightSource{} is OpenGL's light 0: directional from +z, no ambient, white diffuse and
+  // specular. A `light:` line starts from it with a white ambient instead (kLightLineAmbient).
   bool directional = true;              // V: direction, O: point at position
-  glm::vec3 vector{1, 0, 0};            // direction (towards the light) or position
+  glm::vec3 vector{0, 0, 1};            // direction (towards the light) or position
   glm::vec3 ambient{0.0f}, diffuse{1.0f}, specular{1.0f};
   // Spot (P: x y z exponent cutoff) and attenuation (T: constant linear quadratic).
   bool spot = false;
@@ -24,6 +28,14 @@ struct LightSource {
   float spotExponent = 0, spotCutoff = 180;
   float constantAttenuation = 1, linearAttenuation = 0, quadraticAttenuation = 0;
 };
+
+// The ambient colour of a `light:` line without `A:` (manual §8.1.3: 1 1 1). cpfg's rayshade
+// output confirms it: two `light: V:` lines give `light 2 2 2 ambient` (cpfg-GeneralizedCylinder).
+inline constexpr float kLightLineAmbient = 1.0f;
+
+// cpfg numbers tropisms and torques together from 1 (`@Ts(i,e)`); the turtle keeps one
+// elasticity per tropism.
+inline constexpr std::size_t kMaxTropisms = 8;
 
 struct Tropism {
   glm::vec3 direction{0, 1, 0};  // T:
@@ -35,24 +47,35 @@ struct Tropism {
 };
 
 struct TextureDeclaration {
-  std::string file;              // F:
+  std::string file;              // F: resolved against the view file's folder
   char mode = 'm';               // E: m modulate, d decal, b blend
+  bool perSurface = false;       // S: one mapping over the whole surface, not per patch
   float ratio = 1;               // R:
-  bool magnifyLinear = true;     // H: n|l
-  std::string minify = "l";      // L: n|l|m|mnn|mln|mnl|mll
+  bool magnifyLinear = false;    // H: n|l (manual: near)
+  std::string minify = "n";      // L: n|l|mnn|mln|mnl|mll (`m` reads as mll; manual: near)
+  SourceLocation where;          // the file name on its view-file line
 };
 
 struct SurfaceDeclaration {
   char id = 0;
-  std::string file;
+  std::string file;                    // resolved against the view file's folder
   float size = 1;
   int sPrecision = 0, tPrecision = 0;  // 0: from the file
   int texture = 0;                     // 1-based, 0 none
+  SourceLocation where;                // the file name on its view-file line
 };
 
 struct ContourDeclaration {
   int id = 0;
-  std::string file;
+  std::string file;                    // resolved against the view file's folder
+  SourceLocation where;                // the file name on its view-file line
+};
+
+// `shadow map: size: n color: r g b offset: factor units` (render mode: shadows).
+struct ShadowMap {
+  int size = 1024;
+  glm::vec3 color{0.2f, 0.2f, 0.4f};
+  float offsetFactor = 5, offsetUnits = 10;
 };
 
 struct ViewSettings {
@@ -83,10 +106,12 @@ struct ViewSettings {
   float frontDistance = -100000, backDistance = 100000;
   float scaleFactor = 1;
   std::optional<Bounds> box;        // `box:` fixes the view volume
+  float minZoom = 0.05f, maxZoom = 50;
   bool zBuffer = true;
   RenderMode renderMode = RenderMode::Filled;
   bool antialiasing = false;
   bool concavePolygons = false;
+  ShadowMap shadowMap;
 
   // Lights and shading.
   std::vector<LightSource> lights;  // none given: one default light
@@ -100,7 +125,8 @@ struct ViewSettings {
   std::vector<TextureDeclaration> textures;
   std::vector<std::string> backgroundScenes;
 
-  // Hairs (DESIGN.md): template L-systems in order, and the point-diffusion texture.
+  // Hairs (DESIGN.md): template L-systems in order (resolved against the view file's folder),
+  // and the point-diffusion texture.
   std::vector<std::string> hairTemplates;
   int hairTextureSize = 100;
   unsigned hairTextureSeed = 1;

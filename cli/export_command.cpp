@@ -1,0 +1,102 @@
+// `hirsute export`: the model's Scene written as a POV-Ray 3.7 scene and/or a Wavefront OBJ with
+// its material library (docs/export.md), and, with --render, the POV-Ray scene rendered by the
+// installed povray.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "command.h"
+#include "hirsute/viewer/obj_writer.h"
+#include "hirsute/viewer/pov_writer.h"
+#include "hirsute/viewer/povray_runner.h"
+#include "model_pipeline.h"
+
+namespace hirsute::cli {
+namespace {
+
+struct ExportOptions {
+  ModelOptions model;
+  std::string pov;
+  std::string obj;
+  bool render = false;
+  int width = 800, height = 600;
+};
+
+int runExport(const ExportOptions& o) {
+  Diagnostics diagnostics(&std::cerr);
+  BuiltScene built;
+  try {
+    built = buildScene(o.model, diagnostics);
+  } catch (const DiagnosticError& e) {
+    std::cerr << e.diagnostic().text() << '\n';
+    return kExitBadInput;
+  }
+  try {
+    if (!o.pov.empty()) {
+      PovOptions options;
+      options.view = built.resources.view;
+      options.materialMode = built.resources.materialMode;
+      options.width = o.width;
+      options.height = o.height;
+      writePov(built.scene, options, o.pov);
+    }
+    if (!o.obj.empty()) writeObj(built.scene, o.obj);
+  } catch (const std::invalid_argument& e) {
+    // The model produced geometry no format can hold (a coordinate that is not a number).
+    std::cerr << o.model.lsystemFile << ": error: cannot export: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const std::runtime_error& e) {
+    std::cerr << e.what() << '\n';
+    return kExitIoError;
+  }
+  if (!o.render) return kExitOk;
+
+  if (!povrayAvailable()) {
+    std::cerr << "hirsute: error: --render runs POV-Ray, and `povray` is not on the PATH (apt "
+                 "install povray)\n";
+    return kExitIoError;
+  }
+  std::filesystem::path image = std::filesystem::path(o.pov).replace_extension(".png");
+  PovrayRun run = runPovray(o.pov, image, o.width, o.height, true);
+  std::cerr << run.messages;
+  if (run.exitStatus != 0) {
+    std::cerr << o.pov << ": error: povray failed (exit status " << run.exitStatus << ")\n";
+    return kExitIoError;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void registerExportCommand(CLI::App& app, Action& action) {
+  auto options = std::make_shared<ExportOptions>();
+  CLI::App* command = app.add_subcommand("export",
+                                         "Write the model as a POV-Ray 3.7 scene (--pov) and/or a "
+                                         "Wavefront OBJ with its .mtl (--obj)");
+  addModelOptions(*command, options->model);
+  command->add_option("--pov", options->pov, "Write a POV-Ray 3.7 scene to FILE (.pov)");
+  command->add_option(
+      "--obj", options->obj,
+      "Write a Wavefront OBJ to FILE (.obj) and its material library beside it (.mtl)");
+  CLI::Option* render = command->add_flag(
+      "--render", options->render,
+      "Render the POV-Ray scene with the installed povray, to the .pov's name with .png");
+  render->needs(command->get_option("--pov"));
+  command
+      ->add_option("--width", options->width,
+                   "Image width in pixels: the camera's aspect, the size of pixel-wide lines, "
+                   "--render (default 800)")
+      ->check(CLI::Range(1, 16384));
+  command->add_option("--height", options->height, "Image height in pixels (default 600)")
+      ->check(CLI::Range(1, 16384));
+  command->callback([options, &action] {
+    if (options->pov.empty() && options->obj.empty()) {
+      throw CLI::RequiredError("export needs --pov FILE or --obj FILE (or both)");
+    }
+    action = [options] { return runExport(*options); };
+  });
+}
+
+}  // namespace hirsute::cli

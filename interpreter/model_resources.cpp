@@ -1,0 +1,164 @@
+// Loading everything a model's interpretation needs besides its string: the view file, the
+// colour banks, and the contours, surfaces and textures the view file names.
+#include "hirsute/interpreter/model_resources.h"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <system_error>
+
+#include "hirsute/interpreter/texture_image.h"
+#include "hirsute/lsys/preprocessor.h"
+#include "hirsute/lsys/view_file_lines.h"
+
+namespace hirsute {
+namespace {
+
+constexpr std::size_t kColorsPerBank = 256;
+
+SourceLocation fileLocation(const std::filesystem::path& file) {
+  return SourceLocation{std::make_shared<const std::string>(file.string()), 0, 0};
+}
+
+// The file name as the view file wrote it, for messages.
+std::string writtenName(const std::string& resolved, const std::filesystem::path& folder) {
+  if (folder.empty()) return resolved;
+  const std::filesystem::path relative = std::filesystem::path(resolved).lexically_relative(folder);
+  return relative.empty() ? resolved : relative.string();
+}
+
+bool fileExists(const std::string& file) {
+  std::error_code error;
+  return std::filesystem::is_regular_file(file, error);
+}
+
+// cpfg's banks: -mN / -MN file fills colour indices 256·(N−1) … 256·N−1. Banks no file names
+// keep the default palette (bank 1 of cpfg-Sedge-female is given by none of its options).
+void loadPalette(ModelResources& resources, const ColorFiles& colors, Diagnostics& diagnostics) {
+  int banks = 1;
+  const auto checkBank = [&banks](int bank, const std::filesystem::path& file) {
+    if (bank < 1 || bank > kMaxColorBanks) {
+      throw DiagnosticError(fileLocation(file), "colour bank " + std::to_string(bank) +
+                                                    " is outside 1 to " +
+                                                    std::to_string(kMaxColorBanks));
+    }
+    banks = std::max(banks, bank);
+  };
+  for (const auto& [bank, file] : colors.colormaps) checkBank(bank, file);
+  for (const auto& [bank, file] : colors.materials) checkBank(bank, file);
+
+  const std::vector<Material> fallback = defaultPalette();
+  resources.palette.clear();
+  for (int bank = 0; bank < banks; ++bank) {
+    resources.palette.insert(resources.palette.end(), fallback.begin(), fallback.end());
+  }
+  const auto place = [&resources](int bank, const std::vector<Material>& colors) {
+    std::copy(colors.begin(), colors.end(),
+              resources.palette.begin() + static_cast<std::ptrdiff_t>((bank - 1) * kColorsPerBank));
+  };
+  for (const auto& [bank, file] : colors.colormaps) place(bank, loadColorMap(file));
+  for (const auto& [bank, file] : colors.materials) place(bank, loadMaterials(file));
+
+  // cpfg draws in the mode of the last -m or -M option; ColorFiles does not keep their order.
+  resources.materialMode = !colors.materials.empty();
+  if (!colors.materials.empty() && !colors.colormaps.empty()) {
+    diagnostics.warn(fileLocation(colors.colormaps.front().second),
+                     "both colour maps and material files are given; drawing in material mode");
+  }
+}
+
+void loadTextures(ModelResources& resources, Diagnostics& diagnostics) {
+  for (const TextureDeclaration& declaration : resources.view.textures) {
+    const std::string name = writtenName(declaration.file, resources.folder);
+    if (!fileExists(declaration.file)) {
+      diagnostics.warn(declaration.where, "cannot open texture image " + name + " (looked for " +
+                                              declaration.file + "); it is drawn untextured");
+      Texture missing;
+      missing.file = declaration.file;
+      resources.textures.push_back(std::move(missing));
+      continue;
+    }
+    try {
+      resources.textures.push_back(loadTexture(declaration.file));
+    } catch (const DiagnosticError& error) {
+      rethrowAtViewLine(declaration.where, "texture", name, error);
+    }
+  }
+}
+
+void loadContours(ModelResources& resources, Diagnostics& diagnostics) {
+  for (const ContourDeclaration& declaration : resources.view.contours) {
+    const std::string name = writtenName(declaration.file, resources.folder);
+    if (!fileExists(declaration.file)) {
+      // cpfg goes on without it; @#(id) then selects the circle.
+      diagnostics.warn(declaration.where, "cannot open contour file " + name + " (looked for " +
+                                              declaration.file + "); contour " +
+                                              std::to_string(declaration.id) +
+                                              " is drawn as a circle");
+      continue;
+    }
+    try {
+      resources.contours.add(declaration.id, loadContour(declaration.file));
+    } catch (const DiagnosticError& error) {
+      rethrowAtViewLine(declaration.where, "contour", name, error);
+    }
+  }
+}
+
+void loadSurfaces(ModelResources& resources, Diagnostics& diagnostics) {
+  for (const SurfaceDeclaration& declaration : resources.view.surfaces) {
+    const std::string name = writtenName(declaration.file, resources.folder);
+    const std::string id(1, declaration.id);
+    if (!fileExists(declaration.file)) {
+      // cpfg goes on without it (cpfg-Sedge names a bract.s it does not have); ~X draws nothing.
+      diagnostics.warn(declaration.where, "cannot open surface file " + name + " (looked for " +
+                                              declaration.file + "); ~" + id + " draws nothing");
+      continue;
+    }
+    Surface surface;
+    try {
+      surface = loadSurface(declaration.file);
+    } catch (const DiagnosticError& error) {
+      rethrowAtViewLine(declaration.where, "surface", name, error);
+    }
+    surface.id = declaration.id;
+    surface.viewSize = declaration.size;
+    if (declaration.sPrecision > 0) surface.sPrecision = declaration.sPrecision;
+    if (declaration.tPrecision > 0) surface.tPrecision = declaration.tPrecision;
+    surface.texture = declaration.texture;
+    if (surface.texture > static_cast<int>(resources.view.textures.size())) {
+      diagnostics.warn(declaration.where, "surface ~" + id + " names texture " +
+                                              std::to_string(surface.texture) + " but only " +
+                                              std::to_string(resources.view.textures.size()) +
+                                              " are declared; it is drawn untextured");
+      surface.texture = 0;
+    }
+    if (surface.patches.size() > static_cast<std::size_t>(kCpfgMaxPatches)) {
+      diagnostics.warn(declaration.where,
+                       "surface file " + name + " has " + std::to_string(surface.patches.size()) +
+                           " patches; cpfg reads at most " + std::to_string(kCpfgMaxPatches) +
+                           ", Hirsute draws them all");
+    }
+    resources.surfaces[declaration.id] = std::move(surface);
+  }
+}
+
+}  // namespace
+
+ModelResources loadModelResources(const std::optional<std::filesystem::path>& viewFile,
+                                  const ColorFiles& colors, Diagnostics& diagnostics) {
+  ModelResources resources;
+  if (viewFile) {
+    resources.folder = viewFile->parent_path();
+    // cpfg runs the view file through the C preprocessor too: #define, /* */ and // work.
+    const std::string text = preprocessFile(*viewFile, PreprocessorOptions{}, diagnostics);
+    resources.view = parseViewFile(text, *viewFile, diagnostics);
+  }
+  loadPalette(resources, colors, diagnostics);
+  loadTextures(resources, diagnostics);
+  loadContours(resources, diagnostics);
+  loadSurfaces(resources, diagnostics);
+  return resources;
+}
+
+}  // namespace hirsute

@@ -1,0 +1,140 @@
+#include "surface_mesh.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace hirsute {
+
+namespace {
+
+// The file's frame: columns L_f, H_f, U_f (cpfg: L_f = H_f × U_f).
+glm::dmat3 fileFrame(const Surface& surface) {
+  glm::dvec3 heading = surface.heading, up = surface.up;
+  heading = glm::length(heading) > 0 ? glm::normalize(heading) : glm::dvec3(0, 1, 0);
+  up = glm::length(up) > 0 ? glm::normalize(up) : glm::dvec3(0, 0, 1);
+  return glm::dmat3(glm::cross(heading, up), heading, up);
+}
+
+// The linear part of the whole placement: file coordinates (relative to the contact point) to
+// world directions.
+glm::dmat3 placementMatrix(const Surface& surface, const SurfacePlacement& placement) {
+  const double size =
+      surface.fileSize != 0 ? surface.viewSize / surface.fileSize : surface.viewSize;
+  const glm::dmat3 turtle(placement.left * placement.scale.x, placement.heading * placement.scale.y,
+                          placement.up * placement.scale.z);
+  return turtle * fileFrame(surface) * size;
+}
+
+std::array<double, 4> bernstein(double t) {
+  const double s = 1 - t;
+  return {s * s * s, 3 * t * s * s, 3 * t * t * s, t * t * t};
+}
+
+std::array<double, 4> bernsteinDerivative(double t) {
+  const double s = 1 - t;
+  return {-3 * s * s, 3 * s * s - 6 * t * s, 6 * t * s - 3 * t * t, 3 * t * t};
+}
+
+struct PatchSample {
+  glm::dvec3 point, du, dv;
+};
+
+// Control points in 4 rows of 4: u runs along a row, v across the rows.
+PatchSample evaluate(const BezierPatch& patch, double u, double v) {
+  const auto bu = bernstein(u), bv = bernstein(v);
+  const auto du = bernsteinDerivative(u), dv = bernsteinDerivative(v);
+  PatchSample sample{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      const glm::dvec3& p = patch.points[static_cast<std::size_t>(r * 4 + c)];
+      sample.point += p * (bu[c] * bv[r]);
+      sample.du += p * (du[c] * bv[r]);
+      sample.dv += p * (bu[c] * dv[r]);
+    }
+  }
+  return sample;
+}
+
+}  // namespace
+
+glm::dvec3 placeSurfacePoint(const Surface& surface, const SurfacePlacement& placement,
+                             const glm::dvec3& point) {
+  return placement.position + placementMatrix(surface, placement) * (point - surface.contact);
+}
+
+std::size_t appendSurface(Scene& scene, const Surface& surface, const SurfacePlacement& placement,
+                          const SurfaceAppearance& appearance) {
+  const glm::dmat3 m = placementMatrix(surface, placement);
+  const int sSteps = std::max(1, surface.sPrecision), tSteps = std::max(1, surface.tPrecision);
+  const std::size_t rowLength = static_cast<std::size_t>(sSteps) + 1;
+
+  // Sample every patch first: the per-surface texture mapping needs the bounds of all points.
+  std::vector<std::vector<PatchSample>> samples(surface.patches.size());
+  glm::dvec2 low(1e300), high(-1e300);
+  const glm::dmat3 local =
+      fileFrame(surface) *
+      (surface.fileSize != 0 ? surface.viewSize / surface.fileSize : surface.viewSize);
+  for (std::size_t p = 0; p < surface.patches.size(); ++p) {
+    for (int j = 0; j <= tSteps; ++j) {
+      for (int i = 0; i <= sSteps; ++i) {
+        PatchSample sample = evaluate(surface.patches[p], static_cast<double>(i) / sSteps,
+                                      static_cast<double>(j) / tSteps);
+        const glm::dvec3 q = local * (sample.point - surface.contact);
+        low = glm::min(low, glm::dvec2(q));
+        high = glm::max(high, glm::dvec2(q));
+        samples[p].push_back(sample);
+      }
+    }
+  }
+  const glm::dvec2 span = glm::max(high - low, glm::dvec2(1e-300));
+
+  std::size_t triangles = 0;
+  for (std::size_t p = 0; p < surface.patches.size(); ++p) {
+    const BezierPatch& patch = surface.patches[p];
+    TriangleMesh& mesh = scene.meshFor(appearance.material(patch.topColor), appearance.texture);
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    for (int j = 0; j <= tSteps; ++j) {
+      for (int i = 0; i <= sSteps; ++i) {
+        const PatchSample& sample =
+            samples[p][static_cast<std::size_t>(j) * rowLength + static_cast<std::size_t>(i)];
+        mesh.positions.push_back(
+            glm::vec3(placement.position + m * (sample.point - surface.contact)));
+        // The normal of the placed surface: the cross product of the placed derivatives (this
+        // also holds for a mirroring or flattening scale, where an inverse transpose would not).
+        glm::dvec3 normal = glm::cross(m * sample.du, m * sample.dv);
+        if (glm::dot(normal, normal) < 1e-24) {
+          // A degenerate corner (coincident control points) has no derivative cross product:
+          // the patch's diagonals stand in.
+          const auto& q = patch.points;
+          normal = glm::cross(m * (q[15] - q[0]), m * (q[12] - q[3]));
+        }
+        mesh.normals.push_back(glm::dot(normal, normal) > 0 ? glm::vec3(glm::normalize(normal))
+                                                            : glm::vec3(0, 0, 1));
+        if (mesh.texture >= 0) {
+          if (appearance.perSurfaceTexture) {
+            const glm::dvec2 q = glm::dvec2(local * (sample.point - surface.contact));
+            mesh.texcoords.push_back(glm::vec2((q - low) / span));
+          } else {
+            mesh.texcoords.push_back(
+                glm::vec2(static_cast<float>(i) / sSteps, static_cast<float>(j) / tSteps));
+          }
+        }
+      }
+    }
+    for (int j = 0; j < tSteps; ++j) {
+      for (int i = 0; i < sSteps; ++i) {
+        const std::uint32_t a =
+            base + static_cast<std::uint32_t>(static_cast<std::size_t>(j) * rowLength + i);
+        const std::uint32_t b = a + 1, c = a + static_cast<std::uint32_t>(rowLength), d = c + 1;
+        // Counter-clockwise about the placed du × dv, the vertex normals' side.
+        mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+        triangles += 2;
+      }
+    }
+  }
+  return triangles;
+}
+
+}  // namespace hirsute

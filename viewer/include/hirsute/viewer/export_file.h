@@ -1,0 +1,74 @@
+// The file an exporter writes: text (or bytes) through a large buffer, with a compact number
+// formatter, written under a temporary name beside the target and renamed over it on commit(),
+// so that a reader never sees a half-written scene and a failed export leaves no file.
+//
+// POV-Ray's parse time grows with the size of the text, and a million-triangle scene is tens of
+// megabytes, so numbers are not printed through iostreams: fixed-point values are rounded to an
+// integer count of the last decimal and their digits written directly into the buffer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hirsute {
+
+// How many decimals a number is printed with, and whether 0.5 may be written ".5" (POV-Ray
+// reads it; some OBJ readers expect the leading zero).
+struct NumberFormat {
+  int decimals = 4;
+  bool leadingZero = true;
+};
+
+// Writes `value` rounded to `format.decimals` decimals into `out` (at least 32 bytes), with
+// trailing zeros and a trailing point dropped and "-0" written "0": 2 → "2", -1.250 → "-1.25",
+// 0.5 → ".5" without leadingZero. Returns the number of characters. Throws
+// std::invalid_argument for a value that is not finite (no format reads NaN back).
+std::size_t formatFixed(double value, NumberFormat format, char* out);
+
+class ExportFile {
+ public:
+  // Creates the temporary file beside `target`; throws std::runtime_error naming the path.
+  explicit ExportFile(std::filesystem::path target);
+  // Removes the temporary file unless commit() succeeded.
+  ~ExportFile();
+  ExportFile(const ExportFile&) = delete;
+  ExportFile& operator=(const ExportFile&) = delete;
+
+  void put(char c) {
+    if (used_ == buffer_.size()) flush();
+    buffer_[used_++] = c;
+  }
+  void put(std::string_view text);
+  void putBytes(const void* data, std::size_t size);
+  void putInteger(std::int64_t value);
+  void putFixed(double value, NumberFormat format) {
+    if (buffer_.size() - used_ < kMaxNumberLength) flush();
+    used_ += formatFixed(value, format, buffer_.data() + used_);
+  }
+
+  // Flushes, closes and renames the file into place; throws std::runtime_error on failure.
+  void commit();
+
+  const std::filesystem::path& target() const { return target_; }
+  std::uint64_t bytesWritten() const { return flushed_ + used_; }
+
+  static constexpr std::size_t kMaxNumberLength = 32;
+
+ private:
+  void flush();
+  [[noreturn]] void fail(const char* what);
+
+  std::filesystem::path target_;
+  std::string temporary_;
+  int fd_ = -1;
+  bool committed_ = false;
+  std::vector<char> buffer_;
+  std::size_t used_ = 0;
+  std::uint64_t flushed_ = 0;
+};
+
+}  // namespace hirsute

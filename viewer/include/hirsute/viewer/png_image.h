@@ -1,0 +1,32 @@
+// Images as the renderer produces them, and PNG files through libpng.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace hirsute {
+
+// 8-bit RGBA pixels, row 0 at the top.
+struct RgbaImage {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;
+
+  RgbaImage() = default;
+  RgbaImage(int w, int h) : width(w), height(h), rgba(static_cast<std::size_t>(w) * h * 4) {}
+  glm::u8vec4 pixel(int x, int y) const {
+    const std::uint8_t* p = &rgba[(static_cast<std::size_t>(y) * width + x) * 4];
+    return {p[0], p[1], p[2], p[3]};
+  }
+};
+
+// Writes an RGB PNG (the alpha channel is dropped: renders are opaque). The file appears only
+// when complete: it is written under a temporary name beside `path` and renamed over it.
+// Throws std::runtime_error ("path: cannot write …") on failure, leaving no file behind.
+void writePng(const std::filesystem::path& path, const RgbaImage& image);
+
+// Reads any PNG as 8-bit RGBA. Throws std::runtime_error on failure.
+RgbaImage readPng(const std::filesystem::path& path);
+
+}  // namespace hirsute
