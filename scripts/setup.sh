@@ -8,5 +8,5 @@ cmake --preset release >/dev/null
 cmake --build --preset release -j "$(nproc)"
 
 mkdir -p out
-build/release/cli/hirsute render models/herb/herb.l models/herb/herb.v -o out/herb.png
-echo "Rendered models/herb/herb.l into out/herb.png ($(wc -c < out/herb.png) bytes)"
+build/release/cli/hirsute render models/herb/herb.l models/herb/herb.v -o out/herb.png --size 800x800
+echo "Rendered models/herb/herb.l into out/herb.png (the picture in the README was made this way)."

@@ -19,7 +19,9 @@
 #endif
 #endif
 #ifdef HIRSUTE_LEAK_SANITIZER
-extern "C" const char* __lsan_default_suppressions() { return "leak:libOSMesa.so\n"; }
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:libOSMesa.so\n";
+}
 #endif
 
 namespace hirsute {

@@ -10,4 +10,8 @@ projection: parallel
 scale factor: 0.9
 z buffer: on
 render mode: shaded
+line style: cylinder
+contour sides: 8
+light: V: 1,1,2 D: 1,1,1
 function set: herb.fset
+surface: l leaf.s 1.5

@@ -3,8 +3,7 @@
 // the homomorphism), newlines removed. Prints one line per model and a final count; exits 1 when
 // a model that must match does not, 77 (skip) when the folder is absent.
 //
-// Every model with environment=no must match, except where cpfg's output depends on what this
-// issue does not provide (turtle queries ?P ?H ?L ?U) or on a cpfg quirk, each named below.
+// Every model with environment=no must match, except the understood differences named below.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
@@ -73,20 +74,24 @@ std::vector<std::string> modules(const std::string& text) {
 }
 
 // The derived string (after the homomorphism when asked), in cpfg's format without newlines.
-std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bool batchMode,
-                   bool& usesQueries) {
+std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bool batchMode) {
   Diagnostics diagnostics;  // warnings are not printed here
   std::optional<fs::path> view;
   if (row.vfile != "-") view = folder / row.vfile;
   ModelOptions modelOptions;
   modelOptions.defineFunctionSetNames = !batchMode;
   Model model = loadModel(folder / row.lfile, view, diagnostics, modelOptions);
-  usesQueries = model.program.usesQueries;
   std::ostringstream printed;
   Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, printed);
   DerivationOptions options;
   options.steps = row.steps;
   Derivation derivation(model.program, evaluator, diagnostics, options);
+  // Query modules (?P ?H ?L ?U) are filled by the turtle before each step.
+  std::optional<ModelResources> resources;
+  if (model.program.usesQueries) {
+    resources = loadModelResources(view, ColorFiles{}, diagnostics);
+    installQueryPass(derivation, *resources, diagnostics);
+  }
   derivation.run();
   char* buffer = nullptr;
   std::size_t size = 0;
@@ -152,23 +157,20 @@ int main(int argc, char** argv) {
       fs::path expectedFile = folder / (homomorphism ? "expected.homo.str" : "expected.str");
       if (!fs::exists(expectedFile)) continue;
       std::string label = row.id + (homomorphism ? " (homomorphism)" : "");
-      bool usesQueries = false;
       // cpfg wrote these homomorphism strings in its batch mode (-g), which reads the .l before
       // the .v: function-set names were undefined. We reproduce that mode for them.
       bool batchMode = homomorphism && row.notes.find("-g reads .l before .v") != std::string::npos;
       if (batchMode) label += " [as cpfg -g: function-set names undefined]";
       std::string result;
       try {
-        result = compare(derive(folder, row, homomorphism, batchMode, usesQueries),
+        result = compare(derive(folder, row, homomorphism, batchMode),
                          withoutNewlines(readFile(expectedFile)));
       } catch (const DiagnosticError& e) {
         result = "error: " + e.diagnostic().text();
       }
       std::string excuse;
       if (result != "match") {
-        if (usesQueries) {
-          excuse = "the model reads turtle queries (?P ?H ?L ?U), filled by the turtle in a later issue";
-        } else if (const char* reason = knownDifference(row.id)) {
+        if (const char* reason = knownDifference(row.id)) {
           excuse = reason;
         }
       }
