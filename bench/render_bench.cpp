@@ -3,12 +3,12 @@
 // DESIGN.md, "Performance": frame time of a scene against the raw line and triangle throughput
 // of the same GL. The scene is a seeded fan of tubes (at least a million triangles, eight
 // materials, `render mode: shaded` with two lights, two-sided) and a seeded cloud of pixel-style
-// line segments. Each is drawn by GlRenderer into the headless path's multisampled framebuffer,
-// then the same triangles (one vertex and one index buffer, one draw call) and the same segments
-// (GL_LINES) are drawn with a trivial shader into the same framebuffer of the same OSMesa
-// context. A frame is timed from the draw to glFinish; the first frame of each is left out,
-// as llvmpipe compiles its shaders there, and the two are timed in turn. Figures are printed,
-// never asserted.
+// line segments, one and three pixels wide. Each is drawn by GlRenderer into the headless path's
+// multisampled framebuffer, then the same triangles (one vertex and one index buffer, one draw
+// call) and the same segments (GL_LINES) are drawn with a trivial shader into the same framebuffer
+// of the same OSMesa context. A frame is timed from the draw to glFinish; the first frame of each
+// is left out, as llvmpipe compiles its shaders there, and the two are timed in turn. Figures are
+// printed, never asserted.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -260,7 +260,10 @@ int main(int argc, char** argv) {
     std::printf("  %-28s %9.1f ms\n\n", "upload:", upload * 1e3);
   }
 
-  {
+  // The same segments one pixel wide (GL lines, as cpfg draws them) and three pixels wide
+  // (quads: core profile has no wide lines), against raw one-pixel GL_LINES.
+  for (float lineWidth : {1.0f, 3.0f}) {
+    for (hirsute::LineSegment& l : lines.lines) l.widthFrom = l.widthTo = lineWidth;
     hirsute::GlRenderer renderer(gl);
     renderer.upload(lines, view, false);
     hirsute::Camera camera = hirsute::fitCamera(view, lines.bounds(), {width, height});
@@ -293,10 +296,11 @@ int main(int argc, char** argv) {
     gl.DeleteBuffers(1, &raw.vertices);
     gl.DeleteVertexArrays(1, &raw.vertexArray);
 
-    std::printf(
-        "lines: %zu pixel-style segments, 1 pixel wide (quads built in the vertex shader)\n",
-        renderer.lineCount());
+    std::printf("lines: %zu pixel-style segments %g pixel%s wide (%s), against 1-pixel GL_LINES\n",
+                renderer.lineCount(), lineWidth, lineWidth > 1 ? "s" : "",
+                lineWidth > 1 ? "quads of two triangles" : "GL lines");
     printComparison("segments", renderer.lineCount(), scene, rawTime);
+    std::printf("\n");
   }
   gl.DeleteProgram(program);
   return 0;

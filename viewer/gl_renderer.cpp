@@ -39,14 +39,16 @@ struct GlRenderer::Mesh {
 
 struct GlRenderer::Resources {
   std::map<int, Program> surfacePrograms;  // by surfaceProgramKey
-  Program lineProgram;
+  Program thinLineProgram, wideLineProgram;
   GLuint materialBuffer = 0, materialTexture = 0;
   int materialCount = 0;
   std::vector<Mesh> meshes;
   std::vector<GLuint> textures;
   Mesh unitSphere, unitDisc;
-  GLuint sphereInstances = 0, discInstances = 0, lineInstances = 0, lineArray = 0;
-  GLsizei sphereCount = 0, discCount = 0, lineCount = 0;
+  GLuint sphereInstances = 0, discInstances = 0;
+  GLuint lineBuffer = 0, lineTexture = 0, lineArray = 0;  // the segments as a buffer texture
+  GLsizei sphereCount = 0, discCount = 0;
+  GLsizei thinLineCount = 0, wideLineCount = 0;  // thin ones first in the buffer
   // What upload() keeps of the view.
   RenderMode renderMode = RenderMode::Filled;
   bool zBuffer = true;
@@ -62,8 +64,9 @@ struct GlRenderer::Resources {
 
 namespace {
 
-// The texture unit of the material buffer; unit 0 holds a mesh's texture.
+// Texture units: 0 a mesh's texture, 1 the materials, 2 the line segments.
 constexpr int kMaterialUnit = 1;
+constexpr int kLineUnit = 2;
 
 GLuint compileShader(const GlFunctions& gl, GLenum stage,
                      std::initializer_list<const char*> pieces) {
@@ -83,21 +86,21 @@ GLuint compileShader(const GlFunctions& gl, GLenum stage,
 }
 
 GLuint linkProgram(const GlFunctions& gl, std::initializer_list<const char*> vertex,
-                   std::initializer_list<const char*> fragment) {
-  GLuint vs = compileShader(gl, GL_VERTEX_SHADER, vertex);
-  GLuint fs = 0;
+                   std::initializer_list<const char*> fragment,
+                   std::initializer_list<const char*> geometry = {}) {
+  std::vector<GLuint> stages;
   try {
-    fs = compileShader(gl, GL_FRAGMENT_SHADER, fragment);
+    stages.push_back(compileShader(gl, GL_VERTEX_SHADER, vertex));
+    stages.push_back(compileShader(gl, GL_FRAGMENT_SHADER, fragment));
+    if (geometry.size() > 0) stages.push_back(compileShader(gl, GL_GEOMETRY_SHADER, geometry));
   } catch (...) {
-    gl.DeleteShader(vs);
+    for (GLuint shader : stages) gl.DeleteShader(shader);
     throw;
   }
   GLuint program = gl.CreateProgram();
-  gl.AttachShader(program, vs);
-  gl.AttachShader(program, fs);
+  for (GLuint shader : stages) gl.AttachShader(program, shader);
   gl.LinkProgram(program);
-  gl.DeleteShader(vs);
-  gl.DeleteShader(fs);
+  for (GLuint shader : stages) gl.DeleteShader(shader);
   GLint ok = 0;
   gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
@@ -239,23 +242,31 @@ int sphereSides(int contourSides) {
 }
 
 GlRenderer::GlRenderer(const GlFunctions& gl) : gl_(gl), resources_(std::make_unique<Resources>()) {
-  Program& lines = resources_->lineProgram;
-  lines.id =
-      linkProgram(gl_, {shaders::kVersion, shaders::kMaterialAndLighting, shaders::kLineVertexMain},
-                  {shaders::kVersion, shaders::kLineFragmentMain});
-  // The other programs are built on first use; building the plainest now finds a context that
-  // cannot compile them at once.
+  Resources& r = *resources_;
   try {
+    r.thinLineProgram.id = linkProgram(gl_,
+                                       {shaders::kVersion, shaders::kMaterialAndLighting,
+                                        shaders::kLineVertexCommon, shaders::kThinLineVertexMain},
+                                       {shaders::kVersion, shaders::kLineFragmentMain});
+    r.wideLineProgram.id = linkProgram(gl_,
+                                       {shaders::kVersion, shaders::kMaterialAndLighting,
+                                        shaders::kLineVertexCommon, shaders::kWideLineVertexMain},
+                                       {shaders::kVersion, shaders::kLineFragmentMain});
+    // The other programs are built on first use; building the plainest now finds a context
+    // that cannot compile them at once.
     surfaceProgram(static_cast<int>(Geometry::Mesh), 0, false);
   } catch (...) {
-    gl_.DeleteProgram(lines.id);
+    for (Program* p : {&r.thinLineProgram, &r.wideLineProgram}) {
+      if (p->id) gl_.DeleteProgram(p->id);
+    }
     throw;
   }
 }
 
 GlRenderer::~GlRenderer() {
   release();
-  gl_.DeleteProgram(resources_->lineProgram.id);
+  gl_.DeleteProgram(resources_->thinLineProgram.id);
+  gl_.DeleteProgram(resources_->wideLineProgram.id);
   for (auto& [key, program] : resources_->surfacePrograms) gl_.DeleteProgram(program.id);
 }
 
@@ -295,17 +306,19 @@ void GlRenderer::release() {
   releaseMesh(r.unitDisc);
   if (r.lineArray) gl_.DeleteVertexArrays(1, &r.lineArray);
   r.lineArray = 0;
-  for (GLuint* b : {&r.sphereInstances, &r.discInstances, &r.lineInstances, &r.materialBuffer}) {
+  for (GLuint* b : {&r.sphereInstances, &r.discInstances, &r.lineBuffer, &r.materialBuffer}) {
     if (*b) gl_.DeleteBuffers(1, b);
     *b = 0;
   }
-  if (r.materialTexture) gl_.DeleteTextures(1, &r.materialTexture);
-  r.materialTexture = 0;
+  for (GLuint* t : {&r.materialTexture, &r.lineTexture}) {
+    if (*t) gl_.DeleteTextures(1, t);
+    *t = 0;
+  }
   for (GLuint t : r.textures) {
     if (t) gl_.DeleteTextures(1, &t);
   }
   r.textures.clear();
-  r.sphereCount = r.discCount = r.lineCount = 0;
+  r.sphereCount = r.discCount = r.thinLineCount = r.wideLineCount = 0;
   triangles_ = lines_ = 0;
 }
 
@@ -425,16 +438,33 @@ void GlRenderer::upload(const Scene& scene, const ViewSettings& view, bool mater
     triangles_ += indices.size() / 3 * scene.discs.size();
   }
   if (!scene.lines.empty()) {
-    // The segments go up as the Scene holds them, one instance each.
-    gl_.GenVertexArrays(1, &r.lineArray);
-    gl_.BindVertexArray(r.lineArray);
-    r.lineInstances = makeBuffer(gl_, GL_ARRAY_BUFFER, scene.lines);
-    constexpr auto stride = static_cast<GLsizei>(sizeof(LineSegment));
-    floatAttribute(gl_, 0, 3, stride, offsetof(LineSegment, from), true);
-    floatAttribute(gl_, 1, 3, stride, offsetof(LineSegment, to), true);
-    floatAttribute(gl_, 2, 2, stride, offsetof(LineSegment, widthFrom), true);
-    intAttribute(gl_, 3, stride, offsetof(LineSegment, material));
-    r.lineCount = static_cast<GLsizei>(scene.lines.size());
+    // The segments go up as the Scene holds them, the thin ones first; the line shaders read
+    // them as floats.
+    static_assert(sizeof(LineSegment) == 9 * sizeof(float), "the line shaders read 9 floats");
+    GLint maxTexels = 0;
+    gl_.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    if (scene.lines.size() * 9 > static_cast<std::size_t>(maxTexels)) {
+      throw std::runtime_error("GL cannot hold " + std::to_string(scene.lines.size()) +
+                               " line segments (at most " + std::to_string(maxTexels / 9) + ")");
+    }
+    auto thin = [&](const LineSegment& l) {
+      return scene.lineStyle == LineStyle::Pixel && l.widthFrom <= 1 && l.widthTo <= 1;
+    };
+    auto thinCount =
+        static_cast<std::size_t>(std::count_if(scene.lines.begin(), scene.lines.end(), thin));
+    if (thinCount == 0 || thinCount == scene.lines.size()) {
+      r.lineBuffer = makeBuffer(gl_, GL_TEXTURE_BUFFER, scene.lines);
+    } else {
+      std::vector<LineSegment> ordered(scene.lines);
+      std::stable_partition(ordered.begin(), ordered.end(), thin);
+      r.lineBuffer = makeBuffer(gl_, GL_TEXTURE_BUFFER, ordered);
+    }
+    gl_.GenTextures(1, &r.lineTexture);
+    gl_.BindTexture(GL_TEXTURE_BUFFER, r.lineTexture);
+    gl_.TexBuffer(GL_TEXTURE_BUFFER, GL_R32F, r.lineBuffer);
+    gl_.GenVertexArrays(1, &r.lineArray);  // core profile draws need one, even without attributes
+    r.thinLineCount = static_cast<GLsizei>(thinCount);
+    r.wideLineCount = static_cast<GLsizei>(scene.lines.size() - thinCount);
     lines_ = scene.lines.size();
   }
   gl_.BindVertexArray(0);
@@ -481,6 +511,19 @@ void GlRenderer::useSurfaceProgram(const Program& program, const Camera& camera)
   gl_.Uniform3fv(program.uniform(gl_, "uLightSpecular"), count, &specular[0].x);
   gl_.Uniform4fv(program.uniform(gl_, "uLightSpot"), count, &spot[0].x);
   gl_.Uniform4fv(program.uniform(gl_, "uLightAttenuation"), count, &attenuation[0].x);
+}
+
+void GlRenderer::useLineProgram(const Program& program, const Camera& camera) {
+  const Resources& r = *resources_;
+  gl_.UseProgram(program.id);
+  gl_.UniformMatrix4fv(program.uniform(gl_, "uViewProjection"), 1, GL_FALSE,
+                       glm::value_ptr(camera.viewProjection()));
+  gl_.Uniform1i(program.uniform(gl_, "uMaterials"), kMaterialUnit);
+  gl_.Uniform1i(program.uniform(gl_, "uMaterialCount"), r.materialCount);
+  gl_.Uniform1i(program.uniform(gl_, "uLines"), kLineUnit);
+  gl_.ActiveTexture(GL_TEXTURE0 + kLineUnit);
+  gl_.BindTexture(GL_TEXTURE_BUFFER, r.lineTexture);
+  gl_.BindVertexArray(r.lineArray);
 }
 
 void GlRenderer::drawMesh(const Program& program, const Mesh& mesh) {
@@ -563,14 +606,14 @@ void GlRenderer::draw(const Camera& camera) {
   }
 
   gl_.PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  if (r.lineCount > 0) {
-    const Program& p = r.lineProgram;
-    gl_.UseProgram(p.id);
-    gl_.UniformMatrix4fv(p.uniform(gl_, "uViewProjection"), 1, GL_FALSE,
-                         glm::value_ptr(camera.viewProjection()));
-    gl_.Uniform1i(p.uniform(gl_, "uMaterials"), kMaterialUnit);
-    gl_.Uniform1i(p.uniform(gl_, "uMaterialCount"), r.materialCount);
-    gl_.Uniform1i(p.uniform(gl_, "uColorMap"), 0);
+  if (r.thinLineCount > 0) {
+    const Program& p = r.thinLineProgram;
+    useLineProgram(p, camera);
+    gl_.DrawArrays(GL_LINES, 0, 2 * r.thinLineCount);
+  }
+  if (r.wideLineCount > 0) {
+    const Program& p = r.wideLineProgram;
+    useLineProgram(p, camera);
     gl_.Uniform1i(p.uniform(gl_, "uPixelWidth"), r.lineStyle == LineStyle::Pixel ? 1 : 0);
     gl_.Uniform2f(p.uniform(gl_, "uViewport"), static_cast<float>(camera.viewport.x),
                   static_cast<float>(camera.viewport.y));
@@ -581,8 +624,8 @@ void GlRenderer::draw(const Camera& camera) {
     gl_.Uniform3fv(p.uniform(gl_, "uEye"), 1, glm::value_ptr(camera.eye));
     gl_.Uniform3fv(p.uniform(gl_, "uForward"), 1, glm::value_ptr(camera.forward));
     gl_.Uniform3fv(p.uniform(gl_, "uRight"), 1, glm::value_ptr(camera.right));
-    gl_.BindVertexArray(r.lineArray);
-    gl_.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, r.lineCount);
+    // The quads follow the thin segments in the buffer: gl_VertexID / 6 counts on from them.
+    gl_.DrawArrays(GL_TRIANGLES, 6 * r.thinLineCount, 6 * r.wideLineCount);
   }
 
   if (opaqueEnd != r.meshes.end()) {

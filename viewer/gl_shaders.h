@@ -211,38 +211,59 @@ void main() {
 }
 )";
 
-// Line segments, one instance each (the Scene's LineSegment: from, to, widthFrom, widthTo,
-// material), drawn as a four-vertex strip in their colour. Core profile has no wide lines, so
-// the quad is built here: pixel style widths are in pixels across the segment on the screen
-// (cpfg's glLineWidth), polygon style widths are in world units across a ribbon facing the eye.
-inline constexpr char kLineVertexMain[] = R"(
-layout(location = 0) in vec3 aFrom;
-layout(location = 1) in vec3 aTo;
-layout(location = 2) in vec2 aWidth;
-layout(location = 3) in int aMaterial;
+// Line segments, drawn in their colour. The Scene's LineSegments go up as they are (nine floats
+// each: from, to, widthFrom, widthTo, material) into a buffer texture, and the vertex shaders,
+// drawn without attributes, read them by gl_VertexID.
+inline constexpr char kLineVertexCommon[] = R"(
+uniform samplerBuffer uLines;
 uniform mat4 uViewProjection;
+flat out vec4 vColor;
+float lineFloat(int i) {
+  return texelFetch(uLines, i).r;
+}
+)";
+
+// Pixel-style segments at most a pixel wide are GL lines, as cpfg draws them (glLineWidth below
+// one is one): two vertices a segment.
+inline constexpr char kThinLineVertexMain[] = R"(
+void main() {
+  int base = (gl_VertexID >> 1) * 9;
+  int at = base + (gl_VertexID & 1) * 3;
+  vColor = unlit(floatBitsToInt(lineFloat(base + 8)));
+  gl_Position = uViewProjection * vec4(lineFloat(at), lineFloat(at + 1), lineFloat(at + 2), 1.0);
+}
+)";
+
+// Wider segments are quads, two triangles a segment, since core profile has no wide lines.
+// Pixel style widths are in pixels across the segment on the screen (cpfg's glLineWidth);
+// polygon style widths are in world units across a ribbon facing the eye.
+inline constexpr char kWideLineVertexMain[] = R"(
 uniform bool uPixelWidth;
 uniform vec2 uViewport;
 uniform bool uPerspective;
 uniform float uNear;
 uniform vec3 uEye;
 uniform vec3 uRight;
-flat out vec4 vColor;
+const int kCorner[6] = int[6](0, 1, 2, 2, 1, 3);  // 0, 1 at the start, 2, 3 at the end
 void main() {
-  bool atTo = gl_VertexID >= 2;
-  float side = (gl_VertexID & 1) == 0 ? 0.5 : -0.5;
-  float width = atTo ? aWidth.y : aWidth.x;
-  vec3 p = atTo ? aTo : aFrom;
-  vColor = unlit(aMaterial);
+  int base = (gl_VertexID / 6) * 9;
+  int corner = kCorner[gl_VertexID % 6];
+  bool atTo = corner >= 2;
+  float side = (corner & 1) == 0 ? 0.5 : -0.5;
+  vec3 from = vec3(lineFloat(base), lineFloat(base + 1), lineFloat(base + 2));
+  vec3 to = vec3(lineFloat(base + 3), lineFloat(base + 4), lineFloat(base + 5));
+  float width = lineFloat(base + (atTo ? 7 : 6));
+  vColor = unlit(floatBitsToInt(lineFloat(base + 8)));
+  vec3 p = atTo ? to : from;
   if (!uPixelWidth) {
     vec3 towardsEye = uPerspective ? uEye - p : -uForward;
-    vec3 across = cross(aTo - aFrom, towardsEye);
+    vec3 across = cross(to - from, towardsEye);
     across = dot(across, across) > 1e-30 ? normalize(across) : uRight;
     gl_Position = uViewProjection * vec4(p + across * (side * width), 1.0);
     return;
   }
-  vec4 a = uViewProjection * vec4(aFrom, 1.0);
-  vec4 b = uViewProjection * vec4(aTo, 1.0);
+  vec4 a = uViewProjection * vec4(from, 1.0);
+  vec4 b = uViewProjection * vec4(to, 1.0);
   // An end behind the eye moves along the segment onto the near plane.
   if (a.w < uNear && b.w < uNear) {
     gl_Position = vec4(0.0, 0.0, 0.0, -1.0);

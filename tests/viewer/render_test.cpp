@@ -173,6 +173,21 @@ TEST(RenderTest, PixelLineIsItsWidthInPixels) {
   EXPECT_EQ(runLength(image, kGreenPixel, false, 200), 3);
 }
 
+TEST(RenderTest, ThinPixelLinesAreOnePixelAsCpfgDrawsThem) {
+  Scene scene = paletteScene();
+  // Widths of a pixel or less are GL lines of one pixel (glLineWidth below 1 draws 1).
+  scene.lines.push_back({{0, 0, 0}, {10, 0, 0}, 1, 1, kGreen});
+  scene.lines.push_back({{0, 1, 0}, {10, 1, 0}, 0.25f, 0.25f, kBlue});
+  scene.lines.push_back({{0, -1, 0}, {10, -1, 0}, 5, 5, kRed});  // a wide one among them
+  ViewSettings view;
+  view.scaleFactor = 0.5f;
+  RgbaImage image = render(scene, view, 201, 101);
+  EXPECT_EQ(runLength(image, kGreenPixel, false, 100), 1);
+  EXPECT_EQ(runLength(image, kBluePixel, false, 100), 1);
+  EXPECT_EQ(runLength(image, kRedPixel, false, 100), 5);
+  EXPECT_NEAR(runLength(image, kGreenPixel, true, 50), 100, 1);
+}
+
 TEST(RenderTest, TaperedPixelLineNarrowsTowardsItsEnd) {
   Scene scene = paletteScene();
   scene.lines.push_back({{0, 0, 0}, {10, 0, 0}, 9, 1, kGreen});

@@ -59,6 +59,7 @@ class GlRenderer {
   void release();
   const Program& surfaceProgram(int geometry, int shading, bool textured);
   void useSurfaceProgram(const Program& program, const Camera& camera);
+  void useLineProgram(const Program& program, const Camera& camera);
   void drawMeshes(const Camera& camera, std::vector<Mesh>::const_iterator begin,
                   std::vector<Mesh>::const_iterator end);
   void drawMesh(const Program& program, const Mesh& mesh);
