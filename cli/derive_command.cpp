@@ -52,6 +52,7 @@ int runDerive(const DeriveOptions& o) {
 
     OutputFile out(o.output);
     StringWriter writer(out.stream(), o.format == "compact" ? StringFormat::Compact : StringFormat::Cpfg);
+    writer.setStrings(&model.program.strings);  // @L("text") is written with its text
     derivation.start();
     if (o.eachStep) {
       // Every string from the axiom on; in the cpfg format they are separated by an empty line.

@@ -143,6 +143,20 @@ void loadSurfaces(ModelResources& resources, Diagnostics& diagnostics) {
   }
 }
 
+// cpfg (manual §8.1.4): `background scene: file1, file2, …`, drawn after the string. A missing
+// file is a warning, like the other files the view names.
+void loadBackgroundScenes(ModelResources& resources, Diagnostics& diagnostics) {
+  for (const std::string& file : resources.view.backgroundScenes) {
+    if (!fileExists(file)) {
+      diagnostics.warn(fileLocation(file), "cannot open background scene file " +
+                                               writtenName(file, resources.folder) +
+                                               "; it is not drawn");
+      continue;
+    }
+    resources.backgroundScenes.push_back(loadBackgroundScene(file, diagnostics));
+  }
+}
+
 }  // namespace
 
 ModelResources loadModelResources(const std::optional<std::filesystem::path>& viewFile,
@@ -158,6 +172,7 @@ ModelResources loadModelResources(const std::optional<std::filesystem::path>& vi
   loadTextures(resources, diagnostics);
   loadContours(resources, diagnostics);
   loadSurfaces(resources, diagnostics);
+  loadBackgroundScenes(resources, diagnostics);
   return resources;
 }
 

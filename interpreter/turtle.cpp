@@ -9,6 +9,7 @@
 #include "cylinder_mesh.h"
 #include "hirsute/interpreter/generalized_cylinder.h"
 #include "hirsute/lsys/derivation.h"
+#include "hirsute/lsys/printf_format.h"
 #include "polygon_triangulation.h"
 #include "surface_mesh.h"
 #include "tropism.h"
@@ -421,15 +422,7 @@ void Turtle::atModule(char first, char second, const float* p, std::size_t count
       break;
     case 'L':
       if (scene_ != nullptr) {
-        // The module string holds numbers only, so a label is its parameters printed as %g.
-        std::string text;
-        for (std::size_t i = 0; i < count; ++i) {
-          char buffer[32];
-          std::snprintf(buffer, sizeof buffer, "%g", static_cast<double>(p[i]));
-          if (!text.empty()) text += ' ';
-          text += buffer;
-        }
-        scene_->labels.push_back(Label{glm::vec3(state_.position), text, material(state_.color)});
+        scene_->labels.push_back(Label{glm::vec3(state_.position), labelText(p, count), material(state_.color)});
       }
       break;
     case 'S':
@@ -712,12 +705,42 @@ void Turtle::finish() {
   skipping_ = false;
 }
 
+std::string Turtle::labelText(const float* p, std::size_t count) {
+  // cpfg: @L("format", p1, p2, …) prints the parameters through the format, as printf does. The
+  // string is the first parameter's id in the program's string table.
+  if (count > 0 && strings_ != nullptr && p[0] >= 0 && p[0] == std::floor(p[0]) &&
+      p[0] < static_cast<float>(strings_->size())) {
+    std::vector<double> values(p + 1, p + count);
+    PrintfResult result = formatPrintf((*strings_)[static_cast<std::size_t>(p[0])], values.data(),
+                                       static_cast<int>(values.size()));
+    if (result.missingValues) {
+      warnOnce("@L format", "@L: the format has more conversions than values; they are drawn as written");
+    }
+    return std::move(result.text);
+  }
+  if (count > 0 && strings_ != nullptr) {
+    warnOnce("@L string", "@L: the first parameter is not a string; the label shows the numbers");
+  }
+  std::string text;
+  for (std::size_t i = 0; i < count; ++i) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", static_cast<double>(p[i]));
+    if (!text.empty()) text += ' ';
+    text += buffer;
+  }
+  return text;
+}
+
 void interpret(Derivation& derivation, const ModelResources& resources, Scene& scene,
                Diagnostics& diagnostics) {
   Turtle turtle(resources, &scene, diagnostics);
+  turtle.setStrings(&derivation.program().strings);
   turtle.setSourceString(&derivation.mutableString());
   derivation.emit(turtle, true);
   turtle.finish();
+  // cpfg (manual §8.1.4): background objects are drawn after the string is interpreted.
+  for (const BackgroundScene& background : resources.backgroundScenes)
+    appendBackgroundScene(background, scene);
 }
 
 void installQueryPass(Derivation& derivation, const ModelResources& resources,

@@ -157,6 +157,8 @@ class Compiler {
                       const NameMap& arrays);
   Production compileProduction(const ast::Production& in, const NameMap& shared, const NameMap& arrays);
   void noteQueries(const ast::ModuleList& modules);
+  // The id of `text` in Program::strings, added when new; equal literals share an id.
+  int internString(const std::string& text, const SourceLocation& where);
 
   Program& program_;
   Diagnostics& diagnostics_;
@@ -279,7 +281,9 @@ void Compiler::compileExpr(const ast::Expr& e, const Scope& scope, Builder& b) {
       b.constant(e.number, location(e.where));
       return;
     case K::String:
-      fail(e.where, "a string is only allowed as the format of printf, fprintf, fscanf or a name for fopen");
+      fail(e.where,
+           "a string is only allowed as the first argument of @L, @S or @I, the format of printf, "
+           "fprintf or fscanf, or a name for fopen");
     case K::Variable:
       compileLoad(e.name, e.where, scope, b);
       return;
@@ -373,8 +377,7 @@ void Compiler::compileCall(const ast::Expr& e, const Scope& scope, Builder& b) {
     if (arg.kind != ast::Expr::Kind::String) {
       fail(arg.where, "function '" + e.name + "' expects a string literal here");
     }
-    program_.strings.push_back(arg.name);
-    return static_cast<int>(program_.strings.size() - 1);
+    return internString(arg.name, arg.where);
   };
   if (info->id == Builtin::Fscanf) {
     compileExpr(*e.operands[0], scope, b);
@@ -475,6 +478,16 @@ void Compiler::noteQueries(const ast::ModuleList& modules) {
   }
 }
 
+int Compiler::internString(const std::string& text, const SourceLocation& where) {
+  auto& strings = program_.strings;
+  for (std::size_t i = 0; i < strings.size(); ++i) {
+    if (strings[i] == text) return static_cast<int>(i);
+  }
+  if (strings.size() >= kMaxStrings) fail(where, "too many string literals");
+  strings.push_back(text);
+  return static_cast<int>(strings.size() - 1);
+}
+
 void Compiler::compileModules(const ast::ModuleList& modules, const Scope& scope,
                               std::vector<SuccessorModule>& out, Code& values) {
   Builder b;
@@ -482,7 +495,18 @@ void Compiler::compileModules(const ast::ModuleList& modules, const Scope& scope
     if (m.arguments.size() > kMaxModuleParameters) {
       fail(m.where, "a module can have at most " + std::to_string(kMaxModuleParameters) + " parameters");
     }
-    for (const auto& arg : m.arguments) compileExpr(*arg, scope, b);
+    const std::size_t index = static_cast<std::size_t>(&m - modules.data());
+    const ast::Module* before = index > 0 ? &modules[index - 1] : nullptr;
+    const bool stringFirst = takesStringArgument(m.symbol) && before != nullptr &&
+                             before->symbol == '@' && !before->hasParentheses;
+    for (std::size_t i = 0; i < m.arguments.size(); ++i) {
+      const ast::Expr& arg = *m.arguments[i];
+      if (i == 0 && stringFirst && arg.kind == ast::Expr::Kind::String) {
+        b.constant(internString(arg.name, arg.where), location(arg.where));
+      } else {
+        compileExpr(arg, scope, b);
+      }
+    }
     out.push_back(SuccessorModule{m.symbol, static_cast<std::uint8_t>(m.arguments.size())});
   }
   noteQueries(modules);

@@ -6,6 +6,7 @@
 
 #include "hirsute/lsys/builtins.h"
 #include "hirsute/lsys/function_curve.h"
+#include "hirsute/lsys/printf_format.h"
 
 namespace hirsute {
 
@@ -319,53 +320,9 @@ double Evaluator::call(Builtin id, const double* a, int count, std::uint32_t whe
 }
 
 std::string Evaluator::format(const std::string& fmt, const double* args, int count, std::uint32_t where) {
-  // cpfg applies the format one conversion at a time, each with the next value as a double.
-  std::string out;
-  int next = 0;
-  std::size_t pos = 0;
-  char buffer[512];
-  while (pos < fmt.size()) {
-    char c = fmt[pos];
-    if (c != '%') {
-      out += c;
-      ++pos;
-      continue;
-    }
-    if (pos + 1 < fmt.size() && fmt[pos + 1] == '%') {
-      out += '%';
-      pos += 2;
-      continue;
-    }
-    std::size_t end = pos + 1;
-    while (end < fmt.size() && std::strchr("-+ #0123456789.", fmt[end])) ++end;
-    std::string flags = fmt.substr(pos, end - pos);
-    while (end < fmt.size() && std::strchr("hlLqjzt", fmt[end])) ++end;  // length modifiers are ignored
-    if (end >= fmt.size() || flags.size() > 20) {
-      out += fmt.substr(pos);
-      break;
-    }
-    char conversion = fmt[end];
-    if (!std::strchr("diouxXcfFeEgGaA", conversion)) {
-      out += fmt.substr(pos, end + 1 - pos);
-      pos = end + 1;
-      continue;
-    }
-    if (next >= count) fail(where, "the format has more conversions than values");
-    double v = args[next++];
-    if (std::strchr("diouxXc", conversion)) {
-      long long i = std::isfinite(v) && std::fabs(v) < 9e18 ? static_cast<long long>(v) : 0;
-      std::string spec = flags + "ll" + conversion;
-      if (conversion == 'c') spec = flags + "c";
-      if (conversion == 'c') std::snprintf(buffer, sizeof buffer, spec.c_str(), static_cast<int>(i));
-      else std::snprintf(buffer, sizeof buffer, spec.c_str(), i);
-    } else {
-      std::string spec = flags + conversion;
-      std::snprintf(buffer, sizeof buffer, spec.c_str(), v);
-    }
-    out += buffer;
-    pos = end + 1;
-  }
-  return out;
+  PrintfResult result = formatPrintf(fmt, args, count);
+  if (result.missingValues) fail(where, "the format has more conversions than values");
+  return std::move(result.text);
 }
 
 double Evaluator::openFile(const std::string& name, const std::string& mode, std::uint32_t where) {

@@ -1,8 +1,11 @@
 #include "hirsute/lsys/string_writer.h"
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+
+#include "hirsute/lsys/program.h"
 
 namespace hirsute {
 namespace {
@@ -193,7 +196,68 @@ inline char* StringWriter::writeModule(char* p, bool cpfg, int& lineCount, char 
   return p;
 }
 
+const std::string* StringWriter::stringArgument(bool afterAt, char symbol, std::size_t count,
+                                                float first) const {
+  if (!afterAt || count == 0 || strings_ == nullptr || !takesStringArgument(symbol)) return nullptr;
+  // A parameter a production computed may be any number; only an id of the table is a string.
+  if (!(first >= 0) || first != std::floor(first) || first >= static_cast<float>(strings_->size())) {
+    return nullptr;
+  }
+  return &(*strings_)[static_cast<std::size_t>(first)];
+}
+
+// The string is written quoted with the lexer's escapes (\" \\ \n \t \r), so the text reads
+// back as the same module: `@L("height %g",3)`. cpfg's line count takes the quoted text as it
+// takes a parameter's digits.
+template <typename ParameterAt>
+void StringWriter::writeStringModule(int& lineCount, char symbol, const std::string& text,
+                                     std::size_t count, ParameterAt parameterAt) {
+  std::string out(1, symbol);
+  out += "(\"";
+  for (char c : text) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default: out += c;
+    }
+  }
+  out += '"';
+  int counted = 3 + static_cast<int>(out.size() - 2);  // symbol, parentheses, the quoted text
+  char number[kMaxParameterText + 4];
+  for (std::size_t i = 1; i < count; ++i) {
+    std::size_t digits = formatNumber(parameterAt(i), number);
+    out += ',';
+    out.append(number, digits);
+    counted += static_cast<int>(digits);
+  }
+  out += ')';
+  if (format_ == StringFormat::Cpfg) {
+    lineCount += counted;
+    if (lineCount >= 70) {
+      out += '\n';
+      lineCount = 0;
+    }
+  } else {
+    lineCount = 1;
+  }
+  if (out.size() > sizeof buffer_) {
+    flush();
+    if (std::fwrite(out.data(), 1, out.size(), out_) != out.size()) failed_ = true;
+  } else {
+    put(out.data(), out.size());
+  }
+}
+
 void StringWriter::module(char symbol, const float* parameters, std::size_t count) {
+  const bool afterAt = afterAt_;
+  afterAt_ = symbol == '@' && count == 0;
+  if (const std::string* text = stringArgument(afterAt, symbol, count, count ? parameters[0] : 0)) {
+    return writeStringModule(lineCount_, symbol, *text, count,
+                             [parameters](std::size_t i) { return parameters[i]; });
+  }
   char* p = reserve(roomFor(count));
   p = writeModule(p, format_ == StringFormat::Cpfg, lineCount_, symbol, count,
                   [parameters](std::size_t i) { return parameters[i]; });
@@ -202,6 +266,12 @@ void StringWriter::module(char symbol, const float* parameters, std::size_t coun
 
 void StringWriter::module(ModuleRef m) {
   std::size_t count = m.parameterCount();
+  const bool afterAt = afterAt_;
+  afterAt_ = m.symbol() == '@' && count == 0;
+  if (const std::string* text = stringArgument(afterAt, m.symbol(), count, count ? m.parameter(0) : 0)) {
+    return writeStringModule(lineCount_, m.symbol(), *text, count,
+                             [m](std::size_t i) { return m.parameter(i); });
+  }
   char* p = reserve(roomFor(count));
   p = writeModule(p, format_ == StringFormat::Cpfg, lineCount_, m.symbol(), count,
                   [m](std::size_t i) { return m.parameter(i); });
@@ -211,6 +281,9 @@ void StringWriter::module(ModuleRef m) {
 void StringWriter::modules(const ModuleString& s, std::size_t from, std::size_t to) {
   if (from >= to) return;
   const bool cpfg = format_ == StringFormat::Cpfg;
+  // Strings to write only when the program has string literals: the common case keeps its loop.
+  const bool strings = strings_ != nullptr && !strings_->empty();
+  bool afterAt = afterAt_;
   int lineCount = lineCount_;
   char* p = buffer_ + used_;
   const std::uint8_t* at = s.at(from).bytes();
@@ -218,6 +291,17 @@ void StringWriter::modules(const ModuleString& s, std::size_t from, std::size_t 
   while (at < end) {
     ModuleRef m(at);
     std::size_t count = m.parameterCount();
+    if (strings) {
+      const std::string* text = stringArgument(afterAt, m.symbol(), count, count ? m.parameter(0) : 0);
+      afterAt = m.symbol() == '@' && count == 0;
+      if (text != nullptr) {
+        used_ = static_cast<std::size_t>(p - buffer_);
+        writeStringModule(lineCount, m.symbol(), *text, count, [m](std::size_t i) { return m.parameter(i); });
+        p = buffer_ + used_;
+        at += m.size();
+        continue;
+      }
+    }
     if (p + roomFor(count) > buffer_ + sizeof buffer_) {
       used_ = static_cast<std::size_t>(p - buffer_);
       flush();
@@ -229,11 +313,13 @@ void StringWriter::modules(const ModuleString& s, std::size_t from, std::size_t 
   }
   used_ = static_cast<std::size_t>(p - buffer_);
   lineCount_ = lineCount;
+  if (strings) afterAt_ = afterAt;
 }
 
 bool StringWriter::finish() {
   if (lineCount_ != 0) put("\n", 1);
   lineCount_ = 0;
+  afterAt_ = false;
   flush();
   if (std::fflush(out_) != 0) failed_ = true;
   return !failed_;

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Builds Hirsute in Release (without the tests) and prints the derivation benchmark's figures.
-# Arguments go to the benchmark: --model NAME, --repeat N, --models DIR.
+# Builds Hirsute in Release (without the tests) and prints the derivation benchmark's figures,
+# then the interpretation benchmark's (string to Scene: modules and triangles per second).
+# Arguments go to the derivation benchmark: --model NAME, --repeat N, --models DIR;
+# INTERPRET_ARGS to the interpretation benchmark (e.g. "--model tubes --repeat 10").
 #   scripts/bench.sh --repeat 5
 # BUILD_DIR overrides the build folder; JOBS the build's parallel jobs (default: all cores).
 set -euo pipefail
@@ -9,5 +11,8 @@ cd "$(dirname "$0")/.."
 build="${BUILD_DIR:-build/bench}"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DHIRSUTE_BUILD_TESTS=OFF \
   -DHIRSUTE_BUILD_BENCH=ON >/dev/null
-cmake --build "$build" --target hirsute_derive_bench -j "${JOBS:-$(nproc)}"
+cmake --build "$build" --target hirsute_derive_bench hirsute_interpret_bench -j "${JOBS:-$(nproc)}"
 "$build/bench/hirsute_derive_bench" "$@"
+echo
+# shellcheck disable=SC2086  # INTERPRET_ARGS is a list of arguments
+"$build/bench/hirsute_interpret_bench" ${INTERPRET_ARGS:-}

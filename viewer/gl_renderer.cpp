@@ -12,6 +12,7 @@
 #include <string>
 
 #include "gl_shaders.h"
+#include "label_overlay.h"
 
 namespace hirsute {
 
@@ -52,14 +53,11 @@ struct GlRenderer::Resources {
   // What upload() keeps of the view.
   RenderMode renderMode = RenderMode::Filled;
   bool zBuffer = true;
-  bool colorMap = true;
-  glm::vec3 colorMapLight{1, 0, 0};
-  float diffuseReflection = 10;
-  bool headlight = false;       // no `light:` lines: OpenGL's light 0, from the eye
+  ViewLighting lighting;         // view_lighting.h: the rule the exporters share
   bool anyTransparent = false;  // blending costs, so only a palette with transparency gets it
   LineStyle lineStyle = LineStyle::Pixel;
-  std::vector<LightSource> lights;
   glm::vec3 background{0.0f};
+  std::unique_ptr<LabelOverlay> labels;  // @L text, drawn over the image
 };
 
 namespace {
@@ -229,12 +227,6 @@ int shadingOf(RenderMode mode) {
 
 }  // namespace
 
-glm::vec3 backgroundColor(const Scene& scene, bool materialMode) {
-  if (scene.materials.empty()) return glm::vec3(0.0f);
-  const Material& m = scene.materials.front();
-  return materialMode ? m.emission : m.diffuse;
-}
-
 int sphereSides(int contourSides) {
   int sides = 4;
   while (sides < contourSides && sides < 1024) sides *= 2;
@@ -255,6 +247,7 @@ GlRenderer::GlRenderer(const GlFunctions& gl) : gl_(gl), resources_(std::make_un
     // The other programs are built on first use; building the plainest now finds a context
     // that cannot compile them at once.
     surfaceProgram(static_cast<int>(Geometry::Mesh), 0, false);
+    r.labels = std::make_unique<LabelOverlay>(gl_);
   } catch (...) {
     for (Program* p : {&r.thinLineProgram, &r.wideLineProgram}) {
       if (p->id) gl_.DeleteProgram(p->id);
@@ -328,14 +321,11 @@ void GlRenderer::upload(const Scene& scene, const ViewSettings& view, bool mater
   r.renderMode = view.renderMode;
   r.zBuffer = view.zBuffer;
   r.lineStyle = scene.lineStyle;
-  r.colorMap = !materialMode;
-  r.colorMapLight = glm::length(view.lightDirection) > 0 ? glm::normalize(view.lightDirection)
-                                                         : glm::vec3(1, 0, 0);
-  r.diffuseReflection = static_cast<float>(view.diffuseReflection);
-  r.headlight = view.lights.empty();
-  r.lights = view.lights.empty() ? std::vector<LightSource>{LightSource{}} : view.lights;
-  if (r.lights.size() > kMaxLights) r.lights.resize(kMaxLights);
+  // The default light's direction follows the camera: draw() places it.
+  r.lighting = viewLighting(view, materialMode, glm::vec3(0, 0, 1));
+  if (r.lighting.lights.size() > kMaxLights) r.lighting.lights.resize(kMaxLights);
   r.background = backgroundColor(scene, materialMode);
+  r.labels->upload(scene);
 
   // Materials: a texture buffer of four RGBA32F texels each, which every shader indexes.
   std::vector<Material> palette = scene.materials;
@@ -484,15 +474,16 @@ void GlRenderer::useSurfaceProgram(const Program& program, const Camera& camera)
   gl_.Uniform3fv(program.uniform(gl_, "uForward"), 1, glm::value_ptr(camera.forward));
   gl_.Uniform3fv(program.uniform(gl_, "uRight"), 1, glm::value_ptr(camera.right));
   gl_.Uniform3fv(program.uniform(gl_, "uUp"), 1, glm::value_ptr(camera.up));
-  gl_.Uniform1i(program.uniform(gl_, "uColorMap"), r.colorMap ? 1 : 0);
-  gl_.Uniform3fv(program.uniform(gl_, "uColorMapLight"), 1, glm::value_ptr(r.colorMapLight));
-  gl_.Uniform1f(program.uniform(gl_, "uDiffuseReflection"), r.diffuseReflection);
+  gl_.Uniform1i(program.uniform(gl_, "uColorMap"), r.lighting.colorMap ? 1 : 0);
+  gl_.Uniform3fv(program.uniform(gl_, "uColorMapLight"), 1,
+                 glm::value_ptr(r.lighting.colorMapLight));
+  gl_.Uniform1f(program.uniform(gl_, "uDiffuseReflection"), r.lighting.diffuseReflection);
 
   std::vector<glm::vec4> position, spot, attenuation;
   std::vector<glm::vec3> ambient, diffuse, specular;
-  for (const LightSource& l : r.lights) {
+  for (const LightSource& l : r.lighting.lights) {
     // OpenGL's default light 0 shines along the eye's line of sight, wherever the eye is.
-    glm::vec3 vector = r.headlight ? -camera.forward : l.vector;
+    glm::vec3 vector = r.lighting.headlight ? -camera.forward : l.vector;
     position.emplace_back(vector, l.directional ? 0.0f : 1.0f);
     ambient.push_back(l.ambient);
     diffuse.push_back(l.diffuse);
@@ -502,7 +493,7 @@ void GlRenderer::useSurfaceProgram(const Program& program, const Camera& camera)
     attenuation.emplace_back(l.constantAttenuation, l.linearAttenuation, l.quadraticAttenuation,
                              l.spotExponent);
   }
-  auto count = static_cast<GLsizei>(r.lights.size());
+  auto count = static_cast<GLsizei>(r.lighting.lights.size());
   gl_.Uniform1i(program.uniform(gl_, "uLightCount"), count);
   if (count == 0) return;
   gl_.Uniform4fv(program.uniform(gl_, "uLightPosition"), count, &position[0].x);
@@ -636,6 +627,7 @@ void GlRenderer::draw(const Camera& camera) {
     gl_.DepthMask(GL_TRUE);
     gl_.PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   }
+  r.labels->draw(camera);
   gl_.BindVertexArray(0);
   gl_.UseProgram(0);
   checkErrors(gl_, "draw");

@@ -98,6 +98,7 @@ std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bo
   std::FILE* memory = open_memstream(&buffer, &size);
   {
     StringWriter writer(memory, StringFormat::Compact);
+    writer.setStrings(&model.program.strings);
     derivation.emit(writer, homomorphism);
     writer.finish();
   }

@@ -95,6 +95,7 @@ Drawn draw(const std::string& lsystem, const std::string& view = "") {
   Drawn drawn;
   Turtle turtle(resources, &drawn.scene, diagnostics);
   turtle.setSourceString(&derivation.mutableString());
+  turtle.setStrings(&model.program.strings);
   derivation.emit(turtle, true);
   turtle.finish();
   drawn.counts = turtle.counts();
@@ -495,6 +496,32 @@ TEST(TurtleQueries, HorneophytonMatchesCpfg) {
   std::string expected((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::erase(expected, '\n');
   EXPECT_EQ(compactString(derivation), expected);
+}
+
+// cpfg-manual.txt §6.10: @L prints its format with the values that follow, where the turtle is.
+TEST(TurtleLabels, LabelTextIsTheFormatAppliedToTheValues) {
+  Drawn drawn = draw("label.l");
+  ASSERT_EQ(drawn.scene.labels.size(), 2u);
+  EXPECT_EQ(drawn.scene.labels[0].text, "start");
+  expectNear(glm::dvec3(drawn.scene.labels[0].position), glm::dvec3(0, 0, 0));
+  EXPECT_EQ(drawn.scene.labels[1].text, "height 3, step 1 of 2");
+  expectNear(glm::dvec3(drawn.scene.labels[1].position), glm::dvec3(0, 3, 0));
+  EXPECT_EQ(drawn.scene.labels[1].material, 2);
+  EXPECT_NE(drawn.scene.labels[0].material, drawn.scene.labels[1].material);
+}
+
+// Without the program's string table (a turtle fed by hand) a label shows its numbers.
+TEST(TurtleLabels, LabelWithoutStringTableShowsItsParameters) {
+  Diagnostics diagnostics;
+  ModelResources resources = loadModelResources(std::nullopt, {}, diagnostics);
+  Scene scene;
+  Turtle turtle(resources, &scene, diagnostics);
+  Feeder feed{turtle};
+  feed('@');
+  feed('L', {1.5f, 2});
+  turtle.finish();
+  ASSERT_EQ(scene.labels.size(), 1u);
+  EXPECT_EQ(scene.labels[0].text, "1.5 2");
 }
 
 }  // namespace

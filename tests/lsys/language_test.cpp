@@ -62,6 +62,7 @@ Derived derive(const fs::path& lfile, bool homomorphism, std::optional<int> step
   std::FILE* memory = open_memstream(&buffer, &size);
   {
     StringWriter writer(memory, StringFormat::Compact);
+    writer.setStrings(&model.program.strings);
     derivation.emit(writer, homomorphism);
     writer.finish();
   }

@@ -506,5 +506,31 @@ TEST(RenderTest, OversizedImageIsRefused) {
   EXPECT_THROW(render(paletteScene(), ViewSettings{}, 100000, 10), std::runtime_error);
 }
 
+// cpfg's @L: screen-aligned text of a fixed pixel size whose top left corner is the label's
+// projected position, in the label's colour, over the model.
+TEST(RenderTest, LabelIsDrawnAtItsProjectedPosition) {
+  Scene scene = paletteScene();
+  addPolygon(scene, kBlue, {glm::vec3(0, 0, 0), glm::vec3(4, 0, 0), glm::vec3(4, 4, 0), glm::vec3(0, 4, 0)});
+  scene.labels.push_back(Label{glm::vec3(1, 3, 0), "Hi 42", kGreen});
+  ViewSettings view;
+  RgbaImage image = render(scene, view, 200, 200);
+  Camera camera = fitCamera(view, scene.bounds(), {200, 200});
+  glm::vec2 anchor(camera.toPixels(glm::vec3(1, 3, 0)));
+  int near = 0, far = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (!same(image.pixel(x, y), kGreenPixel)) continue;
+      // Five characters of stb_easy_font, about 6 by 7 pixels each at twice their size.
+      bool inside = x >= anchor.x - 1 && x <= anchor.x + 5 * 6 * 2 + 1 && y >= anchor.y - 1 &&
+                    y <= anchor.y + 12 * 2 + 1;
+      ++(inside ? near : far);
+    }
+  }
+  EXPECT_GT(near, 40);
+  EXPECT_EQ(far, 0);
+  // The text is drawn over the polygon, which still shows around it.
+  EXPECT_GT(countColor(image, kBluePixel), 1000);
+}
+
 }  // namespace
 }  // namespace hirsute

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/interpreter/background_scene.h"
 #include "hirsute/interpreter/contour.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/surface.h"
@@ -32,6 +33,8 @@ struct ModelResources {
   // By texture id - 1. A texture whose file is missing (a warning) has no pixels (width 0) and
   // is drawn as no texture.
   std::vector<Texture> textures;
+  // The view file's `background scene:` files in order; interpret() appends them to the Scene.
+  std::vector<BackgroundScene> backgroundScenes;
 };
 
 // cpfg's -m/-M banks run from 1 to 12.

@@ -43,6 +43,10 @@ class Turtle : public ModuleSink {
   // (scene null) ?P ?H ?L ?U write into the module of this string they came from.
   void setSourceString(ModuleString* string) { sourceString_ = string; }
 
+  // The program's string table (Program::strings): @L's first parameter is an id in it
+  // (takesStringArgument). Without a table a label is its parameters printed as %g.
+  void setStrings(const std::vector<std::string>* strings) { strings_ = strings; }
+
   const TurtleState& state() const { return state_; }
 
   // What the turtle drew, by kind: the ray parity test compares these with cpfg's primitives
@@ -91,6 +95,8 @@ class Turtle : public ModuleSink {
   void drawDisc(double diameter, const glm::dvec3& normal, bool ring);
   int material(int color) const;
   void warnOnce(const std::string& key, const std::string& message);
+  // The text of @L(…): cpfg-manual.txt §6.10.
+  std::string labelText(const float* parameters, std::size_t count);
 
   PendingSegment pending_;
   std::vector<BranchExtras> branchExtras_;
@@ -102,6 +108,7 @@ class Turtle : public ModuleSink {
   std::size_t skipDepth_ = 0;
   bool fromSourceString_ = false;  // the module being handled came unchanged from sourceString_
   ModuleString* sourceString_ = nullptr;
+  const std::vector<std::string>* strings_ = nullptr;
   std::set<std::string> warned_;
   Counts counts_;
 

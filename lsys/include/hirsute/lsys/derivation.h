@@ -52,6 +52,7 @@ class Derivation {
   void setQueryPass(std::function<void(Derivation&)> pass) { queryPass_ = std::move(pass); }
   ModuleString& mutableString() { return current_; }
 
+  const Program& program() const { return program_; }
   int stepsDone() const { return stepsDone_; }
   int totalSteps() const { return totalSteps_; }
   const ModuleString& string() const { return current_; }

@@ -84,13 +84,25 @@ struct ArrayDefinition {
   SourceLocation where;
 };
 
+// cpfg: @L("format", …), @S("command") and @I("file", …) take a string literal as their first
+// argument (cpfg-features.md, string literals; cpfg-manual.txt §6.10). The module string holds
+// numbers only, so that parameter is the string's id in Program::strings: a small integer, exact
+// in float32. Which modules carry one is fixed by this convention, not marked in the string:
+// `symbol` is the module after a bare `@`.
+inline bool takesStringArgument(char symbol) {
+  return symbol == 'L' || symbol == 'S' || symbol == 'I';
+}
+
+// String ids stay below 2^24 so that a float parameter holds them exactly.
+inline constexpr std::size_t kMaxStrings = std::size_t{1} << 24;
+
 struct Program {
   std::vector<Lsystem> lsystems;  // [0] is the main L-system
   std::vector<std::string> sharedNames;  // L-system and global variables, by slot
   int stepSlot = 0;                      // the hidden global Q (current step)
   int lengthSlot = 0;                    // the hidden global Z (derivation length)
   std::vector<ArrayDefinition> arrays;
-  std::vector<std::string> strings;      // string literals, by id
+  std::vector<std::string> strings;      // string literals, by id (see takesStringArgument)
   std::vector<SourceLocation> locations; // by Instruction::where
   int maxStack = 0;
   bool usesQueries = false;              // ?P ?H ?L ?U modules appear

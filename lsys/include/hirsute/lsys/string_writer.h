@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "hirsute/lsys/module_sink.h"
 
@@ -26,6 +27,11 @@ class StringWriter : public ModuleSink {
   StringWriter(const StringWriter&) = delete;
   StringWriter& operator=(const StringWriter&) = delete;
 
+  // The program's string table: the first parameter of @L, @S and @I is then written as the
+  // quoted string it names (`@L("x=%g",2)`, takesStringArgument in program.h); without one it
+  // stays a number, as every other parameter. `strings` must outlive the writer.
+  void setStrings(const std::vector<std::string>* strings) { strings_ = strings; }
+
   void module(char symbol, const float* parameters, std::size_t count) override;
   // Read the parameters straight from the string's bytes.
   void module(ModuleRef m) override;
@@ -45,6 +51,13 @@ class StringWriter : public ModuleSink {
   template <typename ParameterAt>
   char* writeModule(char* p, bool cpfg, int& lineCount, char symbol, std::size_t count,
                     ParameterAt parameterAt);
+  // The string a module's first parameter names when the module carries one (it follows a bare
+  // `@` and takesStringArgument); null otherwise.
+  const std::string* stringArgument(bool afterAt, char symbol, std::size_t count, float first) const;
+  // Writes a module whose first parameter is `text`, quoted, through the buffer.
+  template <typename ParameterAt>
+  void writeStringModule(int& lineCount, char symbol, const std::string& text, std::size_t count,
+                         ParameterAt parameterAt);
   void put(const char* text, std::size_t n) {
     std::memcpy(reserve(n), text, n);
     used_ += n;
@@ -62,6 +75,8 @@ class StringWriter : public ModuleSink {
   // counts 1 once it has a module).
   int lineCount_ = 0;
   bool failed_ = false;
+  const std::vector<std::string>* strings_ = nullptr;
+  bool afterAt_ = false;  // the last module written was a bare `@`
   // A small cache of formatted values: strings repeat the same few numbers. An entry is 24
   // bytes, so its text is copied with one fixed-size move. Entries start out as 0.0f, "0".
   struct CacheEntry {

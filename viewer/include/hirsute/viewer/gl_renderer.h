@@ -5,7 +5,8 @@
 // colour as it is; `flat` and `shaded` (and `shadows`, without the shadows) shade. With a colour
 // map the shading moves along the palette as cpfg's does (`light direction:`, `diffuse
 // reflection:`); with materials it lights them with the view's `light:` lines, or without any
-// with OpenGL's default light 0, which shines from the eye. Polygons are lit on both sides when
+// with OpenGL's default light 0, which shines from the eye (view_lighting.h, shared with the
+// exporters). Polygons are lit on both sides when
 // their mesh is two-sided. Lines are drawn in their colour, unlit.
 #pragma once
 
@@ -18,12 +19,9 @@
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/camera.h"
 #include "hirsute/viewer/gl_functions.h"
+#include "hirsute/viewer/view_lighting.h"  // backgroundColor, the lights of a view
 
 namespace hirsute {
-
-// cpfg takes the background from entry 0 of the palette: the colour of a colour map, the
-// emission of a material file.
-glm::vec3 backgroundColor(const Scene& scene, bool materialMode);
 
 // Sides of the polygon that stands for a sphere's circumference: cpfg uses the power of two at
 // or above `contour sides:` (manual §8.1.5).

@@ -1,0 +1,35 @@
+// How a view lights its scene and what it is drawn against, as cpfg does it (manual §8.1.3–8.1.4):
+// one rule, GL-free, read by the GL renderer and by every exporter that places lights
+// (pov_writer.cpp), so that a render and an export of one model cannot be lit differently.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/interpreter/view_settings.h"
+
+namespace hirsute {
+
+struct ViewLighting {
+  // Colour-map mode: cpfg shades by moving along the palette, `diffuse reflection:` entries at
+  // most, by the cosine between the normal and `light direction:` (normalized; +x without one).
+  bool colorMap = false;
+  glm::vec3 colorMapLight{1, 0, 0};
+  float diffuseReflection = 0;
+  // The lights: in material mode the view's `light:` lines or, without any, OpenGL's light 0
+  // shining along the line of sight from the eye; in colour-map mode one white directional light
+  // from `light direction:` (what the palette shift stands for, for exporters that need lights).
+  std::vector<LightSource> lights;
+  bool headlight = false;  // lights is OpenGL's default light 0, placed at the eye
+};
+
+// The lighting of `view`; `towardsEye` is the direction from the scene to the eye (the default
+// light's direction).
+ViewLighting viewLighting(const ViewSettings& view, bool materialMode, const glm::vec3& towardsEye);
+
+// cpfg takes the background from entry 0 of the palette: the colour of a colour map, the
+// emission of a material file.
+glm::vec3 backgroundColor(const Scene& scene, bool materialMode);
+
+}  // namespace hirsute
