@@ -1,7 +1,13 @@
 #include "model_pipeline.h"
 
+#include <chrono>
 #include <iostream>
 #include <sstream>
+
+#include <fmt/format.h>
+
+#include "hirsute/hairs/hair_placement.h"
+#include "hirsute/hairs/hair_templates.h"
 
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -31,6 +37,11 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   command.add_option("--max-modules", o.maxModules, "A longer string is an error (default 100000000)");
   command.add_option("--max-loop-iterations", o.maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
+  command.add_flag("!--no-hairs", o.hairs, "Leave out the plant hairs (@H modules)");
+  command.add_option("--hair-seed", o.hairSeed,
+                     "Seed of hair placement (default: the view file's `hair texture:` seed)");
+  command.add_option("--max-hairs", o.maxHairs, "More hairs are an error (default 50000000)");
+  command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");
 }
 
 ColorFiles colorFilesFor(const ModelOptions& o, Diagnostics& diagnostics) {
@@ -71,9 +82,58 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   options.steps = o.steps;
   options.maxModules = o.maxModules;
   Derivation derivation(built.model.program, evaluator, diagnostics, options);
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point since) {
+    return std::chrono::duration<double>(Clock::now() - since).count();
+  };
+  auto started = Clock::now();
   installQueryPass(derivation, built.resources, diagnostics);
   derivation.run();
+  if (o.verbose) {
+    std::cerr << fmt::format("derived {} modules in {:.3f} s\n", derivation.string().moduleCount(), seconds(started));
+  }
+  started = Clock::now();
   interpret(derivation, built.resources, built.scene, diagnostics);
+  if (o.verbose) {
+    std::cerr << fmt::format("interpreted: {} triangles, {} lines, {} cylinder segments in {:.3f} s\n",
+                             built.scene.triangleCount(), built.scene.lines.size(),
+                             built.scene.cylinderSegments.size(), seconds(started));
+  }
+  const bool hairy = std::any_of(built.scene.hairAttributes.begin(), built.scene.hairAttributes.end(),
+                                 [](const HairAttributes& a) { return a.anyEnabled(); });
+  if (o.hairs && hairy) {
+    started = Clock::now();
+    built.scene.hairTemplates = loadHairTemplates(built.resources, diagnostics);
+    const ViewSettings& view = built.resources.view;
+    HairPlacementSettings settings;
+    settings.texture.width = settings.texture.height = view.hairTextureSize;
+    settings.texture.seed = view.hairTextureSeed;
+    settings.texture.fill = view.hairTextureFill;
+    settings.seed = o.hairSeed != 0 ? o.hairSeed : view.hairTextureSeed;
+    settings.interpolation = view.hairInterpolation;
+    settings.maxHairs = o.maxHairs;
+    const std::vector<FunctionCurve>& functions = built.model.functions.functions;
+    settings.function = [&functions](int index, double x) {
+      if (index < 1 || static_cast<std::size_t>(index) > functions.size()) return std::nan("");
+      return functions[static_cast<std::size_t>(index) - 1].evaluate(x);
+    };
+    HairPlacementReport report;
+    try {
+      report = placeHairs(built.scene, settings);
+    } catch (const HairLimitError& e) {
+      throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(o.lsystemFile), 0, 0}, e.what());
+    }
+    if (report.segmentsWithoutMesh > 0) {
+      diagnostics.warn(SourceLocation{std::make_shared<const std::string>(o.viewFile), 0, 0},
+                       fmt::format("{} hairy generalized-cylinder segments are drawn as lines and get no "
+                                   "hairs; hairs grow on cylinders drawn as triangles (`line style: cylinder`)",
+                                   report.segmentsWithoutMesh));
+    }
+    if (o.verbose) {
+      std::cerr << fmt::format("placed {} hairs on {} segments ({} templates) in {:.3f} s\n", report.hairs,
+                               report.segments, built.scene.hairTemplates.size(), seconds(started));
+    }
+  }
   return built;
 }
 

@@ -23,6 +23,10 @@ struct ModelOptions {
   std::vector<std::string> materials;  // -M FILE or -M N:FILE
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
+  bool hairs = true;                     // --no-hairs leaves them out
+  std::uint64_t hairSeed = 0;            // 0: the view file's `hair texture:` seed
+  std::size_t maxHairs = 50'000'000;
+  bool verbose = false;                  // -v: counts and times on stderr
 };
 
 // Adds the model arguments and options shared by render and export to `command`.
@@ -34,7 +38,8 @@ struct BuiltScene {
   Scene scene;
 };
 
-// Throws DiagnosticError on bad input.
+// Derives, interprets and places the hairs. Throws DiagnosticError on bad input (including a
+// broken template hair, and more hairs than --max-hairs).
 BuiltScene buildScene(const ModelOptions& options, Diagnostics& diagnostics);
 
 // The colour files: those given, or else the single .map or .mat in the model's folder.

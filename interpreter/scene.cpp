@@ -31,6 +31,12 @@ Bounds Scene::bounds() const {
     b.add(d.center + glm::vec3(d.radius));
   }
   for (const Label& l : labels) b.add(l.position);
+  for (const Hair& h : hairs) {
+    if (h.templateIndex >= hairTemplates.size()) continue;
+    const float reach = h.length * hairTemplates[h.templateIndex].extent;
+    b.add(h.root - glm::vec3(reach));
+    b.add(h.root + glm::vec3(reach));
+  }
   return b;
 }
 
@@ -47,6 +53,9 @@ void Scene::clear() {
   discs.clear();
   labels.clear();
   cylinderSegments.clear();
+  hairAttributes.clear();
+  hairTemplates.clear();
+  hairs.clear();
   meshIndex_.clear();
 }
 

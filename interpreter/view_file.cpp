@@ -749,11 +749,18 @@ void backgroundScene(Command& c) {
   c.args.skipAll();
 }
 
-// `hair texture: SIZE SEED` (DESIGN.md): the point-diffusion texture is SIZE×SIZE.
+// `hair texture: SIZE SEED [FILL]` (DESIGN.md): the point-diffusion texture is SIZE×SIZE cells
+// with FILL points per cell (0.02 to 0.3 measured; default 0.1).
 void hairTexture(Command& c) {
-  c.view.hairTextureSize = static_cast<int>(c.requiredInteger("the texture size", 1, 4096));
+  c.view.hairTextureSize = static_cast<int>(c.requiredInteger("the texture size", 4, 4096));
   c.view.hairTextureSeed =
       static_cast<unsigned>(c.requiredInteger("the seed", 0, std::numeric_limits<unsigned>::max()));
+  if (!c.args.atEnd()) {
+    const SourceLocation where = c.args.here();
+    const double fill = c.requiredNumber("the fill (points per cell)");
+    if (!(fill >= 0.02 && fill <= 0.3)) c.fail(where, "the fill must be from 0.02 to 0.3 points per cell");
+    c.view.hairTextureFill = fill;
+  }
 }
 
 void hairInterpolation(Command& c) {

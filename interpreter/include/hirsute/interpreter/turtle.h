@@ -82,6 +82,7 @@ class Turtle : public ModuleSink {
 
   void dispatch(char symbol, const float* parameters, std::size_t count);
   void atModule(char first, char second, const float* parameters, std::size_t count);
+  void hairModule(char which, const float* parameters, std::size_t count);
   // ?P ?H ?L ?U with `count` parameters (the values are the turtle's, not the module's).
   void query(char which, std::size_t count);
   void move(double distance, bool draws, bool addsVertex);
@@ -111,6 +112,12 @@ class Turtle : public ModuleSink {
   const std::vector<std::string>* strings_ = nullptr;
   std::set<std::string> warned_;
   Counts counts_;
+  // Modules handled so far, and the hair attribute set the last @H module made at which count:
+  // an @H module right after it (three modules later: `@`, `H`, then its letter) changes that set
+  // in place rather than copying it.
+  std::size_t modulesSeen_ = 0;
+  int hairScratch_ = -1;
+  std::size_t hairScratchModule_ = 0;
 
   // (implementation state: the state stack, pending segment, polygon stack, multi-character
   // module prefix, the cylinder builder …)

@@ -35,7 +35,10 @@ struct TurtleState {
   double oldElasticity = 0;
   glm::dvec3 previousUp{0, 0, -1};  // for @Tf/@Tp
 
-  // Hair attributes (DESIGN.md, the @H modules) live here too; see hairs/.
+  // Hair attributes (DESIGN.md, the @H modules): an index into Scene::hairAttributes, -1 for
+  // the defaults (no hairs). The turtle copies a set before an @H module changes it once a
+  // segment or a saved state refers to it, so `[` and `]` save and restore them for free.
+  int hairAttributes = -1;
 };
 
 }  // namespace hirsute

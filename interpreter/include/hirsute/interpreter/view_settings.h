@@ -130,6 +130,7 @@ struct ViewSettings {
   std::vector<std::string> hairTemplates;
   int hairTextureSize = 100;
   unsigned hairTextureSeed = 1;
+  double hairTextureFill = 0.1;  // points per cell
   bool hairInterpolation = false;
 };
 

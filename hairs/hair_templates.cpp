@@ -1,0 +1,95 @@
+// Template hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.2): each `hair:` file is an
+// independent L-system, derived and interpreted by the plant's turtle; the hair is the polyline
+// of the turtle's positions, kept once in the hair's own frame.
+#include "hirsute/hairs/hair_templates.h"
+
+#include <algorithm>
+#include <iostream>
+#include <memory>
+
+#include "hirsute/interpreter/turtle.h"
+#include "hirsute/lsys/derivation.h"
+#include "hirsute/lsys/evaluator.h"
+#include "hirsute/lsys/model.h"
+
+namespace hirsute {
+namespace {
+
+// Consecutive segments whose ends meet closer than this (relative to the template's size) are
+// one polyline.
+constexpr float kJoinTolerance = 1e-5f;
+
+}  // namespace
+
+HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file) {
+  const auto fileName = std::make_shared<const std::string>(file);
+  std::vector<const LineSegment*> segments;
+  for (const LineSegment& line : scene.lines) {
+    if (glm::length(line.to - line.from) > 0.0f) segments.push_back(&line);
+  }
+  if (segments.empty()) {
+    throw DiagnosticError(SourceLocation{fileName, 0, 0},
+                          "the template hair draws nothing: it needs F modules (a hair is the "
+                          "polyline of the turtle's positions)");
+  }
+  // The hair frame: x along the first segment, y the turtle's initial left (-x in cpfg's frame)
+  // made orthogonal to it, or its initial up when the first segment runs along the left.
+  const glm::vec3 origin = segments.front()->from;
+  const glm::vec3 x = glm::normalize(segments.front()->to - origin);
+  glm::vec3 y = glm::vec3(-1, 0, 0) - x * glm::dot(glm::vec3(-1, 0, 0), x);
+  if (glm::length(y) < 1e-4f) y = glm::vec3(0, 0, -1) - x * glm::dot(glm::vec3(0, 0, -1), x);
+  y = glm::normalize(y);
+  const glm::vec3 z = glm::cross(x, y);
+  auto local = [&](const glm::vec3& p) {
+    const glm::vec3 d = p - origin;
+    return glm::vec3(glm::dot(d, x), glm::dot(d, y), glm::dot(d, z));
+  };
+
+  HairTemplate hair;
+  hair.file = file;
+  hair.material = segments.front()->material;
+  float size = 0;
+  for (const LineSegment* s : segments) size = std::max({size, glm::length(s->from - origin), glm::length(s->to - origin)});
+  const float tolerance = kJoinTolerance * std::max(size, 1e-6f);
+  for (const LineSegment* s : segments) {
+    const glm::vec3 from = local(s->from), to = local(s->to);
+    if (hair.polylines.empty() || glm::length(hair.polylines.back().back() - from) > tolerance) {
+      hair.polylines.push_back({from});
+    }
+    hair.polylines.back().push_back(to);
+  }
+  for (const auto& polyline : hair.polylines) {
+    for (const glm::vec3& p : polyline) hair.extent = std::max(hair.extent, glm::length(p));
+  }
+  return hair;
+}
+
+std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources, Diagnostics& diagnostics) {
+  std::vector<HairTemplate> templates;
+  if (resources.view.hairTemplates.empty()) return templates;
+  if (resources.view.hairTemplates.size() > static_cast<std::size_t>(kMaxHairTemplates)) {
+    throw DiagnosticError(
+        SourceLocation{std::make_shared<const std::string>(resources.view.hairTemplates.back()), 0, 0},
+        "at most " + std::to_string(kMaxHairTemplates) + " template hairs (`hair:` lines) per model");
+  }
+  // The plant's settings (angle increment, colours, contours), but lines drawn as lines: a hair
+  // is its turtle's positions.
+  ModelResources own = resources;
+  own.view.lineStyle = LineStyle::Pixel;
+  own.view.hairTemplates.clear();
+  own.backgroundScenes.clear();
+  for (const std::string& file : resources.view.hairTemplates) {
+    Model model = loadModel(file, std::nullopt, diagnostics);
+    Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr);
+    DerivationOptions options;
+    options.maxModules = 1'000'000;  // a hair is a few segments
+    Derivation derivation(model.program, evaluator, diagnostics, options);
+    derivation.run();
+    Scene scene;
+    interpret(derivation, own, scene, diagnostics);
+    templates.push_back(hairTemplateFromScene(scene, file));
+  }
+  return templates;
+}
+
+}  // namespace hirsute

@@ -1,0 +1,49 @@
+// Placing plant hairs on generalized-cylinder segments (Fuhrer, Jensen & Prusinkiewicz 2004,
+// Sec. 3 and 4; DESIGN.md, "Plant hairs"). Reads the Scene's cylinder segments, their hair
+// attributes and the templates; appends to Scene::hairs.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+
+#include "hirsute/hairs/point_diffusion.h"
+#include "hirsute/interpreter/scene.h"
+
+namespace hirsute {
+
+struct HairPlacementSettings {
+  // The point-diffusion texture tiled over every segment (`hair texture: SIZE SEED [FILL]`).
+  PointDiffusionSettings texture;
+  // `hair interpolation: on`: every attribute varies linearly along a segment.
+  bool interpolation = false;
+  // Seeds the per-hair random offsets (rng parameters, template choice); the same seed places
+  // the same hairs.
+  std::uint64_t seed = 1;
+  // More hairs than this is an error (HairLimitError), not an exhausted machine.
+  std::size_t maxHairs = 50'000'000;
+  // The model's function set for the `fun` parameters: function `index` (1-based) at x in
+  // [0, 1]. Null, or an index it does not know (it returns NaN), reads as no function.
+  std::function<double(int index, double x)> function;
+};
+
+struct HairPlacementReport {
+  std::size_t hairs = 0;             // placed by this call
+  std::size_t segments = 0;          // segments that carried hairs
+  std::size_t segmentsWithoutMesh = 0;  // hairy segments not drawn as triangles (line styles)
+};
+
+// Thrown when placement would exceed HairPlacementSettings::maxHairs.
+struct HairLimitError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Places the hairs of every segment whose attributes enable a side. Scene::hairTemplates must
+// hold the templates (a scene without templates gets a single straight template).
+HairPlacementReport placeHairs(Scene& scene, const HairPlacementSettings& settings);
+
+// The template used when the view file declares none: a straight hair of unit length.
+HairTemplate straightHairTemplate();
+
+}  // namespace hirsute

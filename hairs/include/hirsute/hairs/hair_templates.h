@@ -1,0 +1,23 @@
+// Template hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.2; DESIGN.md): small L-systems
+// named by the view file's `hair:` lines, derived and interpreted by the plant's own turtle, kept
+// once as polylines in the hair's frame.
+#pragma once
+
+#include <vector>
+
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/diagnostic.h"
+
+namespace hirsute {
+
+// Derives and interprets every `hair:` file of `resources.view`, in order, with the plant's
+// view settings (angle increment, colours). Throws DiagnosticError at the template's own
+// file:line:col for a broken template, or one that draws nothing.
+std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources, Diagnostics& diagnostics);
+
+// The template of an interpreted scene: its line segments in drawing order, chained into
+// polylines, turned into the hair frame (x along the first segment). Exposed for tests.
+HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file);
+
+}  // namespace hirsute
