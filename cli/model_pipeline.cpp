@@ -6,8 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "hirsute/hairs/hair_placement.h"
-#include "hirsute/hairs/hair_templates.h"
+#include "hirsute/hairs/plant_hairs.h"
 
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -99,36 +98,14 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
                              built.scene.triangleCount(), built.scene.lines.size(),
                              built.scene.cylinderSegments.size(), seconds(started));
   }
-  const bool hairy = std::any_of(built.scene.hairAttributes.begin(), built.scene.hairAttributes.end(),
-                                 [](const HairAttributes& a) { return a.anyEnabled(); });
-  if (o.hairs && hairy) {
+  if (o.hairs && hasHairs(built.scene)) {
     started = Clock::now();
-    built.scene.hairTemplates = loadHairTemplates(built.resources, diagnostics);
-    const ViewSettings& view = built.resources.view;
-    HairPlacementSettings settings;
-    settings.texture.width = settings.texture.height = view.hairTextureSize;
-    settings.texture.seed = view.hairTextureSeed;
-    settings.texture.fill = view.hairTextureFill;
-    settings.seed = o.hairSeed != 0 ? o.hairSeed : view.hairTextureSeed;
-    settings.interpolation = view.hairInterpolation;
-    settings.maxHairs = o.maxHairs;
-    const std::vector<FunctionCurve>& functions = built.model.functions.functions;
-    settings.function = [&functions](int index, double x) {
-      if (index < 1 || static_cast<std::size_t>(index) > functions.size()) return std::nan("");
-      return functions[static_cast<std::size_t>(index) - 1].evaluate(x);
-    };
-    HairPlacementReport report;
-    try {
-      report = placeHairs(built.scene, settings);
-    } catch (const HairLimitError& e) {
-      throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(o.lsystemFile), 0, 0}, e.what());
-    }
-    if (report.segmentsWithoutMesh > 0) {
-      diagnostics.warn(SourceLocation{std::make_shared<const std::string>(o.viewFile), 0, 0},
-                       fmt::format("{} hairy generalized-cylinder segments are drawn as lines and get no "
-                                   "hairs; hairs grow on cylinders drawn as triangles (`line style: cylinder`)",
-                                   report.segmentsWithoutMesh));
-    }
+    PlantHairOptions hairOptions;
+    hairOptions.seed = o.hairSeed;
+    hairOptions.maxHairs = o.maxHairs;
+    hairOptions.lsystemFile = o.lsystemFile;
+    const HairPlacementReport report =
+        growPlantHairs(built.scene, built.resources, built.model.functions, hairOptions, diagnostics);
     if (o.verbose) {
       std::cerr << fmt::format("placed {} hairs on {} segments ({} templates) in {:.3f} s\n", report.hairs,
                                report.segments, built.scene.hairTemplates.size(), seconds(started));

@@ -1,0 +1,33 @@
+// The hair stage of the pipeline (DESIGN.md): after interpretation, the templates the view file
+// names are derived and the hairs placed on every hairy generalized-cylinder segment, with the
+// view file's texture, seed and interpolation and the model's function set.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "hirsute/hairs/hair_placement.h"
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/lsys/function_curve.h"
+
+namespace hirsute {
+
+struct PlantHairOptions {
+  std::uint64_t seed = 0;                // 0: the view file's `hair texture:` seed
+  std::size_t maxHairs = 50'000'000;     // more is an error
+  std::string lsystemFile;               // where the limit error points
+};
+
+// Whether any segment of the scene has a side with hairs switched on.
+bool hasHairs(const Scene& scene);
+
+// Loads the templates into scene.hairTemplates and places the hairs. Throws DiagnosticError for
+// a broken template or more hairs than the limit; warns about hairy segments drawn as lines.
+HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources,
+                                   const ViewFunctions& functions, const PlantHairOptions& options,
+                                   Diagnostics& diagnostics);
+
+}  // namespace hirsute

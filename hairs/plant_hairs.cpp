@@ -1,0 +1,59 @@
+#include "hirsute/hairs/plant_hairs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "hirsute/hairs/hair_templates.h"
+
+namespace hirsute {
+
+bool hasHairs(const Scene& scene) {
+  for (const CylinderSegment& segment : scene.cylinderSegments) {
+    for (int index : {segment.hairStart, segment.hairEnd}) {
+      if (index >= 0 && static_cast<std::size_t>(index) < scene.hairAttributes.size() &&
+          scene.hairAttributes[static_cast<std::size_t>(index)].anyEnabled()) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources,
+                                   const ViewFunctions& functions, const PlantHairOptions& options,
+                                   Diagnostics& diagnostics) {
+  scene.hairTemplates = loadHairTemplates(resources, diagnostics);
+  const ViewSettings& view = resources.view;
+  HairPlacementSettings settings;
+  settings.texture.width = settings.texture.height = view.hairTextureSize;
+  settings.texture.seed = view.hairTextureSeed;
+  settings.texture.fill = view.hairTextureFill;
+  settings.seed = options.seed != 0 ? options.seed : view.hairTextureSeed;
+  settings.interpolation = view.hairInterpolation;
+  settings.maxHairs = options.maxHairs;
+  const std::vector<FunctionCurve>& curves = functions.functions;
+  settings.function = [&curves](int index, double x) {
+    if (index < 1 || static_cast<std::size_t>(index) > curves.size()) return std::nan("");
+    return curves[static_cast<std::size_t>(index) - 1].evaluate(x);
+  };
+  HairPlacementReport report;
+  try {
+    report = placeHairs(scene, settings);
+  } catch (const HairLimitError& e) {
+    throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
+                          e.what());
+  }
+  if (report.segmentsWithoutMesh > 0) {
+    diagnostics.warn(SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
+                     fmt::format("{} hairy generalized-cylinder segments are drawn as lines and get no "
+                                 "hairs; hairs grow on cylinders drawn as triangles (`line style: "
+                                 "cylinder` in the view file)",
+                                 report.segmentsWithoutMesh));
+  }
+  return report;
+}
+
+}  // namespace hirsute
