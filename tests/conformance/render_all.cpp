@@ -158,8 +158,25 @@ std::vector<ModelCase> conformanceCases(const fs::path& root) {
 
 // ---- the shipped models -----------------------------------------------------------------------
 
+// The files a view file names on `hair:` lines: template hairs, L-systems that are part of a
+// model rather than models of their own.
+std::vector<fs::path> hairTemplatesOf(const fs::path& view) {
+  std::vector<fs::path> templates;
+  std::istringstream lines(readText(view));
+  std::string line;
+  while (std::getline(lines, line)) {
+    const std::size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line.compare(start, 5, "hair:") != 0) continue;
+    std::istringstream rest(line.substr(start + 5));
+    std::string file;
+    if (rest >> file) templates.push_back(view.parent_path() / file);
+  }
+  return templates;
+}
+
 // Every .l in every model folder under `root` (the benchmark models aside: they are sized for
-// the benchmarks, not for looking at), with the .v of the same name or else the folder's only .v.
+// the benchmarks, not for looking at; and the template hairs the folder's view files name), with
+// the .v of the same name, else the .v named after the folder, else the folder's only .v.
 // Colour files are left to hirsute, which takes the folder's only .map or .mat.
 std::vector<ModelCase> shippedCases(const fs::path& root) {
   std::vector<fs::path> folders;
@@ -175,11 +192,19 @@ std::vector<ModelCase> shippedCases(const fs::path& root) {
       if (entry.path().extension() == ".v") views.push_back(entry.path());
     }
     std::sort(lsystems.begin(), lsystems.end());
+    std::vector<fs::path> templates;
+    for (const fs::path& v : views) {
+      for (const fs::path& t : hairTemplatesOf(v)) templates.push_back(t.lexically_normal());
+    }
+    const fs::path folderView = folder / (folder.filename().string() + ".v");
     for (const fs::path& l : lsystems) {
+      if (std::find(templates.begin(), templates.end(), l.lexically_normal()) != templates.end()) continue;
       ModelCase c{folder.filename().string() + "/" + l.filename().string(), {l.string()}};
       fs::path sameName = fs::path(l).replace_extension(".v");
       if (fs::exists(sameName)) {
         c.arguments.push_back(sameName.string());
+      } else if (fs::exists(folderView)) {
+        c.arguments.push_back(folderView.string());
       } else if (views.size() == 1) {
         c.arguments.push_back(views.front().string());
       }
