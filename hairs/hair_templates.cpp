@@ -4,6 +4,7 @@
 #include "hirsute/hairs/hair_templates.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -21,16 +22,16 @@ constexpr float kJoinTolerance = 1e-5f;
 
 }  // namespace
 
-HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file) {
-  const auto fileName = std::make_shared<const std::string>(file);
+HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file, const SourceLocation& where) {
   std::vector<const LineSegment*> segments;
   for (const LineSegment& line : scene.lines) {
     if (glm::length(line.to - line.from) > 0.0f) segments.push_back(&line);
   }
   if (segments.empty()) {
-    throw DiagnosticError(SourceLocation{fileName, 0, 0},
-                          "the template hair draws nothing: it needs F modules (a hair is the "
-                          "polyline of the turtle's positions)");
+    throw DiagnosticError(where.file ? where : SourceLocation{std::make_shared<const std::string>(file), 0, 0},
+                          "the template hair " + file +
+                              " draws nothing: it needs F modules (a hair is the polyline of the "
+                              "turtle's positions)");
   }
   // The hair frame: x along the first segment, y the turtle's initial left (-x in cpfg's frame)
   // made orthogonal to it, or its initial up when the first segment runs along the left.
@@ -67,18 +68,18 @@ HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file) 
 std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources, Diagnostics& diagnostics) {
   std::vector<HairTemplate> templates;
   if (resources.view.hairTemplates.empty()) return templates;
-  if (resources.view.hairTemplates.size() > static_cast<std::size_t>(kMaxHairTemplates)) {
-    throw DiagnosticError(
-        SourceLocation{std::make_shared<const std::string>(resources.view.hairTemplates.back()), 0, 0},
-        "at most " + std::to_string(kMaxHairTemplates) + " template hairs (`hair:` lines) per model");
-  }
   // The plant's settings (angle increment, colours, contours), but lines drawn as lines: a hair
   // is its turtle's positions.
   ModelResources own = resources;
   own.view.lineStyle = LineStyle::Pixel;
   own.view.hairTemplates.clear();
   own.backgroundScenes.clear();
-  for (const std::string& file : resources.view.hairTemplates) {
+  for (const HairTemplateDeclaration& declaration : resources.view.hairTemplates) {
+    const std::string& file = declaration.file;
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(file, error)) {
+      throw DiagnosticError(declaration.where, "cannot open the template hair " + file);
+    }
     Model model = loadModel(file, std::nullopt, diagnostics);
     Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr);
     DerivationOptions options;
@@ -87,7 +88,7 @@ std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources, Dia
     derivation.run();
     Scene scene;
     interpret(derivation, own, scene, diagnostics);
-    templates.push_back(hairTemplateFromScene(scene, file));
+    templates.push_back(hairTemplateFromScene(scene, file, declaration.where));
   }
   return templates;
 }

@@ -1031,7 +1031,12 @@ const std::unordered_map<std::string_view, Handler>& commandTable() {
       // Hairs (DESIGN.md).
       {"hair:",
        [](Command& c) {
-         c.view.hairTemplates.push_back(c.resolve(c.requiredWord("a template L-system file")));
+         const SourceLocation where = c.args.here();
+         const std::string file = c.resolve(c.requiredWord("a template L-system file"));
+         if (c.view.hairTemplates.size() >= static_cast<std::size_t>(kMaxHairTemplates)) {
+           c.fail(where, "at most " + std::to_string(kMaxHairTemplates) + " template hairs per model");
+         }
+         c.view.hairTemplates.push_back(HairTemplateDeclaration{file, where});
        }},
       {"hair texture:", &hairTexture},
       {"hair interpolation:", &hairInterpolation},

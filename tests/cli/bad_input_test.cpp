@@ -8,6 +8,8 @@
 //   /* expect: NAME:LINE:COL: substring */             (the error is in NAME beside it: an included
 //                                                       file, the view file)
 // Its second line may give more arguments:   /* args: --max-modules 100000 */
+// and, when its first word is `render`, runs `hirsute render … -o PNG` instead (the errors that
+// only geometry and hairs meet) and checks that no PNG is left behind.
 // A `.v` of the same name is passed as the view file.
 #include <fcntl.h>
 #include <signal.h>
@@ -136,7 +138,16 @@ struct Expectation {
 // The first line's `/* expect: … */`; nullopt when the file has none.
 std::optional<Expectation> readExpectation(const std::string& firstLine) {
   static const std::regex kExpect(R"(^/\* expect: (?:([A-Za-z0-9_.\-]*[A-Za-z_.\-][A-Za-z0-9_.\-]*):)?(\d+):(?:(\d+):)?(?: (.*?))? ?\*/\s*$)");
+  // An error about the whole model (a limit no single line sets) names only the file.
+  static const std::regex kWholeFile(R"(^/\* expect: ([A-Za-z0-9_.\-]*[A-Za-z_.\-][A-Za-z0-9_.\-]*): (.*?) ?\*/\s*$)");
   std::smatch m;
+  if (std::regex_match(firstLine, m, kWholeFile)) {
+    Expectation e;
+    e.file = m[1].str();
+    e.line = 0;
+    e.message = m[2].str();
+    return e;
+  }
   if (!std::regex_match(firstLine, m, kExpect)) return std::nullopt;
   Expectation e;
   e.file = m[1].str();
@@ -169,6 +180,14 @@ std::vector<std::string> firstLines(const fs::path& file, std::size_t count) {
 std::optional<std::string> errorAt(const std::string& stderrText, const std::string& path, int line,
                                    std::optional<int> column) {
   static const std::regex kRest(R"(^(?:(\d+):)? error: (.*)$)");
+  if (line == 0) {  // the whole file: "path: error: message"
+    const std::string whole = path + ": error: ";
+    std::istringstream lines(stderrText);
+    for (std::string text; std::getline(lines, text);) {
+      if (text.compare(0, whole.size(), whole) == 0) return text.substr(whole.size());
+    }
+    return std::nullopt;
+  }
   const std::string prefix = path + ":" + std::to_string(line) + ":";
   std::istringstream lines(stderrText);
   for (std::string text; std::getline(lines, text);) {
@@ -218,10 +237,15 @@ TEST_P(BadInputTest, EndsWithTheAnnouncedError) {
   ASSERT_TRUE(expected) << file << ": the first line must be /* expect: LINE[:COL]: message */, found: "
                         << head[0];
 
-  std::vector<std::string> arguments = {"derive", file.string()};
+  std::vector<std::string> more = readArguments(head[1]);
+  const bool render = !more.empty() && more.front() == "render";
+  if (render) more.erase(more.begin());
+  std::vector<std::string> arguments = {render ? "render" : "derive", file.string()};
   fs::path view = fs::path(file).replace_extension(".v");
   if (fs::exists(view)) arguments.push_back(view.string());
-  for (const std::string& a : readArguments(head[1])) arguments.push_back(a);
+  const fs::path image = fs::path(file).replace_extension(".png");
+  if (render) arguments.insert(arguments.end(), {"-o", image.string()});
+  for (const std::string& a : more) arguments.push_back(a);
 
   const RunResult run = runHirsute(arguments);
   ASSERT_FALSE(run.killed) << GetParam() << " still ran after " << kKillAfter.count() << " s; stderr:\n"
@@ -233,6 +257,9 @@ TEST_P(BadInputTest, EndsWithTheAnnouncedError) {
                           << " s; stderr:\n" << run.err.substr(0, 4000);
   EXPECT_EQ(run.exitCode, 2) << "stderr:\n" << run.err.substr(0, 2000);
   EXPECT_EQ(run.err.find("Sanitizer"), std::string::npos) << run.err.substr(0, 4000);
+  if (render) {
+    EXPECT_FALSE(fs::exists(image)) << "a failed render left " << image;
+  }
 
   const std::string path = expected->file.empty() ? file.string() : (file.parent_path() / expected->file).string();
   const std::optional<std::string> message = errorAt(run.err, path, expected->line, expected->column);

@@ -65,6 +65,12 @@ struct SurfaceDeclaration {
   SourceLocation where;                // the file name on its view-file line
 };
 
+// A `hair:` line: a template hair's L-system.
+struct HairTemplateDeclaration {
+  std::string file;                    // resolved against the view file's folder
+  SourceLocation where;                // the file name on its view-file line
+};
+
 struct ContourDeclaration {
   int id = 0;
   std::string file;                    // resolved against the view file's folder
@@ -127,7 +133,7 @@ struct ViewSettings {
 
   // Hairs (DESIGN.md): template L-systems in order (resolved against the view file's folder),
   // and the point-diffusion texture.
-  std::vector<std::string> hairTemplates;
+  std::vector<HairTemplateDeclaration> hairTemplates;
   int hairTextureSize = 100;
   unsigned hairTextureSeed = 1;
   double hairTextureFill = 0.1;  // points per cell

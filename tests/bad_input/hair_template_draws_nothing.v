@@ -1,0 +1,2 @@
+line style: cylinder
+hair: hair_template_draws_nothing.inc

@@ -1,0 +1,2 @@
+line style: cylinder
+hair: no_such_template.l

@@ -1,0 +1,2 @@
+line style: cylinder
+hair texture: 2 1
