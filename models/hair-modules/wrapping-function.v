@@ -1,19 +1,3 @@
-/* The wrapping example seen along its axis. */
-
-angle increment: 90
-initial color: 1
-line style: cylinder
-contour sides: 16
-twist of cylinders: off
-projection: parallel
+/* The wrapping example: the view of every example, seen along the axis. */
+#include "hair-modules.v"
 viewpoint: 1,0,0
-view reference point: 0,0,0
-scale factor: 0.95
-z buffer: on
-render mode: shaded
-light: V: 0.4,1,1 D: 1,1,1
-function set: hair-modules.fset
-contour: 1 strip.con
-
-hair: straight.l
-hair: curly.l
