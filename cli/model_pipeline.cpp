@@ -36,6 +36,8 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   command.add_option("--max-modules", o.maxModules, "A longer string is an error (default 100000000)");
   command.add_option("--max-loop-iterations", o.maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
+  command.add_option("--max-vertices", o.maxVertices,
+                     "More vertices in the geometry are an error (default 100000000)");
   command.add_flag("!--no-hairs", o.hairs, "Leave out the plant hairs (@H modules)");
   command.add_option("--hair-seed", o.hairSeed,
                      "Seed of hair placement (default: the view file's `hair texture:` seed)");
@@ -87,12 +89,20 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   };
   auto started = Clock::now();
   installQueryPass(derivation, built.resources, diagnostics);
-  derivation.run();
+  if (o.progress) o.progress(1, 0, derivation.totalSteps());
+  derivation.run([&](Derivation& d) {
+    if (o.progress) o.progress(1, d.stepsDone(), d.totalSteps());
+  });
+  if (o.progress) o.progress(2, 0, 0);
   if (o.verbose) {
     std::cerr << fmt::format("derived {} modules in {:.3f} s\n", derivation.string().moduleCount(), seconds(started));
   }
   started = Clock::now();
-  interpret(derivation, built.resources, built.scene, diagnostics);
+  try {
+    interpret(derivation, built.resources, built.scene, diagnostics, o.maxVertices);
+  } catch (const GeometryLimitError& e) {
+    throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(o.lsystemFile), 0, 0}, e.what());
+  }
   if (o.verbose) {
     std::cerr << fmt::format("interpreted: {} triangles, {} lines, {} cylinder segments in {:.3f} s\n",
                              built.scene.triangleCount(), built.scene.lines.size(),
@@ -100,6 +110,7 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   }
   if (o.hairs && hasHairs(built.scene)) {
     started = Clock::now();
+    if (o.progress) o.progress(3, 0, 0);
     PlantHairOptions hairOptions;
     hairOptions.seed = o.hairSeed;
     hairOptions.maxHairs = o.maxHairs;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -23,10 +24,15 @@ struct ModelOptions {
   std::vector<std::string> materials;  // -M FILE or -M N:FILE
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
+  std::size_t maxVertices = kDefaultMaxVertices;
   bool hairs = true;                     // --no-hairs leaves them out
   std::uint64_t hairSeed = 0;            // 0: the view file's `hair texture:` seed
   std::size_t maxHairs = 50'000'000;
   bool verbose = false;                  // -v: counts and times on stderr
+  // Called as the build goes on (`hirsute view` shows it while building off its render thread):
+  // the stage (1 deriving, 2 interpreting, 3 placing hairs) and, while deriving, the steps done
+  // of the steps to do.
+  std::function<void(int stage, int done, int total)> progress;
 };
 
 // Adds the model arguments and options shared by render and export to `command`.

@@ -114,6 +114,7 @@ struct GeneralizedCylinderBuilder::Impl {
   Scene* scene;
   Saved spline;
   int nextTube = 0;
+  std::size_t maxVertices = kDefaultMaxVertices;
 
   Impl(const ModelResources& r, Scene* s) : resources(r), scene(s) {
     if (scene == nullptr) return;
@@ -310,6 +311,13 @@ void GeneralizedCylinderBuilder::Impl::emitTriangles(
     const ContourSamples& c2, int sides, double len, bool textured, CylinderSegment& segment) {
   // §2: the strip takes the first control point's colour and texture.
   const int texture = textured ? first.texture - 1 : -1;
+  const std::size_t needed = (static_cast<std::size_t>(sides) + 1) * rings.size();
+  if (scene->vertexCount() + needed > maxVertices) {
+    throw GeometryLimitError("the geometry grew past " + std::to_string(maxVertices) +
+                             " vertices (a generalized-cylinder segment of " +
+                             std::to_string(rings.size() - 1) + " strips of " + std::to_string(sides) +
+                             " sides would pass it; raise the limit with --max-vertices)");
+  }
   TriangleMesh& mesh = scene->meshFor(first.color, texture);
   segment.mesh = static_cast<int>(&mesh - scene->meshes.data());
   const std::uint32_t perRing = static_cast<std::uint32_t>(sides) + 1;
@@ -365,6 +373,10 @@ GeneralizedCylinderBuilder::GeneralizedCylinderBuilder(const ModelResources& res
     : impl_(std::make_unique<Impl>(resources, scene)) {}
 
 GeneralizedCylinderBuilder::~GeneralizedCylinderBuilder() = default;
+
+void GeneralizedCylinderBuilder::setMaxVertices(std::size_t vertices) {
+  impl_->maxVertices = vertices;
+}
 
 bool GeneralizedCylinderBuilder::active() const {
   return impl_->spline.active;

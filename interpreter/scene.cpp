@@ -46,6 +46,12 @@ std::size_t Scene::triangleCount() const {
   return n;
 }
 
+std::size_t Scene::vertexCount() const {
+  std::size_t n = 2 * lines.size() + spheres.size() + discs.size() + labels.size();
+  for (const TriangleMesh& mesh : meshes) n += mesh.positions.size();
+  return n;
+}
+
 void Scene::clear() {
   meshes.clear();
   lines.clear();

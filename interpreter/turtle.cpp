@@ -109,8 +109,18 @@ int Turtle::material(int color) const {
   return std::clamp(color, 0, static_cast<int>(scene_->materials.size()) - 1);
 }
 
+void Turtle::setMaxVertices(std::size_t vertices) {
+  maxVertices_ = vertices;
+  if (cylinders_) cylinders_->setMaxVertices(vertices);
+}
+
 void Turtle::dispatch(char symbol, const float* p, std::size_t count) {
-  ++modulesSeen_;
+  // The geometry limit, checked every few modules (one module adds a bounded amount; tubes
+  // check before they build).
+  if (++modulesSeen_ % 64 == 0 && scene_ != nullptr && scene_->vertexCount() > maxVertices_) {
+    throw GeometryLimitError("the geometry grew past " + std::to_string(maxVertices_) +
+                             " vertices (raise the limit with --max-vertices)");
+  }
   if (skipping_) {
     // After `%` with `interpretation past %: off`: the rest of the branch is not interpreted,
     // up to the `]` that closes it.
@@ -385,6 +395,10 @@ void Turtle::hairModule(char which, const float* p, std::size_t count) {
   } else if (!(attributes == before) || state_.hairAttributes < 0) {
     sets.push_back(attributes);
     state_.hairAttributes = static_cast<int>(sets.size() - 1);
+  } else {
+    // Nothing changed and no set was made: the current set may already belong to a control
+    // point, so the next module must not take it as its scratch set.
+    return;
   }
   hairScratch_ = state_.hairAttributes;
   hairScratchModule_ = modulesSeen_;
@@ -836,8 +850,9 @@ std::string Turtle::labelText(const float* p, std::size_t count) {
 }
 
 void interpret(Derivation& derivation, const ModelResources& resources, Scene& scene,
-               Diagnostics& diagnostics) {
+               Diagnostics& diagnostics, std::size_t maxVertices) {
   Turtle turtle(resources, &scene, diagnostics);
+  turtle.setMaxVertices(maxVertices);
   turtle.setStrings(&derivation.program().strings);
   turtle.setSourceString(&derivation.mutableString());
   derivation.emit(turtle, true);

@@ -202,8 +202,9 @@ TEST(ViewFileTest, EveryCommandSetsItsField) {
   EXPECT_EQ(view.backgroundScenes[1], (kFixtures / "sky.dat").string());
 
   ASSERT_EQ(view.hairTemplates.size(), 2u);
-  EXPECT_EQ(view.hairTemplates[0], (kFixtures / "straight.l").string());
-  EXPECT_EQ(view.hairTemplates[1], (kFixtures / "curly.l").string());
+  EXPECT_EQ(view.hairTemplates[0].file, (kFixtures / "straight.l").string());
+  EXPECT_EQ(view.hairTemplates[1].file, (kFixtures / "curly.l").string());
+  EXPECT_GT(view.hairTemplates[1].where.line, view.hairTemplates[0].where.line);
   EXPECT_EQ(view.hairTextureSize, 64);
   EXPECT_EQ(view.hairTextureSeed, 7u);
   EXPECT_TRUE(view.hairInterpolation);

@@ -16,6 +16,9 @@ class GeneralizedCylinderBuilder {
   GeneralizedCylinderBuilder(const ModelResources& resources, Scene* scene);
   ~GeneralizedCylinderBuilder();
 
+  // Segments that would take the scene past this many vertices throw GeometryLimitError.
+  void setMaxVertices(std::size_t vertices);
+
   bool active() const;
   // cpfg's spline_flag 1: a tube started by @Gc rather than @Gs makes every F and f add a
   // control point with 4 strips, until @Ge (§1). False while no tube is active.

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -187,6 +188,13 @@ struct Bounds {
   float diagonal() const { return empty() ? 0.0f : glm::length(max - min); }
 };
 
+// Geometry is bounded like the string: a model whose interpretation would make more vertices
+// than the limit (`--max-vertices`) stops with this error rather than exhausting the machine.
+inline constexpr std::size_t kDefaultMaxVertices = 100'000'000;
+struct GeometryLimitError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 class Scene {
  public:
   std::vector<Material> materials;        // by colour index (cpfg: 256 per bank)
@@ -207,6 +215,8 @@ class Scene {
   TriangleMesh& meshFor(int material, int texture = -1);
   Bounds bounds() const;
   std::size_t triangleCount() const;
+  // Vertices held: mesh vertices, two per line, one per sphere, disc and label.
+  std::size_t vertexCount() const;
   void clear();
 
  private:

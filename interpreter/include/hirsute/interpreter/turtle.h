@@ -47,6 +47,9 @@ class Turtle : public ModuleSink {
   // (takesStringArgument). Without a table a label is its parameters printed as %g.
   void setStrings(const std::vector<std::string>* strings) { strings_ = strings; }
 
+  // More vertices in the scene than this ends interpretation with GeometryLimitError.
+  void setMaxVertices(std::size_t vertices);
+
   const TurtleState& state() const { return state_; }
 
   // What the turtle drew, by kind: the ray parity test compares these with cpfg's primitives
@@ -116,6 +119,7 @@ class Turtle : public ModuleSink {
   // an @H module right after it (three modules later: `@`, `H`, then its letter) changes that set
   // in place rather than copying it.
   std::size_t modulesSeen_ = 0;
+  std::size_t maxVertices_ = kDefaultMaxVertices;
   int hairScratch_ = -1;
   std::size_t hairScratchModule_ = 0;
 
@@ -130,9 +134,10 @@ class Turtle : public ModuleSink {
   std::unique_ptr<GeneralizedCylinderBuilder> cylinders_;
 };
 
-// Interprets the derivation's current string into `scene` (homomorphism applied).
+// Interprets the derivation's current string into `scene` (homomorphism applied). Throws
+// GeometryLimitError past `maxVertices`.
 void interpret(Derivation& derivation, const ModelResources& resources, Scene& scene,
-               Diagnostics& diagnostics);
+               Diagnostics& diagnostics, std::size_t maxVertices = kDefaultMaxVertices);
 
 // Installs the query pass: before each rewriting, the turtle walks the string and fills the
 // parameters of ?P ?H ?L ?U with its position, heading, left and up vectors.
