@@ -1,0 +1,22 @@
+/* View of the Nankin cherry bough, lit from behind (the fuzz glows at the leaf edges). */
+angle increment: 45
+initial color: 3
+initial line width: 0.5
+line style: cylinder
+contour sides: 10
+projection: parallel
+viewpoint: 0.15,0.1,1
+view reference point: 0,0,0
+scale factor: 0.92
+z buffer: on
+render mode: shaded
+light: V: -0.3,0.6,-1 D: 1,0.95,0.85
+light: V: 0.3,0.5,1 D: 0.45,0.45,0.5
+function set: nankin-cherry.fset
+contour: 1 leaf.con
+
+hair: straight.l
+hair: bent.l
+hair: curled.l
+hair texture: 100 3
+hair interpolation: on
