@@ -163,10 +163,21 @@ struct Placer {
   int templates = 1;
   HairPlacementReport report;
 
+  std::size_t candidates = 0;  // texture points considered (thinning rejects some)
+
   void checkLimit() {
     if (scene.hairs.size() >= settings.maxHairs) {
       throw HairLimitError("more than " + std::to_string(settings.maxHairs) +
                            " hairs (raise the limit with --max-hairs, or lower @Hd)");
+    }
+  }
+  // A density whose peak (a function's, or its range's) is far above where hairs are kept still
+  // costs a texture point per unit of the peak: bounded like the hairs themselves.
+  void countCandidate() {
+    if (++candidates > 8 * settings.maxHairs + 1'000'000) {
+      throw HairLimitError("the densities would test more than " + std::to_string(candidates - 1) +
+                           " attachment points (the peak of @Hd's value, function and range sets "
+                           "how many; raise --max-hairs or lower @Hd)");
     }
   }
 
@@ -353,6 +364,7 @@ void Placer::surface(std::size_t index, const CylinderSegment& seg, const Triang
           if (u < 0.0f) continue;
           const float s = u / across;
           if (s >= 1.0f) continue;
+          countCandidate();
           HairRandom random(key(sideKey, key(static_cast<std::uint64_t>(row) * 65536u + k,
                                              static_cast<std::uint64_t>(p) * 4096u + static_cast<std::uint64_t>(tile))));
           // Thinning: the local density over the tile's, and on closed contours the girth here
@@ -434,6 +446,7 @@ void Placer::edge(std::size_t index, const CylinderSegment& seg, const TriangleM
     const long first = static_cast<long>(std::floor(v0 * maxLinear));
     const long last = static_cast<long>(std::floor(v1 * maxLinear));
     for (long slot = first; slot <= last; ++slot) {
+      countCandidate();
       HairRandom random(key(edgeKey, static_cast<std::uint64_t>(slot)));
       const float v = (static_cast<float>(slot) + 0.5f + 0.35f * random.symmetric()) / maxLinear;
       if (v < v0 || v >= v1) continue;
