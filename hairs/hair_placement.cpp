@@ -94,10 +94,19 @@ class SideValues {
   // The template for a uniform number u, by the probabilities mixed along the segment; -1 when
   // every probability is zero.
   int chooseTemplate(float tau, float u, int templates) const {
+    // Each end's probabilities are normalised before they are mixed, so that the probabilities
+    // (not the raw @Hp weights) vary linearly along the segment.
+    float startTotal = 0, endTotal = 0;
+    for (int i = 0; i < templates; ++i) {
+      startTotal += probability(start_, i, templates);
+      endTotal += probability(end_, i, templates);
+    }
+    const float startScale = startTotal > 0.0f ? (1.0f - tau) / startTotal : 0.0f;
+    const float endScale = endTotal > 0.0f ? tau / endTotal : 0.0f;
     float weights[kMaxHairTemplates];
     float total = 0;
     for (int i = 0; i < templates; ++i) {
-      weights[i] = (1.0f - tau) * probability(start_, i, templates) + tau * probability(end_, i, templates);
+      weights[i] = startScale * probability(start_, i, templates) + endScale * probability(end_, i, templates);
       total += weights[i];
     }
     if (!(total > 0.0f)) return -1;
@@ -248,14 +257,19 @@ void Placer::segment(std::size_t index) {
     return;
   }
   ++report.segments;
+  // With interpolation, a side switched on only after the segment's first control point (the
+  // paper's Algorithm 1 puts @Hf after @Gs) has no values of its own there: it takes the end's.
+  auto startOf = [&](HairSide side) -> const HairSideAttributes& {
+    return start.side(side).enabled ? start.side(side) : end.side(side);
+  };
   const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(seg.mesh)];
   for (HairSide side : {HairSide::Front, HairSide::Back}) {
     if (side == HairSide::Front ? !front : !back) continue;
-    const SideValues values(start.side(side), end.side(side), settings.function);
+    const SideValues values(startOf(side), end.side(side), settings.function);
     surface(index, seg, mesh, values, side);
   }
   if (edges) {
-    const SideValues values(start.side(HairSide::Edge), end.side(HairSide::Edge), settings.function);
+    const SideValues values(startOf(HairSide::Edge), end.side(HairSide::Edge), settings.function);
     edge(index, seg, mesh, values, 0);
     edge(index, seg, mesh, values, 1);
   }
