@@ -18,5 +18,6 @@ inline constexpr int kExitBadInput = 2;
 void registerDeriveCommand(CLI::App& app, Action& action);
 void registerRenderCommand(CLI::App& app, Action& action);
 void registerExportCommand(CLI::App& app, Action& action);
+void registerViewCommand(CLI::App& app, Action& action);
 
 }  // namespace hirsute::cli

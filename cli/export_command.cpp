@@ -1,6 +1,6 @@
 // `hirsute export`: the model's Scene written as a POV-Ray 3.7 scene and/or a Wavefront OBJ with
-// its material library (docs/export.md), and, with --render, the POV-Ray scene rendered by the
-// installed povray.
+// its material library and/or its hairs as CSV (docs/export.md), and, with --render, the POV-Ray
+// scene rendered by the installed povray.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -8,6 +8,7 @@
 #include <string>
 
 #include "command.h"
+#include "hirsute/viewer/hair_csv_writer.h"
 #include "hirsute/viewer/obj_writer.h"
 #include "hirsute/viewer/pov_writer.h"
 #include "hirsute/viewer/povray_runner.h"
@@ -20,6 +21,7 @@ struct ExportOptions {
   ModelOptions model;
   std::string pov;
   std::string obj;
+  std::string hairs;
   bool render = false;
   int width = 800, height = 600;
 };
@@ -43,6 +45,7 @@ int runExport(const ExportOptions& o) {
       writePov(built.scene, options, o.pov);
     }
     if (!o.obj.empty()) writeObj(built.scene, o.obj);
+    if (!o.hairs.empty()) writeHairCsv(built.scene, o.hairs);
   } catch (const std::invalid_argument& e) {
     // The model produced geometry no format can hold (a coordinate that is not a number).
     std::cerr << o.model.lsystemFile << ": error: cannot export: " << e.what() << '\n';
@@ -72,14 +75,18 @@ int runExport(const ExportOptions& o) {
 
 void registerExportCommand(CLI::App& app, Action& action) {
   auto options = std::make_shared<ExportOptions>();
-  CLI::App* command = app.add_subcommand("export",
-                                         "Write the model as a POV-Ray 3.7 scene (--pov) and/or a "
-                                         "Wavefront OBJ with its .mtl (--obj)");
+  CLI::App* command =
+      app.add_subcommand("export",
+                         "Write the model as a POV-Ray 3.7 scene (--pov), a Wavefront "
+                         "OBJ with its .mtl (--obj) and/or its hairs as CSV (--hairs)");
   addModelOptions(*command, options->model);
   command->add_option("--pov", options->pov, "Write a POV-Ray 3.7 scene to FILE (.pov)");
   command->add_option(
       "--obj", options->obj,
       "Write a Wavefront OBJ to FILE (.obj) and its material library beside it (.mtl)");
+  command->add_option("--hairs", options->hairs,
+                      "Write the placed hairs to FILE (.csv): one row per hair (root, direction, "
+                      "template, length, radius, side)");
   CLI::Option* render = command->add_flag(
       "--render", options->render,
       "Render the POV-Ray scene with the installed povray, to the .pov's name with .png");
@@ -92,8 +99,9 @@ void registerExportCommand(CLI::App& app, Action& action) {
   command->add_option("--height", options->height, "Image height in pixels (default 600)")
       ->check(CLI::Range(1, 16384));
   command->callback([options, &action] {
-    if (options->pov.empty() && options->obj.empty()) {
-      throw CLI::RequiredError("export needs --pov FILE or --obj FILE (or both)");
+    if (options->pov.empty() && options->obj.empty() && options->hairs.empty()) {
+      throw CLI::RequiredError(
+          "export needs an output: --pov FILE or --obj FILE or --hairs FILE (or several)");
     }
     action = [options] { return runExport(*options); };
   });

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   hirsute::cli::registerDeriveCommand(app, action);
   hirsute::cli::registerRenderCommand(app, action);
   hirsute::cli::registerExportCommand(app, action);
+  hirsute::cli::registerViewCommand(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -89,10 +89,11 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   };
   auto started = Clock::now();
   installQueryPass(derivation, built.resources, diagnostics);
+  derivation.start();
   if (o.progress) o.progress(1, 0, derivation.totalSteps());
-  derivation.run([&](Derivation& d) {
-    if (o.progress) o.progress(1, d.stepsDone(), d.totalSteps());
-  });
+  while ((!o.stopAfter || derivation.stepsDone() < *o.stopAfter) && derivation.step()) {
+    if (o.progress) o.progress(1, derivation.stepsDone(), derivation.totalSteps());
+  }
   if (o.progress) o.progress(2, 0, 0);
   if (o.verbose) {
     std::cerr << fmt::format("derived {} modules in {:.3f} s\n", derivation.string().moduleCount(), seconds(started));

@@ -33,6 +33,9 @@ struct ModelOptions {
   // the stage (1 deriving, 2 interpreting, 3 placing hairs) and, while deriving, the steps done
   // of the steps to do.
   std::function<void(int stage, int done, int total)> progress;
+  // Stop after this many steps of the derivation, whose length stays the file's (the derivation
+  // length the model sees, and End, are as in the whole run): cpfg's animation frames.
+  std::optional<int> stopAfter;
 };
 
 // Adds the model arguments and options shared by render and export to `command`.

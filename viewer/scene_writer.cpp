@@ -14,6 +14,7 @@ void printScene(const Scene& scene, ScenePrinter& printer) {
   for (const Sphere& sphere : scene.spheres) printer.sphere(sphere);
   for (const Disc& disc : scene.discs) printer.disc(disc);
   for (const Label& label : scene.labels) printer.label(label);
+  if (!scene.hairs.empty()) printer.hairs(scene.hairTemplates, scene.hairs);
   printer.endScene();
 }
 

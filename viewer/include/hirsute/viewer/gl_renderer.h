@@ -7,7 +7,7 @@
 // reflection:`); with materials it lights them with the view's `light:` lines, or without any
 // with OpenGL's default light 0, which shines from the eye (view_lighting.h, shared with the
 // exporters). Polygons are lit on both sides when
-// their mesh is two-sided. Lines are drawn in their colour, unlit.
+// their mesh is two-sided. Lines and hairs are drawn in their colour, unlit.
 #pragma once
 
 #include <cstddef>
@@ -49,6 +49,25 @@ class GlRenderer {
   std::size_t triangleCount() const { return triangles_; }
   std::size_t lineCount() const { return lines_; }
 
+  // Plant hairs (DESIGN.md, "Plant hairs"): instances of their template's segments, drawn as
+  // antialiased (multisampled) GL lines in the template material's colour, unlit, one instanced
+  // draw per template. Each template's hairs are ordered at upload by a hash of their index (dealt
+  // into 64 random levels, each kept in placement order), so that any prefix of them is a
+  // spatially uniform subset: the fraction draws that prefix of every template (level of detail
+  // while the camera moves). Both settings outlast upload().
+  void setHairsVisible(bool visible) { hairsVisible_ = visible; }
+  void setHairFraction(float fraction);  // clamped to 0..1
+  bool hairsVisible() const { return hairsVisible_; }
+  float hairFraction() const { return hairFraction_; }
+  // Hairs uploaded (those whose template has segments), and their segments, at fraction 1.
+  std::size_t hairCount() const { return hairs_; }
+  std::size_t hairSegmentCount() const { return hairSegments_; }
+
+  // The viewer's wireframe switch: every polygon drawn as its edges, whatever the render mode
+  // (as cpfg's `render mode: wireframe`). Outlasts upload().
+  void setWireframe(bool wireframe) { wireframe_ = wireframe; }
+  bool wireframe() const { return wireframe_; }
+
  private:
   struct Mesh;
   struct Program;
@@ -61,10 +80,16 @@ class GlRenderer {
   void drawMeshes(const Camera& camera, std::vector<Mesh>::const_iterator begin,
                   std::vector<Mesh>::const_iterator end);
   void drawMesh(const Program& program, const Mesh& mesh);
+  void uploadHairs(const Scene& scene, const std::vector<Material>& palette);
+  void drawHairs(const Camera& camera);
 
   const GlFunctions& gl_;
   std::unique_ptr<Resources> resources_;
   std::size_t triangles_ = 0, lines_ = 0;
+  std::size_t hairs_ = 0, hairSegments_ = 0;
+  bool hairsVisible_ = true;
+  float hairFraction_ = 1.0f;
+  bool wireframe_ = false;
 };
 
 }  // namespace hirsute

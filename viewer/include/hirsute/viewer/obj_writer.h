@@ -28,7 +28,8 @@ struct ObjOptions {
 struct ObjExportStats {
   std::uint64_t bytes = 0, mtlBytes = 0;
   std::uint64_t vertices = 0, normals = 0, texcoords = 0, faces = 0;
-  std::uint64_t lineElements = 0;  // `l` polylines
+  std::uint64_t lineElements = 0;  // `l` polylines (hairs' included)
+  std::uint64_t hairs = 0;         // hairs written (their template has segments)
   std::size_t materials = 0;       // `newmtl` entries
 };
 
@@ -44,6 +45,9 @@ class ObjWriter : public ScenePrinter {
   void sphere(const Sphere& sphere) override;
   void disc(const Disc& disc) override;
   void label(const Label& label) override;
+  // Hairs as polylines: each polyline of a hair's template, placed, one `l` element, under
+  // `o hairs`, grouped by their template's material (one `usemtl` each).
+  void hairs(const std::vector<HairTemplate>& templates, const std::vector<Hair>& hairs) override;
   void endScene() override;
 
   const ObjExportStats& stats() const { return stats_; }
@@ -66,7 +70,7 @@ class ObjWriter : public ScenePrinter {
   std::vector<std::pair<int, int>> materialsUsed_;  // (material, texture) in order of first use
   std::set<std::pair<int, int>> materialSet_;
   std::pair<int, int> current_{0, -2};
-  std::string_view currentGroup_;  // a literal: "lines", "spheres", "discs"
+  std::string_view currentGroup_;  // a literal: "lines", "spheres", "discs", "hairs"
   int meshNumber_ = 0;
   // Unit-sphere tessellation: positions (= normals) and triangles, made once.
   std::vector<glm::vec3> spherePoints_;

@@ -34,6 +34,9 @@ struct PovExportStats {
   std::uint64_t bytes = 0;
   std::size_t triangles = 0, cylinders = 0, cones = 0, spheres = 0, discs = 0, objects = 0;
   std::size_t linesSkipped = 0;  // zero length or zero width at the file's precision
+  std::size_t hairs = 0;         // hair instances (`object`s in the hair unions)
+  std::size_t hairMeshes = 0;    // declared hair tubes: one per template and radius/length bucket
+  std::size_t hairsSkipped = 0;  // no template with segments, zero radius or length
 };
 
 class PovWriter : public ScenePrinter {
@@ -47,7 +50,17 @@ class PovWriter : public ScenePrinter {
   void sphere(const Sphere& sphere) override;
   void disc(const Disc& disc) override;
   void label(const Label& label) override;
+  // Hairs as instances (DESIGN.md, "Plant hairs"): a tube of the hair radius around each template
+  // is declared once per template and bucket of radius/length (the tube is in the template's
+  // frame, which length scales), and each hair is an `object` of it with its matrix; the hairs
+  // of a material are one union carrying the material's texture. docs/export.md has the figures.
+  void hairs(const std::vector<HairTemplate>& templates, const std::vector<Hair>& hairs) override;
   void endScene() override;
+
+  // Sides of a hair's tube, and the step of the radius/length buckets: a hair's tube radius is
+  // within 1% of its own radius.
+  static constexpr int kHairTubeSides = 5;
+  static constexpr double kHairBucketStep = 1.02;
 
   // Declared objects and their instances: a mesh is written once as `#declare NAME=mesh2{…}`
   // and placed by `object{NAME …}` as often as needed, each placement with its own material and
@@ -64,6 +77,7 @@ class PovWriter : public ScenePrinter {
   const PovExportStats& stats() const { return stats_; }
 
  private:
+  void writeMesh2(std::string_view name, const TriangleMesh& mesh);
   void writeHeader(const Scene& scene);
   void writeCamera();
   void writeLights(const Bounds& bounds);

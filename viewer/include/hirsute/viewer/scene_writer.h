@@ -24,11 +24,16 @@ class ScenePrinter {
   virtual void sphere(const Sphere& sphere) = 0;
   virtual void disc(const Disc& disc) = 0;
   virtual void label(const Label& label) = 0;
+  // Plant hairs, after the labels, once, when the scene has any: the templates and the placed
+  // hairs, which are instances of them (a hair's templateIndex may name no template: such a hair
+  // is left out). All of them at once, because formats group them (by template, material, size).
+  virtual void hairs(const std::vector<HairTemplate>& templates,
+                     const std::vector<Hair>& hairs) = 0;
   // After the last element: close what is open and commit the files.
   virtual void endScene() = 0;
 };
 
-// Visits meshes, lines, spheres, discs and labels, in that order and each in scene order.
+// Visits meshes, lines, spheres, discs, labels and hairs, in that order and each in scene order.
 // Meshes without triangles are skipped.
 void printScene(const Scene& scene, ScenePrinter& printer);
 

@@ -1,0 +1,557 @@
+// Plant hairs in every output (DESIGN.md, "Plant hairs"), on hand-built scenes whose hairs are
+// placed directly: the GL renderer draws them where root, orientation and length put them and
+// nowhere else, hides them, and draws a uniform fraction of them; the POV-Ray scene declares one
+// tube per template and radius bucket and places one object per hair (and POV-Ray renders it
+// without a warning); the OBJ has one polyline per placed template polyline; the CSV has one row
+// per hair whose numbers read back exactly; `hirsute export --hairs` writes it.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <glm/gtc/quaternion.hpp>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hirsute/viewer/camera.h"
+#include "hirsute/viewer/gl_renderer.h"
+#include "hirsute/viewer/hair_csv_writer.h"
+#include "hirsute/viewer/obj_writer.h"
+#include "hirsute/viewer/offscreen.h"
+#include "hirsute/viewer/png_image.h"
+#include "hirsute/viewer/pov_writer.h"
+#include "hirsute/viewer/povray_runner.h"
+
+namespace hirsute {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kRed = 1, kGreen = 2, kBlue = 3;
+
+Material colour(float r, float g, float b) {
+  Material m;
+  m.ambient = m.diffuse = glm::vec3(r, g, b);
+  return m;
+}
+
+// Palette: 0 background (dark blue), 1 red, 2 green, 3 blue.
+Scene paletteScene() {
+  Scene scene;
+  scene.materials = {colour(0.1f, 0.2f, 0.4f), colour(1, 0, 0), colour(0, 1, 0), colour(0, 0, 1)};
+  return scene;
+}
+
+// A straight hair along its own x axis, one unit long, in three vertices.
+HairTemplate straightTemplate(int material) {
+  HairTemplate t;
+  t.file = "straight.l";
+  t.polylines = {{{0, 0, 0}, {0.5f, 0, 0}, {1, 0, 0}}};
+  t.material = material;
+  t.extent = 1;
+  return t;
+}
+
+// A bent hair of two polylines (a branch): 3 + 2 vertices, 3 segments.
+HairTemplate branchedTemplate(int material) {
+  HairTemplate t;
+  t.file = "branched.l";
+  t.polylines = {{{0, 0, 0}, {0.5f, 0, 0}, {0.8f, 0.3f, 0}}, {{0.5f, 0, 0}, {0.6f, 0, 0.3f}}};
+  t.material = material;
+  t.extent = glm::length(glm::vec3(0.8f, 0.3f, 0));
+  return t;
+}
+
+Hair hair(glm::vec3 root, glm::quat rotation, float length, float radius, int templateIndex,
+          HairSide side = HairSide::Front) {
+  Hair h;
+  h.root = root;
+  h.setRotation(rotation);
+  h.length = length;
+  h.radius = radius;
+  h.templateIndex = static_cast<std::uint8_t>(templateIndex);
+  h.side = side;
+  return h;
+}
+
+// The rotation that turns the template's x axis (the hair direction) onto `direction`: the
+// quaternion (1 + x·d, x × d), normalised.
+glm::quat pointing(glm::vec3 direction) {
+  glm::vec3 x(1, 0, 0), d = glm::normalize(direction);
+  glm::vec3 axis = glm::cross(x, d);
+  return glm::normalize(glm::quat(1 + glm::dot(x, d), axis.x, axis.y, axis.z));
+}
+
+// ---- The GL renderer ----
+
+struct Frame {
+  RgbaImage image;
+  Camera camera;
+  std::size_t hairs = 0, segments = 0;
+};
+
+// Renders through the headless path with one sample a pixel (exact coverage), after `configure`
+// has set the renderer's hair settings.
+Frame renderHairs(const Scene& scene, int width, int height,
+                  const std::function<void(GlRenderer&)>& configure = {}) {
+  OsMesaContext context;
+  OffscreenFramebuffer framebuffer(context.gl(), width, height, 1);
+  GlRenderer renderer(context.gl());
+  renderer.upload(scene, ViewSettings{}, false);
+  if (configure) configure(renderer);
+  framebuffer.bind();
+  Frame frame;
+  frame.camera = fitCamera(ViewSettings{}, scene.bounds(), {width, height});
+  renderer.draw(frame.camera);
+  frame.image = framebuffer.read();
+  frame.hairs = renderer.hairCount();
+  frame.segments = renderer.hairSegmentCount();
+  return frame;
+}
+
+bool isRed(glm::u8vec4 p) {
+  return p.r > 200 && p.g < 50 && p.b < 50;
+}
+
+glm::ivec2 pixelOf(const Camera& camera, glm::vec3 world) {
+  glm::vec3 p = camera.toPixels(world);
+  return {static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y))};
+}
+
+// Whether any pixel within `radius` of `at` passes `test`.
+bool anyNear(const RgbaImage& image, glm::ivec2 at, int radius,
+             const std::function<bool(glm::u8vec4)>& test) {
+  for (int y = at.y - radius; y <= at.y + radius; ++y) {
+    for (int x = at.x - radius; x <= at.x + radius; ++x) {
+      if (x >= 0 && y >= 0 && x < image.width && y < image.height && test(image.pixel(x, y)))
+        return true;
+    }
+  }
+  return false;
+}
+
+// The distance in pixels from the centre of pixel (x, y) to the segment a–b on the screen.
+float screenDistance(int x, int y, glm::vec2 a, glm::vec2 b) {
+  glm::vec2 p(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+  glm::vec2 d = b - a;
+  float t = glm::dot(d, d) > 0 ? std::clamp(glm::dot(p - a, d) / glm::dot(d, d), 0.0f, 1.0f) : 0;
+  return glm::distance(p, a + t * d);
+}
+
+TEST(HairRenderTest, HairsChangeThePixelsWhereTheyLieAndNoOthers) {
+  Scene scene = paletteScene();
+  // A green square behind the hairs: hairs draw over it, and leave the rest of it alone.
+  TriangleMesh& quad = scene.meshFor(kGreen);
+  quad.positions = {{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}};
+  quad.normals.assign(4, {0, 0, 1});
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  scene.hairTemplates = {straightTemplate(kRed), branchedTemplate(kBlue)};
+  scene.hairs = {hair({-2, -2, 0}, pointing({1, 1, 0}), 2, 0.01f, 0),
+                 hair({1, -2.5f, 0}, pointing({0, 1, 0}), 3, 0.01f, 0),
+                 hair({-2, 1, 0}, pointing({1, 0, 0}), 2, 0.01f, 1)};
+  Frame with = renderHairs(scene, 120, 120);
+  Frame without = renderHairs(scene, 120, 120, [](GlRenderer& r) { r.setHairsVisible(false); });
+  EXPECT_EQ(with.hairs, 3u);
+  EXPECT_EQ(with.segments, 2u + 2u + 3u);
+
+  // The screen segments of every placed hair.
+  std::vector<std::pair<glm::vec2, glm::vec2>> segments;
+  for (const Hair& h : scene.hairs) {
+    for (const auto& polyline : scene.hairTemplates[h.templateIndex].polylines) {
+      for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
+        segments.emplace_back(glm::vec2(with.camera.toPixels(h.place(polyline[i]))),
+                              glm::vec2(with.camera.toPixels(h.place(polyline[i + 1]))));
+      }
+    }
+  }
+  int changed = 0;
+  for (int y = 0; y < 120; ++y) {
+    for (int x = 0; x < 120; ++x) {
+      if (with.image.pixel(x, y) == without.image.pixel(x, y)) continue;
+      ++changed;
+      float nearest = 1e9f;
+      for (const auto& [a, b] : segments) nearest = std::min(nearest, screenDistance(x, y, a, b));
+      EXPECT_LE(nearest, 1.0f) << "pixel " << x << "," << y << " changed away from every hair";
+    }
+  }
+  EXPECT_GT(changed, 50);
+  // Every segment's middle is drawn, in its template's colour.
+  for (const Hair& h : scene.hairs) {
+    const HairTemplate& t = scene.hairTemplates[h.templateIndex];
+    for (const auto& polyline : t.polylines) {
+      for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
+        glm::ivec2 at = pixelOf(with.camera, h.place((polyline[i] + polyline[i + 1]) * 0.5f));
+        EXPECT_TRUE(anyNear(with.image, at, 1,
+                            [&](glm::u8vec4 p) {
+                              return t.material == kRed ? isRed(p)
+                                                        : (p.b > 200 && p.r < 50 && p.g < 50);
+                            }))
+            << "segment " << i << " of a hair at " << h.root.x << "," << h.root.y;
+      }
+    }
+  }
+  // Hidden, or drawn at fraction 0, no pixel is a hair's.
+  Frame zero = renderHairs(scene, 120, 120, [](GlRenderer& r) { r.setHairFraction(0); });
+  EXPECT_EQ(zero.image.rgba, without.image.rgba);
+  for (int y = 0; y < 120; ++y) {
+    for (int x = 0; x < 120; ++x) EXPECT_FALSE(isRed(without.image.pixel(x, y))) << x << "," << y;
+  }
+}
+
+TEST(HairRenderTest, HairFollowsRootOrientationAndLength) {
+  Scene scene = paletteScene();
+  scene.hairTemplates = {straightTemplate(kRed)};
+  // Rooted at (1, -1, 0), turned from +x to +y, two units long: the tip is at (1, 1, 0).
+  scene.hairs = {
+      hair({1, -1, 0}, glm::angleAxis(glm::radians(90.0f), glm::vec3(0, 0, 1)), 2, 0.01f, 0)};
+  Frame frame = renderHairs(scene, 100, 100);
+  const Camera& camera = frame.camera;
+  glm::ivec2 root = pixelOf(camera, {1, -1, 0}), tip = pixelOf(camera, {1, 1, 0});
+  ASSERT_LT(tip.y, root.y) << "+y is up on the screen";
+  // The red column: from the root's row to the tip's, in the root's column.
+  int top = 1 << 20, bottom = -1;
+  for (int y = 0; y < 100; ++y) {
+    for (int x = 0; x < 100; ++x) {
+      if (!isRed(frame.image.pixel(x, y))) continue;
+      EXPECT_LE(std::abs(x - root.x), 1) << "a red pixel off the hair at " << x << "," << y;
+      top = std::min(top, y);
+      bottom = std::max(bottom, y);
+    }
+  }
+  EXPECT_NEAR(top, tip.y, 1.0);
+  EXPECT_NEAR(bottom, root.y, 1.0);
+  EXPECT_TRUE(anyNear(frame.image, pixelOf(camera, {1, 0, 0}), 1, isRed));
+  // Not where the template would lie unturned (+x from the root) or unscaled (ending at y = 0).
+  EXPECT_FALSE(anyNear(frame.image, pixelOf(camera, {2.5f, -1, 0}), 1, isRed));
+  EXPECT_TRUE(anyNear(frame.image, pixelOf(camera, {1, 0.8f, 0}), 1, isRed));
+}
+
+// A grid of 40 × 25 short hairs, one unit apart, each along +x: none overlaps another.
+Scene hairGrid() {
+  Scene scene = paletteScene();
+  scene.hairTemplates = {straightTemplate(kRed)};
+  for (int j = 0; j < 25; ++j) {
+    for (int i = 0; i < 40; ++i) {
+      scene.hairs.push_back(hair({static_cast<float>(i), static_cast<float>(j), 0},
+                                 glm::quat(1, 0, 0, 0), 0.5f, 0.01f, 0));
+    }
+  }
+  return scene;
+}
+
+// Which hairs of the grid are drawn: the middle of each hair shows red.
+std::vector<bool> drawnHairs(const Scene& scene, float fraction, bool visible = true) {
+  Frame frame = renderHairs(scene, 400, 250, [&](GlRenderer& r) {
+    r.setHairFraction(fraction);
+    r.setHairsVisible(visible);
+  });
+  std::vector<bool> drawn;
+  for (const Hair& h : scene.hairs) {
+    drawn.push_back(anyNear(frame.image, pixelOf(frame.camera, h.place({0.5f, 0, 0})), 1, isRed));
+  }
+  return drawn;
+}
+
+TEST(HairRenderTest, HiddenHairsAndFractionZeroDrawNothing) {
+  Scene scene = hairGrid();
+  auto all = drawnHairs(scene, 1.0f);
+  EXPECT_EQ(std::count(all.begin(), all.end(), true), 1000);
+  auto none = drawnHairs(scene, 0.0f);
+  EXPECT_EQ(std::count(none.begin(), none.end(), true), 0);
+  auto hidden = drawnHairs(scene, 1.0f, false);
+  EXPECT_EQ(std::count(hidden.begin(), hidden.end(), true), 0);
+}
+
+TEST(HairRenderTest, AFractionDrawsThatShareSpreadOverThePlant) {
+  Scene scene = hairGrid();
+  auto half = drawnHairs(scene, 0.5f);
+  EXPECT_NEAR(std::count(half.begin(), half.end(), true), 500, 2);
+  // Spread: each quadrant of the grid shows about half of its hairs (the hairs' index order runs
+  // row by row, so a prefix in that order would fill the lower rows and leave the upper empty).
+  for (int qy = 0; qy < 2; ++qy) {
+    for (int qx = 0; qx < 2; ++qx) {
+      int shown = 0, total = 0;
+      for (std::size_t k = 0; k < scene.hairs.size(); ++k) {
+        int i = static_cast<int>(k % 40), j = static_cast<int>(k / 40);
+        if ((i < 20) == (qx == 0) && (j < 12) == (qy == 0)) {
+          ++total;
+          shown += half[k] ? 1 : 0;
+        }
+      }
+      EXPECT_GT(shown, total * 2 / 5) << "quadrant " << qx << "," << qy;
+      EXPECT_LT(shown, total * 3 / 5) << "quadrant " << qx << "," << qy;
+    }
+  }
+  // A smaller fraction is a prefix of the same order: its hairs are among those of the larger.
+  auto quarter = drawnHairs(scene, 0.25f);
+  EXPECT_NEAR(std::count(quarter.begin(), quarter.end(), true), 250, 2);
+  for (std::size_t k = 0; k < half.size(); ++k) {
+    if (quarter[k]) {
+      EXPECT_TRUE(half[k]) << "hair " << k;
+    }
+  }
+}
+
+// ---- Export files ----
+
+class HairExportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    folder_ = fs::temp_directory_path() /
+              (std::string("hirsute_hairs_") + info->name() + "_" + std::to_string(getpid()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+  fs::path file(const std::string& name) const { return folder_ / name; }
+
+  fs::path folder_;
+};
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<std::string> linesOf(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::size_t countLinesStarting(const std::string& text, const std::string& prefix) {
+  std::size_t n = 0;
+  for (const std::string& line : linesOf(text)) n += line.rfind(prefix, 0) == 0;
+  return n;
+}
+
+std::size_t countOccurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// Template 0 straight and red, template 1 branched and green. Template 0's hairs come in two
+// radius/length ratios (0.01 twice, 0.02 once), template 1's in one; one hair has no radius and
+// one names a template that does not exist: both are left out of the POV-Ray scene.
+Scene exportScene() {
+  Scene scene = paletteScene();
+  scene.hairTemplates = {straightTemplate(kRed), branchedTemplate(kGreen)};
+  scene.hairs = {hair({1, 2, 3}, glm::quat(1, 0, 0, 0), 2, 0.02f, 0),
+                 hair({0, 0, 0}, pointing({0, 1, 0}), 1, 0.01f, 0),
+                 hair({0.5f, 0, 0}, pointing({0, 1, 1}), 1.5f, 0.03f, 0),
+                 hair({0, 0, 1}, pointing({1, 1, 0}), 1, 0.05f, 1),
+                 hair({0, 1, 1}, pointing({-1, 1, 0}), 0.5f, 0.025f, 1),
+                 hair({0, 1, 2}, pointing({0, 1, 0}), 1, 0, 0),
+                 hair({0, 2, 2}, pointing({0, 1, 0}), 1, 0.01f, 7)};
+  return scene;
+}
+
+TEST_F(HairExportTest, PovDeclaresOneTubePerTemplateAndRadiusBucket) {
+  Scene scene = exportScene();
+  PovExportStats stats = writePov(scene, PovOptions{}, file("hairs.pov"));
+  std::string text = readText(file("hairs.pov"));
+  EXPECT_EQ(stats.hairMeshes, 3u);
+  EXPECT_EQ(countOccurrences(text, "=mesh2{"), 3u) << text;
+  EXPECT_EQ(countOccurrences(text, "#declare H"), 3u);
+  // A tube: sides × segments × 2 triangles.
+  EXPECT_EQ(stats.triangles, 5u * 2 * 2 * 2 + 5u * 3 * 2);
+  EXPECT_EQ(stats.hairs, 5u);
+  EXPECT_EQ(stats.hairsSkipped, 2u);
+}
+
+TEST_F(HairExportTest, PovPlacesOneObjectPerHairInAUnionPerMaterial) {
+  Scene scene = exportScene();
+  writePov(scene, PovOptions{}, file("hairs.pov"));
+  std::string text = readText(file("hairs.pov"));
+  EXPECT_EQ(countOccurrences(text, "object{H"), 5u) << text;
+  // The hairs of each material share the union's texture: no object carries its own.
+  EXPECT_EQ(countOccurrences(text, "union{"), 2u);
+  EXPECT_EQ(countOccurrences(text, "texture{M1}}"), 1u);
+  EXPECT_EQ(countOccurrences(text, "texture{M2}}"), 1u);
+  EXPECT_EQ(countOccurrences(text, " texture{"), 0u);
+  // The unturned hair of length 2 at (1, 2, 3): the template scaled by 2, moved to its root.
+  EXPECT_NE(text.find("matrix<2,0,0,0,2,0,0,0,2,1,2,3>"), std::string::npos) << text;
+  // Its tube is declared at radius 0.02 / 2 = 0.01 in the template's frame, as is the second
+  // hair's (0.01 / 1): both use the same mesh.
+  std::size_t first = text.find("object{H"), second = text.find("object{H", first + 1);
+  ASSERT_NE(second, std::string::npos);
+  auto nameAt = [&](std::size_t at) {
+    std::size_t end = text.find(' ', at);
+    return text.substr(at + 7, end - at - 7);
+  };
+  EXPECT_EQ(nameAt(first), nameAt(second));
+  EXPECT_NE(nameAt(first), nameAt(text.find("object{H", second + 1)));
+}
+
+TEST_F(HairExportTest, PovLoneHairCarriesItsTexture) {
+  Scene scene = paletteScene();
+  scene.hairTemplates = {straightTemplate(kRed)};
+  scene.hairs = {hair({0, 0, 0}, pointing({0, 1, 0}), 1, 0.01f, 0)};
+  writePov(scene, PovOptions{}, file("hair.pov"));
+  std::string text = readText(file("hair.pov"));
+  EXPECT_EQ(countOccurrences(text, "union{"), 0u) << "POV-Ray warns about a union of one";
+  EXPECT_EQ(countOccurrences(text, "object{H0 texture{M1} matrix<"), 1u) << text;
+}
+
+#define SKIP_WITHOUT_POVRAY() \
+  if (!povrayAvailable()) GTEST_SKIP() << "povray is not installed (apt install povray)"
+
+TEST_F(HairExportTest, PovrayRendersHairsWhereTheyStand) {
+  SKIP_WITHOUT_POVRAY();
+  Scene scene = paletteScene();
+  scene.hairTemplates = {straightTemplate(kRed), branchedTemplate(kGreen)};
+  // Three thick red hairs standing up in a row, and green ones to the right.
+  for (float x : {-1.0f, 0.0f, 1.0f}) {
+    scene.hairs.push_back(hair({x, -1, 0}, pointing({0, 1, 0}), 2, 0.15f, 0));
+  }
+  scene.hairs.push_back(hair({2, -1, 0}, pointing({0, 1, 0}), 1.5f, 0.1f, 1));
+  scene.hairs.push_back(hair({2.5f, -1, 0}, pointing({0, 1, 0}), 1.5f, 0.1f, 1));
+  PovOptions options;
+  options.width = 64;
+  options.height = 48;
+  LightSource front;
+  front.directional = true;
+  front.vector = {0, 0, 1};
+  front.ambient = glm::vec3(0.0f);
+  options.view.lights = {front};
+  PovWriter writer(file("hairs.pov"), options);
+  printScene(scene, writer);
+  PovrayRun run = runPovray(file("hairs.pov"), file("hairs.png"), 64, 48, false);
+  ASSERT_EQ(run.exitStatus, 0) << run.messages;
+  EXPECT_EQ(run.messages, "") << "POV-Ray warned on\n" << readText(file("hairs.pov"));
+  RgbaImage image = readPng(file("hairs.png"));
+  ASSERT_EQ(image.width, 64);
+  const Camera& camera = writer.camera();
+  for (float x : {-1.0f, 0.0f, 1.0f}) {
+    glm::ivec2 at = pixelOf(camera, {x, 0, 0});
+    glm::u8vec4 p = image.pixel(at.x, at.y);
+    EXPECT_GT(p.r, 150) << "hair at x = " << x;
+    EXPECT_LT(p.g, 80);
+  }
+  // Between two hairs, and above them: the background.
+  for (glm::vec3 empty : {glm::vec3(-0.5f, 0, 0), glm::vec3(0, 1.5f, 0)}) {
+    glm::ivec2 at = pixelOf(camera, empty);
+    glm::u8vec4 p = image.pixel(at.x, at.y);
+    EXPECT_LT(p.r, 60) << empty.x << "," << empty.y;
+  }
+}
+
+TEST_F(HairExportTest, ObjHasOnePolylinePerPlacedTemplatePolyline) {
+  Scene scene = exportScene();
+  ObjExportStats stats = writeObj(scene, file("hairs.obj"));
+  std::string text = readText(file("hairs.obj"));
+  // Template 0: one polyline of 3 vertices, 4 hairs (its radius does not matter to OBJ);
+  // template 1: 3 + 2 vertices, 2 hairs; the hair of template 7 is left out.
+  EXPECT_EQ(countLinesStarting(text, "l "), 4u * 1 + 2u * 2) << text;
+  EXPECT_EQ(countLinesStarting(text, "v "), 4u * 3 + 2u * 5);
+  EXPECT_EQ(stats.hairs, 6u);
+  EXPECT_EQ(countLinesStarting(text, "o hairs"), 1u);
+  EXPECT_EQ(countLinesStarting(text, "usemtl "), 2u);
+  EXPECT_EQ(countLinesStarting(readText(file("hairs.mtl")), "newmtl "), 2u);
+  // Every `l` names vertices already written; the first hair's are its template placed.
+  std::vector<std::string> lines = linesOf(text);
+  std::size_t vertices = 0;
+  for (const std::string& line : lines) {
+    if (line.rfind("v ", 0) == 0) ++vertices;
+    if (line.rfind("l ", 0) != 0) continue;
+    std::istringstream in(line.substr(2));
+    for (std::size_t index; in >> index;) {
+      EXPECT_GE(index, 1u);
+      EXPECT_LE(index, vertices);
+    }
+  }
+  auto first = std::find_if(lines.begin(), lines.end(),
+                            [](const std::string& l) { return l.rfind("v ", 0) == 0; });
+  ASSERT_NE(first, lines.end());
+  EXPECT_EQ(*first, "v 1 2 3");
+  EXPECT_EQ(*(first + 2), "v 3 2 3");
+}
+
+TEST_F(HairExportTest, CsvHasOneRowPerHairThatReadsBack) {
+  Scene scene = paletteScene();
+  scene.hairTemplates = {straightTemplate(kRed), branchedTemplate(kGreen)};
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> unit(-1, 1);
+  for (int i = 0; i < 500; ++i) {
+    scene.hairs.push_back(hair({unit(random) * 100, unit(random), unit(random) * 1e-3f},
+                               pointing({unit(random), unit(random), unit(random) + 1.5f}),
+                               1 + unit(random) * 0.5f, 0.01f * (2 + unit(random)), i % 2,
+                               static_cast<HairSide>(1 + i % 3)));
+  }
+  HairCsvStats stats = writeHairCsv(scene, file("hairs.csv"));
+  EXPECT_EQ(stats.rows, 500u);
+  std::vector<std::string> rows = linesOf(readText(file("hairs.csv")));
+  ASSERT_EQ(rows.size(), 501u);
+  EXPECT_EQ(rows[0], HairCsvWriter::kHeader);
+  EXPECT_EQ(rows[0],
+            "root_x,root_y,root_z,direction_x,direction_y,direction_z,template,length,radius,side");
+  const char* sides[] = {"", "front", "back", "edge"};
+  for (std::size_t i = 0; i < scene.hairs.size(); ++i) {
+    const Hair& h = scene.hairs[i];
+    std::vector<std::string> cells;
+    std::istringstream in(rows[i + 1]);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 10u) << rows[i + 1];
+    auto read = [](const std::string& cell) {
+      float value = 0;
+      auto result = std::from_chars(cell.data(), cell.data() + cell.size(), value);
+      EXPECT_EQ(result.ptr, cell.data() + cell.size()) << cell;
+      return value;
+    };
+    glm::vec3 direction = h.direction();
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(read(cells[static_cast<std::size_t>(k)]), h.root[k]) << "row " << i;
+      EXPECT_EQ(read(cells[static_cast<std::size_t>(3 + k)]), direction[k]) << "row " << i;
+    }
+    EXPECT_NEAR(glm::length(direction), 1.0f, 1e-5f);
+    EXPECT_EQ(cells[6], std::to_string(h.templateIndex));
+    EXPECT_EQ(read(cells[7]), h.length);
+    EXPECT_EQ(read(cells[8]), h.radius);
+    EXPECT_EQ(cells[9], sides[static_cast<int>(h.side)]);
+  }
+}
+
+TEST_F(HairExportTest, CsvOfASceneWithoutHairsIsItsHeader) {
+  Scene scene = paletteScene();
+  writeHairCsv(scene, file("none.csv"));
+  EXPECT_EQ(readText(file("none.csv")), std::string(HairCsvWriter::kHeader) + "\n");
+}
+
+int runHirsute(const std::string& arguments, const fs::path& log) {
+  std::string command =
+      std::string("'") + HIRSUTE_BINARY + "' " + arguments + " > '" + log.string() + "' 2>&1";
+  int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST_F(HairExportTest, CommandWritesTheHairsCsvAlone) {
+  std::string herb = std::string(HIRSUTE_SOURCE_DIR) + "/models/herb/herb";
+  fs::path csv = file("herb.csv");
+  ASSERT_EQ(runHirsute("export '" + herb + ".l' '" + herb + ".v' --hairs '" + csv.string() + "'",
+                       file("log")),
+            0)
+      << readText(file("log"));
+  std::vector<std::string> rows = linesOf(readText(csv));
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(rows[0], HairCsvWriter::kHeader);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_EQ(std::count(rows[i].begin(), rows[i].end(), ','), 9) << rows[i];
+  }
+}
+
+}  // namespace
+}  // namespace hirsute

@@ -1,0 +1,54 @@
+// The viewer's scripted mode: the command text parsed, and its mistakes pointed at.
+#include "hirsute/viewer/view_script.h"
+
+#include <gtest/gtest.h>
+
+namespace hirsute {
+namespace {
+
+using Kind = ViewCommand::Kind;
+
+TEST(ViewScriptTest, CommandsSeparatedBySemicolonsAndLines) {
+  auto script = parseViewScript(
+      "rotate 30 0; step 5; screenshot a.png\n# a comment\nhairs off;zoom 1.5\nquit", "--commands");
+  ASSERT_EQ(script.size(), 6u);
+  EXPECT_EQ(script[0].kind, Kind::Rotate);
+  EXPECT_EQ(script[0].numbers, (std::vector<double>{30, 0}));
+  EXPECT_EQ(script[1].kind, Kind::Step);
+  EXPECT_EQ(script[1].numbers, (std::vector<double>{5}));
+  EXPECT_EQ(script[2].words, (std::vector<std::string>{"a.png"}));
+  EXPECT_EQ(script[3].kind, Kind::Hairs);
+  EXPECT_EQ(script[4].kind, Kind::Zoom);
+  EXPECT_EQ(script[4].where.line, 3);
+  EXPECT_EQ(script[4].where.column, 11);
+  EXPECT_EQ(script[5].kind, Kind::Quit);
+}
+
+TEST(ViewScriptTest, OptionalArguments) {
+  auto script = parseViewScript("step; rotate 10; screenshot x.png ui; wait-reload", "s");
+  EXPECT_TRUE(script[0].numbers.empty());
+  EXPECT_EQ(script[1].numbers, (std::vector<double>{10}));
+  EXPECT_EQ(script[2].words.size(), 2u);
+  EXPECT_EQ(script[3].kind, Kind::WaitReload);
+}
+
+void expectError(const std::string& text, const std::string& message) {
+  try {
+    parseViewScript(text, "--commands");
+    FAIL() << "expected an error for: " << text;
+  } catch (const DiagnosticError& e) {
+    EXPECT_EQ(e.diagnostic().text(), message);
+  }
+}
+
+TEST(ViewScriptTest, MistakesNameLineAndColumn) {
+  expectError("rotate 30 0; spin 5", "--commands:1:14: error: unknown viewer command 'spin'");
+  expectError("zoom big", "--commands:1:6: error: expected a number, found 'big'");
+  expectError("step 1\npan 1", "--commands:2:1: error: 'pan' takes 2 arguments");
+  expectError("quit now", "--commands:1:6: error: 'quit' takes 0 arguments");
+  expectError("hairs maybe", "--commands:1:7: error: expected on or off, found 'maybe'");
+  expectError("rotate", "--commands:1:1: error: 'rotate' takes 1 to 2 arguments");
+}
+
+}  // namespace
+}  // namespace hirsute

@@ -1,0 +1,64 @@
+// The viewer's scripted mode (`hirsute view --commands "…"` or `--script FILE`): the actions of
+// the mouse and the keys as text, run in order without a person, for tests and for users who
+// want the same pictures again. Commands are separated by `;` or new lines; `#` starts a comment.
+//
+//   rotate H V       turn the plant H degrees about the vertical, V about the horizontal axis
+//   roll D           roll it D degrees clockwise
+//   zoom F           magnify by F
+//   pan X Y          move it right by X and up by Y window heights
+//   reset            back to the view file's camera
+//   step [N]         N derivation steps forward (default 1; negative goes back)
+//   back [N]         N steps back
+//   goto N           show derivation step N
+//   animate          play the animation (the .a file's frames) to its end
+//   hairs on|off     show or hide hairs;  wireframe on|off  polygons as their edges
+//   help on|off      the key map overlay;  panel on|off  the constants panel
+//   define NAME VAL  set a #define constant and re-derive;  save  write the constants to the .l
+//   wait-reload [S]  wait (up to S seconds, default 10) until a model file changes and is re-read
+//   sleep S          wait S seconds, drawing
+//   measure [N]      print the frame time over N frames still and N frames moving
+//   screenshot FILE [ui]  write the window's picture to a PNG (with ui: with the overlays)
+//   quit             close the window
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hirsute/lsys/diagnostic.h"
+
+namespace hirsute {
+
+struct ViewCommand {
+  enum class Kind {
+    Rotate,
+    Roll,
+    Zoom,
+    Pan,
+    Reset,
+    Step,
+    Back,
+    Goto,
+    Animate,
+    Hairs,
+    Wireframe,
+    Help,
+    Panel,
+    Define,
+    Save,
+    WaitReload,
+    Sleep,
+    Measure,
+    Screenshot,
+    Quit
+  };
+  Kind kind;
+  std::vector<double> numbers;
+  std::vector<std::string> words;  // file names, define names and values, on/off
+  SourceLocation where;
+};
+
+// Parses a script; `fileName` names it in messages ("--commands" for the command line's text).
+// Throws DiagnosticError ("file:line:col: error: …") for an unknown command or wrong arguments.
+std::vector<ViewCommand> parseViewScript(const std::string& text, const std::string& fileName);
+
+}  // namespace hirsute
