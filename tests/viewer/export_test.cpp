@@ -21,6 +21,7 @@
 #include "hirsute/viewer/png_image.h"
 #include "hirsute/viewer/pov_writer.h"
 #include "hirsute/viewer/povray_runner.h"
+#include "support/test_files.h"
 
 namespace hirsute {
 namespace {
@@ -28,46 +29,15 @@ namespace {
 namespace fs = std::filesystem;
 
 // A fresh, empty folder per test, removed afterwards.
-class ExportTest : public ::testing::Test {
+class ExportTest : public testing::TemporaryFolderTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              (std::string("hirsute_export_") + info->name() + "_" + std::to_string(getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-  fs::path file(const std::string& name) const { return folder_ / name; }
-
-  fs::path folder_;
+  ExportTest() : TemporaryFolderTest("hirsute_export_") {}
 };
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<std::string> linesOf(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-std::size_t countLinesStarting(const std::string& text, const std::string& prefix) {
-  std::size_t n = 0;
-  for (const std::string& line : linesOf(text)) n += line.rfind(prefix, 0) == 0;
-  return n;
-}
-
-std::size_t countOccurrences(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
+using testing::countLinesStarting;
+using testing::countOccurrences;
+using testing::linesOf;
+using testing::readText;
 
 std::string formatted(double value, int decimals, bool leadingZero) {
   char buffer[ExportFile::kMaxNumberLength];

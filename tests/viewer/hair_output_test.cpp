@@ -30,6 +30,7 @@
 #include "hirsute/viewer/png_image.h"
 #include "hirsute/viewer/pov_writer.h"
 #include "hirsute/viewer/povray_runner.h"
+#include "support/test_files.h"
 
 namespace hirsute {
 namespace {
@@ -303,46 +304,15 @@ TEST(HairRenderTest, AFractionDrawsThatShareSpreadOverThePlant) {
 
 // ---- Export files ----
 
-class HairExportTest : public ::testing::Test {
+class HairExportTest : public testing::TemporaryFolderTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              (std::string("hirsute_hairs_") + info->name() + "_" + std::to_string(getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-  fs::path file(const std::string& name) const { return folder_ / name; }
-
-  fs::path folder_;
+  HairExportTest() : TemporaryFolderTest("hirsute_hairs_") {}
 };
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<std::string> linesOf(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-std::size_t countLinesStarting(const std::string& text, const std::string& prefix) {
-  std::size_t n = 0;
-  for (const std::string& line : linesOf(text)) n += line.rfind(prefix, 0) == 0;
-  return n;
-}
-
-std::size_t countOccurrences(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
+using testing::countLinesStarting;
+using testing::countOccurrences;
+using testing::linesOf;
+using testing::readText;
 
 // Template 0 straight and red, template 1 branched and green. Template 0's hairs come in two
 // radius/length ratios (0.01 twice, 0.02 once), template 1's in one; one hair has no radius and
