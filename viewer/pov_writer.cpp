@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "hirsute/viewer/texture_file.h"
+#include "hirsute/viewer/view_lighting.h"
 
 namespace hirsute {
 namespace {
@@ -36,9 +37,12 @@ const Material& materialAt(const Scene& scene, int index) {
   return scene.materials[static_cast<std::size_t>(index)];
 }
 
-// The lights a view lights the plant with, as the GL renderer takes them: its `light:` lines, or
-// else one directional light from `light direction:` (cpfg's colour-map light).
-std::vector<LightSource> lightsOf(const ViewSettings& view) {
+// The lights a view lights the plant with. In material mode, by the rule the GL renderer follows
+// (view_lighting.h): its `light:` lines or, without any, OpenGL's light 0 from the eye. In
+// colour-map mode, where the preview shades along the palette instead of lighting, POV-Ray gets
+// the view's `light:` lines when it has any, or else one white light from `light direction:`.
+std::vector<LightSource> lightsOf(const ViewSettings& view, bool materialMode, const Camera& camera) {
+  if (materialMode) return viewLighting(view, true, -camera.forward).lights;
   if (!view.lights.empty()) return view.lights;
   LightSource light;
   light.directional = true;
@@ -219,7 +223,7 @@ void PovWriter::writeHeader(const Scene& scene) {
   // GL adds each light's ambient times the material's ambient colour; POV-Ray has one ambient
   // light, their sum (attenuation of point lights aside).
   glm::vec3 ambient(kGlobalAmbient);
-  for (const LightSource& light : lightsOf(options_.view)) ambient += light.ambient;
+  for (const LightSource& light : lightsOf(options_.view, options_.materialMode, camera_)) ambient += light.ambient;
   out_.put("global_settings{assumed_gamma 1 ambient_light rgb");
   vector(ambient, colour_);
   out_.put("}\n");
@@ -274,7 +278,7 @@ void PovWriter::writeCamera() {
 }
 
 void PovWriter::writeLights(const Bounds& bounds) {
-  std::vector<LightSource> lights = lightsOf(options_.view);
+  std::vector<LightSource> lights = lightsOf(options_.view, options_.materialMode, camera_);
   glm::vec3 centre = bounds.empty() ? options_.view.viewReference : bounds.center();
   float far = 10 * std::max(bounds.diagonal(), 1.0f);
   for (const LightSource& light : lights) {

@@ -530,6 +530,31 @@ TEST_F(ExportTest, PovrayLightsAMaterialSceneFromItsLightLines) {
   EXPECT_EQ(corner.r + corner.g + corner.b, 0) << "material 0's emission (none) is the background";
 }
 
+// Without `light:` lines a material scene is lit as the GL renderer lights it (view_lighting.h):
+// by OpenGL's light 0 from the eye, not from `light direction:`, which only colour maps use.
+TEST_F(ExportTest, PovrayLightsAMaterialSceneWithoutLightLinesFromTheEye) {
+  SKIP_WITHOUT_POVRAY();
+  Scene scene;
+  Material grey;
+  grey.ambient = glm::vec3(0.0f);
+  grey.diffuse = glm::vec3(0.8f);
+  scene.materials = {Material{}, grey};
+  addQuad(scene, 1, {0, 0}, 1);  // facing +z, the default view's eye
+  PovOptions options;
+  options.width = kWidth;
+  options.height = kHeight;
+  options.materialMode = true;
+  options.view.lightDirection = {1, 0, 0};  // edge-on to the quad: it would leave it dark
+  PovWriter writer(file("headlight.pov"), options);
+  printScene(scene, writer);
+  const std::string pov = readText(file("headlight.pov"));
+  EXPECT_EQ(countOccurrences(pov, "light_source{"), 1u);
+  RgbaImage image = renderClean(file("headlight.pov"), file("headlight.png"));
+  if (image.width == 0) return;
+  glm::ivec3 lit = pixelAt(image, writer.camera(), {0, 0, 0});
+  EXPECT_GT(lit.r, 180) << "diffuse 0.8 under the light from the eye";
+}
+
 // ---- `hirsute export` ----
 
 // Runs the hirsute binary with `arguments` (each quoted), its output to `log`; the exit status.
