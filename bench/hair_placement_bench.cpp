@@ -9,9 +9,9 @@
 // minus before: the hair vector, reserved once from the expected count, and the templates) over
 // the hairs placed; the stage's transient allocations (the texture, 10⁴ cells and its points)
 // are small beside it.
-#include <CLI/CLI.hpp>
 #include <malloc.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -54,23 +54,25 @@ int main(int argc, char** argv) {
   int repeat = 5;
   app.add_option("--model", lsystem, "The .l file (default: models/nankin-cherry)");
   app.add_option("--view", view, "The .v file (default: the .l's name with .v)");
-  app.add_option("--repeat", repeat, "Runs of the hair stage (the fastest is reported)")->check(CLI::Range(1, 100));
+  app.add_option("--repeat", repeat, "Runs of the hair stage (the fastest is reported)")
+      ->check(CLI::Range(1, 100));
   CLI11_PARSE(app, argc, argv);
   if (view.empty()) view = fs::path(lsystem).replace_extension(".v").string();
 
   hirsute::Diagnostics diagnostics(&std::cerr);
   try {
-    const hirsute::ModelResources resources =
-        hirsute::loadModelResources(fs::path(view), colorFilesIn(fs::path(lsystem).parent_path()), diagnostics);
+    const hirsute::ModelResources resources = hirsute::loadModelResources(
+        fs::path(view), colorFilesIn(fs::path(lsystem).parent_path()), diagnostics);
     hirsute::Model model = hirsute::loadModel(lsystem, fs::path(view), diagnostics);
-    hirsute::Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr);
+    hirsute::Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder,
+                                 std::cerr);
     hirsute::Derivation derivation(model.program, evaluator, diagnostics);
     hirsute::installQueryPass(derivation, resources, diagnostics);
     derivation.run();
     hirsute::Scene plant;
     hirsute::interpret(derivation, resources, plant, diagnostics);
-    std::printf("model %s: %zu triangles, %zu cylinder segments\n", lsystem.c_str(), plant.triangleCount(),
-                plant.cylinderSegments.size());
+    std::printf("model %s: %zu triangles, %zu cylinder segments\n", lsystem.c_str(),
+                plant.triangleCount(), plant.cylinderSegments.size());
 
     hirsute::PlantHairOptions options;
     options.lsystemFile = lsystem;
@@ -83,7 +85,8 @@ int main(int argc, char** argv) {
       const auto start = std::chrono::steady_clock::now();
       const hirsute::HairPlacementReport report =
           hirsute::growPlantHairs(scene, resources, model.functions, options, diagnostics);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const std::size_t after = heapInUse();
       best = std::min(best, seconds);
       hairs = report.hairs;
@@ -91,11 +94,13 @@ int main(int argc, char** argv) {
       capacity = scene.hairs.capacity();
     }
     std::printf("hairs placed          %zu\n", hairs);
-    std::printf("hair stage (best of %d) %.3f s   %.3g hairs/s   %.3f s per million hairs\n", repeat, best,
-                hairs / best, best * 1e6 / std::max<std::size_t>(hairs, 1));
-    std::printf("bytes per placed hair %.1f on the heap (a Hair is %zu bytes; the vector holds %.3f× the hairs placed)\n",
-                static_cast<double>(kept) / std::max<std::size_t>(hairs, 1), sizeof(hirsute::Hair),
-                static_cast<double>(capacity) / std::max<std::size_t>(hairs, 1));
+    std::printf("hair stage (best of %d) %.3f s   %.3g hairs/s   %.3f s per million hairs\n",
+                repeat, best, hairs / best, best * 1e6 / std::max<std::size_t>(hairs, 1));
+    std::printf(
+        "bytes per placed hair %.1f on the heap (a Hair is %zu bytes; the vector holds %.3f× the "
+        "hairs placed)\n",
+        static_cast<double>(kept) / std::max<std::size_t>(hairs, 1), sizeof(hirsute::Hair),
+        static_cast<double>(capacity) / std::max<std::size_t>(hairs, 1));
   } catch (const hirsute::DiagnosticError& e) {
     std::cerr << e.diagnostic().text() << '\n';
     return 2;

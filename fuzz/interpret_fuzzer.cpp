@@ -43,8 +43,9 @@ class Fixture {
     std::string pattern = (std::filesystem::temp_directory_path() / "hirsute-fuzz-XXXXXX").string();
     if (!mkdtemp(pattern.data())) std::abort();
     folder_ = pattern;
-    std::ofstream(folder_ / "open.con") << "cver 1 3\nname: open\npoints: 4 8\ntype: or\nsamples: 6\n"
-                                           "-1 0.2 0 3\n-0.3 0 0 1\n0.3 0 0 1\n1 0.2 0 3\n";
+    std::ofstream(folder_ / "open.con")
+        << "cver 1 3\nname: open\npoints: 4 8\ntype: or\nsamples: 6\n"
+           "-1 0.2 0 3\n-0.3 0 0 1\n0.3 0 0 1\n1 0.2 0 3\n";
     std::ofstream(folder_ / "fuzz.v") << "line style: cylinder\ncontour: 1 open.con\n"
                                          "hair interpolation: on\nhair texture: 32 3\n";
     hirsute::Diagnostics diagnostics;
@@ -96,7 +97,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     hirsute::Program program = hirsute::compileProgram(file, diagnostics);
     hirsute::EvaluationLimits limits;
     limits.maxLoopIterations = kMaxLoopIterations;
-    hirsute::Evaluator evaluator(program, diagnostics, nullptr, fixture().modelFolder(), printed, limits);
+    hirsute::Evaluator evaluator(program, diagnostics, nullptr, fixture().modelFolder(), printed,
+                                 limits);
     hirsute::DerivationOptions options;
     options.steps = kSteps;
     options.maxModules = kMaxModules;
@@ -108,7 +110,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     settings.texture.width = settings.texture.height = 32;
     settings.interpolation = true;
     settings.maxHairs = kMaxHairs;
-    settings.function = [](int index, double x) { return index == 1 ? 2.0 * x - 1.0 : std::nan(""); };
+    settings.function = [](int index, double x) {
+      return index == 1 ? 2.0 * x - 1.0 : std::nan("");
+    };
     hirsute::placeHairs(scene, settings);
   } catch (const hirsute::DiagnosticError&) {
   } catch (const hirsute::GeometryLimitError&) {

@@ -73,13 +73,15 @@ class SideValues {
     const HairValue& a = start_.*member;
     const HairValue& b = end_.*member;
     if (tau >= 1.0f || (a == b)) return b.value * modulation(b.function, s);
-    return (1.0f - tau) * a.value * modulation(a.function, s) + tau * b.value * modulation(b.function, s);
+    return (1.0f - tau) * a.value * modulation(a.function, s) +
+           tau * b.value * modulation(b.function, s);
   }
   float range(HairValue HairSideAttributes::*member, float tau) const {
     return (1.0f - tau) * (start_.*member).range + tau * (end_.*member).range;
   }
   // value ± a uniform offset up to the range.
-  float sample(HairValue HairSideAttributes::*member, float s, float tau, HairRandom& random) const {
+  float sample(HairValue HairSideAttributes::*member, float s, float tau,
+               HairRandom& random) const {
     const float r = range(member, tau);
     return value(member, s, tau) + (r != 0.0f ? r * random.symmetric() : 0.0f);
   }
@@ -106,7 +108,8 @@ class SideValues {
     float weights[kMaxHairTemplates];
     float total = 0;
     for (int i = 0; i < templates; ++i) {
-      weights[i] = startScale * probability(start_, i, templates) + endScale * probability(end_, i, templates);
+      weights[i] = startScale * probability(start_, i, templates) +
+                   endScale * probability(end_, i, templates);
       total += weights[i];
     }
     if (!(total > 0.0f)) return -1;
@@ -199,9 +202,11 @@ struct Placer {
     if (!(length > 0.0f)) return;
     const float radius = std::max(0.0f, values.sample(&HairSideAttributes::radius, s, tau, random));
     direction = normalizedOr(direction, glm::vec3(0, 1, 0));
-    across = normalizedOr(across - direction * glm::dot(across, direction), anyPerpendicular(direction));
+    across =
+        normalizedOr(across - direction * glm::dot(across, direction), anyPerpendicular(direction));
     // rng of the angles: offsets about the hair's own axes, after interpolation.
-    const float inclineOffset = values.range(&HairSideAttributes::incline, tau) * random.symmetric();
+    const float inclineOffset =
+        values.range(&HairSideAttributes::incline, tau) * random.symmetric();
     const float wrapOffset = values.range(&HairSideAttributes::wrap, tau) * random.symmetric();
     const float twistOffset = values.range(&HairSideAttributes::twist, tau) * random.symmetric();
     if (inclineOffset != 0.0f || wrapOffset != 0.0f) {
@@ -226,13 +231,14 @@ struct Placer {
   void segment(std::size_t index);
   void surface(std::size_t index, const CylinderSegment& seg, const TriangleMesh& mesh,
                const SideValues& values, HairSide side);
-  void edge(std::size_t index, const CylinderSegment& seg, const TriangleMesh& mesh,
-            const SideValues& values, int edge);
+  void edge(const CylinderSegment& seg, const TriangleMesh& mesh, const SideValues& values,
+            int which);
 };
 
 // The fraction along the segment of ring k (the interpolation parameter of its attributes).
 float ringTau(const CylinderSegment& seg, std::size_t k) {
-  if (seg.axisLength <= 0.0f) return static_cast<float>(k) / static_cast<float>(seg.rings.size() - 1);
+  if (seg.axisLength <= 0.0f)
+    return static_cast<float>(k) / static_cast<float>(seg.rings.size() - 1);
   return std::clamp((seg.rings[k].axisDistance - seg.axisStart) / seg.axisLength, 0.0f, 1.0f);
 }
 
@@ -270,8 +276,8 @@ void Placer::segment(std::size_t index) {
   }
   if (edges) {
     const SideValues values(startOf(HairSide::Edge), end.side(HairSide::Edge), settings.function);
-    edge(index, seg, mesh, values, 0);
-    edge(index, seg, mesh, values, 1);
+    edge(seg, mesh, values, 0);
+    edge(seg, mesh, values, 1);
   }
 }
 
@@ -320,8 +326,8 @@ void Placer::surface(std::size_t index, const CylinderSegment& seg, const Triang
   const float tileArea = static_cast<float>(texture.points().size()) / maxDensity;
   const float tileSide = std::sqrt(tileArea);
   // Tiles around the girth: a whole number on closed contours.
-  const float tilesAround = seg.closed ? std::max(1.0f, std::ceil(maxGirth / tileSide - 1e-3f))
-                                       : maxGirth / tileSide;
+  const float tilesAround =
+      seg.closed ? std::max(1.0f, std::ceil(maxGirth / tileSide - 1e-3f)) : maxGirth / tileSide;
   const float tileWidth = maxGirth / tilesAround;  // at the widest girth
   const float tileHeight = tileArea / tileWidth;
   // The back uses the texture shifted by half a tile, so its points are not the front's.
@@ -336,15 +342,16 @@ void Placer::surface(std::size_t index, const CylinderSegment& seg, const Triang
   std::vector<float> cornerTwist(2 * perRing);
   for (std::size_t k = 1; k < rings; ++k) {
     const float tau0 = ringTau(seg, k - 1), tau1 = ringTau(seg, k);
-    const glm::vec3 axis = normalizedOr(seg.rings[k].frame.position - seg.rings[k - 1].frame.position,
-                                        seg.rings[k].frame.heading);
+    const glm::vec3 axis = normalizedOr(
+        seg.rings[k].frame.position - seg.rings[k - 1].frame.position, seg.rings[k].frame.heading);
     for (int j = 0; j <= faces; ++j) {
       const glm::vec3 h = normalizedOr(position(k, j) - position(k - 1, j), axis);
       for (int r = 0; r < 2; ++r) {
         const std::size_t kk = k - 1 + static_cast<std::size_t>(r);
         const float tau = r == 0 ? tau0 : tau1;
         const float s = (fraction[(k - 1) * perRing + static_cast<std::size_t>(j)] +
-                         fraction[k * perRing + static_cast<std::size_t>(j)]) * 0.5f;
+                         fraction[k * perRing + static_cast<std::size_t>(j)]) *
+                        0.5f;
         const glm::vec3 n = normalizedOr(normal(kk, j), flip * glm::vec3(seg.rings[kk].frame.up));
         corners[static_cast<std::size_t>(r) * perRing + static_cast<std::size_t>(j)] =
             reorient(n, h, values.value(&HairSideAttributes::incline, s, tau) * kDegrees,
@@ -363,7 +370,8 @@ void Placer::surface(std::size_t index, const CylinderSegment& seg, const Triang
     for (long row = firstRow; row <= lastRow; ++row) {
       const long tileRow = row >= 0 ? row / height : -((-row + height - 1) / height);
       const int r = static_cast<int>(row - tileRow * height);
-      for (std::uint32_t p = rowStart[static_cast<std::size_t>(r)]; p < rowStart[static_cast<std::size_t>(r) + 1]; ++p) {
+      for (std::uint32_t p = rowStart[static_cast<std::size_t>(r)];
+           p < rowStart[static_cast<std::size_t>(r) + 1]; ++p) {
         const TexturePoint& point = points[p];
         const float tv = static_cast<float>(tileRow) + static_cast<float>(point.v);
         if (tv < tv0 || tv >= tv1) continue;
@@ -372,7 +380,8 @@ void Placer::surface(std::size_t index, const CylinderSegment& seg, const Triang
         const float across = seg.closed ? tilesAround : g / tileWidth;
         const float tau = (1.0f - t) * tau0 + t * tau1;
         // Open contours start at an edge; the shifted back needs the tile before the first.
-        for (int tile = shift > 0.0f && !seg.closed ? -1 : 0; static_cast<float>(tile) < across; ++tile) {
+        for (int tile = shift > 0.0f && !seg.closed ? -1 : 0; static_cast<float>(tile) < across;
+             ++tile) {
           float u = static_cast<float>(tile) + static_cast<float>(point.u) + shift;
           if (seg.closed && u >= tilesAround) u -= tilesAround;
           if (u < 0.0f) continue;
@@ -380,7 +389,8 @@ void Placer::surface(std::size_t index, const CylinderSegment& seg, const Triang
           if (s >= 1.0f) continue;
           countCandidate();
           HairRandom random(key(sideKey, key(static_cast<std::uint64_t>(row) * 65536u + k,
-                                             static_cast<std::uint64_t>(p) * 4096u + static_cast<std::uint64_t>(tile))));
+                                             static_cast<std::uint64_t>(p) * 4096u +
+                                                 static_cast<std::uint64_t>(tile))));
           // Thinning: the local density over the tile's, and on closed contours the girth here
           // over the widest (the tile is stretched around it).
           const float density = values.sample(&HairSideAttributes::density, s, tau, random);
@@ -407,10 +417,10 @@ void Placer::surface(std::size_t index, const CylinderSegment& seg, const Triang
           const CornerVectors& c01 = corners[static_cast<std::size_t>(lo + 1)];
           const CornerVectors& c10 = corners[perRing + static_cast<std::size_t>(lo)];
           const CornerVectors& c11 = corners[perRing + static_cast<std::size_t>(lo + 1)];
-          const glm::vec3 direction = w00 * c00.direction + w01 * c01.direction +
-                                      w10 * c10.direction + w11 * c11.direction;
-          const glm::vec3 axisAcross = w00 * c00.across + w01 * c01.across + w10 * c10.across +
-                                       w11 * c11.across;
+          const glm::vec3 direction =
+              w00 * c00.direction + w01 * c01.direction + w10 * c10.direction + w11 * c11.direction;
+          const glm::vec3 axisAcross =
+              w00 * c00.across + w01 * c01.across + w10 * c10.across + w11 * c11.across;
           const float twist = w00 * cornerTwist[static_cast<std::size_t>(lo)] +
                               w01 * cornerTwist[static_cast<std::size_t>(lo + 1)] +
                               w10 * cornerTwist[perRing + static_cast<std::size_t>(lo)] +
@@ -426,8 +436,8 @@ void Placer::surface(std::size_t index, const CylinderSegment& seg, const Triang
 // vector h × n, away from the segment. An edge has no area: hairs lie as densely as along a line
 // through the surface pattern of the same density, √density per unit length, spaced evenly with
 // a jitter and counted in arc length from @Gs, so the rhythm continues from segment to segment.
-void Placer::edge(std::size_t index, const CylinderSegment& seg, const TriangleMesh& mesh,
-                  const SideValues& values, int which) {
+void Placer::edge(const CylinderSegment& seg, const TriangleMesh& mesh, const SideValues& values,
+                  int which) {
   const float maxDensity = values.maxDensity();
   if (!(maxDensity > 0.0f)) return;
   const float maxLinear = std::sqrt(maxDensity);
@@ -438,19 +448,23 @@ void Placer::edge(std::size_t index, const CylinderSegment& seg, const TriangleM
   auto position = [&](std::size_t k, int jj) {
     return mesh.positions[seg.firstVertex + k * perRing + static_cast<std::size_t>(jj)];
   };
-  const std::uint64_t edgeKey = key(settings.seed, key(static_cast<std::uint64_t>(seg.tube) * 2 + static_cast<std::uint64_t>(which), 0x65646765u));
+  const std::uint64_t edgeKey = key(settings.seed, key(static_cast<std::uint64_t>(seg.tube) * 2 +
+                                                           static_cast<std::uint64_t>(which),
+                                                       0x65646765u));
   for (std::size_t k = 1; k < seg.rings.size(); ++k) {
     const float v0 = seg.rings[k - 1].axisDistance, v1 = seg.rings[k].axisDistance;
     if (!(v1 > v0)) continue;
     const float tau0 = ringTau(seg, k - 1), tau1 = ringTau(seg, k);
-    const glm::vec3 h = normalizedOr(position(k, j) - position(k - 1, j), glm::vec3(seg.rings[k].frame.heading));
+    const glm::vec3 h =
+        normalizedOr(position(k, j) - position(k - 1, j), glm::vec3(seg.rings[k].frame.heading));
     CornerVectors corner[2];
     float twist[2];
     for (int r = 0; r < 2; ++r) {
       const std::size_t kk = k - 1 + static_cast<std::size_t>(r);
       const float tau = r == 0 ? tau0 : tau1;
-      const glm::vec3 n = normalizedOr(mesh.normals[seg.firstVertex + kk * perRing + static_cast<std::size_t>(j)],
-                                       glm::vec3(seg.rings[kk].frame.up));
+      const glm::vec3 n =
+          normalizedOr(mesh.normals[seg.firstVertex + kk * perRing + static_cast<std::size_t>(j)],
+                       glm::vec3(seg.rings[kk].frame.up));
       glm::vec3 e = normalizedOr(glm::cross(h, n), anyPerpendicular(h));
       if (glm::dot(e, position(kk, j) - position(kk, inner)) < 0.0f) e = -e;
       corner[r] = reorient(e, h, values.value(&HairSideAttributes::incline, s, tau) * kDegrees,
@@ -471,28 +485,29 @@ void Placer::edge(std::size_t index, const CylinderSegment& seg, const TriangleM
       const glm::vec3 root = (1.0f - t) * position(k - 1, j) + t * position(k, j);
       const glm::vec3 direction = (1.0f - t) * corner[0].direction + t * corner[1].direction;
       const glm::vec3 across = (1.0f - t) * corner[0].across + t * corner[1].across;
-      emit(values, HairSide::Edge, s, tau, root, direction, across, (1.0f - t) * twist[0] + t * twist[1],
-           random);
+      emit(values, HairSide::Edge, s, tau, root, direction, across,
+           (1.0f - t) * twist[0] + t * twist[1], random);
     }
   }
-  (void)index;
 }
 
 // The expected number of hairs, to reserve the vector once (bytes per hair stay near 32).
-std::size_t expectedHairs(const Scene& scene, bool interpolation) {
+std::size_t expectedHairs(const Scene& scene) {
   double total = 0;
   for (const CylinderSegment& seg : scene.cylinderSegments) {
-    if (seg.hairEnd < 0 || static_cast<std::size_t>(seg.hairEnd) >= scene.hairAttributes.size()) continue;
+    if (seg.hairEnd < 0 || static_cast<std::size_t>(seg.hairEnd) >= scene.hairAttributes.size())
+      continue;
     const HairAttributes& a = scene.hairAttributes[static_cast<std::size_t>(seg.hairEnd)];
     const double area = 0.5 * (seg.girthStart + seg.girthEnd) * seg.axisLength;
     for (HairSide side : {HairSide::Front, HairSide::Back}) {
       const HairSideAttributes& s = a.side(side);
-      if (s.enabled && (side == HairSide::Front || !seg.closed)) total += std::abs(s.density.value) * area;
+      if (s.enabled && (side == HairSide::Front || !seg.closed))
+        total += std::abs(s.density.value) * area;
     }
     const HairSideAttributes& e = a.side(HairSide::Edge);
-    if (e.enabled && !seg.closed) total += 2.0 * std::sqrt(std::abs(e.density.value)) * seg.axisLength;
+    if (e.enabled && !seg.closed)
+      total += 2.0 * std::sqrt(std::abs(e.density.value)) * seg.axisLength;
   }
-  (void)interpolation;
   return static_cast<std::size_t>(std::min(total * 1.02 + 64.0, 1e9));
 }
 
@@ -511,12 +526,14 @@ HairPlacementReport placeHairs(Scene& scene, const HairPlacementSettings& settin
   if (scene.hairTemplates.empty()) scene.hairTemplates.push_back(straightHairTemplate());
   const PointDiffusionTexture texture = PointDiffusionTexture::generate(settings.texture);
   Placer placer{scene, settings, texture, {}, 0, {}};
-  placer.templates = static_cast<int>(std::min<std::size_t>(scene.hairTemplates.size(), kMaxHairTemplates));
+  placer.templates =
+      static_cast<int>(std::min<std::size_t>(scene.hairTemplates.size(), kMaxHairTemplates));
   placer.rowStart.assign(static_cast<std::size_t>(texture.height()) + 1, 0);
-  for (const TexturePoint& p : texture.points()) ++placer.rowStart[static_cast<std::size_t>(p.row) + 1];
-  for (std::size_t r = 1; r < placer.rowStart.size(); ++r) placer.rowStart[r] += placer.rowStart[r - 1];
-  scene.hairs.reserve(scene.hairs.size() +
-                      std::min(expectedHairs(scene, settings.interpolation), settings.maxHairs));
+  for (const TexturePoint& p : texture.points())
+    ++placer.rowStart[static_cast<std::size_t>(p.row) + 1];
+  for (std::size_t r = 1; r < placer.rowStart.size(); ++r)
+    placer.rowStart[r] += placer.rowStart[r - 1];
+  scene.hairs.reserve(scene.hairs.size() + std::min(expectedHairs(scene), settings.maxHairs));
   for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) placer.segment(i);
   return placer.report;
 }

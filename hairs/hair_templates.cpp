@@ -22,16 +22,18 @@ constexpr float kJoinTolerance = 1e-5f;
 
 }  // namespace
 
-HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file, const SourceLocation& where) {
+HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file,
+                                   const SourceLocation& where) {
   std::vector<const LineSegment*> segments;
   for (const LineSegment& line : scene.lines) {
     if (glm::length(line.to - line.from) > 0.0f) segments.push_back(&line);
   }
   if (segments.empty()) {
-    throw DiagnosticError(where.file ? where : SourceLocation{std::make_shared<const std::string>(file), 0, 0},
-                          "the template hair " + file +
-                              " draws nothing: it needs F modules (a hair is the polyline of the "
-                              "turtle's positions)");
+    throw DiagnosticError(
+        where.file ? where : SourceLocation{std::make_shared<const std::string>(file), 0, 0},
+        "the template hair " + file +
+            " draws nothing: it needs F modules (a hair is the polyline of the "
+            "turtle's positions)");
   }
   // The hair frame: x along the first segment, y the turtle's initial left (-x in cpfg's frame)
   // made orthogonal to it, or its initial up when the first segment runs along the left.
@@ -50,7 +52,8 @@ HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file, 
   hair.file = file;
   hair.material = segments.front()->material;
   float size = 0;
-  for (const LineSegment* s : segments) size = std::max({size, glm::length(s->from - origin), glm::length(s->to - origin)});
+  for (const LineSegment* s : segments)
+    size = std::max({size, glm::length(s->from - origin), glm::length(s->to - origin)});
   const float tolerance = kJoinTolerance * std::max(size, 1e-6f);
   for (const LineSegment* s : segments) {
     const glm::vec3 from = local(s->from), to = local(s->to);
@@ -65,7 +68,8 @@ HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file, 
   return hair;
 }
 
-std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources, Diagnostics& diagnostics) {
+std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources,
+                                            Diagnostics& diagnostics) {
   std::vector<HairTemplate> templates;
   if (resources.view.hairTemplates.empty()) return templates;
   // The plant's settings (angle increment, colours, contours), but lines drawn as lines: a hair

@@ -1,10 +1,10 @@
 #include "hirsute/hairs/plant_hairs.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "hirsute/hairs/hair_templates.h"
 
@@ -43,15 +43,16 @@ HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources
   try {
     report = placeHairs(scene, settings);
   } catch (const HairLimitError& e) {
-    throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
-                          e.what());
+    throw DiagnosticError(
+        SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0}, e.what());
   }
   if (report.segmentsWithoutMesh > 0) {
-    diagnostics.warn(SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
-                     fmt::format("{} hairy generalized-cylinder segments are drawn as lines and get no "
-                                 "hairs; hairs grow on cylinders drawn as triangles (`line style: "
-                                 "cylinder` in the view file)",
-                                 report.segmentsWithoutMesh));
+    diagnostics.warn(
+        SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
+        fmt::format("{} hairy generalized-cylinder segments are drawn as lines and get no "
+                    "hairs; hairs grow on cylinders drawn as triangles (`line style: "
+                    "cylinder` in the view file)",
+                    report.segmentsWithoutMesh));
   }
   return report;
 }

@@ -310,8 +310,9 @@ void Turtle::hairModule(char which, const float* p, std::size_t count) {
   std::vector<HairAttributes>& sets = scene_->hairAttributes;
   const bool scratch = state_.hairAttributes >= 0 && state_.hairAttributes == hairScratch_ &&
                        modulesSeen_ == hairScratchModule_ + 3;
-  HairAttributes attributes =
-      state_.hairAttributes >= 0 ? sets[static_cast<std::size_t>(state_.hairAttributes)] : HairAttributes{};
+  HairAttributes attributes = state_.hairAttributes >= 0
+                                  ? sets[static_cast<std::size_t>(state_.hairAttributes)]
+                                  : HairAttributes{};
   const HairAttributes before = attributes;
 
   auto sidesOf = [&](int loc) -> std::vector<HairSideAttributes*> {
@@ -321,8 +322,9 @@ void Turtle::hairModule(char which, const float* p, std::size_t count) {
   auto location = [&](float value, int& loc) {
     loc = truncated(value);
     if (loc < 0 || loc > kHairSides) {
-      warnOnce(name + " loc", name + ": loc " + std::to_string(loc) +
-                                  " is not 0 (all), 1 (front), 2 (back) or 3 (edge); module ignored");
+      warnOnce(name + " loc",
+               name + ": loc " + std::to_string(loc) +
+                   " is not 0 (all), 1 (front), 2 (back) or 3 (edge); module ignored");
       return false;
     }
     return true;
@@ -332,7 +334,9 @@ void Turtle::hairModule(char which, const float* p, std::size_t count) {
     case 'f':
     case 'b':
     case 'e': {
-      const HairSide side = which == 'f' ? HairSide::Front : which == 'b' ? HairSide::Back : HairSide::Edge;
+      const HairSide side = which == 'f'   ? HairSide::Front
+                            : which == 'b' ? HairSide::Back
+                                           : HairSide::Edge;
       attributes.side(side).enabled = count == 0 || p[0] != 0.0f;
       break;
     }
@@ -346,7 +350,8 @@ void Turtle::hairModule(char which, const float* p, std::size_t count) {
         warnOnce(name + " empty", name + " needs a value: " + name + "(value[,rng[,fun[,loc]]])");
         return;
       }
-      if (count > 4) warnOnce(name + " many", name + " takes at most 4 parameters; the rest are ignored");
+      if (count > 4)
+        warnOnce(name + " many", name + " takes at most 4 parameters; the rest are ignored");
       int loc = 0;
       if (count >= 4 && !location(p[3], loc)) return;
       HairValue value{p[0], count >= 2 ? std::abs(p[1]) : 0.0f, count >= 3 ? truncated(p[2]) : 0};
@@ -372,7 +377,8 @@ void Turtle::hairModule(char which, const float* p, std::size_t count) {
         if (!location(p[templates], loc)) return;
       } else if (count > templates + 1) {
         warnOnce("@Hp many", "@Hp: " + std::to_string(count) + " parameters for " +
-                                 std::to_string(templates) + " template hair(s); the extra ones are ignored");
+                                 std::to_string(templates) +
+                                 " template hair(s); the extra ones are ignored");
       }
       n = std::min<std::size_t>(n, kMaxHairTemplates);
       for (HairSideAttributes* side : sidesOf(loc)) {
@@ -540,7 +546,8 @@ void Turtle::atModule(char first, char second, const float* p, std::size_t count
       break;
     case 'L':
       if (scene_ != nullptr) {
-        scene_->labels.push_back(Label{glm::vec3(state_.position), labelText(p, count), material(state_.color)});
+        scene_->labels.push_back(
+            Label{glm::vec3(state_.position), labelText(p, count), material(state_.color)});
       }
       break;
     case 'S':
@@ -832,7 +839,8 @@ std::string Turtle::labelText(const float* p, std::size_t count) {
     PrintfResult result = formatPrintf((*strings_)[static_cast<std::size_t>(p[0])], values.data(),
                                        static_cast<int>(values.size()));
     if (result.missingValues) {
-      warnOnce("@L format", "@L: the format has more conversions than values; they are drawn as written");
+      warnOnce("@L format",
+               "@L: the format has more conversions than values; they are drawn as written");
     }
     return std::move(result.text);
   }

@@ -29,8 +29,8 @@ struct HairPlacementSettings {
 };
 
 struct HairPlacementReport {
-  std::size_t hairs = 0;             // placed by this call
-  std::size_t segments = 0;          // segments that carried hairs
+  std::size_t hairs = 0;                // placed by this call
+  std::size_t segments = 0;             // segments that carried hairs
   std::size_t segmentsWithoutMesh = 0;  // hairy segments not drawn as triangles (line styles)
 };
 

@@ -15,7 +15,8 @@ namespace hirsute {
 // view settings (angle increment, colours). Throws DiagnosticError at the template's own
 // file:line:col for a broken template, at its `hair:` line for a missing one or one that draws
 // nothing.
-std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources, Diagnostics& diagnostics);
+std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources,
+                                            Diagnostics& diagnostics);
 
 // The template of an interpreted scene: its line segments in drawing order, chained into
 // polylines, turned into the hair frame (x along the first segment). A scene without segments

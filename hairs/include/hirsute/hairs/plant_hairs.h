@@ -16,9 +16,9 @@
 namespace hirsute {
 
 struct PlantHairOptions {
-  std::uint64_t seed = 0;                // 0: the view file's `hair texture:` seed
-  std::size_t maxHairs = 50'000'000;     // more is an error
-  std::string lsystemFile;               // where the limit error points
+  std::uint64_t seed = 0;             // 0: the view file's `hair texture:` seed
+  std::size_t maxHairs = 50'000'000;  // more is an error
+  std::string lsystemFile;            // where the limit error points
 };
 
 // Whether any segment of the scene has a side with hairs switched on.

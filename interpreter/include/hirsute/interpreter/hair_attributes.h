@@ -32,8 +32,9 @@ struct HairValue {
 // The attributes of one side.
 struct HairSideAttributes {
   bool enabled = false;
-  HairValue density{1.0f};  // hairs per unit area (per unit length along an edge: see docs/hairs.md)
-  HairValue length{1.0f};   // scales the template's vertices
+  HairValue density{
+      1.0f};               // hairs per unit area (per unit length along an edge: see docs/hairs.md)
+  HairValue length{1.0f};  // scales the template's vertices
   HairValue radius{0.01f};  // constant along a hair
   HairValue incline{};      // degrees, about the incline axis n × h
   HairValue twist{};        // degrees, about the hair direction d
