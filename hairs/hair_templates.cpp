@@ -84,7 +84,9 @@ std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources,
     if (!std::filesystem::is_regular_file(file, error)) {
       throw DiagnosticError(declaration.where, "cannot open the template hair " + file);
     }
-    Model model = loadModel(file, std::nullopt, diagnostics);
+    // Sec. 3.2: hair curvature is controlled with functions; a template reads the plant's
+    // function set (`func(id, x)`, the set's names defined) as the plant does.
+    Model model = loadModel(file, resources.viewFile, diagnostics);
     Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr);
     DerivationOptions options;
     options.maxModules = 1'000'000;  // a hair is a few segments

@@ -164,6 +164,7 @@ ModelResources loadModelResources(const std::optional<std::filesystem::path>& vi
   ModelResources resources;
   if (viewFile) {
     resources.folder = viewFile->parent_path();
+    resources.viewFile = *viewFile;
     // cpfg runs the view file through the C preprocessor too: #define, /* */ and // work.
     const std::string text = preprocessFile(*viewFile, PreprocessorOptions{}, diagnostics);
     resources.view = parseViewFile(text, *viewFile, diagnostics);

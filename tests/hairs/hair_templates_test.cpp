@@ -26,12 +26,13 @@ std::vector<HairTemplate> templatesOf(const std::string& view) {
   return loadHairTemplates(resources, diagnostics);
 }
 
-void expectPolyline(const std::vector<glm::vec3>& actual, const std::vector<glm::vec3>& expected) {
+void expectPolyline(const std::vector<glm::vec3>& actual, const std::vector<glm::vec3>& expected,
+                    float tolerance = kTolerance) {
   ASSERT_EQ(actual.size(), expected.size());
   for (std::size_t i = 0; i < actual.size(); ++i) {
-    EXPECT_NEAR(actual[i].x, expected[i].x, kTolerance) << "vertex " << i;
-    EXPECT_NEAR(actual[i].y, expected[i].y, kTolerance) << "vertex " << i;
-    EXPECT_NEAR(actual[i].z, expected[i].z, kTolerance) << "vertex " << i;
+    EXPECT_NEAR(actual[i].x, expected[i].x, tolerance) << "vertex " << i;
+    EXPECT_NEAR(actual[i].y, expected[i].y, tolerance) << "vertex " << i;
+    EXPECT_NEAR(actual[i].z, expected[i].z, tolerance) << "vertex " << i;
   }
 }
 
@@ -66,6 +67,22 @@ TEST(HairTemplates, FirstSegmentDefinesTheHairDirection) {
   ASSERT_EQ(turned.polylines.size(), 1u);
   const float h = std::sqrt(0.5f);
   expectPolyline(turned.polylines[0], {{0, 0, 0}, {1, 0, 0}, {1 + h, -h, 0}});
+}
+
+// Sec. 3.2: hair curvature comes from functions. A template reads the plant's function set,
+// its names defined, as the plant does: turns of 90·ramp(i/4) = 36°, 54°, 72° (the function is
+// a sampled B-spline: within 1e-3).
+TEST(HairTemplates, TemplateCurvesWithThePlantsFunctions) {
+  const std::vector<HairTemplate> templates = templatesOf("function_template.v");
+  ASSERT_EQ(templates.size(), 1u);
+  ASSERT_EQ(templates[0].polylines.size(), 1u);
+  std::vector<glm::vec3> expected{{0, 0, 0}, {0.25f, 0, 0}};
+  float heading = 0;
+  for (float turn : {36.0f, 54.0f, 72.0f}) {
+    heading += glm::radians(turn);
+    expected.push_back(expected.back() + 0.25f * glm::vec3(std::cos(heading), std::sin(heading), 0));
+  }
+  expectPolyline(templates[0].polylines[0], expected, 1e-3f);
 }
 
 TEST(HairTemplates, MoveWithoutDrawingStartsANewPolyline) {

@@ -25,6 +25,7 @@ struct ColorFiles {
 
 struct ModelResources {
   std::filesystem::path folder;      // the view file's folder; file names resolve against it
+  std::optional<std::filesystem::path> viewFile;  // the view file itself, when there is one
   ViewSettings view;
   std::vector<Material> palette;     // 256 per bank; index 0 of bank 1 is the background
   bool materialMode = false;         // materials (.mat) rather than a colour map (.map)
