@@ -36,6 +36,19 @@ FileWatcher::FileWatcher(std::vector<std::filesystem::path> files,
   stamps_ = scan();
 }
 
+void FileWatcher::watch(const std::filesystem::path& file) {
+  const std::filesystem::path n = normal(file);
+  if (std::find(files_.begin(), files_.end(), n) != files_.end()) return;
+  files_.push_back(n);
+  // Only the new file's stamp is taken now: a change elsewhere still waiting stays one.
+  std::error_code ec;
+  Stamp s;
+  s.time = std::filesystem::last_write_time(n, ec);
+  if (ec) return;
+  s.size = std::filesystem::file_size(n, ec);
+  if (!ec && !ignored_.count(n)) stamps_[n] = s;
+}
+
 void FileWatcher::ignore(const std::filesystem::path& file) {
   ignored_.insert(normal(file));
   stamps_ = scan();

@@ -320,6 +320,10 @@ void Viewer::applyBuild(ModelBuild build) {
   }
   error_ = animationError_;  // a broken .a stays reported until it is fixed
   model_ = build.model;
+  // Texture images are read by the model without a model file's extension: watched by name.
+  if (watcher_) {
+    for (const TextureDeclaration& texture : model_->view.textures) watcher_->watch(texture.file);
+  }
   renderer_->upload(model_->scene, model_->view, model_->materialMode);
   bool newLength = derivationLength_ != model_->derivationLength;
   derivationLength_ = model_->derivationLength;

@@ -60,5 +60,17 @@ TEST_F(FileWatcherTest, IgnoredFilesAreNotChanges) {
   EXPECT_FALSE(watcher.poll(t + 1s));
 }
 
+TEST_F(FileWatcherTest, FilesWatchedByNameAreChangesWhateverTheirExtension) {
+  write("bark.png", "image");
+  FileWatcher watcher({folder_ / "plant.l"}, {folder_});
+  watcher.watch(folder_ / "bark.png");  // a texture the view file names
+  auto t = FileWatcher::Clock::now();
+  EXPECT_FALSE(watcher.poll(t)) << "watching a file is no change";
+  EXPECT_FALSE(watcher.poll(t + 1s));
+  write("bark.png", "another image");
+  watcher.poll(t + 2s);
+  EXPECT_TRUE(watcher.poll(t + 3s));
+}
+
 }  // namespace
 }  // namespace hirsute

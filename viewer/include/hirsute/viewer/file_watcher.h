@@ -25,6 +25,10 @@ class FileWatcher {
   // .inc .h .txt .dat …).
   FileWatcher(std::vector<std::filesystem::path> files, std::vector<std::filesystem::path> folders);
 
+  // Watches `file` too from now on (a file the model turns out to read, such as a texture image
+  // named by the view file); its present state is not a change.
+  void watch(const std::filesystem::path& file);
+
   // Files the program writes itself (screenshots) are not changes of the model.
   void ignore(const std::filesystem::path& file);
 
