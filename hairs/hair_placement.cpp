@@ -185,11 +185,21 @@ struct Placer {
   }
   // A density whose peak (a function's, or its range's) is far above where hairs are kept still
   // costs a texture point per unit of the peak: bounded like the hairs themselves.
+  std::size_t candidateBudget() const { return 8 * settings.maxHairs + 1'000'000; }
+  [[noreturn]] void tooManyCandidates() const {
+    throw HairLimitError("the densities would test more than " + std::to_string(candidateBudget()) +
+                         " attachment points (the peak of @Hd's value, function and range sets "
+                         "how many; raise --max-hairs or lower @Hd)");
+  }
   void countCandidate() {
-    if (++candidates > 8 * settings.maxHairs + 1'000'000) {
-      throw HairLimitError("the densities would test more than " + std::to_string(candidates - 1) +
-                           " attachment points (the peak of @Hd's value, function and range sets "
-                           "how many; raise --max-hairs or lower @Hd)");
+    if (++candidates > candidateBudget()) tooManyCandidates();
+  }
+  // Before a strip's loops: the points it would test, estimated in double, must fit the budget
+  // (this also keeps an infinite or absurd density from reaching an integer conversion).
+  void expectCandidates(double count) const {
+    if (!(count <=
+          static_cast<double>(candidateBudget() - std::min(candidates, candidateBudget())))) {
+      tooManyCandidates();
     }
   }
 
@@ -364,6 +374,9 @@ void Placer::surface(std::size_t index, const CylinderSegment& seg, const Triang
     const float v0 = seg.rings[k - 1].axisDistance, v1 = seg.rings[k].axisDistance;
     if (!(v1 > v0)) continue;
     const float tv0 = v0 / tileHeight - shift, tv1 = v1 / tileHeight - shift;
+    expectCandidates(
+        (static_cast<double>(tv1) - tv0 + 1.0) *
+        (height + static_cast<double>(points.size()) * (static_cast<double>(tilesAround) + 1.0)));
     // Texture rows in [tv0, tv1), tile by tile.
     const long firstRow = static_cast<long>(std::floor(tv0 * height));
     const long lastRow = static_cast<long>(std::floor(tv1 * height));
@@ -471,6 +484,7 @@ void Placer::edge(const CylinderSegment& seg, const TriangleMesh& mesh, const Si
                            values.value(&HairSideAttributes::wrap, s, tau) * kDegrees);
       twist[r] = values.value(&HairSideAttributes::twist, s, tau);
     }
+    expectCandidates((static_cast<double>(v1) - v0) * maxLinear + 1.0);
     const long first = static_cast<long>(std::floor(v0 * maxLinear));
     const long last = static_cast<long>(std::floor(v1 * maxLinear));
     for (long slot = first; slot <= last; ++slot) {
@@ -499,14 +513,17 @@ std::size_t expectedHairs(const Scene& scene) {
       continue;
     const HairAttributes& a = scene.hairAttributes[static_cast<std::size_t>(seg.hairEnd)];
     const double area = 0.5 * (seg.girthStart + seg.girthEnd) * seg.axisLength;
+    // Only an estimate: terms that are not finite (a broken geometry or density) count nothing.
+    auto add = [&](double term) {
+      if (std::isfinite(term)) total += term;
+    };
     for (HairSide side : {HairSide::Front, HairSide::Back}) {
       const HairSideAttributes& s = a.side(side);
       if (s.enabled && (side == HairSide::Front || !seg.closed))
-        total += std::abs(s.density.value) * area;
+        add(std::abs(s.density.value) * area);
     }
     const HairSideAttributes& e = a.side(HairSide::Edge);
-    if (e.enabled && !seg.closed)
-      total += 2.0 * std::sqrt(std::abs(e.density.value)) * seg.axisLength;
+    if (e.enabled && !seg.closed) add(2.0 * std::sqrt(std::abs(e.density.value)) * seg.axisLength);
   }
   return static_cast<std::size_t>(std::min(total * 1.02 + 64.0, 1e9));
 }
