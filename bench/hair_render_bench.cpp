@@ -31,60 +31,12 @@
 #include "hirsute/viewer/gl_renderer.h"
 #include "hirsute/viewer/offscreen.h"
 #include "model_pipeline.h"
+#include "raw_gl.h"
 #include "synthetic_hairs.h"
 
-namespace {
-
 using hirsute::GlFunctions;
-
-GLuint compile(const GlFunctions& gl, GLenum stage, const char* source) {
-  GLuint shader = gl.CreateShader(stage);
-  gl.ShaderSource(shader, 1, &source, nullptr);
-  gl.CompileShader(shader);
-  GLint ok = 0;
-  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) throw std::runtime_error("the trivial shader does not compile");
-  return shader;
-}
-
-// The trivial program: transform, constant colour.
-GLuint trivialProgram(const GlFunctions& gl) {
-  GLuint program = gl.CreateProgram();
-  gl.AttachShader(program, compile(gl, GL_VERTEX_SHADER, R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-uniform mat4 uViewProjection;
-void main() { gl_Position = uViewProjection * vec4(aPosition, 1.0); })"));
-  gl.AttachShader(program, compile(gl, GL_FRAGMENT_SHADER, R"(#version 330 core
-out vec4 fragColor;
-void main() { fragColor = vec4(0.3, 0.7, 0.2, 1.0); })"));
-  gl.LinkProgram(program);
-  return program;
-}
-
-double secondsOf(const GlFunctions& gl, const std::function<void()>& draw) {
-  auto start = std::chrono::steady_clock::now();
-  draw();
-  gl.Finish();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// The medians of `frames` frames of each drawing, timed in turn, after one untimed frame each.
-std::vector<double> frameSeconds(const GlFunctions& gl, int frames,
-                                 const std::vector<std::function<void()>>& draws) {
-  for (const auto& draw : draws) secondsOf(gl, draw);
-  std::vector<std::vector<double>> times(draws.size());
-  for (int i = 0; i < frames; ++i) {
-    for (std::size_t d = 0; d < draws.size(); ++d) times[d].push_back(secondsOf(gl, draws[d]));
-  }
-  std::vector<double> medians;
-  for (auto& t : times) {
-    std::sort(t.begin(), t.end());
-    medians.push_back(t[t.size() / 2]);
-  }
-  return medians;
-}
-
-}  // namespace
+using hirsute::bench::frameSeconds;
+using hirsute::bench::trivialProgram;
 
 int main(int argc, char** argv) {
   CLI::App app{

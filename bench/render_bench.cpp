@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <random>
@@ -26,10 +27,20 @@
 #include "hirsute/viewer/camera.h"
 #include "hirsute/viewer/gl_renderer.h"
 #include "hirsute/viewer/offscreen.h"
+#include "raw_gl.h"
 
 namespace {
 
 using hirsute::GlFunctions;
+using hirsute::bench::trivialProgram;
+
+// The renderer's frame and the raw drawing's, timed in turn (raw_gl.h).
+std::pair<double, double> frameSeconds(const GlFunctions& gl, int frames,
+                                       const std::function<void()>& scene,
+                                       const std::function<void()>& raw) {
+  const std::vector<double> t = hirsute::bench::frameSeconds(gl, frames, {scene, raw});
+  return {t[0], t[1]};
+}
 
 // A fan of tubes from the origin: `tubes` tubes of `rings` rings of `sides` vertices each.
 hirsute::Scene tubeScene(int tubes, int rings, int sides, std::mt19937& random) {
@@ -94,54 +105,6 @@ hirsute::Scene lineScene(std::size_t count, std::mt19937& random) {
     p = q;
   }
   return scene;
-}
-
-GLuint compile(const GlFunctions& gl, GLenum stage, const char* source) {
-  GLuint shader = gl.CreateShader(stage);
-  gl.ShaderSource(shader, 1, &source, nullptr);
-  gl.CompileShader(shader);
-  GLint ok = 0;
-  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) throw std::runtime_error("the trivial shader does not compile");
-  return shader;
-}
-
-// The trivial program: transform, constant colour.
-GLuint trivialProgram(const GlFunctions& gl) {
-  GLuint program = gl.CreateProgram();
-  gl.AttachShader(program, compile(gl, GL_VERTEX_SHADER, R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-uniform mat4 uViewProjection;
-void main() { gl_Position = uViewProjection * vec4(aPosition, 1.0); })"));
-  gl.AttachShader(program, compile(gl, GL_FRAGMENT_SHADER, R"(#version 330 core
-out vec4 fragColor;
-void main() { fragColor = vec4(0.3, 0.7, 0.2, 1.0); })"));
-  gl.LinkProgram(program);
-  return program;
-}
-
-// Seconds a frame of each of two drawings: the medians of `frames` frames each, timed in turn
-// (A, B, A, B, …) so that a change in the machine's load falls on both alike. One frame of each
-// is drawn first and left out.
-template <typename DrawA, typename DrawB>
-std::pair<double, double> frameSeconds(const GlFunctions& gl, int frames, DrawA drawA,
-                                       DrawB drawB) {
-  auto time = [&](auto& draw) {
-    auto start = std::chrono::steady_clock::now();
-    draw();
-    gl.Finish();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
-  time(drawA);
-  time(drawB);
-  std::vector<double> a, b;
-  for (int i = 0; i < frames; ++i) {
-    a.push_back(time(drawA));
-    b.push_back(time(drawB));
-  }
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
-  return {a[a.size() / 2], b[b.size() / 2]};
 }
 
 struct RawBuffers {
