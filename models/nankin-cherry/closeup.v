@@ -1,22 +1,3 @@
 /* A close-up of the middle of the Nankin cherry bough: the felt on the twigs, the fringe on the leaf edges. */
-angle increment: 45
-initial color: 3
-initial line width: 0.5
-line style: cylinder
-contour sides: 10
-projection: parallel
-viewpoint: 0.15,0.1,1
-view reference point: 0,0,0
+#include "nankin-cherry.v"
 scale factor: 4
-z buffer: on
-render mode: shaded
-light: V: -0.3,0.6,-1 D: 1,0.95,0.85
-light: V: 0.3,0.5,1 D: 0.45,0.45,0.5
-function set: nankin-cherry.fset
-contour: 1 leaf.con
-
-hair: straight.l
-hair: bent.l
-hair: curled.l
-hair texture: 100 3
-hair interpolation: on
