@@ -8,6 +8,7 @@
 
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/lsys/diagnostic.h"
+#include "support/diagnostic_of.h"
 
 #ifndef HIRSUTE_SOURCE_DIR
 #define HIRSUTE_SOURCE_DIR "/work/main"
@@ -27,16 +28,7 @@ void expectColor(const glm::vec3& actual, float r, float g, float b) {
   EXPECT_NEAR(actual.b, b, 1e-6f);
 }
 
-template <typename Load>
-Diagnostic diagnosticOf(Load load) {
-  try {
-    load();
-  } catch (const DiagnosticError& error) {
-    return error.diagnostic();
-  }
-  ADD_FAILURE() << "expected a DiagnosticError";
-  return Diagnostic{};
-}
+using testing::diagnosticOf;
 
 TEST(ColorFilesTest, ColorMapColoursAreAmbientAndDiffuse) {
   // ramp.map: colour i is (i, 255 − i, i/2).

@@ -11,6 +11,7 @@
 
 #include "hirsute/interpreter/texture_image.h"
 #include "hirsute/lsys/diagnostic.h"
+#include "support/diagnostic_of.h"
 
 #ifndef HIRSUTE_SOURCE_DIR
 #define HIRSUTE_SOURCE_DIR "/work/main"
@@ -29,16 +30,7 @@ std::array<int, 4> pixel(const Texture& texture, int x, int y) {
   return {texture.rgba[at], texture.rgba[at + 1], texture.rgba[at + 2], texture.rgba[at + 3]};
 }
 
-template <typename Load>
-Diagnostic diagnosticOf(Load load) {
-  try {
-    load();
-  } catch (const DiagnosticError& error) {
-    return error.diagnostic();
-  }
-  ADD_FAILURE() << "expected a DiagnosticError";
-  return Diagnostic{};
-}
+using testing::diagnosticOf;
 
 TEST(TextureImageTest, PngIsDecodedTopRowFirst) {
   const Texture texture = loadTexture(kFixtures / "checker.png");

@@ -10,6 +10,7 @@
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/lsys/diagnostic.h"
+#include "support/diagnostic_of.h"
 
 #ifndef HIRSUTE_SOURCE_DIR
 #define HIRSUTE_SOURCE_DIR "/work/main"
@@ -36,16 +37,7 @@ ViewSettings parseFixture(const std::string& name, Diagnostics& diagnostics) {
   return parseViewFile(readText(file), file, diagnostics);
 }
 
-template <typename Load>
-Diagnostic diagnosticOf(Load load) {
-  try {
-    load();
-  } catch (const DiagnosticError& error) {
-    return error.diagnostic();
-  }
-  ADD_FAILURE() << "expected a DiagnosticError";
-  return Diagnostic{};
-}
+using testing::diagnosticOf;
 
 void expectVector(const glm::vec3& actual, float x, float y, float z) {
   EXPECT_FLOAT_EQ(actual.x, x);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "hirsute/lsys/diagnostic.h"
+#include "support/diagnostic_of.h"
 
 #ifndef HIRSUTE_SOURCE_DIR
 #define HIRSUTE_SOURCE_DIR "/work/main"
@@ -41,17 +42,7 @@ std::string printedAsCpfg(double value) {
   return text;
 }
 
-// Runs `load` and returns the diagnostic it throws; fails the test when it throws none.
-template <typename Load>
-Diagnostic diagnosticOf(Load load) {
-  try {
-    load();
-  } catch (const DiagnosticError& error) {
-    return error.diagnostic();
-  }
-  ADD_FAILURE() << "expected a DiagnosticError";
-  return Diagnostic{};
-}
+using testing::diagnosticOf;
 
 // ---------------------------------------------------------------------------------------------
 // Functions
