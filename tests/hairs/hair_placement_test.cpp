@@ -675,25 +675,30 @@ TEST(HairAttributeState, BranchOfAForkedTubeKeepsItsOwnAttributes) {
   EXPECT_LT(three, scene.hairs.size());
 }
 
-// A segment keeps the attributes of its control points: modules after its @Gc change the next
-// segment only, even when the first of them repeats a value already set.
-TEST(HairAttributeState, ModulesAfterAControlPointLeaveTheClosedSegmentAlone) {
-  const PlacedHairs placed = place("repeated_value.l");
+// The two segments (of length 4, along y) of a straight tube carry one hair length each, and
+// both have many hairs.
+void expectSegmentLengths(const PlacedHairs& placed, float first, float second) {
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   const StraightAxis axis(placed.scene);
-  std::size_t first = 0, second = 0;
+  std::size_t inFirst = 0, inSecond = 0;
   for (const Hair& h : placed.scene.hairs) {
     const double y = axis.along(h.root);
     if (y < 4 - 1e-3) {
-      ++first;
-      ASSERT_EQ(h.length, 1.0f) << "at " << y;
+      ++inFirst;
+      ASSERT_EQ(h.length, first) << "at " << y;
     } else if (y > 4 + 1e-3) {
-      ++second;
-      ASSERT_EQ(h.length, 2.0f) << "at " << y;
+      ++inSecond;
+      ASSERT_EQ(h.length, second) << "at " << y;
     }
   }
-  EXPECT_GT(first, 500u);
-  EXPECT_GT(second, 500u);
+  EXPECT_GT(inFirst, 500u);
+  EXPECT_GT(inSecond, 500u);
+}
+
+// A segment keeps the attributes of its control points: modules after its @Gc change the next
+// segment only, even when the first of them repeats a value already set.
+TEST(HairAttributeState, ModulesAfterAControlPointLeaveTheClosedSegmentAlone) {
+  expectSegmentLengths(place("repeated_value.l"), 1.0f, 2.0f);
 }
 
 // ---- reproducibility -----------------------------------------------------------------------
@@ -744,22 +749,7 @@ TEST(HairSeeding, AnotherTextureSeedPlacesOtherRoots) {
 // ---- interpolation (Sec. 4.1) --------------------------------------------------------------
 
 TEST(HairInterpolation, WithoutInterpolationEachSegmentTakesItsEndValues) {
-  const PlacedHairs placed = place("two_lengths.l", "cylinder.v");
-  ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
-  const StraightAxis axis(placed.scene);
-  std::size_t first = 0, second = 0;
-  for (const Hair& h : placed.scene.hairs) {
-    const double y = axis.along(h.root);
-    if (y < 4 - 1e-3) {
-      ++first;
-      ASSERT_EQ(h.length, 3.0f) << "at " << y;
-    } else if (y > 4 + 1e-3) {
-      ++second;
-      ASSERT_EQ(h.length, 2.0f) << "at " << y;
-    }
-  }
-  EXPECT_GT(first, 500u);
-  EXPECT_GT(second, 500u);
+  expectSegmentLengths(place("two_lengths.l", "cylinder.v"), 3.0f, 2.0f);
 }
 
 TEST(HairInterpolation, WithInterpolationValuesVaryLinearlyAlongEachSegment) {
