@@ -10,8 +10,8 @@
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
+#include "hirsute/lsys/output_target.h"
 #include "hirsute/lsys/string_writer.h"
-#include "output_file.h"
 
 namespace hirsute::cli {
 namespace {
@@ -36,7 +36,8 @@ int runDerive(const DeriveOptions& o) {
     Model model = loadModel(o.lsystemFile, view, diagnostics);
     EvaluationLimits limits;
     limits.maxLoopIterations = o.maxLoopIterations;
-    Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr, limits);
+    Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr,
+                        limits);
     DerivationOptions options;
     options.steps = o.steps;
     options.maxModules = o.maxModules;
@@ -50,8 +51,11 @@ int runDerive(const DeriveOptions& o) {
       installQueryPass(derivation, resources, diagnostics);
     }
 
-    OutputFile out(o.output);
-    StringWriter writer(out.stream(), o.format == "compact" ? StringFormat::Compact : StringFormat::Cpfg);
+    // No file, or "-": standard output. Otherwise the shared rule for output files.
+    std::optional<OutputTarget> file;
+    if (!o.output.empty() && o.output != "-") file.emplace(o.output);
+    std::FILE* out = file ? file->stream() : stdout;
+    StringWriter writer(out, o.format == "compact" ? StringFormat::Compact : StringFormat::Cpfg);
     writer.setStrings(&model.program.strings);  // @L("text") is written with its text
     derivation.start();
     if (o.eachStep) {
@@ -59,7 +63,7 @@ int runDerive(const DeriveOptions& o) {
       derivation.emit(writer, o.homomorphism);
       writer.finish();
       while (derivation.step()) {
-        if (o.format != "compact") std::fputc('\n', out.stream());
+        if (o.format != "compact") std::fputc('\n', out);
         derivation.emit(writer, o.homomorphism);
         writer.finish();
       }
@@ -67,10 +71,18 @@ int runDerive(const DeriveOptions& o) {
       derivation.run();
       derivation.emit(writer, o.homomorphism);
     }
-    if (!writer.finish() || !out.commit()) {
-      std::cerr << (o.output.empty() ? "<stdout>" : o.output) << ": error: cannot write: "
-                << std::strerror(errno) << '\n';
+    if (!writer.finish() || (!file && std::fflush(stdout) != 0)) {
+      std::cerr << (file ? o.output : std::string("<stdout>"))
+                << ": error: cannot write: " << std::strerror(errno) << '\n';
       return kExitIoError;
+    }
+    if (file) {
+      try {
+        file->commit();
+      } catch (const std::runtime_error& e) {
+        std::cerr << "hirsute: error: " << e.what() << '\n';
+        return kExitIoError;
+      }
     }
     return kExitOk;
   } catch (const DiagnosticError& e) {
@@ -83,18 +95,28 @@ int runDerive(const DeriveOptions& o) {
 
 void registerDeriveCommand(CLI::App& app, Action& action) {
   auto options = std::make_shared<DeriveOptions>();
-  CLI::App* derive = app.add_subcommand("derive", "Derive the L-system and print the string as cpfg's -str does");
-  derive->add_option("lsystem", options->lsystemFile, "The .l file")->required()->check(CLI::ExistingFile);
-  derive->add_option("view", options->viewFile, "The .v file (its function: and function set: lines are used)")
+  CLI::App* derive =
+      app.add_subcommand("derive", "Derive the L-system and print the string as cpfg's -str does");
+  derive->add_option("lsystem", options->lsystemFile, "The .l file")
+      ->required()
       ->check(CLI::ExistingFile);
-  derive->add_option("-n,--steps", options->steps, "Derivation steps (default: the file's derivation length)")
+  derive
+      ->add_option("view", options->viewFile,
+                   "The .v file (its function: and function set: lines are used)")
+      ->check(CLI::ExistingFile);
+  derive
+      ->add_option("-n,--steps", options->steps,
+                   "Derivation steps (default: the file's derivation length)")
       ->check(CLI::Range(0, 1000000000));
-  derive->add_flag("--homomorphism", options->homomorphism, "Apply the homomorphism to the output (cpfg -homo)");
-  derive->add_flag("--each-step", options->eachStep, "Print the string after every step, starting with the axiom");
+  derive->add_flag("--homomorphism", options->homomorphism,
+                   "Apply the homomorphism to the output (cpfg -homo)");
+  derive->add_flag("--each-step", options->eachStep,
+                   "Print the string after every step, starting with the axiom");
   derive->add_option("-o,--output", options->output, "Write to FILE instead of standard output");
   derive->add_option("--format", options->format, "cpfg (cpfg's -str text) or compact (one line)")
       ->check(CLI::IsMember({"cpfg", "compact"}));
-  derive->add_option("--max-modules", options->maxModules, "A longer string is an error (default 100000000)");
+  derive->add_option("--max-modules", options->maxModules,
+                     "A longer string is an error (default 100000000)");
   derive->add_option("--max-loop-iterations", options->maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
   derive->callback([options, &action] { action = [options] { return runDerive(*options); }; });

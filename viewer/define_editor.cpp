@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hirsute/lsys/output_target.h"
+
 namespace hirsute {
 namespace {
 
@@ -114,23 +116,11 @@ void saveDefineValues(const std::filesystem::path& file,
   text << in.rdbuf();
   in.close();
   std::string updated = replaceDefineValues(text.str(), values);
-  std::filesystem::path temporary = file;
-  temporary += ".hirsute-save";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << updated;
-    if (!out.flush()) {
-      std::error_code ec;
-      std::filesystem::remove(temporary, ec);
-      throw std::runtime_error(file.string() + ": cannot write the file");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, file, ec);
-  if (ec) {
-    std::filesystem::remove(temporary, ec);
-    throw std::runtime_error(file.string() + ": cannot replace the file");
-  }
+  OutputTarget out(file);
+  std::FILE* stream = out.stream();
+  if (std::fwrite(updated.data(), 1, updated.size(), stream) != updated.size())
+    throw std::runtime_error(file.string() + ": cannot write the file");
+  out.commit();
 }
 
 }  // namespace hirsute

@@ -77,26 +77,7 @@ std::size_t formatFixed(double value, NumberFormat format, char* out) {
 }
 
 ExportFile::ExportFile(std::filesystem::path target)
-    : target_(std::move(target)), buffer_(kBufferSize) {
-  std::filesystem::path folder = target_.parent_path();
-  temporary_ = (folder.empty() ? std::string(".") : folder.string()) + "/." +
-               target_.filename().string() + ".tmp-XXXXXX";
-  fd_ = mkstemp(temporary_.data());
-  if (fd_ < 0) {
-    throw std::runtime_error(target_.string() +
-                             ": cannot create the file: " + std::strerror(errno));
-  }
-  // mkstemp creates the file private (0600); the result gets the usual mode under the umask.
-  mode_t mask = umask(0);
-  umask(mask);
-  fchmod(fd_, 0666 & ~mask);
-}
-
-ExportFile::~ExportFile() {
-  if (committed_) return;
-  if (fd_ >= 0) close(fd_);
-  unlink(temporary_.c_str());
-}
+    : file_(std::move(target)), buffer_(kBufferSize) {}
 
 void ExportFile::put(std::string_view text) {
   if (text.size() > buffer_.size() - used_) {
@@ -138,7 +119,7 @@ void ExportFile::flush() {
   const char* data = buffer_.data();
   std::size_t left = used_;
   while (left > 0) {
-    ssize_t n = ::write(fd_, data, left);
+    ssize_t n = ::write(file_.descriptor(), data, left);
     if (n < 0) {
       if (errno == EINTR) continue;
       fail("cannot write");
@@ -151,18 +132,12 @@ void ExportFile::flush() {
 }
 
 void ExportFile::commit() {
-  if (committed_) return;
   flush();
-  int fd = fd_;
-  fd_ = -1;
-  if (close(fd) != 0) fail("cannot write");
-  if (std::rename(temporary_.c_str(), target_.c_str()) != 0)
-    fail("cannot rename the finished file into place");
-  committed_ = true;
+  file_.commit();
 }
 
 void ExportFile::fail(const char* what) {
-  throw std::runtime_error(target_.string() + ": " + what + ": " + std::strerror(errno));
+  throw std::runtime_error(file_.target().string() + ": " + what + ": " + std::strerror(errno));
 }
 
 }  // namespace hirsute

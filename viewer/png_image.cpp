@@ -1,14 +1,13 @@
 #include "hirsute/viewer/png_image.h"
 
 #include <png.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+
+#include "hirsute/lsys/output_target.h"
 
 namespace hirsute {
 namespace {
@@ -44,46 +43,16 @@ void writePng(const std::filesystem::path& path, const RgbaImage& image) {
     std::memcpy(&rgb[i * 3], &image.rgba[i * 4], 3);
   }
 
-  std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
-  std::string name = ".";
-  name.append(path.filename().string()).append(".tmp-XXXXXX");
-  std::string temporary = (folder / name).string();
-  int fd = mkstemp(temporary.data());
-  if (fd < 0) throw writeError(path, std::strerror(errno));
-  // mkstemp makes the file private (0600); the result gets the usual mode under the umask.
-  mode_t mask = umask(0);
-  umask(mask);
-  fchmod(fd, 0666 & ~mask);
-  std::FILE* stream = fdopen(fd, "wb");
-  if (!stream) {
-    int saved = errno;
-    close(fd);
-    unlink(temporary.c_str());
-    throw writeError(path, std::strerror(saved));
-  }
-
+  OutputTarget file(path);
   PngStruct png;
   png->width = static_cast<png_uint_32>(image.width);
   png->height = static_cast<png_uint_32>(image.height);
   png->format = PNG_FORMAT_RGB;
-  bool ok = png_image_write_to_stdio(png.get(), stream, 0, rgb.data(), image.width * 3, nullptr);
-  std::string why = ok ? "" : png->message;
-  if (std::fflush(stream) != 0 && ok) {
-    ok = false;
-    why = std::strerror(errno);
+  if (!png_image_write_to_stdio(png.get(), file.stream(), 0, rgb.data(), image.width * 3,
+                                nullptr)) {
+    throw writeError(path, png->message);
   }
-  if (std::fclose(stream) != 0 && ok) {
-    ok = false;
-    why = std::strerror(errno);
-  }
-  if (ok && std::rename(temporary.c_str(), path.c_str()) != 0) {
-    ok = false;
-    why = std::strerror(errno);
-  }
-  if (!ok) {
-    unlink(temporary.c_str());
-    throw writeError(path, why);
-  }
+  file.commit();
 }
 
 RgbaImage readPng(const std::filesystem::path& path) {

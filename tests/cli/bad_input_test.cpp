@@ -14,6 +14,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,6 +24,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -415,6 +417,84 @@ TEST(OutputFile, GoodModelWritesTheWholeString) {
   const RunResult toStdout = runHirsute({"derive", model.string()});
   EXPECT_EQ(toStdout.exitCode, 0) << toStdout.err;
   EXPECT_EQ(toStdout.out, expected);
+}
+
+// Outputs that exist and are not regular files are written in place: renaming a finished file
+// over /dev/null (as root) or over a FIFO would replace the device or the pipe with a file.
+struct FileKind {
+  mode_t type = 0;
+  dev_t device = 0;
+  ino_t inode = 0;
+  bool operator==(const FileKind&) const = default;
+};
+
+FileKind kindOf(const fs::path& path) {
+  struct stat info {};
+  if (lstat(path.c_str(), &info) != 0) return {};
+  return {static_cast<mode_t>(info.st_mode & S_IFMT), info.st_rdev, info.st_ino};
+}
+
+// Everything a reader gets from the FIFO while `run` writes into it.
+std::string readFifoWhile(const fs::path& fifo, const std::function<void()>& run) {
+  std::string text;
+  std::thread reader([&] {
+    int fd = open(fifo.c_str(), O_RDONLY);
+    if (fd < 0) return;
+    char buffer[65536];
+    for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<std::size_t>(n));
+    close(fd);
+  });
+  run();
+  reader.join();
+  return text;
+}
+
+TEST(OutputFile, DevNullStaysADevice) {
+  const fs::path model = fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "cli" / "branching.l";
+  const FileKind before = kindOf("/dev/null");
+  ASSERT_EQ(before.type, static_cast<mode_t>(S_IFCHR));
+  const RunResult derive = runHirsute({"derive", model.string(), "-o", "/dev/null"});
+  EXPECT_EQ(derive.exitCode, 0) << derive.err;
+  EXPECT_EQ(kindOf("/dev/null"), before);
+  const fs::path herb = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "herb";
+  const RunResult exported = runHirsute({"export", (herb / "herb.l").string(), (herb / "herb.v").string(),
+                                         "--pov", "/dev/null", "--obj", "/dev/null"});
+  EXPECT_EQ(exported.exitCode, 0) << exported.err;
+  EXPECT_EQ(kindOf("/dev/null"), before);
+  const RunResult rendered = runHirsute({"render", (herb / "herb.l").string(), (herb / "herb.v").string(), "-o",
+                                         "/dev/null", "--size", "32x32"});
+  EXPECT_EQ(rendered.exitCode, 0) << rendered.err;
+  EXPECT_EQ(kindOf("/dev/null"), before);
+}
+
+TEST(OutputFile, FifoGetsTheStringAndStaysAFifo) {
+  const fs::path model = fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "cli" / "branching.l";
+  TemporaryFolder folder;
+  const fs::path fifo = folder.path() / "string.fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const FileKind before = kindOf(fifo);
+  RunResult run;
+  const std::string text = readFifoWhile(fifo, [&] { run = runHirsute({"derive", model.string(), "-o", fifo.string()}); });
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(text, "F(1)[+F(0.5)[+A(0.25)]A(1.5)]F(2)[+A(1)]A(3)\n");
+  EXPECT_EQ(kindOf(fifo), before);
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"string.fifo"});  // no temporary left
+
+  const fs::path herb = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "herb";
+  const std::string png = readFifoWhile(fifo, [&] {
+    run = runHirsute({"render", (herb / "herb.l").string(), (herb / "herb.v").string(), "-o", fifo.string(),
+                      "--size", "32x32"});
+  });
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(png.substr(0, 4), "\x89PNG");
+  EXPECT_EQ(kindOf(fifo), before);
+}
+
+TEST(OutputFile, DevStdoutWritesToTheProcessOutput) {
+  const fs::path model = fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "cli" / "branching.l";
+  const RunResult run = runHirsute({"derive", model.string(), "-o", "/dev/stdout"});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(run.out, "F(1)[+F(0.5)[+A(0.25)]A(1.5)]F(2)[+A(1)]A(3)\n");
 }
 
 }  // namespace

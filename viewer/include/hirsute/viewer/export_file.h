@@ -1,6 +1,7 @@
 // The file an exporter writes: text (or bytes) through a large buffer, with a compact number
-// formatter, written under a temporary name beside the target and renamed over it on commit(),
-// so that a reader never sees a half-written scene and a failed export leaves no file.
+// formatter, into an OutputTarget: a regular file is written under a temporary name and renamed
+// over the target on commit(), so that a reader never sees a half-written scene and a failed
+// export leaves no file; a device or FIFO is written in place.
 //
 // POV-Ray's parse time grows with the size of the text, and a million-triangle scene is tens of
 // megabytes, so numbers are not printed through iostreams: fixed-point values are rounded to an
@@ -13,6 +14,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "hirsute/lsys/output_target.h"
 
 namespace hirsute {
 
@@ -31,10 +34,8 @@ std::size_t formatFixed(double value, NumberFormat format, char* out);
 
 class ExportFile {
  public:
-  // Creates the temporary file beside `target`; throws std::runtime_error naming the path.
+  // Opens `target` (hirsute/lsys/output_target.h); throws std::runtime_error naming the path.
   explicit ExportFile(std::filesystem::path target);
-  // Removes the temporary file unless commit() succeeded.
-  ~ExportFile();
   ExportFile(const ExportFile&) = delete;
   ExportFile& operator=(const ExportFile&) = delete;
 
@@ -51,9 +52,10 @@ class ExportFile {
   }
 
   // Flushes, closes and renames the file into place; throws std::runtime_error on failure.
+  // Without it, the target is left as it was.
   void commit();
 
-  const std::filesystem::path& target() const { return target_; }
+  const std::filesystem::path& target() const { return file_.target(); }
   std::uint64_t bytesWritten() const { return flushed_ + used_; }
 
   static constexpr std::size_t kMaxNumberLength = 32;
@@ -62,10 +64,7 @@ class ExportFile {
   void flush();
   [[noreturn]] void fail(const char* what);
 
-  std::filesystem::path target_;
-  std::string temporary_;
-  int fd_ = -1;
-  bool committed_ = false;
+  OutputTarget file_;
   std::vector<char> buffer_;
   std::size_t used_ = 0;
   std::uint64_t flushed_ = 0;
