@@ -518,16 +518,27 @@ Production Compiler::compileProduction(const ast::Production& in, const NameMap&
   Production out;
   out.where = in.where;
   NameMap locals;
+  std::vector<SourceLocation> formalsWhere;  // by slot, while only formals have slots
   auto bind = [&](const ast::ModuleList& patterns, std::vector<ModulePattern>& into) {
     for (const ast::Module& m : patterns) {
       if (m.formals.size() > kMaxModuleParameters) {
         fail(m.where, "a module can have at most " + std::to_string(kMaxModuleParameters) + " parameters");
       }
       ModulePattern p{m.symbol, static_cast<std::uint8_t>(m.formals.size()), {}};
-      for (const std::string& name : m.formals) {
+      for (const ast::Formal& formal : m.formals) {
+        const std::string& name = formal.name;
         if (findBuiltin(name)) fail(m.where, "'" + name + "' is a built-in function and cannot name a parameter");
+        // A formal parameter stands for one value of the matched string; the same name twice,
+        // in one module or across the contexts, would stand for two (cpfg manual §3.1).
         auto [it, added] = locals.emplace(name, static_cast<int>(out.slotNames.size()));
-        if (added) out.slotNames.push_back(name);
+        if (!added) {
+          const SourceLocation& first = formalsWhere[static_cast<std::size_t>(it->second)];
+          fail(formal.where,
+               "formal parameter '" + name + "' is named twice in the predecessor (first at " +
+                   std::to_string(first.line) + ":" + std::to_string(first.column) + ")");
+        }
+        out.slotNames.push_back(name);
+        formalsWhere.push_back(formal.where);
         p.slots.push_back(it->second);
       }
       into.push_back(std::move(p));

@@ -12,7 +12,6 @@
 #include <system_error>
 
 #include "hirsute/lsys/diagnostic.h"
-#include "hirsute/lsys/uniform_bspline.h"
 #include "hirsute/lsys/view_file_lines.h"
 
 namespace hirsute {
@@ -567,12 +566,17 @@ std::vector<FunctionCurve> FunctionCurve::parseSet(std::string_view text,
     if (reader.atEnd()) {
       reader.take("function " + std::to_string(i + 1) + " of " + std::to_string(count));
     }
-    // Each item is a complete v1.01 function with its own sample count.
-    if (reader.peek().words[0] != "fver") {
-      reader.fail(reader.peek().number, "expected 'fver 1 1' at the start of function " +
-                                            std::to_string(i + 1) + " of " + std::to_string(count));
+    // Each item is a complete v1.01 function with its own sample count, or (cpfg accepts it) a
+    // version 0 function, which gets a table of 100 samples.
+    const std::string_view first = reader.peek().words[0];
+    if (first != "fver" && first != "range:") {
+      reader.fail(reader.peek().number,
+                  "expected 'fver 1 1' or 'range:' at the start of function " +
+                      std::to_string(i + 1) + " of " + std::to_string(count));
     }
-    FunctionData data = readVersion1Function(reader);
+    constexpr int kVersion0ItemSamples = 100;
+    FunctionData data = first == "fver" ? readVersion1Function(reader)
+                                        : readVersion0Function(reader, kVersion0ItemSamples);
     functions.push_back(FunctionCurve(std::move(data.name), data.samples, std::move(data.points)));
   }
   expectEnd(reader, "the last of the " + std::to_string(count) + " functions");
@@ -587,60 +591,81 @@ std::vector<FunctionCurve> FunctionCurve::loadSet(const std::filesystem::path& f
   return parseSet(readFile(fset, "function set"), fset.string());
 }
 
-// The clamped uniform cubic B-spline (knots 0,0,0,0,1,…,n−3,n−3,n−3,n−3) at u ∈ [0, 1] of the
-// whole curve, by de Boor's algorithm.
-std::array<double, 2> FunctionCurve::pointAt(double u) const {
-  const int n = static_cast<int>(points_.size());
-  const double knotU = u * (n - 3);
-  const auto knot = [n](int j) -> double {
-    if (j <= 3) return 0.0;
-    if (j >= n) return n - 3;
+// cpfg (reference/cpfg-functions.md §2.4): the clamped cubic B-spline of the K control points,
+// knots U_j = 0 (j < 4), K − 3 (j > K − 1), j − 3 otherwise, at u = m·(K − 3), each basis function
+// N_{k,4} by the Cox–de Boor recursion (a term whose knot difference is 0 left out) and the sum
+// accumulated from k = 0 upward. The intervals are half-open, so P(1) = (0, 0) as in cpfg; the
+// bisection below never asks for it unless the curve does not span x.
+std::array<double, 2> FunctionCurve::pointAt(double m) const {
+  const int count = static_cast<int>(points_.size());
+  const double u = m * (count - 3);
+  const auto knot = [count](int j) -> double {
+    if (j < 4) return 0.0;
+    if (j > count - 1) return count - 3;
     return j - 3;
   };
-  const int span = std::clamp(static_cast<int>(std::floor(knotU)) + 3, 3, n - 1);
-  std::array<std::array<double, 2>, 4> d{};
-  for (int j = 0; j < 4; ++j) d[j] = points_[span - 3 + j];
-  for (int r = 1; r <= 3; ++r) {
-    for (int j = 3; j >= r; --j) {
-      const int i = j + span - 3;
-      const double alpha = (knotU - knot(i)) / (knot(i + 4 - r) - knot(i));
-      for (int k = 0; k < 2; ++k) d[j][k] = (1.0 - alpha) * d[j - 1][k] + alpha * d[j][k];
+  // basis[k] holds N_{k,r}(u) for k = 0 … count + 3 − r, order r = 1 … 4 in turn.
+  constexpr int kOnStack = 64;
+  std::array<double, kOnStack> onStack;
+  std::vector<double> onHeap;
+  double* basis = onStack.data();
+  if (count + 3 > kOnStack) {
+    onHeap.resize(static_cast<std::size_t>(count + 3));
+    basis = onHeap.data();
+  }
+  for (int k = 0; k < count + 3; ++k) basis[k] = knot(k) <= u && u < knot(k + 1) ? 1.0 : 0.0;
+  for (int r = 2; r <= 4; ++r) {
+    for (int k = 0; k < count + 4 - r; ++k) {
+      double value = 0.0;
+      const double left = knot(k + r - 1) - knot(k);
+      if (left != 0.0) value = (u - knot(k)) / left * basis[k];
+      const double right = knot(k + r) - knot(k + 1);
+      if (right != 0.0) value += (knot(k + r) - u) / right * basis[k + 1];
+      basis[k] = value;
     }
   }
-  return d[3];
+  std::array<double, 2> p{0.0, 0.0};
+  for (int k = 0; k < count; ++k) {
+    p[0] += points_[k][0] * basis[k];
+    p[1] += points_[k][1] * basis[k];
+  }
+  return p;
 }
 
-// cpfg: bisection on the curve parameter, starting at its middle, until x(u) is within
+// cpfg (§2.4): bisection on the curve parameter, starting at its middle, until x(m) is within
 // kTolerance of x; y there is the value. The answer is therefore off by up to the tolerance even
 // at the ends (func(1,1) of tools-LeafRandom's internode is 1.00316, the last point 1.003176).
-// When x is out of reach (a curve not spanning [0, 1]) the bisection ends where the parameter
-// interval stops shrinking, at the nearest end.
+// cpfg loops forever when x is out of reach (a curve not spanning [0, 1]); here the bisection
+// ends where the parameter interval stops shrinking, at the nearest end.
 double FunctionCurve::solveForX(double x) const {
   constexpr int kMaxSteps = 80;  // enough to exhaust a double's precision on [0, 1]
   double low = 0.0;
   double high = 1.0;
   std::array<double, 2> p{};
   for (int step = 0; step < kMaxSteps; ++step) {
-    const double u = 0.5 * (low + high);
-    p = pointAt(u);
-    if (std::fabs(p[0] - x) < kTolerance) break;
-    if (p[0] < x) {
-      low = u;
+    const double m = (low + high) / 2.0;
+    p = pointAt(m);
+    if (std::fabs(p[0] - x) <= kTolerance) break;
+    if (p[0] > x) {
+      high = m;
     } else {
-      high = u;
+      low = m;
     }
   }
   return p[1];
 }
 
+// cpfg (§2.5): the table entries around index = x·(S − 1), weighted (1 − index + i) and
+// (index − i), in that order.
 double FunctionCurve::evaluate(double x) const {
   x = clampUnit(x);
   if (table_.empty()) return solveForX(x);
-  const double position = x * (samples_ - 1);
-  const int index = static_cast<int>(position);
-  if (index >= samples_ - 1) return table_.back();
-  const double fraction = position - index;
-  return table_[index] + fraction * (table_[index + 1] - table_[index]);
+  const double index = x * (samples_ - 1);
+  const int i = static_cast<int>(std::floor(index));
+  if (i >= samples_ - 1) return table_.back();
+  const double below = (1.0 - index) + i;
+  const double above = index - i;
+  return below * table_[i] + above * table_[i + 1];
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -652,18 +677,23 @@ ContourCurve::ContourCurve(std::string name, bool closed, std::vector<std::array
   if (samples_ < 2 || samples_ > kMaxCurveSamples) {
     throw std::invalid_argument("a curve needs 2 to kMaxCurveSamples samples");
   }
-  // cpfg: the curve is sampled at `samples` parameters spread evenly over all segments and the
-  // chord lengths summed; curveGAL is that polyline's length (cpfg-Ridley: with 100 samples the
-  // 495 primordia land where cpfg put them, with 99 or 101 they do not).
-  cumulativeLength_.reserve(static_cast<std::size_t>(samples_));
-  cumulativeLength_.push_back(0.0);
+  // cpfg (reference/cpfg-functions.md §3.4): the curve is sampled at t_i = i/(S − 1), the 3-D
+  // chord lengths summed; curveGAL is that polyline's length and the table is normalised by it
+  // (cpfg-Ridley: with 100 samples the 495 primordia land where cpfg put them, with 99 or 101
+  // they do not).
+  std::vector<double> running;
+  running.reserve(static_cast<std::size_t>(samples_));
+  running.push_back(0.0);
   std::array<double, 3> previous = pointAtParameter(0.0);
   for (int i = 1; i < samples_; ++i) {
-    const std::array<double, 3> current =
-        pointAtParameter(static_cast<double>(segmentCount()) * i / (samples_ - 1));
-    cumulativeLength_.push_back(cumulativeLength_.back() + distance(previous, current));
+    const std::array<double, 3> current = pointAtParameter(static_cast<double>(i) / (samples_ - 1));
+    running.push_back(running.back() + distance(previous, current));
     previous = current;
   }
+  length_ = running.back();
+  lengthFraction_.reserve(running.size());
+  // A curve of coinciding points has no length; its table stays 0 (cpfg divides by 0).
+  for (const double l : running) lengthFraction_.push_back(length_ > 0.0 ? l / length_ : 0.0);
 }
 
 ContourCurve ContourCurve::parse(std::string_view text, const std::string& fileName, int samples) {
@@ -676,34 +706,57 @@ ContourCurve ContourCurve::load(const std::filesystem::path& file, int samples) 
   return parse(readFile(file, "contour"), file.string(), samples);
 }
 
-// Open: n−3 segments, the ends interpolated when their points have multiplicity 3. Closed:
-// periodic, one segment per control point.
-int ContourCurve::segmentCount() const {
-  const int n = static_cast<int>(points_.size());
-  return closed_ ? n : n - 3;
+// cpfg (§3.2, §3.3): a closed curve is its points followed by the first three again, so
+// n = N + 3; the parameter t ∈ [0, 1] maps to u = 3 + t·(n − 3.000001) on integer knots, the
+// constant keeping the segment index in range at t = 1 (so t = 1 is at local parameter 0.999999
+// of the last segment). Each of the segment's four basis functions comes from the Cox–de Boor
+// recursion, and the terms are summed left to right.
+std::array<double, 3> ContourCurve::pointAtParameter(double t) const {
+  const int distinct = static_cast<int>(points_.size());
+  const int count = closed_ ? distinct + 3 : distinct;
+  const double scale = count - 3.000001;
+  const int segment = std::clamp(3 + static_cast<int>(t * scale), 3, count - 1);
+  const double u = 3 + t * scale;
+  // basis[j] is B_{segment−3+j, r}(u), j = 0 … 6 − (r − 1), for r = 1 … 4 in turn.
+  std::array<double, 7> basis{};
+  for (int j = 0; j < 7; ++j) {
+    const double knot = segment - 3 + j;
+    basis[j] = knot <= u && u < knot + 1 ? 1.0 : 0.0;
+  }
+  for (int r = 2; r <= 4; ++r) {
+    for (int j = 0; j + r <= 7; ++j) {
+      const double knot = segment - 3 + j;
+      basis[j] = (u - knot) / (r - 1) * basis[j] + (knot + r - u) / (r - 1) * basis[j + 1];
+    }
+  }
+  std::array<double, 3> p{0.0, 0.0, 0.0};
+  for (int j = 0; j < 4; ++j) {
+    const std::array<double, 3>& control = points_[(segment - 3 + j) % distinct];
+    for (int k = 0; k < 3; ++k) p[k] += control[k] * basis[j];
+  }
+  return p;
 }
 
-std::array<double, 3> ContourCurve::pointAtParameter(double u) const {
-  const int n = static_cast<int>(points_.size());
-  const int segments = segmentCount();
-  const int segment = std::clamp(static_cast<int>(std::floor(u)), 0, segments - 1);
-  const double t = u - segment;
-  const auto at = [&](int i) -> const std::array<double, 3>& { return points_[(segment + i) % n]; };
-  return uniformBSplinePoint(at(0), at(1), at(2), at(3), t);
-}
-
-// cpfg: the arc length t·L is located in the sample table, the parameter interpolated linearly
-// between the two samples around it, and the spline evaluated exactly there. (Interpolating the
-// sampled positions instead leaves cpfg-Ridley's primordia up to 1e-4 off along the curve.)
+// cpfg (§3.5): t is located in the normalised length table by bisection (λ_lo ≤ t < λ_hi, the
+// last interval at t = 1), the curve parameter interpolated linearly between the two samples,
+// and the spline evaluated exactly there. (Interpolating the sampled positions instead leaves
+// cpfg-Ridley's primordia up to 1e-4 off along the curve.)
 std::array<double, 3> ContourCurve::point(double t) const {
-  const double target = clampUnit(t) * length();
-  auto above = std::lower_bound(cumulativeLength_.begin() + 1, cumulativeLength_.end(), target);
-  if (above == cumulativeLength_.end()) --above;
-  const int i = static_cast<int>(above - cumulativeLength_.begin());
-  const double chord = cumulativeLength_[i] - cumulativeLength_[i - 1];
-  const double fraction = chord > 0.0 ? (target - cumulativeLength_[i - 1]) / chord : 0.0;
-  return pointAtParameter(static_cast<double>(segmentCount()) * (i - 1 + fraction) /
-                          (samples_ - 1));
+  t = clampUnit(t);
+  int low = 0;
+  int high = samples_ - 1;
+  while (high - low > 1) {
+    const int middle = (low + high) / 2;
+    if (lengthFraction_[middle] > t) {
+      high = middle;
+    } else {
+      low = middle;
+    }
+  }
+  const double chord = lengthFraction_[high] - lengthFraction_[low];
+  // A zero-length chord divides by 0 in cpfg; here it reads as the sample itself.
+  const double fraction = chord != 0.0 ? (t - lengthFraction_[low]) / chord : 0.0;
+  return pointAtParameter((low + fraction) / (samples_ - 1));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -112,7 +112,7 @@ ast::RuleSet* ruleSetOf(detail::LexerContext& ctx) {
 %type <ast::ArrayDeclaration> array_decl
 %type <ast::ModuleList> patterns modules successor left_context right_context
 %type <ast::Module> pattern module
-%type <std::vector<std::string>> formals
+%type <std::vector<ast::Formal>> formals
 %type <ast::Production> production predecessor condition_part
 %type <ast::ExprPtr> condition probability
 
@@ -261,8 +261,8 @@ pattern
   ;
 
 formals
-  : IDENT               { $$.push_back($1); }
-  | formals COMMA IDENT { $$ = std::move($1); $$.push_back($3); }
+  : IDENT               { $$.push_back(ast::Formal{$1, @1}); }
+  | formals COMMA IDENT { $$ = std::move($1); $$.push_back(ast::Formal{$3, @3}); }
   ;
 
 condition_part

@@ -118,6 +118,16 @@ TEST(FunctionCurveTest, FunctionSetGivesNamesInOrder) {
   EXPECT_NEAR(set[1].evaluate(0.5), 1.0, 1e-6);
 }
 
+TEST(FunctionCurveTest, FunctionSetTakesVersion0ItemsWithAHundredSamples) {
+  // cpfg-functions.md §2.3: an item in the `range:` format gets a table of 100 samples.
+  const std::vector<FunctionCurve> set = FunctionCurve::loadSet(kFixtures / "old_item.fset");
+  ASSERT_EQ(set.size(), 2u);
+  EXPECT_EQ(set[0].name(), "");
+  EXPECT_EQ(set[0].samples(), 100);
+  EXPECT_NEAR(set[0].evaluate(0.37), 0.37, FunctionCurve::kTolerance);
+  EXPECT_EQ(set[1].name(), "growth");
+}
+
 TEST(FunctionCurveTest, MissingControlPointIsReportedAtTheEndOfTheFile) {
   const Diagnostic d =
       diagnosticOf([] { FunctionCurve::load(kFixtures / "too_few_points.func", 0); });
@@ -188,9 +198,12 @@ TEST(ContourCurveTest, StraightContourIsMeasuredByArcLength) {
 TEST(ContourCurveTest, ClosedContourReturnsToItsStart) {
   const ContourCurve square = ContourCurve::load(kFixtures / "square.con", 50);
   EXPECT_TRUE(square.closed());
+  // cpfg's parameter scale, n − 3.000001 for the n = 4 + 3 points of the closed list
+  // (reference/cpfg-functions.md §3.3), stops t = 1 a millionth of a segment short of the start.
   const std::array<double, 3> start = square.point(0.0);
   const std::array<double, 3> end = square.point(1.0);
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(start[k], end[k], 1e-12);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(start[k], end[k], 2e-6);
+  EXPECT_NE(start, end);
   // A periodic B-spline of the square ±1 stays inside it and outside the circle of radius 2/3.
   for (int i = 0; i < 10; ++i) {
     const std::array<double, 3> p = square.point(i / 10.0);
@@ -205,8 +218,9 @@ TEST(ContourCurveTest, ClosedContourReturnsToItsStart) {
 TEST(ContourCurveTest, ReadsOlderVersions) {
   const ContourCurve typeLast = ContourCurve::load(kFixtures / "type_after_points.con");
   EXPECT_FALSE(typeLast.closed());
-  // One uniform segment over x = 0, 1, 2, 3 runs from (0+4+2)/6 = 1 to (1+8+3)/6 = 2.
-  EXPECT_NEAR(typeLast.length(), 1.0, 1e-12);
+  // One uniform segment over x = 0, 1, 2, 3 runs from (0+4+2)/6 = 1 towards (1+8+3)/6 = 2, and
+  // with cpfg's scale of 4 − 3.000001 it ends at local parameter 0.999999 (cpfg-functions.md §3.3).
+  EXPECT_NEAR(typeLast.length(), 0.999999, 1e-12);
   EXPECT_NEAR(typeLast.point(0.0)[0], 1.0, 1e-12);
   const ContourCurve headerOnly = ContourCurve::load(kFixtures / "header_only.con");
   EXPECT_TRUE(headerOnly.closed());
@@ -376,7 +390,9 @@ TEST(ConformanceFilesTest, CurvePositionsMatchCpfgRidley) {
   if (!haveConformance()) GTEST_SKIP() << "no conformance set at " << kConformance;
   const ContourCurve profile = ContourCurve::load(kConformance / "cpfg-Ridley" / "profile.con");
   const double length = profile.length();
-  EXPECT_NEAR(length, 0.7794, 1e-4);
+  // curveGAL as cpfg computes it (reference/cpfg-functions.md §4); with the exact scale n − 3 it
+  // would be 0.77942911922493208.
+  EXPECT_NEAR(length, 0.77942911923303348, 2e-16);
   EXPECT_EQ(printedAsCpfg(profile.point(0.001 / length)[0]), "0.269413");
   EXPECT_EQ(printedAsCpfg(profile.point(0.002 / length)[1]), "-0.445786");
   EXPECT_EQ(printedAsCpfg(profile.point(0.004 / length)[1]), "-0.443779");

@@ -58,13 +58,19 @@ struct Stmt {
   std::vector<ArrayDeclaration> arrays;  // Arrays (inside `define:`)
 };
 
+// A formal parameter of a predecessor or context module: its name and where it is written.
+struct Formal {
+  std::string name;
+  SourceLocation where;
+};
+
 // One module as written: a predecessor or context module with formal parameter names, or an
 // axiom or successor module with parameter expressions.
 struct Module {
   char symbol = 0;
   SourceLocation where;
   bool hasParentheses = false;
-  std::vector<std::string> formals;  // predecessor and contexts
+  std::vector<Formal> formals;       // predecessor and contexts
   std::vector<ExprPtr> arguments;    // axiom and successor
 };
 using ModuleList = std::vector<Module>;

@@ -51,7 +51,7 @@ class FunctionCurve {
 
  private:
   FunctionCurve(std::string name, int samples, std::vector<std::array<double, 2>> points);
-  std::array<double, 2> pointAt(double u) const;  // u in [0, 1] over the whole curve
+  std::array<double, 2> pointAt(double m) const;  // m in [0, 1] over the whole curve
   double solveForX(double x) const;
 
   std::string name_;
@@ -81,20 +81,21 @@ class ContourCurve {
 
   // The point at arc-length fraction t of the curve, t clamped to [0, 1] (NaN reads as 0).
   std::array<double, 3> point(double t) const;
-  // The length of the curve (curveGAL).
-  double length() const { return cumulativeLength_.back(); }
+  // The length of the curve (curveGAL): the polyline through its samples.
+  double length() const { return length_; }
 
  private:
   ContourCurve(std::string name, bool closed, std::vector<std::array<double, 3>> points,
                int samples);
-  int segmentCount() const;
-  std::array<double, 3> pointAtParameter(double u) const;  // u in [0, segmentCount()]
+  std::array<double, 3> pointAtParameter(double t) const;  // t in [0, 1], cpfg's scale
 
   std::string name_;
   bool closed_ = false;
   std::vector<std::array<double, 3>> points_;
   int samples_ = kDefaultSamples;
-  std::vector<double> cumulativeLength_;  // chord lengths of samples_ points uniform in u
+  double length_ = 0.0;
+  // The polyline length up to sample i over the whole length, at samples_ parameters i/(S − 1).
+  std::vector<double> lengthFraction_;
 };
 
 // What a view file declares for func() and curveX/Y/Z/GAL().

@@ -1,7 +1,8 @@
 // One segment of a uniform cubic B-spline in basis-function form, the polynomial cpfg uses for
-// `.con` curves and generalized-cylinder contours (reference/cpfg-generalized-cylinders.md §5:
-// a0 = (c0+4c1+c2)/6, a1 = (c2−c0)/2, a2 = (c0−2c1+c2)/2, a3 = (−c0+3c1−3c2+c3)/6). Shared by
-// curveX/Y/Z (lsys) and the contour resampling of the interpreter.
+// generalized-cylinder contours (reference/cpfg-generalized-cylinders.md §5:
+// a0 = (c0+4c1+c2)/6, a1 = (c2−c0)/2, a2 = (c0−2c1+c2)/2, a3 = (−c0+3c1−3c2+c3)/6), used by the
+// contour resampling of the interpreter. (curveX/Y/Z follow cpfg's curve code instead, with its
+// Cox–de Boor evaluation and parameter scale: function_curve.cpp.)
 #pragma once
 
 #include <array>
