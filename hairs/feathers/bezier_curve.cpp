@@ -1,14 +1,25 @@
 #include "hirsute/hairs/feathers/bezier_curve.h"
 
+#include <algorithm>
+#include <array>
 #include <glm/vec3.hpp>
 
 namespace hirsute {
 
 glm::dvec3 bezierPoint(std::span<const glm::vec3> vertices, double t) {
   if (vertices.empty()) return glm::dvec3(0);
-  // de Casteljau: stable at every degree, unlike the Bernstein sum with binomials.
-  std::vector<glm::dvec3> points(vertices.begin(), vertices.end());
-  for (std::size_t level = points.size() - 1; level > 0; --level) {
+  // de Casteljau: stable at every degree, unlike the Bernstein sum with binomials. Barbs have a
+  // handful of vertices and are evaluated for every polyline vertex: no allocation for those.
+  constexpr std::size_t kOnStack = 16;
+  std::array<glm::dvec3, kOnStack> small;
+  std::vector<glm::dvec3> large;
+  glm::dvec3* points = small.data();
+  if (vertices.size() > kOnStack) {
+    large.resize(vertices.size());
+    points = large.data();
+  }
+  std::copy(vertices.begin(), vertices.end(), points);
+  for (std::size_t level = vertices.size() - 1; level > 0; --level) {
     for (std::size_t i = 0; i < level; ++i) points[i] = (1 - t) * points[i] + t * points[i + 1];
   }
   return points[0];
