@@ -11,7 +11,7 @@
 
 #include "hirsute/hairs/feathers/feather_blend.h"
 #include "hirsute/hairs/feathers/feather_geometry.h"
-#include "hirsute/hairs/feathers/feather_type.h"
+#include "hirsute/hairs/feathers/feather_file.h"
 
 namespace {
 

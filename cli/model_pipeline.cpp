@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "hirsute/hairs/feathers/feather_stage.h"
 #include "hirsute/hairs/plant_hairs.h"
 
 #include "hirsute/interpreter/turtle.h"
@@ -42,6 +43,7 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   command.add_option("--hair-seed", o.hairSeed,
                      "Seed of hair placement (default: the view file's `hair texture:` seed)");
   command.add_option("--max-hairs", o.maxHairs, "More hairs are an error (default 50000000)");
+  command.add_flag("!--no-feathers", o.feathers, "Leave out the feathers (@F modules)");
   command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");
 }
 
@@ -122,6 +124,20 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
       std::cerr << fmt::format("placed {} hairs on {} segments ({} templates) in {:.3f} s\n", report.hairs,
                                report.segments, built.scene.hairTemplates.size(), seconds(started));
     }
+  }
+  if (o.feathers && hasFeathers(built.scene, built.resources)) {
+    started = Clock::now();
+    if (o.progress) o.progress(4, 0, 0);
+    FeatherStageOptions featherOptions;
+    featherOptions.lsystemFile = o.lsystemFile;
+    const FeatherStageReport report =
+        growFeathers(built.scene, built.resources, featherOptions, diagnostics);
+    if (o.verbose) {
+      std::cerr << fmt::format("feathers: {} of {} types in {:.3f} s\n", report.feathers,
+                               report.types, seconds(started));
+    }
+  } else {
+    built.scene.feathers.clear();
   }
   return built;
 }

@@ -28,9 +28,10 @@ struct ModelOptions {
   bool hairs = true;                     // --no-hairs leaves them out
   std::uint64_t hairSeed = 0;            // 0: the view file's `hair texture:` seed
   std::size_t maxHairs = 50'000'000;
+  bool feathers = true;                  // --no-feathers leaves them out
   bool verbose = false;                  // -v: counts and times on stderr
   // Called as the build goes on (`hirsute view` shows it while building off its render thread):
-  // the stage (1 deriving, 2 interpreting, 3 placing hairs) and, while deriving, the steps done
+  // the stage (1 deriving, 2 interpreting, 3 placing hairs, 4 feathers) and, while deriving, the steps done
   // of the steps to do.
   std::function<void(int stage, int done, int total)> progress;
   // Stop after this many steps of the derivation, whose length stays the file's (the derivation

@@ -37,6 +37,7 @@ Bounds Scene::bounds() const {
     b.add(h.root - glm::vec3(reach));
     b.add(h.root + glm::vec3(reach));
   }
+  b.add(featherBounds);
   return b;
 }
 
@@ -62,6 +63,9 @@ void Scene::clear() {
   hairAttributes.clear();
   hairTemplates.clear();
   hairs.clear();
+  featherTypes.clear();
+  feathers.clear();
+  featherBounds = Bounds{};
   meshIndex_.clear();
 }
 

@@ -1040,6 +1040,26 @@ const std::unordered_map<std::string_view, Handler>& commandTable() {
        }},
       {"hair texture:", &hairTexture},
       {"hair interpolation:", &hairInterpolation},
+
+      // Feathers (DESIGN.md, docs/feathers.md).
+      {"feather:",
+       [](Command& c) {
+         const SourceLocation where = c.args.here();
+         const std::string file = c.resolve(c.requiredWord("a feather type file (.fea)"));
+         if (c.view.featherTypes.size() >= static_cast<std::size_t>(kMaxFeatherTypes)) {
+           c.fail(where, "at most " + std::to_string(kMaxFeatherTypes) + " feather types per model");
+         }
+         c.view.featherTypes.push_back(FeatherTypeDeclaration{file, where});
+       }},
+      {"feather follicles:",
+       [](Command& c) {
+         const SourceLocation where = c.args.here();
+         const std::string_view word = c.requiredWord("diffusion or hexagonal");
+         if (word != "diffusion" && word != "hexagonal")
+           c.fail(where, "expected diffusion or hexagonal, found " + inQuotes(word));
+         c.view.follicleLayout =
+             word == "hexagonal" ? FollicleLayout::Hexagonal : FollicleLayout::Diffusion;
+       }},
   };
   return kCommands;
 }

@@ -1,5 +1,6 @@
 // Blending feather types (Streit & Heidrich 2002, Sec. 4.2.3) and growth (Sec. 4.2.4), measured
 // on the parameters and on the geometry built from them.
+#include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/feather_blend.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,7 @@
 // Feather geometry (Streit & Heidrich 2002, Sec. 4.3) in the local frame of feather_geometry.h:
 // barb count and angles, silhouettes, the rachis Bézier and shaft tube, level of detail, strips,
 // texture coordinates, the afterfeather and the seed, all measured.
+#include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/feather_geometry.h"
 
 #include <gtest/gtest.h>

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "hirsute/interpreter/feather_type.h"
 #include "hirsute/interpreter/hair_attributes.h"
 
 namespace hirsute {
@@ -165,6 +166,29 @@ struct Hair {
 };
 static_assert(sizeof(Hair) == 32, "a placed hair stays 32 bytes (DESIGN.md: bytes per placed hair)");
 
+// Where a feather comes from: one at the turtle (@Fe, @Fi) or a coat on a surface (@Ff, @Fb).
+enum class FeatherOrigin : std::uint8_t { Single, Coat };
+
+// A feather to draw (DESIGN.md, "Feathers"): an instance of the model's feather types, blended
+// and grown, not a copy of geometry; every output builds the geometry from the type at its own
+// level of detail (hirsute/hairs/feathers/feather_geometry.h). The frame is the turtle's at the
+// feather: the calamus base at `position`, the rachis along `heading`, the front towards `up`,
+// the left vane towards left() = H × U; (up, left, heading) is the geometry's (x, y, z).
+struct Feather {
+  glm::vec3 position{0.0f};
+  glm::vec3 heading{0, 1, 0};  // unit
+  glm::vec3 up{0, 0, 1};       // unit, perpendicular to heading
+  float blend = 0;             // 0: `type`, 1: `blendType`
+  float age = 1;               // 0 to 1 (1: grown), Streit & Heidrich 2002, Sec. 4.2.4
+  float size = 1;              // scales every length of the type
+  std::uint16_t type = 1;      // 1-based, the view file's `feather:` lines in order
+  std::uint16_t blendType = 1;
+  FeatherOrigin origin = FeatherOrigin::Single;
+
+  // The turtle's left vector, where the left vane lies: L = H × U as the turtle keeps it.
+  glm::vec3 left() const { return glm::cross(heading, up); }
+};
+
 struct Texture {
   std::string file;     // as named by the view file, resolved against the model's folder
   int width = 0, height = 0;
@@ -210,6 +234,12 @@ class Scene {
   std::vector<HairAttributes> hairAttributes;
   std::vector<HairTemplate> hairTemplates;
   std::vector<Hair> hairs;
+  // Feathers (hairs/feathers/): the types of the view file's `feather:` lines (type k is
+  // featherTypes[k - 1]), the feathers in drawing order (a coat from its bottom feather to its
+  // top one, Sec. 4.4), and the box that holds their geometry (the feather stage measures it).
+  std::vector<FeatherType> featherTypes;
+  std::vector<Feather> feathers;
+  Bounds featherBounds;
 
   // The mesh for a material and texture, created on first use.
   TriangleMesh& meshFor(int material, int texture = -1);

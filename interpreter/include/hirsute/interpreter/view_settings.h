@@ -71,6 +71,18 @@ struct HairTemplateDeclaration {
   SourceLocation where;                // the file name on its view-file line
 };
 
+// A `feather:` line: a feather type file (.fea), type k of @Fe(k) for the k-th line.
+struct FeatherTypeDeclaration {
+  std::string file;                    // resolved against the view file's folder
+  SourceLocation where;                // the file name on its view-file line
+};
+
+// How coat follicles are laid out (`feather follicles:`, DESIGN.md "Feathers").
+enum class FollicleLayout { Diffusion, Hexagonal };
+
+// The most `feather:` lines a view file may have.
+inline constexpr int kMaxFeatherTypes = 1024;
+
 struct ContourDeclaration {
   int id = 0;
   std::string file;                    // resolved against the view file's folder
@@ -138,6 +150,11 @@ struct ViewSettings {
   unsigned hairTextureSeed = 1;
   double hairTextureFill = 0.1;  // points per cell
   bool hairInterpolation = false;
+
+  // Feathers (DESIGN.md, docs/feathers.md): the feather types in order and the coats' follicle
+  // layout.
+  std::vector<FeatherTypeDeclaration> featherTypes;
+  FollicleLayout follicleLayout = FollicleLayout::Diffusion;
 };
 
 }  // namespace hirsute

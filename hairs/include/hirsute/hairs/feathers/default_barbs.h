@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "hirsute/hairs/feathers/feather_type.h"
+#include "hirsute/interpreter/feather_type.h"
 
 namespace hirsute {
 

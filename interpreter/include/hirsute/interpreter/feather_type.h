@@ -1,6 +1,8 @@
 // A feather type: the parameters of Streit & Heidrich 2002 (Table 1, Fig. 4) as read from a
-// `.fea` file (docs/feathers.md, "The feather file"). A FeatherType holds parameters only; the
-// geometry is recomputed from it at a level of detail (feather_geometry.h), never stored in it.
+// `.fea` file (docs/feathers.md, "The feather file"; the reader is hairs/feathers/feather_file.h).
+// A FeatherType holds parameters only; the geometry is recomputed from it at a level of detail
+// (hirsute/hairs/feathers/feather_geometry.h), never stored in it. The Scene carries the model's
+// feather types so that every output can build its feathers from them.
 #pragma once
 
 #include <cstdint>
@@ -72,6 +74,8 @@ struct FeatherAppearance {
   int colourIndex = 0;                   // with ColourIndex (colour map) or Material
   std::string texture;                   // resolved against the .fea file's folder; empty: none
   FeatherTextureMapping textureMapping = FeatherTextureMapping::Barb;
+  // The texture's index in Scene::textures once the feather stage has read it (-1: none).
+  int sceneTexture = -1;
   bool operator==(const FeatherAppearance&) const = default;
 };
 
@@ -104,14 +108,5 @@ struct FeatherType {
   const Vane& vane(BarbSide side) const { return side == BarbSide::Right ? right : left; }
   Vane& vane(BarbSide side) { return side == BarbSide::Right ? right : left; }
 };
-
-// Reads a .fea file and, recursively, its afterfeather. Throws DiagnosticError at the file's
-// line:col for every error (docs/feathers.md lists them); warnings go to `diagnostics`.
-FeatherType loadFeatherType(const std::filesystem::path& file, Diagnostics& diagnostics);
-
-// The same for text already read; `file` names it in diagnostics and is the folder that
-// afterfeather and texture names are relative to.
-FeatherType parseFeatherType(std::string_view text, const std::filesystem::path& file,
-                             Diagnostics& diagnostics);
 
 }  // namespace hirsute

@@ -1,6 +1,6 @@
 // The feather file (.fea, docs/feathers.md): every keyword read into FeatherType, the defaults,
 // and each broken line reported at its file:line:col. Fixtures in tests/fixtures/feathers.
-#include "hirsute/hairs/feathers/feather_type.h"
+#include "hirsute/hairs/feathers/feather_file.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The feather file (.fea): one parameter per line, `keyword: values`, `#` to the end of a line a
 // comment (docs/feathers.md, "The feather file"). Every broken line is an error at its
 // file:line:col: a feather type that silently lost a parameter would look plausible and wrong.
-#include "hirsute/hairs/feathers/feather_type.h"
+#include "hirsute/hairs/feathers/feather_file.h"
 
 #include <fmt/format.h>
 
@@ -421,7 +421,13 @@ const std::map<std::string_view, Handler>& handlers() {
       {"material:", [](Line& l, Reader& r) { readColour(l, r, true); }},
       {"texture:",
        [](Line& l, Reader& r) {
-         r.type.appearance.texture = l.resolve(l.word("a texture file")).string();
+         const SourceLocation nameAt = l.here();
+         const fs::path file = l.resolve(l.word("a texture file"));
+         std::error_code error;
+         if (!fs::is_regular_file(file, error)) {
+           l.fail(nameAt, "cannot read the texture image " + inQuotes(file.string()));
+         }
+         r.type.appearance.texture = file.string();
          if (l.atEnd()) return;
          const SourceLocation where = l.here();
          const std::string_view mapping = l.word("a mapping");

@@ -1,0 +1,34 @@
+// The feather stage of the pipeline (DESIGN.md, "Feathers"): after interpretation, the feather
+// types the view file names are read into the Scene, the feathers whose types the model lacks
+// are dropped with a warning, and the box that holds every feather is measured for the camera.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/diagnostic.h"
+
+namespace hirsute {
+
+struct FeatherStageOptions {
+  std::string lsystemFile;  // where warnings about the L-system's feathers point
+};
+
+struct FeatherStageReport {
+  std::size_t types = 0;     // feather types read
+  std::size_t feathers = 0;  // feathers kept
+  std::size_t dropped = 0;   // feathers of types the view file does not declare
+};
+
+// Whether the scene has feathers, or the view file feather types, for the stage to handle.
+bool hasFeathers(const Scene& scene, const ModelResources& resources);
+
+// Reads the types into scene.featherTypes and measures scene.featherBounds. Throws
+// DiagnosticError for a broken .fea file (at its own line:col) or a missing one (at the view
+// file's `feather:` line).
+FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
+                                const FeatherStageOptions& options, Diagnostics& diagnostics);
+
+}  // namespace hirsute
