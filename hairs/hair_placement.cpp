@@ -254,15 +254,15 @@ float ringTau(const CylinderSegment& seg, std::size_t k) {
 
 void Placer::segment(std::size_t index) {
   const CylinderSegment& seg = scene.cylinderSegments[index];
-  if (seg.hairEnd < 0 && seg.hairStart < 0) return;
+  if (seg.organEnd.hair < 0 && seg.organStart.hair < 0) return;
   static const HairAttributes kNone{};
   auto attributesAt = [&](int i) -> const HairAttributes& {
     return i >= 0 && static_cast<std::size_t>(i) < scene.hairAttributes.size()
                ? scene.hairAttributes[static_cast<std::size_t>(i)]
                : kNone;
   };
-  const HairAttributes& end = attributesAt(seg.hairEnd);
-  const HairAttributes& start = settings.interpolation ? attributesAt(seg.hairStart) : end;
+  const HairAttributes& end = attributesAt(seg.organEnd.hair);
+  const HairAttributes& start = settings.interpolation ? attributesAt(seg.organStart.hair) : end;
   // Closed cylinders expose only their front (Sec. 2).
   const bool front = end.side(HairSide::Front).enabled;
   const bool back = !seg.closed && end.side(HairSide::Back).enabled;
@@ -509,9 +509,9 @@ void Placer::edge(const CylinderSegment& seg, const TriangleMesh& mesh, const Si
 std::size_t expectedHairs(const Scene& scene) {
   double total = 0;
   for (const CylinderSegment& seg : scene.cylinderSegments) {
-    if (seg.hairEnd < 0 || static_cast<std::size_t>(seg.hairEnd) >= scene.hairAttributes.size())
-      continue;
-    const HairAttributes& a = scene.hairAttributes[static_cast<std::size_t>(seg.hairEnd)];
+    const int end = seg.organEnd.hair;
+    if (end < 0 || static_cast<std::size_t>(end) >= scene.hairAttributes.size()) continue;
+    const HairAttributes& a = scene.hairAttributes[static_cast<std::size_t>(end)];
     const double area = 0.5 * (seg.girthStart + seg.girthEnd) * seg.axisLength;
     // Only an estimate: terms that are not finite (a broken geometry or density) count nothing.
     auto add = [&](double term) {

@@ -12,7 +12,7 @@ namespace hirsute {
 
 bool hasHairs(const Scene& scene) {
   for (const CylinderSegment& segment : scene.cylinderSegments) {
-    for (int index : {segment.hairStart, segment.hairEnd}) {
+    for (int index : {segment.organStart.hair, segment.organEnd.hair}) {
       if (index >= 0 && static_cast<std::size_t>(index) < scene.hairAttributes.size() &&
           scene.hairAttributes[static_cast<std::size_t>(index)].anyEnabled()) {
         return true;

@@ -658,8 +658,8 @@ TEST(HairAttributeState, BranchOfAForkedTubeKeepsItsOwnAttributes) {
   EXPECT_GT(scene.hairs.size(), 300u);
   int branches = 0;
   for (const CylinderSegment& seg : scene.cylinderSegments) {
-    ASSERT_GE(seg.hairEnd, 0);
-    const float length = scene.hairAttributes.at(static_cast<std::size_t>(seg.hairEnd))
+    ASSERT_GE(seg.organEnd.hair, 0);
+    const float length = scene.hairAttributes.at(static_cast<std::size_t>(seg.organEnd.hair))
                              .side(HairSide::Front)
                              .length.value;
     // The branch ends heading along -x (a left turn from +y); the parent's segments along +y.

@@ -13,6 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "hirsute/interpreter/hair_attributes.h"
+#include "hirsute/interpreter/organ_attributes.h"
 
 namespace hirsute {
 
@@ -116,10 +117,11 @@ struct CylinderSegment {
   int sides = 0;                 // contour samples around the ring (the @! of the first point)
   std::uint32_t firstVertex = 0;
   std::uint32_t vertexCount = 0;
-  // The hair attributes at the segment's two control points (indices into
-  // Scene::hairAttributes, -1: the defaults, no hairs). Without `hair interpolation: on` the
-  // segment's hairs take the end's: values set between two @Gc apply to the segment they close.
-  int hairStart = -1, hairEnd = -1;
+  // The organ attributes at the segment's two control points (per organ an index into its
+  // Scene vector, e.g. Scene::hairAttributes; -1: the defaults, none). Without `hair
+  // interpolation: on` the segment's hairs take the end's: values set between two @Gc apply to
+  // the segment they close.
+  OrganAttributeIndices organStart, organEnd;
 };
 
 // A template hair (DESIGN.md, "Template hairs"): the turtle positions of a small L-system,
