@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "hirsute/hairs/plant_hairs.h"
+#include "hirsute/hairs/plant/plant_hairs.h"
 
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"

@@ -1,7 +1,7 @@
 // Placing plant hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3–4; DESIGN.md, "Plant hairs:
 // the @H modules"): each module's effect on the placed hairs, measured on fixture models in
 // tests/fixtures/hairs built through the same steps as `hirsute render`.
-#include "hirsute/hairs/hair_placement.h"
+#include "hirsute/hairs/plant/hair_placement.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/hairs/plant_hairs.h"
+#include "hirsute/hairs/plant/plant_hairs.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"

@@ -1,4 +1,4 @@
-#include "hirsute/hairs/plant_hairs.h"
+#include "hirsute/hairs/plant/plant_hairs.h"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <memory>
 
-#include "hirsute/hairs/hair_templates.h"
+#include "hirsute/hairs/plant/hair_templates.h"
 
 namespace hirsute {
 
