@@ -20,7 +20,7 @@
 #include <optional>
 #include <string>
 
-#include "hirsute/hairs/plant_hairs.h"
+#include "hirsute/hairs/plant/plant_hairs.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"

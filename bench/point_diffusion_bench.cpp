@@ -6,8 +6,8 @@
 #include <chrono>
 #include <cstdio>
 
-#include "hirsute/hairs/point_diffusion.h"
-#include "hirsute/hairs/point_spacing.h"
+#include "hirsute/hairs/placement/point_diffusion.h"
+#include "hirsute/hairs/placement/point_spacing.h"
 
 int main() {
   constexpr int kSeeds = 20;

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "hirsute/hairs/feathers/feather_stage.h"
-#include "hirsute/hairs/plant_hairs.h"
+#include "hirsute/hairs/plant/plant_hairs.h"
 
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -44,6 +44,7 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
                      "Seed of hair placement (default: the view file's `hair texture:` seed)");
   command.add_option("--max-hairs", o.maxHairs, "More hairs are an error (default 50000000)");
   command.add_flag("!--no-feathers", o.feathers, "Leave out the feathers (@F modules)");
+  command.add_option("--max-feathers", o.maxFeathers, "More coat feathers are an error (default 1000000)");
   command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");
 }
 
@@ -130,11 +131,13 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     if (o.progress) o.progress(4, 0, 0);
     FeatherStageOptions featherOptions;
     featherOptions.lsystemFile = o.lsystemFile;
+    featherOptions.seed = o.hairSeed;
+    featherOptions.maxFeathers = o.maxFeathers;
     const FeatherStageReport report =
-        growFeathers(built.scene, built.resources, featherOptions, diagnostics);
+        growFeathers(built.scene, built.resources, built.model.functions, featherOptions, diagnostics);
     if (o.verbose) {
-      std::cerr << fmt::format("feathers: {} of {} types in {:.3f} s\n", report.feathers,
-                               report.types, seconds(started));
+      std::cerr << fmt::format("feathers: {} ({} in coats) of {} types in {:.3f} s\n",
+                               report.feathers, report.coat, report.types, seconds(started));
     }
   } else {
     built.scene.feathers.clear();

@@ -29,6 +29,7 @@ struct ModelOptions {
   std::uint64_t hairSeed = 0;            // 0: the view file's `hair texture:` seed
   std::size_t maxHairs = 50'000'000;
   bool feathers = true;                  // --no-feathers leaves them out
+  std::size_t maxFeathers = 1'000'000;
   bool verbose = false;                  // -v: counts and times on stderr
   // Called as the build goes on (`hirsute view` shows it while building off its render thread):
   // the stage (1 deriving, 2 interpreting, 3 placing hairs, 4 feathers) and, while deriving, the steps done

@@ -19,7 +19,7 @@
 #include <string>
 #include <system_error>
 
-#include "hirsute/hairs/hair_placement.h"
+#include "hirsute/hairs/plant/hair_placement.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"

@@ -275,8 +275,8 @@ void GeneralizedCylinderBuilder::Impl::drawSegment(const Saved::ControlPoint& fi
     segment.contourEnd.push_back(glm::vec2(radius2 * sampleAt(c2.points, c2.closed, j)));
   }
   segment.closed = closed;
-  segment.hairStart = tu1.hairAttributes;
-  segment.hairEnd = tu2.hairAttributes;
+  segment.organStart = tu1.organs;
+  segment.organEnd = tu2.organs;
   segment.girthStart = static_cast<float>(c1.length * radius1);
   segment.girthEnd = static_cast<float>(c2.length * radius2);
   segment.axisStart = static_cast<float>(first.axisDistance);

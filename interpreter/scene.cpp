@@ -64,6 +64,7 @@ void Scene::clear() {
   hairTemplates.clear();
   hairs.clear();
   featherTypes.clear();
+  featherAttributes.clear();
   feathers.clear();
   featherBounds = Bounds{};
   meshIndex_.clear();

@@ -6,8 +6,10 @@
 #include <cstdio>
 #include <cstring>
 
+#include "cpfg_numbers.h"
 #include "cylinder_mesh.h"
 #include "hirsute/interpreter/generalized_cylinder.h"
+#include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/printf_format.h"
 #include "polygon_triangulation.h"
@@ -39,13 +41,6 @@ double parameterOr(const float* parameters, std::size_t count, std::size_t i, do
   return i < count ? static_cast<double>(parameters[i]) : otherwise;
 }
 
-// cpfg reads colour indices and counts from float parameters by truncation: `;(253.565)` is 253
-// (cpfg-WeepingBirch's rayshade output uses material 253 for it).
-int truncated(float value) {
-  if (!(std::abs(value) < 2e9f)) return 0;
-  return static_cast<int>(value);
-}
-
 // `;` and `,` step the colour within its bank of 256 (cpfg-features.md (d)).
 int stepColor(int color, int increment) {
   const int base = color >= 0 ? color / 256 * 256 : 0;
@@ -73,6 +68,7 @@ Turtle::Turtle(const ModelResources& resources, Scene* scene, Diagnostics& diagn
   }
   state_.oldElasticity = view.initialElasticity;
   state_.previousUp = state_.up;
+  organScratch_.resize(organModuleTables().size());
   if (scene_ != nullptr) {
     if (scene_->materials.empty()) scene_->materials = resources.palette;
     if (scene_->textures.empty()) scene_->textures = resources.textures;
@@ -141,7 +137,8 @@ void Turtle::dispatch(char symbol, const float* p, std::size_t count) {
     // belong to the last one (`@Gc(4)` is `@`, `G`, `c(4)`).
     const std::string prefix = prefix_;
     if (prefix == "@") {
-      if (count == 0 && std::strchr("PTGmDbH", symbol) != nullptr) {
+      if (count == 0 &&
+          (std::strchr("PTGmDb", symbol) != nullptr || organModuleTableIndex(symbol) >= 0)) {
         prefix_ = {'@', symbol};
         return;
       }
@@ -300,117 +297,28 @@ void Turtle::dispatch(char symbol, const float* p, std::size_t count) {
   }
 }
 
-// The @H modules (Fuhrer et al. 2004, Table 1; DESIGN.md). The state holds an index into
-// Scene::hairAttributes; a module changes a copy of the set unless the set was made by an @H
-// module just before it (runs of @H modules share one new set), and a change that leaves the
-// set as it was makes none.
-void Turtle::hairModule(char which, const float* p, std::size_t count) {
-  if (scene_ == nullptr) return;  // the query pass places nothing
-  const std::string name = std::string("@H") + (which != 0 ? std::string(1, which) : "");
-  std::vector<HairAttributes>& sets = scene_->hairAttributes;
-  const bool scratch = state_.hairAttributes >= 0 && state_.hairAttributes == hairScratch_ &&
-                       modulesSeen_ == hairScratchModule_ + 3;
-  HairAttributes attributes = state_.hairAttributes >= 0
-                                  ? sets[static_cast<std::size_t>(state_.hairAttributes)]
-                                  : HairAttributes{};
-  const HairAttributes before = attributes;
-
-  auto sidesOf = [&](int loc) -> std::vector<HairSideAttributes*> {
-    if (loc == 0) return {&attributes.sides[0], &attributes.sides[1], &attributes.sides[2]};
-    return {&attributes.sides[static_cast<std::size_t>(loc - 1)]};
-  };
-  auto location = [&](float value, int& loc) {
-    loc = truncated(value);
-    if (loc < 0 || loc > kHairSides) {
-      warnOnce(name + " loc",
-               name + ": loc " + std::to_string(loc) +
-                   " is not 0 (all), 1 (front), 2 (back) or 3 (edge); module ignored");
-      return false;
-    }
-    return true;
-  };
-
-  switch (which) {
-    case 'f':
-    case 'b':
-    case 'e': {
-      const HairSide side = which == 'f'   ? HairSide::Front
-                            : which == 'b' ? HairSide::Back
-                                           : HairSide::Edge;
-      attributes.side(side).enabled = count == 0 || p[0] != 0.0f;
-      break;
-    }
-    case 'd':
-    case 'l':
-    case 'r':
-    case 'i':
-    case 't':
-    case 'w': {
-      if (count == 0) {
-        warnOnce(name + " empty", name + " needs a value: " + name + "(value[,rng[,fun[,loc]]])");
-        return;
-      }
-      if (count > 4)
-        warnOnce(name + " many", name + " takes at most 4 parameters; the rest are ignored");
-      int loc = 0;
-      if (count >= 4 && !location(p[3], loc)) return;
-      HairValue value{p[0], count >= 2 ? std::abs(p[1]) : 0.0f, count >= 3 ? truncated(p[2]) : 0};
-      if (value.function < 0) value.function = 0;
-      for (HairSideAttributes* side : sidesOf(loc)) {
-        HairValue& target = which == 'd'   ? side->density
-                            : which == 'l' ? side->length
-                            : which == 'r' ? side->radius
-                            : which == 'i' ? side->incline
-                            : which == 't' ? side->twist
-                                           : side->wrap;
-        target = value;
-      }
-      break;
-    }
-    case 'p': {
-      // @Hp(P1, …, Pn[, loc]): n is the number of templates the view file declares (one, the
-      // default straight hair, when it declares none); a parameter past them is loc.
-      const std::size_t templates = std::max<std::size_t>(1, resources_.view.hairTemplates.size());
-      std::size_t n = std::min(count, templates);
-      int loc = 0;
-      if (count == templates + 1) {
-        if (!location(p[templates], loc)) return;
-      } else if (count > templates + 1) {
-        warnOnce("@Hp many", "@Hp: " + std::to_string(count) + " parameters for " +
-                                 std::to_string(templates) +
-                                 " template hair(s); the extra ones are ignored");
-      }
-      n = std::min<std::size_t>(n, kMaxHairTemplates);
-      for (HairSideAttributes* side : sidesOf(loc)) {
-        side->probability.fill(0.0f);
-        for (std::size_t i = 0; i < n; ++i) {
-          if (p[i] < 0.0f) warnOnce("@Hp negative", "@Hp: a negative probability counts as 0");
-          side->probability[i] = std::max(0.0f, p[i]);
-        }
-        side->probabilityCount = static_cast<int>(n);
-      }
-      break;
-    }
-    default:
-      warnOnce(name, name + " is not a hair module (@Hf @Hb @He @Hd @Hl @Hr @Hi @Ht @Hw @Hp)");
-      return;
-  }
-
-  if (scratch) {
-    sets[static_cast<std::size_t>(state_.hairAttributes)] = attributes;
-  } else if (!(attributes == before) || state_.hairAttributes < 0) {
-    sets.push_back(attributes);
-    state_.hairAttributes = static_cast<int>(sets.size() - 1);
-  } else {
-    // Nothing changed and no set was made: the current set may already belong to a control
-    // point, so the next module must not take it as its scratch set.
-    return;
-  }
-  hairScratch_ = state_.hairAttributes;
-  hairScratchModule_ = modulesSeen_;
+// Organ modules (@H…): the organ's table reads them (organ_modules.h). Each organ keeps its
+// own scratch record for the copy-on-write of its attribute records.
+void Turtle::organModule(int organ, char letter, const float* p, std::size_t count) {
+  OrganScratch& scratch = organScratch_[static_cast<std::size_t>(organ)];
+  OrganModuleCall call{
+      p,
+      count,
+      resources_,
+      state_,
+      scene_,
+      [this](const std::string& key, const std::string& message) { warnOnce(key, message); },
+      scratch.record,
+      scratch.module,
+      modulesSeen_};
+  organModuleTables()[static_cast<std::size_t>(organ)]->interpret(letter, call);
 }
 
 void Turtle::atModule(char first, char second, const float* p, std::size_t count) {
+  if (const int organ = organModuleTableIndex(first); organ >= 0) {
+    organModule(organ, second, p, count);
+    return;
+  }
   const ViewSettings& view = resources_.view;
   switch (first) {
     case 'O':
@@ -486,9 +394,6 @@ void Turtle::atModule(char first, char second, const float* p, std::size_t count
       }
       break;
     }
-    case 'H':
-      hairModule(second, p, count);
-      break;
     case '#':
       state_.contour = count > 0 ? truncated(p[0]) : 0;
       break;

@@ -120,7 +120,7 @@ int featherDetailLevel(float pixels) {
 
 float featherScreenLength(const Scene& scene, const Feather& feather, const Camera& camera) {
   float length = 0;
-  for (std::uint16_t type : {feather.type, feather.blendType}) {
+  for (std::uint16_t type : feather.types) {
     const FeatherType& t = scene.featherTypes[type - 1u];
     length = std::max(length, t.calamusLength + t.rachisLength);
   }

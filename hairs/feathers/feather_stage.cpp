@@ -3,12 +3,15 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <memory>
 
+#include "hirsute/hairs/feathers/feather_coats.h"
 #include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/feather_instances.h"
+#include "hirsute/hairs/placement/placement_random.h"
 #include "hirsute/interpreter/texture_image.h"
 
 namespace hirsute {
@@ -53,7 +56,8 @@ bool hasFeathers(const Scene& scene, const ModelResources& resources) {
 }
 
 FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
-                                const FeatherStageOptions& options, Diagnostics& diagnostics) {
+                                const ViewFunctions& functions, const FeatherStageOptions& options,
+                                Diagnostics& diagnostics) {
   FeatherStageReport report;
   scene.featherTypes.clear();
   for (const FeatherTypeDeclaration& declaration : resources.view.featherTypes) {
@@ -67,6 +71,39 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
   std::map<std::string, int> textures;
   for (FeatherType& type : scene.featherTypes) attachTextures(type, scene, textures);
   report.types = scene.featherTypes.size();
+
+  if (!scene.featherTypes.empty()) {
+    const ViewSettings& view = resources.view;
+    FeatherCoatSettings coats;
+    coats.layout = view.follicleLayout;
+    coats.texture.width = coats.texture.height = view.hairTextureSize;
+    coats.texture.fill = view.hairTextureFill;
+    // Follicles are not the hairs' points: the texture and the offsets get seeds of their own.
+    coats.texture.seed = placementKey(view.hairTextureSeed, 0x666f6c6cu);
+    coats.seed = placementKey(options.seed != 0 ? options.seed : view.hairTextureSeed, 0x636f6174u);
+    coats.maxFeathers = options.maxFeathers;
+    const std::vector<FunctionCurve>& curves = functions.functions;
+    coats.function = [&curves](int index, double x) {
+      if (index < 1 || static_cast<std::size_t>(index) > curves.size()) return std::nan("");
+      return curves[static_cast<std::size_t>(index) - 1].evaluate(x);
+    };
+    try {
+      const FeatherCoatReport placed = placeFeatherCoats(scene, coats);
+      report.coat = placed.feathers;
+      if (placed.segmentsWithoutMesh > 0) {
+        diagnostics.warn(
+            SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
+            fmt::format("{} feathered generalized-cylinder segments are drawn as lines and get "
+                        "no coat; coats grow on cylinders drawn as triangles (`line style: "
+                        "cylinder` in the view file)",
+                        placed.segmentsWithoutMesh));
+      }
+    } catch (const FeatherLimitError& e) {
+      throw DiagnosticError(
+          SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
+          e.what());
+    }
+  }
 
   const std::size_t before = scene.feathers.size();
   std::erase_if(scene.feathers,

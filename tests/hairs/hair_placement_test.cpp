@@ -1,7 +1,7 @@
 // Placing plant hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3–4; DESIGN.md, "Plant hairs:
 // the @H modules"): each module's effect on the placed hairs, measured on fixture models in
 // tests/fixtures/hairs built through the same steps as `hirsute render`.
-#include "hirsute/hairs/hair_placement.h"
+#include "hirsute/hairs/plant/hair_placement.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/hairs/plant_hairs.h"
+#include "hirsute/hairs/plant/plant_hairs.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -658,8 +658,8 @@ TEST(HairAttributeState, BranchOfAForkedTubeKeepsItsOwnAttributes) {
   EXPECT_GT(scene.hairs.size(), 300u);
   int branches = 0;
   for (const CylinderSegment& seg : scene.cylinderSegments) {
-    ASSERT_GE(seg.hairEnd, 0);
-    const float length = scene.hairAttributes.at(static_cast<std::size_t>(seg.hairEnd))
+    ASSERT_GE(seg.organEnd.hair, 0);
+    const float length = scene.hairAttributes.at(static_cast<std::size_t>(seg.organEnd.hair))
                              .side(HairSide::Front)
                              .length.value;
     // The branch ends heading along -x (a left turn from +y); the parent's segments along +y.

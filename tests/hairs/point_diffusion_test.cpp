@@ -1,6 +1,6 @@
 // The point-diffusion texture (DESIGN.md, "Plant hairs"): spacing measured as Lagae & Dutré's
 // relative radius, the point count, seeding, and seams where tiles meet.
-#include "hirsute/hairs/point_diffusion.h"
+#include "hirsute/hairs/placement/point_diffusion.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "hirsute/hairs/point_spacing.h"
+#include "hirsute/hairs/placement/point_spacing.h"
 
 namespace hirsute {
 namespace {

@@ -6,6 +6,9 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
+
+#include "hirsute/interpreter/organ_attributes.h"
 
 namespace hirsute {
 
@@ -21,13 +24,7 @@ inline constexpr int kMaxHairTemplates = 16;
 // One attribute of Table 1: value ± a uniform offset up to `range` per hair, times function
 // `function` of the model's function set evaluated at the girth position s in [0, 1]
 // (0: none).
-struct HairValue {
-  float value = 0;
-  float range = 0;
-  int function = 0;
-
-  bool operator==(const HairValue&) const = default;
-};
+using HairValue = OrganValue;
 
 // The attributes of one side.
 struct HairSideAttributes {
@@ -48,6 +45,11 @@ struct HairSideAttributes {
 };
 
 struct HairAttributes {
+  // The @H modules' `loc` parameter picks sides by these names (organ_modules.h).
+  using Side = HairSideAttributes;
+  static constexpr int kSides = kHairSides;
+  static constexpr std::array<std::string_view, kSides> kSideNames{"front", "back", "edge"};
+
   std::array<HairSideAttributes, kHairSides> sides;  // by HairSide - 1
 
   HairSideAttributes& side(HairSide s) { return sides[static_cast<int>(s) - 1]; }

@@ -12,8 +12,10 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "hirsute/interpreter/feather_attributes.h"
 #include "hirsute/interpreter/feather_type.h"
 #include "hirsute/interpreter/hair_attributes.h"
+#include "hirsute/interpreter/organ_attributes.h"
 
 namespace hirsute {
 
@@ -117,10 +119,11 @@ struct CylinderSegment {
   int sides = 0;                 // contour samples around the ring (the @! of the first point)
   std::uint32_t firstVertex = 0;
   std::uint32_t vertexCount = 0;
-  // The hair attributes at the segment's two control points (indices into
-  // Scene::hairAttributes, -1: the defaults, no hairs). Without `hair interpolation: on` the
-  // segment's hairs take the end's: values set between two @Gc apply to the segment they close.
-  int hairStart = -1, hairEnd = -1;
+  // The organ attributes at the segment's two control points (per organ an index into its
+  // Scene vector, e.g. Scene::hairAttributes; -1: the defaults, none). Without `hair
+  // interpolation: on` the segment's hairs take the end's: values set between two @Gc apply to
+  // the segment they close.
+  OrganAttributeIndices organStart, organEnd;
 };
 
 // A template hair (DESIGN.md, "Template hairs"): the turtle positions of a small L-system,
@@ -178,11 +181,15 @@ struct Feather {
   glm::vec3 position{0.0f};
   glm::vec3 heading{0, 1, 0};  // unit
   glm::vec3 up{0, 0, 1};       // unit, perpendicular to heading
-  float blend = 0;             // 0: `type`, 1: `blendType`
   float age = 1;               // 0 to 1 (1: grown), Streit & Heidrich 2002, Sec. 4.2.4
   float size = 1;              // scales every length of the type
-  std::uint16_t type = 1;      // 1-based, the view file's `feather:` lines in order
-  std::uint16_t blendType = 1;
+  // The type is the bilinear blend of four (Sec. 4.2.3, 4.4): types[0] to types[1] by across[0],
+  // types[2] to types[3] by across[1], and the first of those to the second by along. Types are
+  // 1-based, the view file's `feather:` lines in order; @Fe(k) has all four k, @Fi(k1, k2, t)
+  // {k1, k2, k1, k2} with across t.
+  std::array<std::uint16_t, 4> types{1, 1, 1, 1};
+  std::array<float, 2> across{0.0f, 0.0f};
+  float along = 0;
   FeatherOrigin origin = FeatherOrigin::Single;
 
   // The turtle's left vector, where the left vane lies: L = H × U as the turtle keeps it.
@@ -238,6 +245,7 @@ class Scene {
   // featherTypes[k - 1]), the feathers in drawing order (a coat from its bottom feather to its
   // top one, Sec. 4.4), and the box that holds their geometry (the feather stage measures it).
   std::vector<FeatherType> featherTypes;
+  std::vector<FeatherAttributes> featherAttributes;  // the coat records segments refer to
   std::vector<Feather> feathers;
   Bounds featherBounds;
 

@@ -85,7 +85,8 @@ class Turtle : public ModuleSink {
 
   void dispatch(char symbol, const float* parameters, std::size_t count);
   void atModule(char first, char second, const float* parameters, std::size_t count);
-  void hairModule(char which, const float* parameters, std::size_t count);
+  // `@` organ letter: the module of the organ at `organ` in organModuleTables().
+  void organModule(int organ, char letter, const float* parameters, std::size_t count);
   // ?P ?H ?L ?U with `count` parameters (the values are the turtle's, not the module's).
   void query(char which, std::size_t count);
   void move(double distance, bool draws, bool addsVertex);
@@ -115,13 +116,16 @@ class Turtle : public ModuleSink {
   const std::vector<std::string>* strings_ = nullptr;
   std::set<std::string> warned_;
   Counts counts_;
-  // Modules handled so far, and the hair attribute set the last @H module made at which count:
-  // an @H module right after it (three modules later: `@`, `H`, then its letter) changes that set
-  // in place rather than copying it.
+  // Modules handled so far, and per organ the attribute record its last module made at which
+  // count: a module of the organ right after it (three modules later: `@`, the organ's letter,
+  // then the module's) changes that record in place rather than copying it.
   std::size_t modulesSeen_ = 0;
   std::size_t maxVertices_ = kDefaultMaxVertices;
-  int hairScratch_ = -1;
-  std::size_t hairScratchModule_ = 0;
+  struct OrganScratch {
+    int record = -1;
+    std::size_t module = 0;
+  };
+  std::vector<OrganScratch> organScratch_;
 
   // (implementation state: the state stack, pending segment, polygon stack, multi-character
   // module prefix, the cylinder builder …)
@@ -141,6 +145,7 @@ void interpret(Derivation& derivation, const ModelResources& resources, Scene& s
 
 // Installs the query pass: before each rewriting, the turtle walks the string and fills the
 // parameters of ?P ?H ?L ?U with its position, heading, left and up vectors.
-void installQueryPass(Derivation& derivation, const ModelResources& resources, Diagnostics& diagnostics);
+void installQueryPass(Derivation& derivation, const ModelResources& resources,
+                      Diagnostics& diagnostics);
 
 }  // namespace hirsute

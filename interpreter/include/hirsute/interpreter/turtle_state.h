@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "hirsute/interpreter/organ_attributes.h"
+
 namespace hirsute {
 
 struct TurtleState {
@@ -35,10 +37,10 @@ struct TurtleState {
   double oldElasticity = 0;
   glm::dvec3 previousUp{0, 0, -1};  // for @Tf/@Tp
 
-  // Hair attributes (DESIGN.md, the @H modules): an index into Scene::hairAttributes, -1 for
-  // the defaults (no hairs). The turtle copies a set before an @H module changes it once a
-  // segment or a saved state refers to it, so `[` and `]` save and restore them for free.
-  int hairAttributes = -1;
+  // Organ attributes (DESIGN.md, "Organs"; the @H modules): per organ an index into its Scene
+  // vector, -1 for the defaults (none). The turtle copies a record before a module changes it
+  // once a segment or a saved state refers to it, so `[` and `]` save and restore them for free.
+  OrganAttributeIndices organs;
 };
 
 }  // namespace hirsute

@@ -13,8 +13,8 @@ namespace hirsute {
 // Whether `feather` names types the scene has.
 bool hasFeatherTypes(const Scene& scene, const Feather& feather);
 
-// The feather's own type: types `type` and `blendType` blended by `blend` (Sec. 4.2.3), then
-// grown to `age` (Sec. 4.2.4). The feather must name types the scene has.
+// The feather's own type: its four types blended bilinearly (Sec. 4.2.3, 4.4; Feather::types),
+// then grown to `age` (Sec. 4.2.4). The feather must name types the scene has.
 FeatherType featherTypeOf(const Scene& scene, const Feather& feather);
 
 // Local geometry (x front, y left, z rachis) to world: x → up, y → left, z → heading, scaled by

@@ -4,31 +4,37 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/lsys/diagnostic.h"
+#include "hirsute/lsys/function_curve.h"
 
 namespace hirsute {
 
 struct FeatherStageOptions {
-  std::string lsystemFile;  // where warnings about the L-system's feathers point
+  std::string lsystemFile;  // where warnings and limit errors about the L-system's feathers point
+  std::uint64_t seed = 0;   // of the coats' follicles; 0: the view file's `hair texture:` seed
+  std::size_t maxFeathers = 1'000'000;  // more coat feathers are an error
 };
 
 struct FeatherStageReport {
   std::size_t types = 0;     // feather types read
-  std::size_t feathers = 0;  // feathers kept
+  std::size_t feathers = 0;  // feathers kept, coats included
+  std::size_t coat = 0;      // coat feathers placed
   std::size_t dropped = 0;   // feathers of types the view file does not declare
 };
 
 // Whether the scene has feathers, or the view file feather types, for the stage to handle.
 bool hasFeathers(const Scene& scene, const ModelResources& resources);
 
-// Reads the types into scene.featherTypes and measures scene.featherBounds. Throws
-// DiagnosticError for a broken .fea file (at its own line:col) or a missing one (at the view
-// file's `feather:` line).
+// Reads the types into scene.featherTypes, places the coats (feather_coats.h) and measures
+// scene.featherBounds. Throws DiagnosticError for a broken .fea file (at its own line:col), a
+// missing one (at the view file's `feather:` line) and more coat feathers than the limit.
 FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
-                                const FeatherStageOptions& options, Diagnostics& diagnostics);
+                                const ViewFunctions& functions, const FeatherStageOptions& options,
+                                Diagnostics& diagnostics);
 
 }  // namespace hirsute

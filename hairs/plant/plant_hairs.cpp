@@ -1,4 +1,4 @@
-#include "hirsute/hairs/plant_hairs.h"
+#include "hirsute/hairs/plant/plant_hairs.h"
 
 #include <fmt/format.h>
 
@@ -6,13 +6,13 @@
 #include <cmath>
 #include <memory>
 
-#include "hirsute/hairs/hair_templates.h"
+#include "hirsute/hairs/plant/hair_templates.h"
 
 namespace hirsute {
 
 bool hasHairs(const Scene& scene) {
   for (const CylinderSegment& segment : scene.cylinderSegments) {
-    for (int index : {segment.hairStart, segment.hairEnd}) {
+    for (int index : {segment.organStart.hair, segment.organEnd.hair}) {
       if (index >= 0 && static_cast<std::size_t>(index) < scene.hairAttributes.size() &&
           scene.hairAttributes[static_cast<std::size_t>(index)].anyEnabled()) {
         return true;

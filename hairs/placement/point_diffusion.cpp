@@ -1,4 +1,4 @@
-#include "hirsute/hairs/point_diffusion.h"
+#include "hirsute/hairs/placement/point_diffusion.h"
 
 #include <cmath>
 #include <random>

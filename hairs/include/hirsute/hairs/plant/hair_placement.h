@@ -1,14 +1,15 @@
 // Placing plant hairs on generalized-cylinder segments (Fuhrer, Jensen & Prusinkiewicz 2004,
-// Sec. 3 and 4; DESIGN.md, "Plant hairs"). Reads the Scene's cylinder segments, their hair
-// attributes and the templates; appends to Scene::hairs.
+// Sec. 3 and 4; DESIGN.md, "Plant hairs") at the attachment points of the shared placement engine
+// (hairs/placement/surface_sampler.h). Reads the Scene's cylinder segments, their hair attributes
+// and the templates; appends to Scene::hairs.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <stdexcept>
 
-#include "hirsute/hairs/point_diffusion.h"
+#include "hirsute/hairs/placement/point_diffusion.h"
+#include "hirsute/hairs/placement/segment_values.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute {
@@ -25,7 +26,7 @@ struct HairPlacementSettings {
   std::size_t maxHairs = 50'000'000;
   // The model's function set for the `fun` parameters: function `index` (1-based) at x in
   // [0, 1]. Null, or an index it does not know (it returns NaN), reads as no function.
-  std::function<double(int index, double x)> function;
+  GirthFunction function;
 };
 
 struct HairPlacementReport {

@@ -1,4 +1,4 @@
-#include "hirsute/hairs/point_spacing.h"
+#include "hirsute/hairs/placement/point_spacing.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "hirsute/hairs/hair_placement.h"
+#include "hirsute/hairs/plant/hair_placement.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/lsys/diagnostic.h"

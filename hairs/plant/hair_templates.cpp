@@ -1,7 +1,7 @@
 // Template hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.2): each `hair:` file is an
 // independent L-system, derived and interpreted by the plant's turtle; the hair is the polyline
 // of the turtle's positions, kept once in the hair's own frame.
-#include "hirsute/hairs/hair_templates.h"
+#include "hirsute/hairs/plant/hair_templates.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "hirsute/hairs/point_spacing.h"
+#include "hirsute/hairs/placement/point_spacing.h"
 
 namespace hirsute {
 

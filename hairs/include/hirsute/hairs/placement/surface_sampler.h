@@ -1,0 +1,99 @@
+// The shared placement engine (DESIGN.md, "Organs: one placement engine"): candidate attachment
+// points on generalized-cylinder segments, for every organ placed on them (plant hairs, feather
+// follicles, fur strands). The sampler tiles a point pattern (Mitchell's point-diffusion texture,
+// or any tile in scan-line order) over each segment unfolded into (u, v), maps every point to its
+// face and interpolates the corner frames there; the organ decides, point by point, whether to
+// keep it (density thinning) and what to place.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "hirsute/hairs/placement/corner_frame.h"
+#include "hirsute/hairs/placement/placement_random.h"
+#include "hirsute/hairs/placement/point_diffusion.h"
+#include "hirsute/hairs/placement/segment_unfolding.h"
+#include "hirsute/interpreter/scene.h"
+
+namespace hirsute {
+
+// The angles of a corner frame at girth position s, fraction tau along the segment.
+struct CornerAngles {
+  float incline = 0;  // radians, about d × h
+  float wrap = 0;     // radians, about d × (d × h)
+  float twist = 0;    // interpolated across the face as given; the organ applies it
+};
+
+// A candidate attachment point, before the organ keeps it or not.
+struct AttachmentPoint {
+  float s = 0;           // girth position in [0, 1) (0 or 1 on the edges of open contours)
+  float tau = 0;         // fraction along the segment: the attributes' interpolation parameter
+  float girthRatio = 1;  // the girth here over the widest: a closed tile is stretched around it
+  bool edge = false;     // on an edge of an open contour (placed per unit length)
+  PlacementRandom random{0};  // this point's numbers, keyed by the seed and the point
+};
+
+// Where a kept point lies and how it is oriented: on its face, bilinear in the corners (on an
+// edge, linear along it).
+struct AttachmentFrame {
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f};  // the corner directions interpolated (not normalised)
+  glm::vec3 across{0.0f};     // the corners' incline axes interpolated
+  float twist = 0;            // the corners' twists interpolated
+};
+
+// What an organ does with the points the sampler visits.
+class AttachmentVisitor {
+ public:
+  virtual ~AttachmentVisitor() = default;
+  // The angles of the corner frames at (s, tau).
+  virtual CornerAngles cornerAngles(float s, float tau) const = 0;
+  // Before each strip: about how many points it will visit (an organ may refuse too many).
+  virtual void expectPoints(double points) { (void)points; }
+  // A point is about to be tested (before its numbers are drawn).
+  virtual void pointTested() {}
+  // Density thinning: whether to place at this point (its numbers come from point.random).
+  virtual bool keep(AttachmentPoint& point) = 0;
+  // Places the organ at a kept point.
+  virtual void place(AttachmentPoint& point, const AttachmentFrame& frame) = 0;
+};
+
+// Which face of the surface: the back has its normals flipped and the tile shifted by half, so
+// that its points are not the front's.
+enum class SurfaceFace { Front, Back };
+
+class SurfaceSampler {
+ public:
+  // Tiles the texture's points.
+  explicit SurfaceSampler(const PointDiffusionTexture& texture);
+  // Tiles any pattern of points in the unit tile, in scan-line order over `rows` rows (a point's
+  // row is TexturePoint::row).
+  SurfaceSampler(std::vector<TexturePoint> points, int rows);
+
+  std::size_t tilePoints() const { return points_.size(); }
+
+  // Sec. 3.1 and Figure 2: the tile over the unfolded segment in scan-line order; a tile with K
+  // points covers K / maxDensity units of area. Around a closed contour a whole number of tiles
+  // fits, so the pattern wraps without a seam. Every point gets the numbers of
+  // placementKey(key, the point).
+  void sampleSurface(const SegmentUnfolding& unfolding, SurfaceFace face, float maxDensity,
+                     std::uint64_t key, AttachmentVisitor& visitor) const;
+
+  // Sec. 3.2: points along edge `which` (0: the contour's first point, 1: its last) of an open
+  // segment, √maxDensity per unit length, spaced evenly with a jitter and counted in arc length
+  // from @Gs, so that the rhythm continues from segment to segment. The direction is the edge
+  // vector h × n, pointing away from the segment.
+  static void sampleEdge(const SegmentUnfolding& unfolding, int which, float maxDensity,
+                         std::uint64_t key, AttachmentVisitor& visitor);
+
+ private:
+  std::vector<TexturePoint> points_;
+  int rows_ = 0;
+  std::vector<std::uint32_t> rowStart_;  // points of row r: [rowStart_[r], rowStart_[r+1])
+};
+
+}  // namespace hirsute

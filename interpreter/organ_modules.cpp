@@ -1,0 +1,93 @@
+// The list of organ tables and the readers of the parameter forms they share (DESIGN.md,
+// "Organs"; the value form is Fuhrer et al. 2004, Table 1).
+#include "hirsute/interpreter/organ_modules.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "cpfg_numbers.h"
+
+namespace hirsute {
+
+std::span<const OrganModuleTable* const> organModuleTables() {
+  // One line per organ.
+  static const std::array<const OrganModuleTable*, 2> tables{
+      &hairModuleTable(),
+      &featherModuleTable(),
+  };
+  return tables;
+}
+
+int organModuleTableIndex(char organ) {
+  const auto tables = organModuleTables();
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    if (tables[i]->organ() == organ) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+namespace organ_parameters {
+
+bool location(const OrganModuleCall& call, const std::string& name, float parameter,
+              std::span<const std::string_view> sideNames, int& loc) {
+  loc = truncated(parameter);
+  if (loc < 0 || loc > static_cast<int>(sideNames.size())) {
+    // "0 (all), 1 (front), 2 (back) or 3 (edge)"
+    std::string choices = "0 (all)";
+    for (std::size_t i = 0; i < sideNames.size(); ++i) {
+      choices += (i + 1 == sideNames.size() ? " or " : ", ") + std::to_string(i + 1) + " (" +
+                 std::string(sideNames[i]) + ")";
+    }
+    call.warnOnce(name + " loc", name + ": loc " + std::to_string(loc) + " is not " + choices +
+                                     "; module ignored");
+    return false;
+  }
+  return true;
+}
+
+bool value(const OrganModuleCall& call, const std::string& name,
+           std::span<const std::string_view> sideNames, OrganValue& value, int& loc) {
+  const float* p = call.parameters;
+  const std::size_t count = call.count;
+  if (count == 0) {
+    call.warnOnce(name + " empty", name + " needs a value: " + name + "(value[,rng[,fun[,loc]]])");
+    return false;
+  }
+  if (count > 4)
+    call.warnOnce(name + " many", name + " takes at most 4 parameters; the rest are ignored");
+  loc = 0;
+  if (count >= 4 && !location(call, name, p[3], sideNames, loc)) return false;
+  value = OrganValue{p[0], count >= 2 ? std::abs(p[1]) : 0.0f, count >= 3 ? truncated(p[2]) : 0};
+  if (value.function < 0) value.function = 0;
+  return true;
+}
+
+bool probabilities(const OrganModuleCall& call, const std::string& name, std::size_t choices,
+                   std::size_t capacity, std::string_view noun,
+                   std::span<const std::string_view> sideNames, std::vector<float>& weights,
+                   int& loc) {
+  const float* p = call.parameters;
+  const std::size_t count = call.count;
+  // n is the number of choices the view file declares; a parameter past them is loc.
+  std::size_t n = std::min(count, choices);
+  loc = 0;
+  if (count == choices + 1) {
+    if (!location(call, name, p[choices], sideNames, loc)) return false;
+  } else if (count > choices + 1) {
+    call.warnOnce(name + " many", name + ": " + std::to_string(count) + " parameters for " +
+                                      std::to_string(choices) + " " + std::string(noun) +
+                                      "; the extra ones are ignored");
+  }
+  n = std::min(n, capacity);
+  weights.assign(n, 0.0f);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (p[i] < 0.0f)
+      call.warnOnce(name + " negative", name + ": a negative probability counts as 0");
+    weights[i] = std::max(0.0f, p[i]);
+  }
+  return true;
+}
+
+}  // namespace organ_parameters
+}  // namespace hirsute
