@@ -8,10 +8,10 @@
 #include <string>
 
 #include "command.h"
-#include "hirsute/viewer/hair_csv_writer.h"
-#include "hirsute/viewer/obj_writer.h"
-#include "hirsute/viewer/pov_writer.h"
-#include "hirsute/viewer/povray_runner.h"
+#include "hirsute/viewer/export/hair_csv_writer.h"
+#include "hirsute/viewer/export/obj_writer.h"
+#include "hirsute/viewer/export/pov_writer.h"
+#include "hirsute/viewer/export/povray_runner.h"
 #include "model_pipeline.h"
 
 namespace hirsute::cli {

@@ -37,8 +37,8 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/viewer/png_image.h"
-#include "hirsute/viewer/povray_runner.h"
+#include "hirsute/viewer/export/povray_runner.h"
+#include "hirsute/viewer/gl/png_image.h"
 
 extern char** environ;
 

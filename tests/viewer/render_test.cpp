@@ -7,9 +7,9 @@
 #include <glm/gtc/constants.hpp>
 #include <string>
 
-#include "hirsute/viewer/camera.h"
-#include "hirsute/viewer/gl_renderer.h"
-#include "hirsute/viewer/offscreen.h"
+#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/gl/gl_renderer.h"
+#include "hirsute/viewer/gl/offscreen.h"
 
 namespace hirsute {
 namespace {
