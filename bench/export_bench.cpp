@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/viewer/obj_writer.h"
-#include "hirsute/viewer/pov_writer.h"
-#include "hirsute/viewer/povray_runner.h"
+#include "hirsute/viewer/export/obj_writer.h"
+#include "hirsute/viewer/export/pov_writer.h"
+#include "hirsute/viewer/export/povray_runner.h"
 
 namespace {
 

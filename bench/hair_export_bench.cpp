@@ -16,10 +16,10 @@
 #include <filesystem>
 #include <string>
 
-#include "hirsute/viewer/hair_csv_writer.h"
-#include "hirsute/viewer/obj_writer.h"
-#include "hirsute/viewer/pov_writer.h"
-#include "hirsute/viewer/povray_runner.h"
+#include "hirsute/viewer/export/hair_csv_writer.h"
+#include "hirsute/viewer/export/obj_writer.h"
+#include "hirsute/viewer/export/pov_writer.h"
+#include "hirsute/viewer/export/povray_runner.h"
 #include "synthetic_hairs.h"
 
 namespace {

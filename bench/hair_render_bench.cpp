@@ -27,9 +27,9 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/viewer/camera.h"
-#include "hirsute/viewer/gl_renderer.h"
-#include "hirsute/viewer/offscreen.h"
+#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/gl/gl_renderer.h"
+#include "hirsute/viewer/gl/offscreen.h"
 #include "model_pipeline.h"
 #include "raw_gl.h"
 #include "synthetic_hairs.h"

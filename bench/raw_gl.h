@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/viewer/gl_functions.h"
+#include "hirsute/viewer/gl/gl_functions.h"
 
 namespace hirsute::bench {
 

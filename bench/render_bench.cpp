@@ -24,9 +24,9 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/viewer/camera.h"
-#include "hirsute/viewer/gl_renderer.h"
-#include "hirsute/viewer/offscreen.h"
+#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/gl/gl_renderer.h"
+#include "hirsute/viewer/gl/offscreen.h"
 #include "raw_gl.h"
 
 namespace {

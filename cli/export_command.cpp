@@ -8,10 +8,11 @@
 #include <string>
 
 #include "command.h"
-#include "hirsute/viewer/hair_csv_writer.h"
-#include "hirsute/viewer/obj_writer.h"
-#include "hirsute/viewer/pov_writer.h"
-#include "hirsute/viewer/povray_runner.h"
+#include "hirsute/viewer/export/feather_csv_writer.h"
+#include "hirsute/viewer/export/hair_csv_writer.h"
+#include "hirsute/viewer/export/obj_writer.h"
+#include "hirsute/viewer/export/pov_writer.h"
+#include "hirsute/viewer/export/povray_runner.h"
 #include "model_pipeline.h"
 
 namespace hirsute::cli {
@@ -22,6 +23,7 @@ struct ExportOptions {
   std::string pov;
   std::string obj;
   std::string hairs;
+  std::string feathers;
   bool render = false;
   int width = 800, height = 600;
 };
@@ -46,6 +48,7 @@ int runExport(const ExportOptions& o) {
     }
     if (!o.obj.empty()) writeObj(built.scene, o.obj);
     if (!o.hairs.empty()) writeHairCsv(built.scene, o.hairs);
+    if (!o.feathers.empty()) writeFeatherCsv(built.scene, o.feathers);
   } catch (const std::invalid_argument& e) {
     // The model produced geometry no format can hold (a coordinate that is not a number).
     std::cerr << o.model.lsystemFile << ": error: cannot export: " << e.what() << '\n';
@@ -87,6 +90,9 @@ void registerExportCommand(CLI::App& app, Action& action) {
   command->add_option("--hairs", options->hairs,
                       "Write the placed hairs to FILE (.csv): one row per hair (root, direction, "
                       "template, length, radius, side)");
+  command->add_option("--feathers", options->feathers,
+                      "Write the feathers to FILE (.csv): one row per feather (root, heading, up, "
+                      "types and blends, age, size, single or coat)");
   CLI::Option* render = command->add_flag(
       "--render", options->render,
       "Render the POV-Ray scene with the installed povray, to the .pov's name with .png");
@@ -99,9 +105,11 @@ void registerExportCommand(CLI::App& app, Action& action) {
   command->add_option("--height", options->height, "Image height in pixels (default 600)")
       ->check(CLI::Range(1, 16384));
   command->callback([options, &action] {
-    if (options->pov.empty() && options->obj.empty() && options->hairs.empty()) {
+    if (options->pov.empty() && options->obj.empty() && options->hairs.empty() &&
+        options->feathers.empty()) {
       throw CLI::RequiredError(
-          "export needs an output: --pov FILE or --obj FILE or --hairs FILE (or several)");
+          "export needs an output: --pov FILE or --obj FILE or --hairs FILE or --feathers FILE "
+          "(or several)");
     }
     action = [options] { return runExport(*options); };
   });

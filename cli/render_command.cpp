@@ -5,8 +5,8 @@
 #include <string>
 
 #include "command.h"
-#include "hirsute/viewer/offscreen.h"
-#include "hirsute/viewer/png_image.h"
+#include "hirsute/viewer/gl/offscreen.h"
+#include "hirsute/viewer/gl/png_image.h"
 #include "model_pipeline.h"
 
 namespace hirsute::cli {

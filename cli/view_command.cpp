@@ -10,9 +10,9 @@
 #include <string>
 
 #include "command.h"
-#include "hirsute/viewer/define_editor.h"
-#include "hirsute/viewer/view_script.h"
-#include "hirsute/viewer/viewer_window.h"
+#include "hirsute/viewer/interaction/define_editor.h"
+#include "hirsute/viewer/interaction/view_script.h"
+#include "hirsute/viewer/window/viewer_window.h"
 #include "model_pipeline.h"
 
 namespace hirsute::cli {

@@ -241,8 +241,7 @@ FeatherType blendFeatherTypes(const FeatherType& a, const FeatherType& b, float 
       b.appearance.colourKind == FeatherColourKind::Rgb) {
     out.appearance.colour = mix(a.appearance.colour, b.appearance.colour, t);
   }
-  if (a.appearance.drawing == FeatherDrawing::Strips &&
-      b.appearance.drawing == FeatherDrawing::Strips) {
+  if (a.appearance.drawing == BarbStyle::Strips && b.appearance.drawing == BarbStyle::Strips) {
     out.appearance.stripWidth = mix(a.appearance.stripWidth, b.appearance.stripWidth, t);
   }
   if (a.afterfeather && b.afterfeather) {

@@ -409,9 +409,9 @@ const std::map<std::string_view, Handler>& handlers() {
          const SourceLocation where = l.here();
          const std::string_view word = l.word("'lines' or 'strips WIDTH'");
          if (word == "lines") {
-           r.type.appearance.drawing = FeatherDrawing::Lines;
+           r.type.appearance.drawing = BarbStyle::Lines;
          } else if (word == "strips") {
-           r.type.appearance.drawing = FeatherDrawing::Strips;
+           r.type.appearance.drawing = BarbStyle::Strips;
            r.type.appearance.stripWidth = l.number("the strip width", 1e-30, kInfinity);
          } else {
            l.fail(where, "expected 'lines' or 'strips WIDTH', found " + inQuotes(word));

@@ -169,7 +169,7 @@ void buildBarbs(const FeatherType& type, const Rachis& rachis, const FeatherDeta
   if (positions.empty()) return;
   const int segments = std::max(1, detail.barbSegments);
   const std::size_t perBarb = static_cast<std::size_t>(segments) + 1;
-  const bool strips = type.appearance.drawing == FeatherDrawing::Strips;
+  const bool strips = type.appearance.drawing == BarbStyle::Strips;
   const PlumulaceousBarbTable table(type.seed);
   const std::array<BarbSide, 2> sides = {BarbSide::Left, BarbSide::Right};
 

@@ -37,8 +37,8 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/viewer/png_image.h"
-#include "hirsute/viewer/povray_runner.h"
+#include "hirsute/viewer/export/povray_runner.h"
+#include "hirsute/viewer/gl/png_image.h"
 
 extern char** environ;
 
@@ -198,7 +198,8 @@ std::vector<ModelCase> shippedCases(const fs::path& root) {
     }
     const fs::path folderView = folder / (folder.filename().string() + ".v");
     for (const fs::path& l : lsystems) {
-      if (std::find(templates.begin(), templates.end(), l.lexically_normal()) != templates.end()) continue;
+      if (std::find(templates.begin(), templates.end(), l.lexically_normal()) != templates.end())
+        continue;
       ModelCase c{folder.filename().string() + "/" + l.filename().string(), {l.string()}};
       fs::path sameName = fs::path(l).replace_extension(".v");
       if (fs::exists(sameName)) {

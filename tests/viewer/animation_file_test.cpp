@@ -1,5 +1,5 @@
 // cpfg's animation file (`.a`, cpfg-manual §8.2): the settings read and the frames they give.
-#include "hirsute/viewer/animation_file.h"
+#include "hirsute/viewer/interaction/animation_file.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The `#define` constants the viewer's panel edits, and `--save` writing them back.
-#include "hirsute/viewer/define_editor.h"
+#include "hirsute/viewer/interaction/define_editor.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/viewer/export_file.h"
-#include "hirsute/viewer/obj_writer.h"
-#include "hirsute/viewer/png_image.h"
-#include "hirsute/viewer/pov_writer.h"
-#include "hirsute/viewer/povray_runner.h"
+#include "hirsute/viewer/export/export_file.h"
+#include "hirsute/viewer/export/obj_writer.h"
+#include "hirsute/viewer/export/pov_writer.h"
+#include "hirsute/viewer/export/povray_runner.h"
+#include "hirsute/viewer/gl/png_image.h"
 #include "support/test_files.h"
 
 namespace hirsute {

@@ -1,5 +1,5 @@
 // The viewer's file watcher: a change to a model file is reported once, after it settles.
-#include "hirsute/viewer/file_watcher.h"
+#include "hirsute/viewer/interaction/file_watcher.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -22,14 +22,14 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/viewer/camera.h"
-#include "hirsute/viewer/gl_renderer.h"
-#include "hirsute/viewer/hair_csv_writer.h"
-#include "hirsute/viewer/obj_writer.h"
-#include "hirsute/viewer/offscreen.h"
-#include "hirsute/viewer/png_image.h"
-#include "hirsute/viewer/pov_writer.h"
-#include "hirsute/viewer/povray_runner.h"
+#include "hirsute/viewer/export/hair_csv_writer.h"
+#include "hirsute/viewer/export/obj_writer.h"
+#include "hirsute/viewer/export/pov_writer.h"
+#include "hirsute/viewer/export/povray_runner.h"
+#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/gl/gl_renderer.h"
+#include "hirsute/viewer/gl/offscreen.h"
+#include "hirsute/viewer/gl/png_image.h"
 #include "support/test_files.h"
 
 namespace hirsute {

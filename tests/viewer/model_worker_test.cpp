@@ -1,6 +1,6 @@
 // The viewer's background builder: builds run off the caller's thread, and requests made while
 // one runs are coalesced to the newest.
-#include "hirsute/viewer/model_worker.h"
+#include "hirsute/viewer/interaction/model_worker.h"
 
 #include <gtest/gtest.h>
 

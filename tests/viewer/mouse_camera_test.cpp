@@ -1,6 +1,6 @@
 // The viewer's mouse camera: cpfg's drags turned into camera motion, checked where points land
 // on the screen.
-#include "hirsute/viewer/mouse_camera.h"
+#include "hirsute/viewer/interaction/mouse_camera.h"
 
 #include <gtest/gtest.h>
 

@@ -7,9 +7,9 @@
 #include <glm/gtc/constants.hpp>
 #include <string>
 
-#include "hirsute/viewer/camera.h"
-#include "hirsute/viewer/gl_renderer.h"
-#include "hirsute/viewer/offscreen.h"
+#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/gl/gl_renderer.h"
+#include "hirsute/viewer/gl/offscreen.h"
 
 namespace hirsute {
 namespace {
@@ -510,7 +510,8 @@ TEST(RenderTest, OversizedImageIsRefused) {
 // projected position, in the label's colour, over the model.
 TEST(RenderTest, LabelIsDrawnAtItsProjectedPosition) {
   Scene scene = paletteScene();
-  addPolygon(scene, kBlue, {glm::vec3(0, 0, 0), glm::vec3(4, 0, 0), glm::vec3(4, 4, 0), glm::vec3(0, 4, 0)});
+  addPolygon(scene, kBlue,
+             {glm::vec3(0, 0, 0), glm::vec3(4, 0, 0), glm::vec3(4, 4, 0), glm::vec3(0, 4, 0)});
   scene.labels.push_back(Label{glm::vec3(1, 3, 0), "Hi 42", kGreen});
   ViewSettings view;
   RgbaImage image = render(scene, view, 200, 200);

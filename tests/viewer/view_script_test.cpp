@@ -1,5 +1,5 @@
 // The viewer's scripted mode: the command text parsed, and its mistakes pointed at.
-#include "hirsute/viewer/view_script.h"
+#include "hirsute/viewer/interaction/view_script.h"
 
 #include <gtest/gtest.h>
 

@@ -70,7 +70,7 @@ TEST(FeatherFile, ReadsEveryKeyword) {
   EXPECT_FLOAT_EQ(*right.angle, 160);
   EXPECT_EQ(right.vertices.size(), 2u);
 
-  EXPECT_EQ(type.appearance.drawing, FeatherDrawing::Strips);
+  EXPECT_EQ(type.appearance.drawing, BarbStyle::Strips);
   EXPECT_FLOAT_EQ(type.appearance.stripWidth, 0.004f);
   EXPECT_EQ(type.appearance.colourKind, FeatherColourKind::Rgb);
   EXPECT_EQ(type.appearance.colour, glm::vec3(0.6f, 0.4f, 0.2f));

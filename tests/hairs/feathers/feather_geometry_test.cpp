@@ -1,7 +1,6 @@
 // Feather geometry (Streit & Heidrich 2002, Sec. 4.3) in the local frame of feather_geometry.h:
 // barb count and angles, silhouettes, the rachis Bézier and shaft tube, level of detail, strips,
 // texture coordinates, the afterfeather and the seed, all measured.
-#include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/feather_geometry.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <numbers>
 
+#include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/silhouette.h"
 
 namespace hirsute {
@@ -260,7 +260,7 @@ TEST(FeatherGeometry, ChordShorterThanOneScalesTheBarbNonLinearly) {
 
 TEST(FeatherGeometry, StripsGiveASideVectorInTheVanePlane) {
   FeatherType type = straightFeather();
-  type.appearance.drawing = FeatherDrawing::Strips;
+  type.appearance.drawing = BarbStyle::Strips;
   type.appearance.stripWidth = 0.003f;
   const FeatherGeometry g = buildFeatherGeometry(type, {});
   const BarbVertices& v = g.vertices;

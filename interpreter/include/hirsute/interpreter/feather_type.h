@@ -19,7 +19,7 @@
 namespace hirsute {
 
 enum class BarbSide { Left, Right, Both };
-enum class FeatherDrawing { Lines, Strips };
+enum class BarbStyle { Lines, Strips };
 enum class FeatherColourKind { Rgb, ColourIndex, Material };
 enum class FeatherTextureMapping { Barb, Vane, Growth };
 
@@ -67,7 +67,7 @@ struct KeyBarb {
 
 // How a feather is drawn (Sec. 4.3.1, 4.3.3); the geometry carries a copy for the renderer.
 struct FeatherAppearance {
-  FeatherDrawing drawing = FeatherDrawing::Lines;
+  BarbStyle drawing = BarbStyle::Lines;
   float stripWidth = 0;  // with Strips: the width of each of the two triangle strips of a barb
   FeatherColourKind colourKind = FeatherColourKind::Rgb;
   glm::vec3 colour{0.8f, 0.75f, 0.65f};  // with Rgb, each channel in [0, 1]

@@ -1,0 +1,200 @@
+#include "hirsute/viewer/gl/feather_buffers.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hirsute/hairs/feathers/feather_instances.h"
+
+namespace hirsute {
+namespace {
+
+constexpr int kMaxDetailLevel = 7;
+constexpr float kLevelZeroPixels = 16;  // level L covers up to 16·2^L pixels
+
+// Sec. 4.3.1: barbs are alpha blended towards their tip.
+float tipFade(float s) {
+  return std::clamp(1.0f - s * s, 0.0f, 1.0f);
+}
+
+glm::vec3 colourOf(const Scene& scene, const FeatherAppearance& appearance) {
+  if (appearance.colourKind == FeatherColourKind::Rgb || scene.materials.empty())
+    return appearance.colour;
+  const int last = static_cast<int>(scene.materials.size()) - 1;
+  return scene.materials[static_cast<std::size_t>(std::clamp(appearance.colourIndex, 0, last))]
+      .diffuse;
+}
+
+const std::vector<glm::vec2>& texcoordsOf(const FeatherGeometry& part) {
+  switch (part.appearance.textureMapping) {
+    case FeatherTextureMapping::Vane:
+      return part.vertices.vaneUv;
+    case FeatherTextureMapping::Growth:
+      return part.vertices.growthUv;
+    case FeatherTextureMapping::Barb:
+      break;
+  }
+  return part.vertices.barbUv;
+}
+
+void appendPart(const Scene& scene, const FeatherGeometry& part, const glm::mat4& toWorld,
+                FeatherBuffers& out) {
+  const glm::mat3 linear(toWorld);
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(linear));
+  const glm::vec3 colour = colourOf(scene, part.appearance);
+
+  const auto shaftBase = static_cast<std::uint32_t>(out.shaftPositions.size());
+  for (std::size_t i = 0; i < part.shaft.positions.size(); ++i) {
+    out.shaftPositions.emplace_back(toWorld * glm::vec4(part.shaft.positions[i], 1));
+    glm::vec3 n = normalMatrix * part.shaft.normals[i];
+    const float length = glm::length(n);
+    out.shaftNormals.push_back(length > 0 ? n / length : glm::vec3(1, 0, 0));
+    out.shaftColors.push_back(colour);
+  }
+  for (std::uint32_t index : part.shaft.indices) out.shaftIndices.push_back(shaftBase + index);
+
+  FeatherBuffers::Part placed;
+  placed.position = glm::vec3(toWorld * glm::vec4(0, 0, 0, 1));
+  placed.left = glm::normalize(linear * glm::vec3(0, 1, 0));
+  const bool strips = part.appearance.drawing == BarbStyle::Strips &&
+                      part.vertices.stripSides.size() == part.vertices.positions.size();
+  const std::vector<glm::vec2>& uv = texcoordsOf(part);
+  for (int v = 0; v < 2; ++v) {
+    FeatherBuffers::Vane& vane = placed.vanes[v];
+    vane.left = v == 0;
+    vane.primitiveSize = strips ? 3 : 2;
+    vane.texture = part.appearance.sceneTexture;
+    vane.first = static_cast<std::uint32_t>(out.vaneIndices.size());
+    for (const Barb& barb : part.barbs) {
+      if ((barb.side == BarbSide::Left) != vane.left || barb.vertexCount < 2) continue;
+      vane.perBarb = strips ? 4 * (barb.vertexCount - 1) : barb.vertexCount - 1;
+      ++out.barbCount;
+      out.barbSegments += barb.vertexCount - 1;
+      const auto base = static_cast<std::uint32_t>(out.barbPositions.size());
+      for (std::uint32_t k = 0; k < barb.vertexCount; ++k) {
+        const std::size_t i = barb.firstVertex + k;
+        const glm::vec3 p = part.vertices.positions[i];
+        const float alpha = tipFade(part.vertices.s[i]);
+        const glm::vec2 t = i < uv.size() ? uv[i] : glm::vec2(0.0f);
+        out.barbPositions.emplace_back(toWorld * glm::vec4(p, 1));
+        out.barbColors.emplace_back(colour, alpha);
+        out.barbTexcoords.push_back(t);
+        if (strips) {
+          // Sec. 4.3.1: two strips either side of the barb, fading away from it.
+          const glm::vec3 side = part.appearance.stripWidth * part.vertices.stripSides[i];
+          for (float sign : {1.0f, -1.0f}) {
+            out.barbPositions.emplace_back(toWorld * glm::vec4(p + sign * side, 1));
+            out.barbColors.emplace_back(colour, 0.0f);
+            out.barbTexcoords.push_back(t);
+          }
+        }
+      }
+      for (std::uint32_t k = 0; k + 1 < barb.vertexCount; ++k) {
+        if (!strips) {
+          out.vaneIndices.insert(out.vaneIndices.end(), {base + k, base + k + 1});
+          continue;
+        }
+        // Vertex 3k is on the barb, 3k + 1 and 3k + 2 on the two edges.
+        const std::uint32_t c0 = base + 3 * k, c1 = c0 + 3;
+        out.vaneIndices.insert(out.vaneIndices.end(), {c0 + 1, c0, c1 + 1, c1 + 1, c0, c1, c0,
+                                                       c0 + 2, c1, c1, c0 + 2, c1 + 2});
+      }
+    }
+    vane.count = static_cast<std::uint32_t>(out.vaneIndices.size()) - vane.first;
+  }
+  out.parts.push_back(placed);
+}
+
+}  // namespace
+
+std::size_t FeatherBuffers::byteSize() const {
+  return shaftPositions.size() * sizeof(glm::vec3) * 3 + shaftIndices.size() * 4 +
+         barbPositions.size() * (sizeof(glm::vec3) + sizeof(glm::vec4) + sizeof(glm::vec2)) +
+         vaneIndices.size() * 4 + parts.size() * sizeof(Part) + levels.size();
+}
+
+int featherDetailLevel(float pixels) {
+  if (!(pixels > kLevelZeroPixels)) return 0;
+  return std::min(kMaxDetailLevel,
+                  static_cast<int>(std::ceil(std::log2(pixels / kLevelZeroPixels))));
+}
+
+float featherScreenLength(const Scene& scene, const Feather& feather, const Camera& camera) {
+  float length = 0;
+  for (std::uint16_t type : feather.types) {
+    const FeatherType& t = scene.featherTypes[type - 1u];
+    length = std::max(length, t.calamusLength + t.rachisLength);
+  }
+  length *= feather.size;
+  const glm::vec3 middle = feather.position + feather.heading * (0.5f * length);
+  const glm::vec4 clip = camera.viewProjection() * glm::vec4(middle, 1);
+  const float w = std::max(std::abs(clip.w), 1e-6f);
+  return length * std::abs(camera.projectionMatrix[1][1]) / w * 0.5f *
+         static_cast<float>(camera.viewport.y);
+}
+
+std::vector<std::uint8_t> featherDetailLevels(const Scene& scene, const Camera& camera) {
+  std::vector<std::uint8_t> levels;
+  levels.reserve(scene.feathers.size());
+  for (const Feather& feather : scene.feathers) {
+    levels.push_back(
+        static_cast<std::uint8_t>(featherDetailLevel(featherScreenLength(scene, feather, camera))));
+  }
+  return levels;
+}
+
+FeatherBuffers buildFeatherBuffers(const Scene& scene, const std::vector<std::uint8_t>& levels) {
+  FeatherBuffers out;
+  out.levels = levels;
+  for (std::size_t i = 0; i < scene.feathers.size(); ++i) {
+    const Feather& feather = scene.feathers[i];
+    const int level = i < levels.size() ? levels[i] : kMaxDetailLevel;
+    const FeatherDetail detail =
+        featherDetailForProjectedLength(kLevelZeroPixels * std::exp2(static_cast<float>(level)));
+    const FeatherGeometry geometry = featherGeometryOf(scene, feather, detail);
+    const glm::mat4 toWorld = featherToWorld(feather);
+    forEachFeatherPart(geometry, [&](const FeatherGeometry& part, bool) {
+      appendPart(scene, part, toWorld, out);
+    });
+  }
+  return out;
+}
+
+void orderFeatherBarbs(const FeatherBuffers& buffers, const Camera& camera,
+                       std::vector<std::uint32_t>& indices, std::vector<FeatherDrawRun>& runs) {
+  indices.clear();
+  runs.clear();
+  indices.reserve(buffers.vaneIndices.size());
+  auto append = [&](const FeatherBuffers::Vane& vane, bool tipInwards) {
+    if (vane.count == 0) return;
+    const bool triangles = vane.primitiveSize == 3;
+    if (runs.empty() || runs.back().texture != vane.texture || runs.back().triangles != triangles) {
+      runs.push_back(
+          FeatherDrawRun{vane.texture, triangles, static_cast<std::uint32_t>(indices.size()), 0});
+    }
+    const auto begin = buffers.vaneIndices.begin() + vane.first;
+    if (!tipInwards || vane.perBarb == 0) {
+      indices.insert(indices.end(), begin, begin + vane.count);
+    } else {
+      // Each barb's segments from its tip to the rachis; a segment's primitives stay together.
+      const std::uint32_t perSegment = triangles ? 4 * 3 : 2;
+      const std::uint32_t barbLength = vane.perBarb * vane.primitiveSize;
+      for (std::uint32_t barb = 0; barb + barbLength <= vane.count; barb += barbLength) {
+        for (std::uint32_t at = barbLength; at >= perSegment; at -= perSegment) {
+          indices.insert(indices.end(), begin + barb + at - perSegment, begin + barb + at);
+        }
+      }
+    }
+    runs.back().count = static_cast<std::uint32_t>(indices.size()) - runs.back().first;
+  };
+  for (const FeatherBuffers::Part& part : buffers.parts) {
+    const glm::vec3 towardsEye =
+        camera.projection == Projection::Perspective ? camera.eye - part.position : -camera.forward;
+    const bool leftNearer = glm::dot(part.left, towardsEye) > 0;
+    const FeatherBuffers::Vane& nearer = part.vanes[leftNearer ? 0 : 1];
+    const FeatherBuffers::Vane& farther = part.vanes[leftNearer ? 1 : 0];
+    append(farther, false);
+    append(nearer, true);
+  }
+}
+
+}  // namespace hirsute

@@ -1,0 +1,71 @@
+#include "hirsute/viewer/gl/png_image.h"
+
+#include <png.h>
+
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "hirsute/lsys/output_target.h"
+
+namespace hirsute {
+namespace {
+
+// libpng's simplified API (png_image_*) reports errors in the struct instead of longjmp, so no
+// C frame is ever unwound by a C++ exception.
+class PngStruct {
+ public:
+  PngStruct() {
+    std::memset(&image_, 0, sizeof image_);
+    image_.version = PNG_IMAGE_VERSION;
+  }
+  ~PngStruct() { png_image_free(&image_); }
+  PngStruct(const PngStruct&) = delete;
+  PngStruct& operator=(const PngStruct&) = delete;
+  png_image* get() { return &image_; }
+  png_image* operator->() { return &image_; }
+
+ private:
+  png_image image_;
+};
+
+std::runtime_error writeError(const std::filesystem::path& path, const std::string& why) {
+  return std::runtime_error(path.string() + ": cannot write: " + why);
+}
+
+}  // namespace
+
+void writePng(const std::filesystem::path& path, const RgbaImage& image) {
+  if (image.width <= 0 || image.height <= 0) throw writeError(path, "the image is empty");
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) * image.height * 3);
+  for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i) {
+    std::memcpy(&rgb[i * 3], &image.rgba[i * 4], 3);
+  }
+
+  OutputTarget file(path);
+  PngStruct png;
+  png->width = static_cast<png_uint_32>(image.width);
+  png->height = static_cast<png_uint_32>(image.height);
+  png->format = PNG_FORMAT_RGB;
+  if (!png_image_write_to_stdio(png.get(), file.stream(), 0, rgb.data(), image.width * 3,
+                                nullptr)) {
+    throw writeError(path, png->message);
+  }
+  file.commit();
+}
+
+RgbaImage readPng(const std::filesystem::path& path) {
+  PngStruct png;
+  if (!png_image_begin_read_from_file(png.get(), path.c_str())) {
+    throw std::runtime_error(path.string() + ": cannot read: " + png->message);
+  }
+  png->format = PNG_FORMAT_RGBA;
+  RgbaImage image(static_cast<int>(png->width), static_cast<int>(png->height));
+  if (!png_image_finish_read(png.get(), nullptr, image.rgba.data(), image.width * 4, nullptr)) {
+    throw std::runtime_error(path.string() + ": cannot read: " + png->message);
+  }
+  return image;
+}
+
+}  // namespace hirsute

@@ -1,0 +1,128 @@
+// POV-Ray 3.7 export: a self-contained scene file (camera, lights and background from the view
+// file, the camera framed as the PNG is, by fitCamera; one declared texture per material used; each
+// triangle mesh a declared `mesh2` with its normals, placed by an `object`; lines as cylinders and
+// cones; spheres; discs), written compactly because POV-Ray's parse time grows with the length of
+// the text. docs/export.md describes the file.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <set>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/interpreter/view_settings.h"
+#include "hirsute/viewer/export/export_file.h"
+#include "hirsute/viewer/export/scene_writer.h"
+#include "hirsute/viewer/gl/camera.h"
+
+namespace hirsute {
+
+struct PovOptions {
+  ViewSettings view;          // camera and lights (cpfg's view file)
+  bool materialMode = false;  // the background is material 0's emission, else colour 0
+  // The image the camera is fitted for (as the PNG of the same size) and the size of a pixel for
+  // pixel-wide lines. Rendered at another aspect, the image shows at least the same window.
+  int width = 800, height = 600;
+};
+
+struct PovExportStats {
+  std::uint64_t bytes = 0;
+  std::size_t triangles = 0, cylinders = 0, cones = 0, spheres = 0, discs = 0, objects = 0;
+  std::size_t linesSkipped = 0;  // zero length or zero width at the file's precision
+  std::size_t hairs = 0;         // hair instances (`object`s in the hair unions)
+  std::size_t hairMeshes = 0;    // declared hair tubes: one per template and radius/length bucket
+  std::size_t hairsSkipped = 0;  // no template with segments, zero radius or length
+  std::size_t feathers = 0;      // feathers written (pov_feathers.cpp)
+};
+
+class PovWriter : public ScenePrinter {
+ public:
+  PovWriter(std::filesystem::path target, PovOptions options);
+  ~PovWriter() override;
+
+  void beginScene(const Scene& scene) override;
+  void mesh(const TriangleMesh& mesh) override;
+  void line(const LineSegment& line, LineStyle style) override;
+  void sphere(const Sphere& sphere) override;
+  void disc(const Disc& disc) override;
+  void label(const Label& label) override;
+  // Hairs as instances (DESIGN.md, "Plant hairs"): a tube of the hair radius around each template
+  // is declared once per template and bucket of radius/length (the tube is in the template's
+  // frame, which length scales), and each hair is an `object` of it with its matrix; the hairs
+  // of a material are one union carrying the material's texture. docs/export.md has the figures.
+  void hairs(const std::vector<HairTemplate>& templates, const std::vector<Hair>& hairs) override;
+  // Shafts and barbs as two mesh2, the barbs' transparency fading to their tips.
+  void feathers(const Scene& scene) override;
+  void endScene() override;
+
+  // Sides of a hair's tube, and the step of the radius/length buckets: a hair's tube radius is
+  // within 1% of its own radius.
+  static constexpr int kHairTubeSides = 5;
+  static constexpr double kHairBucketStep = 1.02;
+
+  // Declared objects and their instances: a mesh is written once as `#declare NAME=mesh2{…}`
+  // and placed by `object{NAME …}` as often as needed, each placement with its own material and
+  // transform (hairs: one mesh per template, one instance per hair). Returns NAME. Both are
+  // called between beginScene() and endScene().
+  std::string declareMesh(const TriangleMesh& mesh);
+  // `transform` null: in place. Otherwise the affine map of the instance (its last row unused).
+  void placeObject(std::string_view name, int material, int texture,
+                   const glm::mat4* transform = nullptr);
+
+  const Camera& camera() const { return camera_; }
+  // The world size of a pixel at the fitted image size, at the point looked at.
+  float worldPerPixel() const { return worldPerPixel_; }
+  const PovExportStats& stats() const { return stats_; }
+
+ private:
+  void writeMesh2(std::string_view name, const TriangleMesh& mesh);
+  void writeHeader(const Scene& scene);
+  void writeCamera();
+  void writeLights(const Bounds& bounds);
+  void writeMaterial(std::string_view name, const Material& material, int texture);
+  std::string textureName(int material, int texture) const;
+  const std::string& useTexture(int material, int texture);
+  // A line, sphere or disc, held back while it may be the only member of a union.
+  struct Primitive {
+    enum Kind { Cylinder, Cone, Sphere, Disc } kind;
+    glm::vec3 a, b;  // ends; centre and (disc) normal
+    float radiusA, radiusB;
+  };
+  void emit(int material, const Primitive& primitive);
+  void closeRun();
+  void writePrimitive(const Primitive& primitive, const std::string* texture);
+  void vector(const glm::vec3& v, NumberFormat format);
+  void number(double value, NumberFormat format) { out_.putFixed(value, format); }
+
+  std::filesystem::path target_;
+  PovOptions options_;
+  ExportFile out_;
+  const Scene* scene_ = nullptr;
+  Camera camera_;
+  float worldPerPixel_ = 0;
+  NumberFormat position_{4, false};
+  NumberFormat normal_{3, false};
+  NumberFormat texcoord_{4, false};
+  NumberFormat colour_{3, false};
+  std::vector<int> texturesWritten_;
+  std::set<std::pair<int, int>> declaredTextures_;  // (material, texture)
+  int lastMaterial_ = 0, lastTexture_ = -2;
+  std::string lastName_;
+  // The run of primitives of one material being written: its length, and its first primitive.
+  int runMaterial_ = 0;
+  std::size_t runLength_ = 0;
+  Primitive pending_{};
+  int meshesDeclared_ = 0;
+  PovExportStats stats_;
+};
+
+// Writes `scene` to `target` (textures beside it, see texture_file.h) and returns the figures.
+PovExportStats writePov(const Scene& scene, const PovOptions& options,
+                        const std::filesystem::path& target);
+
+}  // namespace hirsute

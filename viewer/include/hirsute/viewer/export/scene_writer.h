@@ -1,0 +1,67 @@
+// Every export format is one printer class driven by the same walk over the Scene (PlantGL's
+// lesson, STYLE.md): printScene() visits the elements in one fixed order and a printer turns
+// each into its format's text. Adding a format is adding a printer; it reads the Scene and
+// nothing else (and, for formats that carry a camera, the view it is given).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "hirsute/interpreter/scene.h"
+
+namespace hirsute {
+
+class ScenePrinter {
+ public:
+  virtual ~ScenePrinter() = default;
+
+  // Before any element: the whole scene, for what a format declares up front (materials used,
+  // bounds, precision).
+  virtual void beginScene(const Scene& scene) = 0;
+  virtual void mesh(const TriangleMesh& mesh) = 0;
+  // Lines come in scene order; `style` says how their widths are meant (Scene::lineStyle).
+  virtual void line(const LineSegment& line, LineStyle style) = 0;
+  virtual void sphere(const Sphere& sphere) = 0;
+  virtual void disc(const Disc& disc) = 0;
+  virtual void label(const Label& label) = 0;
+  // Plant hairs, after the labels, once, when the scene has any: the templates and the placed
+  // hairs, which are instances of them (a hair's templateIndex may name no template: such a hair
+  // is left out). All of them at once, because formats group them (by template, material, size).
+  virtual void hairs(const std::vector<HairTemplate>& templates,
+                     const std::vector<Hair>& hairs) = 0;
+  // Feathers, after the hairs, once, when the scene has any: the whole scene, because each
+  // feather is built from its types (hirsute/hairs/feathers/feather_instances.h) and formats
+  // group them.
+  virtual void feathers(const Scene& scene) = 0;
+  // After the last element: close what is open and commit the files.
+  virtual void endScene() = 0;
+};
+
+// Visits meshes, lines, spheres, discs, labels, hairs and feathers, in that order and each in scene
+// order. Meshes without triangles are skipped.
+void printScene(const Scene& scene, ScenePrinter& printer);
+
+// Whether `mesh` is drawn with its texture image: it names a texture of the scene that has pixels,
+// and has one texture coordinate per vertex. As in the GL renderer, a texture that could not be
+// read leaves its meshes untextured.
+bool drawnTextured(const Scene& scene, const TriangleMesh& mesh);
+
+// The normals a mesh is written with: its own, normalised; where one is zero or not finite, the
+// normalised sum of the normals of the faces around the vertex (POV-Ray rejects a zero normal,
+// OBJ readers shade it black). Only a mesh that needs them pays for the face normals.
+class VertexNormals {
+ public:
+  explicit VertexNormals(const TriangleMesh& mesh) : mesh_(mesh) {}
+  glm::vec3 operator[](std::size_t vertex);
+
+ private:
+  const TriangleMesh& mesh_;
+  std::vector<glm::vec3> faceSums_;
+};
+
+// The distance below which two printed coordinates may be read back equal, relative to the
+// scene's size: one millionth of the bounding-box diagonal (far below a pixel at any usable
+// resolution, above float's own precision), and the decimals that resolve it.
+int positionDecimals(const Bounds& bounds);
+
+}  // namespace hirsute
