@@ -143,7 +143,13 @@ bool Derivation::step() {
   // it is rewritten.
   if (queryPass_ && program_.usesQueries) queryPass_(*this);
   rewriteStep();
-  if (hasDecomposition_) {
+  if (stream_) {
+    stream_->modules(next_, next_.begin(), next_.end());
+    streamed_ += next_.moduleCount();
+    stream_ = nullptr;
+    current_.release();  // the string went to the sink; nothing keeps it
+    next_.release();
+  } else if (hasDecomposition_) {
     current_.clear();
     try {
       decompose(next_, current_);
@@ -164,6 +170,33 @@ bool Derivation::step() {
     evaluator_.run(main.end, nullptr);
   }
   return true;
+}
+
+bool Derivation::runStreamingLastStep(ModuleSink& sink, bool applyHomomorphism) {
+  const bool fresh = !started_ || stepsDone_ == 0;
+  start();
+  const Lsystem& main = program_.lsystems.front();
+  const bool streams = fresh && program_.lsystems.size() == 1 && !hasDecomposition_ &&
+                       (!applyHomomorphism || main.homomorphism.productions.empty());
+  bool streamed = false;
+  while (!stopped_ && stepsDone_ < totalSteps_) {
+    if (streams && stepsDone_ + 1 == totalSteps_) {
+      stream_ = &sink;
+      streamed = true;
+    }
+    step();
+  }
+  return streamed;
+}
+
+// While the last step streams, the new string goes out in pieces of about this size.
+constexpr std::size_t kStreamChunkBytes = std::size_t{1} << 20;
+
+void Derivation::streamIfFull() {
+  if (stream_ == nullptr || next_.byteSize() < kStreamChunkBytes) return;
+  stream_->modules(next_, next_.begin(), next_.end());
+  streamed_ += next_.moduleCount();
+  next_.clear();
 }
 
 bool Derivation::matchStrict(const Production& p, const ModuleString& s, std::size_t at,
@@ -430,7 +463,8 @@ std::size_t Derivation::skipCut(const ModuleString& s, std::size_t at) const {
 }
 
 void Derivation::checkSize(const ModuleString& s, const SourceLocation& where) {
-  if (s.moduleCount() > options_.maxModules) {
+  const std::size_t modules = s.moduleCount() + (&s == &next_ ? streamed_ : 0);
+  if (modules > options_.maxModules) {
     throw DiagnosticError(where, "the string grew past " + std::to_string(options_.maxModules) +
                                      " modules in step " + std::to_string(stepsDone_ + 1) +
                                      " (the limit is set with --max-modules)");
@@ -522,6 +556,7 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
 void Derivation::rewriteStep() {
   subLsystems_.assign(1, 0);
   leftNeighbours_.reset(program_);
+  streamed_ = 0;
   const bool nested = program_.lsystems.size() > 1;
   const ModuleString& s = current_;
   std::size_t pos = 0;
@@ -533,6 +568,7 @@ void Derivation::rewriteStep() {
     if (runCount == 0) return;
     next_.appendRange(s, runFrom, pos, runCount);
     runCount = 0;
+    streamIfFull();
   };
   try {
     while (pos < s.end()) {
@@ -550,7 +586,7 @@ void Derivation::rewriteStep() {
           // The string's length is checked as each module goes out, as if it were appended.
           if (runCount == 0) runFrom = from;
           runCount += count;
-          if (next_.moduleCount() + runCount > options_.maxModules) {
+          if (next_.moduleCount() + streamed_ + runCount > options_.maxModules) {
             appendRun();
             checkSize(next_, l.axiomWhere);
           }
@@ -568,6 +604,7 @@ void Derivation::rewriteStep() {
         if (!p.after.empty()) evaluator_.run(p.after, match.frame);
         appendValues(p, evaluator_.values(p.successorValues, match.frame, 0), next_);
         checkSize(next_, p.where);
+        streamIfFull();
         after = match.end;
       } else if (m.symbol() == '%' && m.parameterCount() == 0) {
         appendRun();
@@ -576,7 +613,7 @@ void Derivation::rewriteStep() {
         after = s.next(at);
         if (runCount == 0) runFrom = at;
         ++runCount;
-        if (next_.moduleCount() + runCount > options_.maxModules) {
+        if (next_.moduleCount() + streamed_ + runCount > options_.maxModules) {
           pos = after;
           appendRun();
           checkSize(next_, l.axiomWhere);

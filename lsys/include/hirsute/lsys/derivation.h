@@ -48,6 +48,16 @@ class Derivation {
     }
   }
 
+  // Runs every step like run(), but hands the last step's string to `sink` while it is being
+  // produced instead of keeping it, so that the largest string never exists whole: for writing
+  // the final string only. Streams when nothing after the step needs the string (no
+  // homomorphism to apply, no decomposition, no sub-L-systems) and returns true; string() is
+  // then empty and emit() must not be called. Otherwise it returns false with the string kept,
+  // to emit as usual. A derivation that has taken steps already runs on without streaming.
+  bool runStreamingLastStep(ModuleSink& sink, bool applyHomomorphism);
+  // The modules the streamed step handed to its sink.
+  std::size_t streamedModules() const { return streamed_; }
+
   // The turtle's query pass, run before each rewriting when the program has query modules; it
   // interprets the string (emit) and writes positions and orientations into it.
   void setQueryPass(std::function<void(Derivation&)> pass) { queryPass_ = std::move(pass); }
@@ -134,6 +144,10 @@ class Derivation {
   std::vector<Match> candidates_;
   std::vector<double> weights_;  // the candidates' weights, beside candidates_
   std::deque<ModuleString> levelBuffers_;  // successors by recursion level (stable references)
+  // The last step's sink while it streams (runStreamingLastStep), and the modules it has had.
+  ModuleSink* stream_ = nullptr;
+  std::size_t streamed_ = 0;
+  void streamIfFull();
   mutable BranchIndex branches_;           // of current_; cleared whenever current_ changes
   // The rewriting pass's left neighbours: for every position, the module a left context is
   // compared with, carried forward in one pass instead of searched backwards per module.
