@@ -67,7 +67,14 @@ int runDerive(const DeriveOptions& o) {
         derivation.emit(writer, o.homomorphism);
         writer.finish();
       }
+    } else if (!o.output.empty() && o.output != "-") {
+      // Into a file, the last step's string is written while it is derived and never held
+      // whole; the file only appears once it is complete (OutputFile::commit).
+      if (!derivation.runStreamingLastStep(writer, o.homomorphism)) {
+        derivation.emit(writer, o.homomorphism);
+      }
     } else {
+      // On standard output an error must leave nothing written, so the string is built first.
       derivation.run();
       derivation.emit(writer, o.homomorphism);
     }

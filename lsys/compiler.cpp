@@ -137,7 +137,7 @@ class Compiler {
   int arrayId(const std::string& name, const SourceLocation& where, const Scope& scope, std::size_t subscripts);
   Code finish(Builder& b) {
     if (b.code.maxStack > program_.maxStack) program_.maxStack = b.code.maxStack;
-    return std::move(b.code);
+    return fuseInstructions(std::move(b.code));
   }
   Code compileCode(const ast::Block& block, const Scope& scope) {
     Builder b;

@@ -47,12 +47,6 @@ std::size_t branchEnd(const ModuleString& s, std::size_t at) {
   return s.end();
 }
 
-// The position after the `]` matching the `[` at `at`, or the end of the string.
-std::size_t afterBranch(const ModuleString& s, std::size_t at) {
-  std::size_t close = branchEnd(s, s.next(at));
-  return close < s.end() ? s.next(close) : close;
-}
-
 const RuleSet& ruleSet(const Lsystem& l, int set) {
   return set == 0 ? l.productions : set == 1 ? l.decomposition : l.homomorphism;
 }
@@ -132,6 +126,7 @@ void Derivation::start() {
     k += m.parameterCount;
   }
   requireKnownLsystems(program_, current_, 0, main.axiomWhere);
+  branches_.clear();
   if (totalSteps_ == 0) {
     evaluator_.run(main.end, nullptr);
     stopped_ = true;
@@ -148,7 +143,13 @@ bool Derivation::step() {
   // it is rewritten.
   if (queryPass_ && program_.usesQueries) queryPass_(*this);
   rewriteStep();
-  if (hasDecomposition_) {
+  if (stream_) {
+    stream_->modules(next_, next_.begin(), next_.end());
+    streamed_ += next_.moduleCount();
+    stream_ = nullptr;
+    current_.release();  // the string went to the sink; nothing keeps it
+    next_.release();
+  } else if (hasDecomposition_) {
     current_.clear();
     try {
       decompose(next_, current_);
@@ -160,6 +161,7 @@ bool Derivation::step() {
   } else {
     current_.swap(next_);
   }
+  branches_.clear();
   next_.clear();
   ++stepsDone_;
   evaluator_.run(main.endEach, nullptr);
@@ -168,6 +170,33 @@ bool Derivation::step() {
     evaluator_.run(main.end, nullptr);
   }
   return true;
+}
+
+bool Derivation::runStreamingLastStep(ModuleSink& sink, bool applyHomomorphism) {
+  const bool fresh = !started_ || stepsDone_ == 0;
+  start();
+  const Lsystem& main = program_.lsystems.front();
+  const bool streams = fresh && program_.lsystems.size() == 1 && !hasDecomposition_ &&
+                       (!applyHomomorphism || main.homomorphism.productions.empty());
+  bool streamed = false;
+  while (!stopped_ && stepsDone_ < totalSteps_) {
+    if (streams && stepsDone_ + 1 == totalSteps_) {
+      stream_ = &sink;
+      streamed = true;
+    }
+    step();
+  }
+  return streamed;
+}
+
+// While the last step streams, the new string goes out in pieces of about this size.
+constexpr std::size_t kStreamChunkBytes = std::size_t{1} << 20;
+
+void Derivation::streamIfFull() {
+  if (stream_ == nullptr || next_.byteSize() < kStreamChunkBytes) return;
+  stream_->modules(next_, next_.begin(), next_.end());
+  streamed_ += next_.moduleCount();
+  next_.clear();
 }
 
 bool Derivation::matchStrict(const Production& p, const ModuleString& s, std::size_t at,
@@ -182,6 +211,31 @@ bool Derivation::matchStrict(const Production& p, const ModuleString& s, std::si
   }
   end = pos;
   return true;
+}
+
+const BranchIndex& Derivation::branchesOf(const ModuleString& s) const {
+  if (!branches_.built()) branches_.build(s);
+  return branches_;
+}
+
+std::size_t Derivation::afterBranch(const ModuleString& s, std::size_t at) const {
+  if (&s == &current_ && branchesOf(s).usable()) {
+    const std::size_t close = branches_.partner(at);
+    return close == BranchIndex::kNone ? s.end() : s.next(close);
+  }
+  const std::size_t close = branchEnd(s, s.next(at));
+  return close < s.end() ? s.next(close) : close;
+}
+
+std::size_t Derivation::branchOpening(const ModuleString& s, std::size_t at) const {
+  if (&s == &current_ && branchesOf(s).usable()) return branches_.partner(at);
+  int depth = 0;
+  for (std::size_t r = at;; r = s.previous(r)) {
+    const char d = s.at(r).symbol();
+    if (d == ']') ++depth;
+    if (d == '[' && --depth == 0) return r;
+    if (r == 0) return BranchIndex::kNone;
+  }
 }
 
 bool Derivation::matchRight(const std::vector<ModulePattern>& patterns, const Lsystem& l,
@@ -229,46 +283,90 @@ bool Derivation::matchRight(const std::vector<ModulePattern>& patterns, const Ls
   return true;
 }
 
+void Derivation::LeftNeighbours::reset(const Program& program) {
+  trackedTo = 0;
+  last = BranchIndex::kNone;
+  open.clear();
+  const Lsystem& main = program.lsystems.front();
+  // Sub-L-systems have ignore sets of their own, a ring wraps around, and ignored brackets
+  // would pair differently: those keep the backward search.
+  enabled = program.lsystems.size() == 1 && !main.ring && !main.ignored['['] && !main.ignored[']'];
+  if (enabled) {
+    enabled = std::any_of(main.productions.productions.begin(), main.productions.productions.end(),
+                          [](const Production& p) { return !p.left.empty(); });
+  }
+}
+
+// The module a left context's last pattern is compared with, as matchLeft's backward search
+// would find it (ignored modules passed over, a complete branch to the left skipped, a `[`
+// stepped out of), found by carrying that search's answer forward through the string.
+std::size_t Derivation::LeftNeighbours::before(const ModuleString& s, const Lsystem& l,
+                                               std::size_t at) {
+  const std::uint8_t* const bytes = s.bytes();
+  for (std::size_t q = trackedTo; q < at;) {
+    const std::uint8_t b = bytes[q];
+    const char c = static_cast<char>(b & 0x7f);
+    if (!l.ignored[static_cast<unsigned char>(c)]) {
+      if (c == '[') {
+        open.push_back(last);  // inside the branch the parent's module is to the left
+      } else if (c == ']') {
+        // Past the branch, the module before its `[` is; an unpaired `]` stops every search.
+        if (open.empty()) {
+          last = BranchIndex::kNone;
+        } else {
+          last = open.back();
+          open.pop_back();
+        }
+      } else {
+        last = q;
+      }
+    }
+    q += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[q + 1]) : 1;
+  }
+  if (at > trackedTo) trackedTo = at;
+  return last;
+}
+
 bool Derivation::matchLeft(const std::vector<ModulePattern>& patterns, const Lsystem& l,
-                           const ModuleString& s, std::size_t before, double* frame) const {
+                           const ModuleString& s, std::size_t before, double* frame,
+                           std::size_t neighbour) const {
   std::size_t pos = before;
   bool wrapped = false;
   for (std::size_t i = patterns.size(); i-- > 0;) {
     const ModulePattern& pattern = patterns[i];
     ModuleRef m;
-    for (;;) {
-      if (pos == 0) {
-        if (!l.ring || wrapped || s.empty()) return false;
-        wrapped = true;
-        pos = s.end();
-      }
-      std::size_t q = s.previous(pos);
-      m = s.at(q);
-      char c = m.symbol();
-      if (l.ignored[static_cast<unsigned char>(c)]) {
-        pos = q;
-        continue;
-      }
-      if (c == ']') {
-        // A complete branch to the left is skipped.
-        int depth = 0;
-        std::size_t r = q;
-        for (;;) {
-          char d = s.at(r).symbol();
-          if (d == ']') ++depth;
-          if (d == '[' && --depth == 0) break;
-          if (r == 0) return false;
-          r = s.previous(r);
+    if (i + 1 == patterns.size() && neighbour != kUnknownNeighbour) {
+      if (neighbour == BranchIndex::kNone) return false;
+      pos = neighbour;
+      m = s.at(pos);
+    } else {
+      for (;;) {
+        if (pos == 0) {
+          if (!l.ring || wrapped || s.empty()) return false;
+          wrapped = true;
+          pos = s.end();
         }
-        pos = r;
-        continue;
+        std::size_t q = s.previous(pos);
+        m = s.at(q);
+        char c = m.symbol();
+        if (l.ignored[static_cast<unsigned char>(c)]) {
+          pos = q;
+          continue;
+        }
+        if (c == ']') {
+          // A complete branch to the left is skipped.
+          const std::size_t r = branchOpening(s, q);
+          if (r == BranchIndex::kNone) return false;
+          pos = r;
+          continue;
+        }
+        if (c == '[') {
+          pos = q;  // the branch's start: its left neighbour is the parent's module
+          continue;
+        }
+        pos = q;
+        break;
       }
-      if (c == '[') {
-        pos = q;  // the branch's start: its left neighbour is the parent's module
-        continue;
-      }
-      pos = q;
-      break;
     }
     if (m.symbol() != pattern.symbol || m.parameterCount() != pattern.parameterCount) return false;
     bind(pattern, m, frame);
@@ -277,10 +375,11 @@ bool Derivation::matchLeft(const std::vector<ModulePattern>& patterns, const Lsy
 }
 
 bool Derivation::matchContexts(const Production& p, const Lsystem& l, const ModuleString& s,
-                               std::size_t at, std::size_t end, double* frame) const {
+                               std::size_t at, std::size_t end, double* frame,
+                               std::size_t leftNeighbour) const {
   // cpfg tests the right context before the left one.
   if (!p.right.empty() && !matchRight(p.right, l, s, end, frame)) return false;
-  if (!p.left.empty() && !matchLeft(p.left, l, s, at, frame)) return false;
+  if (!p.left.empty() && !matchLeft(p.left, l, s, at, frame, leftNeighbour)) return false;
   return true;
 }
 
@@ -294,14 +393,26 @@ bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t
   const auto& ids = rules.bySymbol[static_cast<unsigned char>(s.at(at).symbol())];
   if (ids.empty()) return false;
   candidates_.clear();
+  std::size_t neighbour = kUnknownNeighbour;  // of a left context, found once for all productions
   std::vector<double>& weights = weights_;  // reused: no allocation per module
   weights.clear();
+  const std::size_t parameterCount = s.at(at).parameterCount();
   for (std::uint32_t id : ids) {
     const Production& p = rules.productions[id];
+    // Cheap refusals first: the module's own parameter count, then (with the neighbour known)
+    // the last module of the left context. Binding has no effect a refused production sees.
+    if (p.strict.size() == 1 && p.strict[0].parameterCount != parameterCount) continue;
+    if (!p.left.empty() && leftNeighbours_.enabled) {
+      if (neighbour == kUnknownNeighbour) neighbour = leftNeighbours_.before(s, l, at);
+      if (neighbour == BranchIndex::kNone) continue;
+      const ModuleRef left = s.at(neighbour);
+      const ModulePattern& last = p.left.back();
+      if (left.symbol() != last.symbol || left.parameterCount() != last.parameterCount) continue;
+    }
     double* frame = frames_.data() + frameOffset(lsystem, set, id);
     std::size_t end = 0;
     if (!matchStrict(p, s, at, end, frame)) continue;
-    if (p.hasContext() && !matchContexts(p, l, s, at, end, frame)) continue;
+    if (p.hasContext() && !matchContexts(p, l, s, at, end, frame, neighbour)) continue;
     if (!p.before.empty()) evaluator_.run(p.before, frame);
     if (!evaluator_.isTrue(p.condition, frame)) continue;
     if (!stochastic) {
@@ -352,7 +463,8 @@ std::size_t Derivation::skipCut(const ModuleString& s, std::size_t at) const {
 }
 
 void Derivation::checkSize(const ModuleString& s, const SourceLocation& where) {
-  if (s.moduleCount() > options_.maxModules) {
+  const std::size_t modules = s.moduleCount() + (&s == &next_ ? streamed_ : 0);
+  if (modules > options_.maxModules) {
     throw DiagnosticError(where, "the string grew past " + std::to_string(options_.maxModules) +
                                      " modules in step " + std::to_string(stepsDone_ + 1) +
                                      " (the limit is set with --max-modules)");
@@ -443,9 +555,21 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
 
 void Derivation::rewriteStep() {
   subLsystems_.assign(1, 0);
+  leftNeighbours_.reset(program_);
+  streamed_ = 0;
   const bool nested = program_.lsystems.size() > 1;
   const ModuleString& s = current_;
   std::size_t pos = 0;
+  // Modules that stay as they are accumulate into one run [runFrom, pos), appended in one piece
+  // when a production applies, a cut skips, or the string ends.
+  std::size_t runFrom = 0;
+  std::size_t runCount = 0;
+  const auto appendRun = [&] {
+    if (runCount == 0) return;
+    next_.appendRange(s, runFrom, pos, runCount);
+    runCount = 0;
+    streamIfFull();
+  };
   try {
     while (pos < s.end()) {
       int lsystem = subLsystems_.back();
@@ -453,36 +577,52 @@ void Derivation::rewriteStep() {
       if (!l.stochastic) {
         // A run of modules that no production can rewrite is copied in one piece.
         std::size_t from = pos, count = 0;
-        while (pos < s.end() && isCopiedAsIs_[static_cast<std::size_t>(lsystem)][static_cast<unsigned char>(s.at(pos).symbol())]) {
+        const std::array<bool, 128>& copied = isCopiedAsIs_[static_cast<std::size_t>(lsystem)];
+        while (pos < s.end() && copied[static_cast<unsigned char>(s.at(pos).symbol())]) {
           pos = s.next(pos);
           ++count;
         }
         if (count) {
-          next_.appendRange(s, from, pos, count);
-          if (next_.moduleCount() > options_.maxModules) checkSize(next_, l.axiomWhere);
+          // The string's length is checked as each module goes out, as if it were appended.
+          if (runCount == 0) runFrom = from;
+          runCount += count;
+          if (next_.moduleCount() + streamed_ + runCount > options_.maxModules) {
+            appendRun();
+            checkSize(next_, l.axiomWhere);
+          }
           continue;
         }
         if (pos >= s.end()) break;
       }
-      ModuleRef m = s.at(pos);
+      const std::size_t at = pos;
+      ModuleRef m = s.at(at);
       std::size_t after;
       Match match;
-      if (choose(lsystem, 0, s, pos, match)) {
+      if (choose(lsystem, 0, s, at, match)) {
+        appendRun();
         const Production& p = *match.production;
         if (!p.after.empty()) evaluator_.run(p.after, match.frame);
         appendValues(p, evaluator_.values(p.successorValues, match.frame, 0), next_);
         checkSize(next_, p.where);
+        streamIfFull();
         after = match.end;
       } else if (m.symbol() == '%' && m.parameterCount() == 0) {
-        after = skipCut(s, pos);
+        appendRun();
+        after = skipCut(s, at);
       } else {
-        next_.append(m);
-        if (next_.moduleCount() > options_.maxModules) checkSize(next_, l.axiomWhere);
-        after = s.next(pos);
+        after = s.next(at);
+        if (runCount == 0) runFrom = at;
+        ++runCount;
+        if (next_.moduleCount() + streamed_ + runCount > options_.maxModules) {
+          pos = after;
+          appendRun();
+          checkSize(next_, l.axiomWhere);
+        }
       }
-      if (nested) trackSubLsystems(s, pos, after, subLsystems_);
+      if (nested) trackSubLsystems(s, at, after, subLsystems_);
       pos = after;
     }
+    appendRun();
   } catch (const ModuleStringTooLarge& e) {
     throw DiagnosticError(program_.lsystems.front().where,
                           "the string needs more than " + std::to_string(e.bytes >> 20) +

@@ -105,12 +105,20 @@ const double* Evaluator::values(const Code& code, double* frame, std::size_t cou
 // out-of-line helpers. Dispatch is threaded (GCC's labels as values): each case jumps straight
 // to the next instruction's case, so the branch predictor sees one indirect jump per case.
 double Evaluator::run(const Code& code, double* frame) {
+  // clang-format off
   static constexpr void* kCases[] = {
       &&constant, &&loadLocal, &&storeLocal, &&loadShared, &&storeShared, &&loadElement,
       &&storeElement, &&pop, &&negate, &&logicalNot, &&truth, &&add, &&subtract, &&multiply,
       &&divide, &&modulo, &&power, &&equal, &&notEqual, &&less, &&lessEqual, &&greater,
-      &&greaterEqual, &&jump, &&jumpIfFalse, &&loopBack, &&call, &&scan};
-  static_assert(std::size(kCases) == static_cast<std::size_t>(Op::Scan) + 1, "one case per Op");
+      &&greaterEqual, &&jump, &&jumpIfFalse, &&loopBack, &&call, &&scan,
+      &&addLocal, &&subtractLocal, &&multiplyLocal, &&divideLocal, &&powerLocal, &&equalLocal,
+      &&notEqualLocal, &&lessLocal, &&lessEqualLocal, &&greaterLocal, &&greaterEqualLocal,
+      &&addConstant, &&subtractConstant, &&multiplyConstant, &&divideConstant, &&powerConstant,
+      &&equalConstant, &&notEqualConstant, &&lessConstant, &&lessEqualConstant,
+      &&greaterConstant, &&greaterEqualConstant,
+      &&callSin, &&callCos, &&callSqrt, &&callFabs, &&callExp, &&callLog};
+  // clang-format on
+  static_assert(std::size(kCases) == static_cast<std::size_t>(Op::CallLog) + 1, "one case per Op");
   double* const stack = stack_.data();
   double* top = stack;  // one past the top value
   double* const shared = shared_.data();
@@ -176,6 +184,65 @@ call: {
   HIRSUTE_NEXT();
 }
 scan: top = this->scan(*in, top); HIRSUTE_NEXT();
+  // The fused forms: the same operators with the right operand read in place.
+#define HIRSUTE_FUSED(name, source, expression) \
+  name : {                                      \
+    const double b = source[in->operand];       \
+    double& a = top[-1];                        \
+    a = (expression);                           \
+    HIRSUTE_NEXT();                             \
+  }
+  HIRSUTE_FUSED(addLocal, frame, a + b)
+  HIRSUTE_FUSED(subtractLocal, frame, a - b)
+  HIRSUTE_FUSED(multiplyLocal, frame, a * b)
+  HIRSUTE_FUSED(powerLocal, frame, std::pow(a, b))
+  HIRSUTE_FUSED(equalLocal, frame, a == b)
+  HIRSUTE_FUSED(notEqualLocal, frame, a != b)
+  HIRSUTE_FUSED(lessLocal, frame, a < b)
+  HIRSUTE_FUSED(lessEqualLocal, frame, a <= b)
+  HIRSUTE_FUSED(greaterLocal, frame, a > b)
+  HIRSUTE_FUSED(greaterEqualLocal, frame, a >= b)
+  HIRSUTE_FUSED(addConstant, constants, a + b)
+  HIRSUTE_FUSED(subtractConstant, constants, a - b)
+  HIRSUTE_FUSED(multiplyConstant, constants, a * b)
+  HIRSUTE_FUSED(powerConstant, constants, std::pow(a, b))
+  HIRSUTE_FUSED(equalConstant, constants, a == b)
+  HIRSUTE_FUSED(notEqualConstant, constants, a != b)
+  HIRSUTE_FUSED(lessConstant, constants, a < b)
+  HIRSUTE_FUSED(lessEqualConstant, constants, a <= b)
+  HIRSUTE_FUSED(greaterConstant, constants, a > b)
+  HIRSUTE_FUSED(greaterEqualConstant, constants, a >= b)
+#undef HIRSUTE_FUSED
+divideLocal : {
+  const double b = frame[in->operand];
+  if (b == 0) fail(in->where, "division by zero");
+  top[-1] /= b;
+  HIRSUTE_NEXT();
+}
+divideConstant : {
+  const double b = constants[in->operand];
+  if (b == 0) fail(in->where, "division by zero");
+  top[-1] /= b;
+  HIRSUTE_NEXT();
+}
+callSin:
+  top[-1] = std::sin(top[-1] * kDegree);
+  HIRSUTE_NEXT();
+callCos:
+  top[-1] = std::cos(top[-1] * kDegree);
+  HIRSUTE_NEXT();
+callSqrt:
+  top[-1] = std::sqrt(top[-1]);
+  HIRSUTE_NEXT();
+callFabs:
+  top[-1] = std::fabs(top[-1]);
+  HIRSUTE_NEXT();
+callExp:
+  top[-1] = std::exp(top[-1]);
+  HIRSUTE_NEXT();
+callLog:
+  top[-1] = std::log(top[-1]);
+  HIRSUTE_NEXT();
 #undef HIRSUTE_NEXT
 #undef HIRSUTE_GO_TO
 done:

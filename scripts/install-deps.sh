@@ -9,6 +9,7 @@ packages=(
   clang libclang-rt-14-dev
   libglm-dev libosmesa6-dev libpng-dev libstb-dev povray zlib1g-dev pkg-config
   libglfw3-dev libimgui-dev xvfb xauth
+  time
 )
 
 missing=()

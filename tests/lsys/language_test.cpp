@@ -45,7 +45,10 @@ struct Derived {
   std::vector<Diagnostic> warnings;
 };
 
-Derived derive(const fs::path& lfile, bool homomorphism, std::optional<int> steps = std::nullopt) {
+// `streamed`: the last step's string goes to the writer as it is derived, as `hirsute derive -o`
+// writes it (Derivation::runStreamingLastStep).
+Derived derive(const fs::path& lfile, bool homomorphism, std::optional<int> steps = std::nullopt,
+               bool streamed = false) {
   Diagnostics diagnostics;
   std::optional<fs::path> view;
   fs::path v = fs::path(lfile).replace_extension(".v");
@@ -56,14 +59,16 @@ Derived derive(const fs::path& lfile, bool homomorphism, std::optional<int> step
   DerivationOptions options;
   options.steps = steps;
   Derivation derivation(model.program, evaluator, diagnostics, options);
-  derivation.run();
+  if (!streamed) derivation.run();
   char* buffer = nullptr;
   std::size_t size = 0;
   std::FILE* memory = open_memstream(&buffer, &size);
   {
     StringWriter writer(memory, StringFormat::Compact);
     writer.setStrings(&model.program.strings);
-    derivation.emit(writer, homomorphism);
+    if (!streamed || !derivation.runStreamingLastStep(writer, homomorphism)) {
+      derivation.emit(writer, homomorphism);
+    }
     writer.finish();
   }
   std::fclose(memory);
@@ -88,10 +93,13 @@ class FixtureModel : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FixtureModel, DerivesTheExpectedString) {
   fs::path l = fixtures() / (GetParam() + ".l");
-  EXPECT_EQ(derive(l, false).text, readLine(fs::path(l).replace_extension(".expected")));
+  const std::string expected = readLine(fs::path(l).replace_extension(".expected"));
+  EXPECT_EQ(derive(l, false).text, expected);
+  EXPECT_EQ(derive(l, false, std::nullopt, true).text, expected) << "written while derived";
   fs::path homo = fixtures() / (GetParam() + ".homo.expected");
   if (fs::exists(homo)) {
     EXPECT_EQ(derive(l, true).text, readLine(homo));
+    EXPECT_EQ(derive(l, true, std::nullopt, true).text, readLine(homo)) << "written while derived";
   }
 }
 

@@ -10,6 +10,7 @@
 
 namespace hirsute {
 
+// clang-format off
 enum class Op : std::uint8_t {
   Constant,      // push constants[operand]
   LoadLocal,     // push frame[operand]
@@ -28,7 +29,18 @@ enum class Op : std::uint8_t {
   Call,          // builtin `operand` with `count` arguments popped; pushes the result
   Scan,          // fscanf: pops the file id; pushes the count read, then values n..1 (`count` = n);
                  // string operand = the format (in the string table)
+  // Made by fuseInstructions: a binary operator whose right operand is frame[operand] (…Local)
+  // or constants[operand] (…Constant) instead of a pushed value; Add … GreaterEqual without
+  // Modulo, in that order.
+  AddLocal, SubtractLocal, MultiplyLocal, DivideLocal, PowerLocal,
+  EqualLocal, NotEqualLocal, LessLocal, LessEqualLocal, GreaterLocal, GreaterEqualLocal,
+  AddConstant, SubtractConstant, MultiplyConstant, DivideConstant, PowerConstant,
+  EqualConstant, NotEqualConstant, LessConstant, LessEqualConstant, GreaterConstant,
+  GreaterEqualConstant,
+  // Calls of one-argument math built-ins, applied in place (as applyMathBuiltin computes them).
+  CallSin, CallCos, CallSqrt, CallFabs, CallExp, CallLog,
 };
+// clang-format on
 
 struct Instruction {
   Op op;
@@ -43,5 +55,11 @@ struct Code {
   int maxStack = 0;  // deepest stack the code needs
   bool empty() const { return instructions.empty(); }
 };
+
+// Rewrites `code` with fewer instructions and the same results, errors and locations: a load
+// of a local or a constant followed by a binary operator becomes one …Local or …Constant
+// instruction (unless a jump lands on the operator), and calls of sin, cos, sqrt, fabs, exp and
+// log become their own instructions. Jump targets are renumbered.
+Code fuseInstructions(Code code);
 
 }  // namespace hirsute

@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "hirsute/lsys/branch_index.h"
 #include "hirsute/lsys/diagnostic.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/module_sink.h"
@@ -47,10 +48,23 @@ class Derivation {
     }
   }
 
+  // Runs every step like run(), but hands the last step's string to `sink` while it is being
+  // produced instead of keeping it, so that the largest string never exists whole: for writing
+  // the final string only. Streams when nothing after the step needs the string (no
+  // homomorphism to apply, no decomposition, no sub-L-systems) and returns true; string() is
+  // then empty and emit() must not be called. Otherwise it returns false with the string kept,
+  // to emit as usual. A derivation that has taken steps already runs on without streaming.
+  bool runStreamingLastStep(ModuleSink& sink, bool applyHomomorphism);
+  // The modules the streamed step handed to its sink.
+  std::size_t streamedModules() const { return streamed_; }
+
   // The turtle's query pass, run before each rewriting when the program has query modules; it
   // interprets the string (emit) and writes positions and orientations into it.
   void setQueryPass(std::function<void(Derivation&)> pass) { queryPass_ = std::move(pass); }
-  ModuleString& mutableString() { return current_; }
+  ModuleString& mutableString() {
+    branches_.clear();
+    return current_;
+  }
 
   const Program& program() const { return program_; }
   int stepsDone() const { return stepsDone_; }
@@ -73,12 +87,23 @@ class Derivation {
   }
   bool matchStrict(const Production& p, const ModuleString& s, std::size_t at, std::size_t& end,
                    double* frame) const;
+  // The brackets of `s` (the current string), indexed on first use after it changed.
+  const BranchIndex& branchesOf(const ModuleString& s) const;
+  // The position after the `]` matching the `[` at `at`, or the end of the string.
+  std::size_t afterBranch(const ModuleString& s, std::size_t at) const;
+  // The `[` that opens the `]` at `at`, or BranchIndex::kNone.
+  std::size_t branchOpening(const ModuleString& s, std::size_t at) const;
   bool matchRight(const std::vector<ModulePattern>& patterns, const Lsystem& l, const ModuleString& s,
                   std::size_t from, double* frame) const;
-  bool matchLeft(const std::vector<ModulePattern>& patterns, const Lsystem& l, const ModuleString& s,
-                 std::size_t before, double* frame) const;
+  // `neighbour`: where the last pattern's module is, when the caller knows (LeftNeighbours);
+  // kUnknownNeighbour makes the search find it.
+  static constexpr std::size_t kUnknownNeighbour = BranchIndex::kNone - 1;
+  bool matchLeft(const std::vector<ModulePattern>& patterns, const Lsystem& l,
+                 const ModuleString& s, std::size_t before, double* frame,
+                 std::size_t neighbour = kUnknownNeighbour) const;
   bool matchContexts(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
-                     std::size_t end, double* frame) const;
+                     std::size_t end, double* frame,
+                     std::size_t leftNeighbour = kUnknownNeighbour) const;
   // Finds the production to apply at `at`, running pre-condition blocks and conditions.
   bool choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match);
   void rewriteStep();
@@ -119,6 +144,22 @@ class Derivation {
   std::vector<Match> candidates_;
   std::vector<double> weights_;  // the candidates' weights, beside candidates_
   std::deque<ModuleString> levelBuffers_;  // successors by recursion level (stable references)
+  // The last step's sink while it streams (runStreamingLastStep), and the modules it has had.
+  ModuleSink* stream_ = nullptr;
+  std::size_t streamed_ = 0;
+  void streamIfFull();
+  mutable BranchIndex branches_;           // of current_; cleared whenever current_ changes
+  // The rewriting pass's left neighbours: for every position, the module a left context is
+  // compared with, carried forward in one pass instead of searched backwards per module.
+  struct LeftNeighbours {
+    bool enabled = false;
+    std::size_t trackedTo = 0;              // modules before this are accounted for
+    std::size_t last = BranchIndex::kNone;  // the neighbour of position trackedTo
+    std::vector<std::size_t> open;          // `last` at each enclosing `[`
+    void reset(const Program& program);
+    std::size_t before(const ModuleString& s, const Lsystem& l, std::size_t at);
+  };
+  LeftNeighbours leftNeighbours_;
   std::size_t ruleOutput_ = 0;  // modules decomposition or homomorphism produced in this pass
 };
 
