@@ -69,7 +69,7 @@ int runDerive(const DeriveOptions& o) {
       }
     } else if (!o.output.empty() && o.output != "-") {
       // Into a file, the last step's string is written while it is derived and never held
-      // whole; the file only appears once it is complete (OutputFile::commit).
+      // whole; the file only appears once it is complete (OutputTarget::commit).
       if (!derivation.runStreamingLastStep(writer, o.homomorphism)) {
         derivation.emit(writer, o.homomorphism);
       }

@@ -42,10 +42,12 @@ def write_png(path, size, pixel):
     print(f"wrote {path.relative_to(ROOT)}")
 
 
-def write_map(path, background):
+def write_map(path, background, first=None):
     """A cpfg colour map: 256 RGB colours of one byte each; colour 0 is the background, the
-    rest a grey ramp."""
+    rest a grey ramp, colour 1 `first` when given."""
     colours = [background] + [(i, i, i) for i in range(1, 256)]
+    if first is not None:
+        colours[1] = first
     path.write_bytes(bytes(c for rgb in colours for c in rgb))
     print(f"wrote {path.relative_to(ROOT)}")
 
@@ -99,6 +101,8 @@ def main():
     write_png(ROOT / "models/feather-types/budgie.png", SIZE, budgie)
     for model in ("feather-types", "feather-interpolation", "feather-growth"):
         write_map(ROOT / f"models/{model}/{model}.map", (236, 235, 228))
+    # The coat's patch of skin is colour 1.
+    write_map(ROOT / "models/feather-coat/feather-coat.map", (236, 235, 228), (196, 160, 140))
 
 
 if __name__ == "__main__":

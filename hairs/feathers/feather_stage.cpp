@@ -78,9 +78,11 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
     coats.layout = view.follicleLayout;
     coats.texture.width = coats.texture.height = view.hairTextureSize;
     coats.texture.fill = view.hairTextureFill;
-    // Follicles are not the hairs' points: the texture and the offsets get seeds of their own.
-    coats.texture.seed = placementKey(view.hairTextureSeed, 0x666f6c6cu);
-    coats.seed = placementKey(options.seed != 0 ? options.seed : view.hairTextureSeed, 0x636f6174u);
+    // Follicles are not the hairs' points: the texture and the offsets get seeds of their own,
+    // from --hair-seed when given.
+    const std::uint64_t seed = options.seed != 0 ? options.seed : view.hairTextureSeed;
+    coats.texture.seed = placementKey(seed, 0x666f6c6cu);
+    coats.seed = placementKey(seed, 0x636f6174u);
     coats.maxFeathers = options.maxFeathers;
     const std::vector<FunctionCurve>& curves = functions.functions;
     coats.function = [&curves](int index, double x) {

@@ -1,0 +1,163 @@
+// The feather stage on shipped models (models/feather-coat, models/feather-types): @Fe puts a
+// feather in the turtle's frame, coats have density × area follicles, hexagonal follicles sit
+// at the lattice's spacing, the same seed gives the same coat, coats are drawn bottom to top,
+// and a missing feather type file is an error at its view-file line.
+#include "hirsute/hairs/feathers/feather_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/turtle.h"
+#include "hirsute/lsys/derivation.h"
+#include "hirsute/lsys/evaluator.h"
+#include "hirsute/lsys/model.h"
+
+namespace hirsute {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kModels = fs::path(HIRSUTE_SOURCE_DIR) / "models";
+
+struct Built {
+  ModelResources resources;
+  Model model;
+  Scene scene;
+  Diagnostics diagnostics;
+  FeatherStageReport report;
+};
+
+// Derived, interpreted and given its feathers as `hirsute render` does (cli/model_pipeline.cpp).
+void build(Built& out, const fs::path& lsystem, const fs::path& view, std::uint64_t seed = 0) {
+  out.resources = loadModelResources(view, {}, out.diagnostics);
+  out.model = loadModel(lsystem, view, out.diagnostics);
+  std::ostringstream printed;
+  Evaluator evaluator(out.model.program, out.diagnostics, &out.model.functions, out.model.folder,
+                      printed);
+  Derivation derivation(out.model.program, evaluator, out.diagnostics);
+  installQueryPass(derivation, out.resources, out.diagnostics);
+  derivation.run();
+  interpret(derivation, out.resources, out.scene, out.diagnostics);
+  FeatherStageOptions options;
+  options.lsystemFile = lsystem.string();
+  options.seed = seed;
+  out.report = growFeathers(out.scene, out.resources, out.model.functions, options, out.diagnostics);
+}
+
+double coatArea(const Scene& scene) {
+  double area = 0;
+  for (const CylinderSegment& seg : scene.cylinderSegments)
+    area += 0.5 * (seg.girthStart + seg.girthEnd) * seg.axisLength;
+  return area;
+}
+
+TEST(FeatherStage, SingleFeatherStandsInTheTurtlesFrame) {
+  Built b;
+  build(b, kModels / "feather-types" / "feather-types.l", kModels / "feather-types" / "feather-types.v");
+  ASSERT_EQ(b.report.types, 8u);
+  ASSERT_EQ(b.scene.feathers.size(), 8u);
+  for (std::size_t i = 0; i < b.scene.feathers.size(); ++i) {
+    const Feather& f = b.scene.feathers[i];
+    EXPECT_EQ(f.types[0], i + 1);
+    EXPECT_EQ(f.origin, FeatherOrigin::Single);
+    // The turtle's initial heading (+y) and the row along x, GAP apart.
+    EXPECT_NEAR(f.heading.y, 1.0, 1e-6);
+    EXPECT_NEAR(std::abs(f.position.x), 5.5 * static_cast<double>(i), 1e-4);
+    EXPECT_NEAR(glm::dot(f.heading, f.up), 0.0, 1e-6);
+  }
+  EXPECT_FLOAT_EQ(b.scene.feathers[1].size, 0.42f);
+  EXPECT_FALSE(b.scene.featherBounds.empty());
+}
+
+TEST(FeatherStage, CoatFollicleCountFollowsDensityTimesArea) {
+  for (const char* layout : {"random", "hexagonal"}) {
+    Built b;
+    build(b, kModels / "feather-coat" / (std::string(layout) + ".l"),
+          kModels / "feather-coat" / (std::string(layout) + ".v"));
+    const double expected = 4.9 * coatArea(b.scene);
+    const double placed = static_cast<double>(b.report.coat);
+    RecordProperty(std::string(layout) + "_feathers", static_cast<int>(b.report.coat));
+    EXPECT_NEAR(placed, expected, 0.1 * expected) << layout << ": " << placed << " of " << expected;
+    EXPECT_GE(b.report.coat, 56u) << layout;
+    for (const Feather& f : b.scene.feathers) EXPECT_EQ(f.origin, FeatherOrigin::Coat);
+  }
+}
+
+TEST(FeatherStage, HexagonalFolliclesSitAtTheLatticeSpacing) {
+  Built b;
+  build(b, kModels / "feather-coat" / "hexagonal.l", kModels / "feather-coat" / "hexagonal.v");
+  const std::vector<Feather>& f = b.scene.feathers;
+  ASSERT_GE(f.size(), 32u);
+  // Nearest-neighbour distances on the flat patch: a regular lattice of density ρ has spacing
+  // sqrt(2 / (√3 ρ)); the tile is stretched to a whole number around the contour, a few %.
+  const double spacing = std::sqrt(2.0 / (std::sqrt(3.0) * 4.9));
+  double smallest = std::numeric_limits<double>::max(), largest = 0;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    double nearest = std::numeric_limits<double>::max();
+    for (std::size_t j = 0; j < f.size(); ++j) {
+      if (i != j) nearest = std::min<double>(nearest, glm::distance(f[i].position, f[j].position));
+    }
+    smallest = std::min(smallest, nearest);
+    largest = std::max(largest, nearest);
+  }
+  EXPECT_GT(smallest, 0.8 * spacing);
+  EXPECT_LT(largest, 1.25 * spacing);
+}
+
+TEST(FeatherStage, SameSeedSameCoatOtherSeedOtherCoat) {
+  Built a, b, c;
+  const fs::path l = kModels / "feather-coat" / "random.l", v = kModels / "feather-coat" / "random.v";
+  build(a, l, v, 7);
+  build(b, l, v, 7);
+  build(c, l, v, 8);
+  ASSERT_EQ(a.scene.feathers.size(), b.scene.feathers.size());
+  for (std::size_t i = 0; i < a.scene.feathers.size(); ++i) {
+    EXPECT_EQ(a.scene.feathers[i].position, b.scene.feathers[i].position);
+    EXPECT_EQ(a.scene.feathers[i].across, b.scene.feathers[i].across);
+  }
+  bool differs = a.scene.feathers.size() != c.scene.feathers.size();
+  for (std::size_t i = 0; !differs && i < a.scene.feathers.size(); ++i)
+    differs = a.scene.feathers[i].size != c.scene.feathers[i].size ||
+              a.scene.feathers[i].position != c.scene.feathers[i].position;
+  EXPECT_TRUE(differs);
+}
+
+TEST(FeatherStage, CoatIsDrawnFromItsBottomFeatherToItsTop) {
+  Built b;
+  build(b, kModels / "feather-coat" / "random.l", kModels / "feather-coat" / "random.v");
+  // The feathers point along the patch: those further along lie under the ones before them and
+  // come first.
+  const std::vector<Feather>& f = b.scene.feathers;
+  ASSERT_GE(f.size(), 2u);
+  ASSERT_EQ(b.scene.cylinderSegments.size(), 1u);
+  const CylinderSegment& patch = b.scene.cylinderSegments.front();
+  const glm::vec3 along = glm::normalize(patch.end.position - patch.start.position);
+  EXPECT_GT(glm::dot(f.front().heading, along), 0.9f);
+  for (std::size_t i = 1; i < f.size(); ++i)
+    EXPECT_GE(glm::dot(f[i - 1].position - f[i].position, along), -1e-4f) << i;
+}
+
+TEST(FeatherStage, KeyFeathersBlendBilinearly) {
+  Built b;
+  build(b, kModels / "feather-coat" / "random.l", kModels / "feather-coat" / "random.v");
+  float lowest = 1, highest = 0;
+  for (const Feather& f : b.scene.feathers) {
+    EXPECT_EQ(f.types, (std::array<std::uint16_t, 4>{1, 2, 3, 4}));
+    EXPECT_FLOAT_EQ(f.across[0], f.across[1]);  // both key feathers blend linearly across
+    lowest = std::min(lowest, f.along);
+    highest = std::max(highest, f.along);
+  }
+  EXPECT_LT(lowest, 0.2f);
+  EXPECT_GT(highest, 0.8f);
+}
+
+}  // namespace
+}  // namespace hirsute
