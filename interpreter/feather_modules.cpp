@@ -13,20 +13,12 @@ namespace {
 using FeatherRow = OrganModuleRow<FeatherAttributes>;
 
 FeatherRow sideSwitch(char letter, FeatherSide side) {
-  FeatherRow row;
-  row.letter = letter;
-  row.form = ParameterForm::Switch;
-  row.side = static_cast<int>(side);
-  row.flag = &FeatherSideAttributes::enabled;
-  return row;
+  return switchRow<FeatherAttributes>(letter, static_cast<int>(side),
+                                      &FeatherSideAttributes::enabled);
 }
 
 FeatherRow value(char letter, OrganValue FeatherSideAttributes::*attribute) {
-  FeatherRow row;
-  row.letter = letter;
-  row.form = ParameterForm::Value;
-  row.value = attribute;
-  return row;
+  return valueRow<FeatherAttributes>(letter, attribute);
 }
 
 // A feather type number of a module, 1 to the number of `feather:` lines; 0 after a warning.
@@ -48,7 +40,7 @@ void emitFeather(const OrganModuleCall& call, const std::string& name, bool blen
   const std::size_t needed = blended ? 3 : 1;
   if (call.count < needed) {
     call.warnOnce(name + " empty", name + (blended ? " needs (k1, k2, t[, age[, size]])"
-                                                    : " needs (k[, age[, size]])"));
+                                                   : " needs (k[, age[, size]])"));
     return;
   }
   const float* p = call.parameters;
@@ -88,8 +80,7 @@ FeatherRow keyFeather(char letter) {
   FeatherRow row;
   row.letter = letter;
   row.form = ParameterForm::Custom;
-  row.custom = [](FeatherAttributes& record, const OrganModuleCall& call,
-                  const std::string& name) {
+  row.custom = [](FeatherAttributes& record, const OrganModuleCall& call, const std::string& name) {
     if (call.count == 0) {
       call.warnOnce(name + " empty", name + " needs (k1[, k2[, fun]])");
       return false;

@@ -10,20 +10,11 @@ namespace {
 using HairRow = OrganModuleRow<HairAttributes>;
 
 HairRow sideSwitch(char letter, HairSide side) {
-  HairRow row;
-  row.letter = letter;
-  row.form = ParameterForm::Switch;
-  row.side = static_cast<int>(side);
-  row.flag = &HairSideAttributes::enabled;
-  return row;
+  return switchRow<HairAttributes>(letter, static_cast<int>(side), &HairSideAttributes::enabled);
 }
 
-HairRow value(char letter, HairValue HairSideAttributes::*attribute) {
-  HairRow row;
-  row.letter = letter;
-  row.form = ParameterForm::Value;
-  row.value = attribute;
-  return row;
+HairRow value(char letter, OrganValue HairSideAttributes::*attribute) {
+  return valueRow<HairAttributes>(letter, attribute);
 }
 
 // @Hp(P1, …, Pn[, loc]): n is the number of templates the view file declares (one, the default

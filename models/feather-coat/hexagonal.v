@@ -1,17 +1,3 @@
-/* View of the feather coat on hexagonal follicles. */
-angle increment: 90
-projection: parallel
-viewpoint: 0,0,1
-view reference point: 0,0,0
-scale factor: 0.95
-z buffer: on
-render mode: shaded
-line style: cylinder
-contour: 1 strip.con
-light: V: 0.3,0.6,1 D: 1,1,1
-
-feather: brown.fea
-feather: grey.fea
-feather: green.fea
-feather: blue.fea
+/* View of the feather coat on hexagonal follicles (Streit & Heidrich 2002, Fig. 15). */
+#include "coat.v"
 feather follicles: hexagonal

@@ -3,6 +3,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "gl_objects.h"
+
 #define STB_EASY_FONT_IMPLEMENTATION  // a header of static functions; this is its one user
 #include <stb/stb_easy_font.h>
 
@@ -23,46 +25,10 @@ out vec4 fragColor;
 void main() { fragColor = vec4(uColor, 1.0); }
 )";
 
-GLuint compileStage(const GlFunctions& gl, GLenum stage, const char* source) {
-  GLuint shader = gl.CreateShader(stage);
-  gl.ShaderSource(shader, 1, &source, nullptr);
-  gl.CompileShader(shader);
-  GLint ok = 0;
-  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = {};
-    gl.GetShaderInfoLog(shader, sizeof log, nullptr, log);
-    gl.DeleteShader(shader);
-    throw std::runtime_error(std::string("GL label shader does not compile: ") + log);
-  }
-  return shader;
-}
-
 }  // namespace
 
 LabelOverlay::LabelOverlay(const GlFunctions& gl) : gl_(gl) {
-  GLuint vertex = compileStage(gl_, GL_VERTEX_SHADER, kVertexShader);
-  GLuint fragment;
-  try {
-    fragment = compileStage(gl_, GL_FRAGMENT_SHADER, kFragmentShader);
-  } catch (...) {
-    gl_.DeleteShader(vertex);
-    throw;
-  }
-  program_ = gl_.CreateProgram();
-  gl_.AttachShader(program_, vertex);
-  gl_.AttachShader(program_, fragment);
-  gl_.LinkProgram(program_);
-  gl_.DeleteShader(vertex);
-  gl_.DeleteShader(fragment);
-  GLint ok = 0;
-  gl_.GetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = {};
-    gl_.GetProgramInfoLog(program_, sizeof log, nullptr, log);
-    gl_.DeleteProgram(program_);
-    throw std::runtime_error(std::string("GL label program does not link: ") + log);
-  }
+  program_ = gl::linkProgram(gl_, {kVertexShader}, {kFragmentShader});
   viewportUniform_ = gl_.GetUniformLocation(program_, "uViewport");
   colorUniform_ = gl_.GetUniformLocation(program_, "uColor");
   gl_.GenVertexArrays(1, &vertexArray_);

@@ -107,6 +107,27 @@ struct OrganModuleRow {
   void (*action)(const OrganModuleCall&, const std::string& name) = nullptr;
 };
 
+// The rows every organ with sides builds the same way: the on/off switch of one side, `@Xf(b)`,
+// and a value `@Xd(v[,rng[,fun[,loc]]])` of every side loc picks.
+template <class Record>
+OrganModuleRow<Record> switchRow(char letter, int side, bool Record::Side::*flag) {
+  OrganModuleRow<Record> row;
+  row.letter = letter;
+  row.form = ParameterForm::Switch;
+  row.side = side;
+  row.flag = flag;
+  return row;
+}
+
+template <class Record>
+OrganModuleRow<Record> valueRow(char letter, OrganValue Record::Side::*value) {
+  OrganModuleRow<Record> row;
+  row.letter = letter;
+  row.form = ParameterForm::Value;
+  row.value = value;
+  return row;
+}
+
 // An organ's table over its attribute record: the rows, the Scene vector of records and the
 // turtle's index into it. Implements the copy-on-write all organs share: a module changes a copy
 // of the record unless the record was made by a module of the same organ just before it (runs of
