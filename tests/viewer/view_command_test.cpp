@@ -265,6 +265,15 @@ TEST_F(ViewCommandTest, HairsCanBeHidden) {
   EXPECT_GT(differentPixels(shot("hairy.png"), shot("bare.png")), kPixels / 200);
 }
 
+TEST_F(ViewCommandTest, FeathersCanBeHidden) {
+  fs::path model = shipped("feather-types");
+  ASSERT_EQ(view((model / "feather-types.l").string() + " " + (model / "feather-types.v").string(),
+                 "screenshot feathers.png; feathers off; screenshot bare.png; quit"),
+            0)
+      << stderr_;
+  EXPECT_GT(differentPixels(shot("feathers.png"), shot("bare.png")), kPixels / 200);
+}
+
 // Every shipped model (bench aside) opens, draws something, and steps back and forth: the model
 // named after its folder, and every .l with a .v of the same name.
 TEST_F(ViewCommandTest, EveryShippedModelOpens) {

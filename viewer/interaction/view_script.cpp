@@ -29,6 +29,7 @@ const std::map<std::string, Signature>& signatures() {
       {"goto", {Kind::Goto, "n"}},
       {"animate", {Kind::Animate, ""}},
       {"hairs", {Kind::Hairs, "w"}},
+      {"feathers", {Kind::Feathers, "w"}},
       {"wireframe", {Kind::Wireframe, "w"}},
       {"define", {Kind::Define, "ww"}},
       {"help", {Kind::Help, "w"}},
@@ -122,8 +123,9 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
         command.words.push_back(t.text);
       }
     }
-    if ((command.kind == Kind::Hairs || command.kind == Kind::Wireframe ||
-         command.kind == Kind::Help || command.kind == Kind::Panel) &&
+    if ((command.kind == Kind::Hairs || command.kind == Kind::Feathers ||
+         command.kind == Kind::Wireframe || command.kind == Kind::Help ||
+         command.kind == Kind::Panel) &&
         command.words[0] != "on" && command.words[0] != "off") {
       throw DiagnosticError(SourceLocation{name, tokens[1].line, tokens[1].column},
                             "expected on or off, found '" + command.words[0] + "'");

@@ -73,6 +73,7 @@ const std::vector<std::pair<std::string, std::string>>& viewerKeyMap() {
       {"Space, A", "run / stop the animation"},
       {"R", "reset the view (and fit the plant again)"},
       {"H", "show / hide hairs"},
+      {"E", "show / hide feathers"},
       {"W", "wireframe on / off"},
       {"S", "save a PNG screenshot (MODEL-N.png in the current folder)"},
       {"C", "show / hide the constants panel"},
@@ -174,7 +175,7 @@ class Viewer {
   ModelRequest wanted_;
   int derivationLength_ = 0;
   MouseCamera mouse_;
-  bool hairs_ = true, wireframe_ = false, help_ = false, panel_ = true;
+  bool hairs_ = true, feathers_ = true, wireframe_ = false, help_ = false, panel_ = true;
 
   // Animation (cpfg-manual §1.3.3, §8.2)
   AnimationSettings animation_;
@@ -474,6 +475,7 @@ void Viewer::drawScene(bool moving) {
     return;
   }
   renderer_->setHairsVisible(hairs_);
+  renderer_->setFeathersVisible(feathers_);
   renderer_->setWireframe(wireframe_);
   float fraction = 1;
   std::size_t hairCount = renderer_->hairCount();
@@ -508,11 +510,15 @@ void Viewer::drawUi() {
       ImGui::Text("hairs %zu%s%s", renderer_->hairCount(), hairs_ ? "" : " (hidden)",
                   drawnMoving_ && renderer_->hairFraction() < 1 ? "  (fewer while moving)" : "");
     }
+    if (model_ && renderer_->featherCount() > 0) {
+      ImGui::Text("feathers %zu%s", renderer_->featherCount(), feathers_ ? "" : " (hidden)");
+    }
     // Builds that end within a quarter of a second show no progress (no flicker).
     if (worker_->busy() && worker_->runningSeconds() > 0.25) {
       const BuildProgress& p = worker_->progress();
-      static const char* kPhases[] = {"reading", "deriving", "interpreting", "placing hairs"};
-      int phase = std::clamp(p.phase.load(), 0, 3);
+      static const char* kPhases[] = {"reading", "deriving", "interpreting", "placing hairs",
+                                      "growing feathers"};
+      int phase = std::clamp(p.phase.load(), 0, 4);
       if (p.totalSteps > 0 && phase == 1) {
         ImGui::Text("%s: step %d of %d  %.1f s", kPhases[phase], p.stepsDone.load(),
                     p.totalSteps.load(), worker_->runningSeconds());
@@ -720,6 +726,9 @@ void Viewer::runScript() {
       case Kind::Hairs:
         hairs_ = c.words[0] == "on";
         break;
+      case Kind::Feathers:
+        feathers_ = c.words[0] == "on";
+        break;
       case Kind::Wireframe:
         wireframe_ = c.words[0] == "on";
         break;
@@ -799,6 +808,9 @@ void Viewer::onKey(int key, int mods) {
       break;
     case GLFW_KEY_H:
       hairs_ = !hairs_;
+      break;
+    case GLFW_KEY_E:
+      feathers_ = !feathers_;
       break;
     case GLFW_KEY_W:
       wireframe_ = !wireframe_;

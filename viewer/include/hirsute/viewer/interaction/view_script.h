@@ -40,6 +40,7 @@ struct ViewCommand {
     Goto,
     Animate,
     Hairs,
+    Feathers,
     Wireframe,
     Help,
     Panel,
