@@ -1,0 +1,1 @@
+feather: feather_afterfeather_cycle_a.fea

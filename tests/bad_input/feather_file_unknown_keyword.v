@@ -1,0 +1,1 @@
+feather: feather_file_unknown_keyword.fea

@@ -1,0 +1,1 @@
+feather: feather_negative_length.fea

@@ -1,0 +1,1 @@
+feather: feather_texture_missing.fea

@@ -1,0 +1,1 @@
+feather: nowhere.fea
