@@ -102,8 +102,7 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
       }
     } catch (const FeatherLimitError& e) {
       throw DiagnosticError(
-          SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
-          e.what());
+          SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0}, e.what());
     }
   }
 
@@ -120,10 +119,36 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
                     report.dropped, report.types));
   }
 
+  // Single feathers are bounded by their own geometry. A coat has too many feathers for that:
+  // each is bounded by the box of its key types in its frame (blends interpolate the types'
+  // lengths and angles, so they stay near the union of their boxes, and growing feathers are
+  // smaller, their barbs along the rachis within the rachis and barb lengths).
   scene.featherBounds = Bounds{};
+  std::vector<Bounds> typeBoxes(scene.featherTypes.size());
+  for (std::size_t t = 0; t < scene.featherTypes.size(); ++t) {
+    const FeatherType& type = scene.featherTypes[t];
+    addBounds(buildFeatherGeometry(type, kBoundsDetail), glm::mat4(1.0f), typeBoxes[t]);
+    // Barbs inside the sheath lie along the rachis (Sec. 4.2.4): as far as the tip plus a barb.
+    float barb = std::max(type.left.barbLength, type.right.barbLength);
+    for (const Vane* vane : {&type.left, &type.right}) {
+      for (const SilhouettePoint& p : vane->silhouette) barb = std::max(barb, p.length);
+    }
+    typeBoxes[t].add(glm::vec3(0, 0, type.calamusLength + type.rachisLength + barb));
+  }
   for (const Feather& feather : scene.feathers) {
-    addBounds(featherGeometryOf(scene, feather, kBoundsDetail), featherToWorld(feather),
-              scene.featherBounds);
+    const glm::mat4 toWorld = featherToWorld(feather);
+    if (feather.origin == FeatherOrigin::Single) {
+      addBounds(featherGeometryOf(scene, feather, kBoundsDetail), toWorld, scene.featherBounds);
+      continue;
+    }
+    Bounds local;
+    for (std::uint16_t type : feather.types) local.add(typeBoxes[type - 1u]);
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
+                        (corner & 2) ? local.max.y : local.min.y,
+                        (corner & 4) ? local.max.z : local.min.z);
+      scene.featherBounds.add(glm::vec3(toWorld * glm::vec4(p, 1)));
+    }
   }
   return report;
 }
