@@ -42,12 +42,12 @@ def write_png(path, size, pixel):
     print(f"wrote {path.relative_to(ROOT)}")
 
 
-def write_map(path, background, first=None):
+def write_map(path, background, *first):
     """A cpfg colour map: 256 RGB colours of one byte each; colour 0 is the background, the
-    rest a grey ramp, colour 1 `first` when given."""
+    rest a grey ramp, colours 1, 2, ... the `first` ones when given."""
     colours = [background] + [(i, i, i) for i in range(1, 256)]
-    if first is not None:
-        colours[1] = first
+    for i, colour in enumerate(first):
+        colours[1 + i] = colour
     path.write_bytes(bytes(c for rgb in colours for c in rgb))
     print(f"wrote {path.relative_to(ROOT)}")
 
@@ -103,6 +103,12 @@ def main():
         write_map(ROOT / f"models/{model}/{model}.map", (236, 235, 228))
     # The coat's patch of skin is colour 1.
     write_map(ROOT / "models/feather-coat/feather-coat.map", (236, 235, 228), (196, 160, 140))
+    # Feather grass against a dusk sky: its leaves (2) and the awns' columns (3).
+    write_map(ROOT / "models/feather-grass/feather-grass.map", (38, 46, 60), (128, 128, 128),
+              (82, 126, 58), (128, 92, 52))
+    # The pasque flower: its stalk (2) and the head's receptacle (3) against a dark ground.
+    write_map(ROOT / "models/pulsatilla/pulsatilla.map", (30, 34, 30), (128, 128, 128),
+              (96, 104, 70), (110, 86, 70))
 
 
 if __name__ == "__main__":
