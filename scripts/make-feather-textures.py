@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Paints the feather textures the models use (peacock eye, hawk bars, budgie scallops) into
-PNG files, and writes the colour maps that give the feather models a light background (cpfg
-takes the background from colour 0), with nothing but the standard library, so that no image
-is downloaded.
+"""Paints the feather textures the models use (peacock eye, hawk bars, budgie scallops, the
+stripes of models/feather-parameters) into PNG files, and writes the colour maps that give the
+feather models a light background (cpfg takes the background from colour 0), with nothing but
+the standard library, so that no image is downloaded.
 
 The textures are mapped on the vane (docs/feathers.md, "Textures"): u runs across the feather
 from the right vane's edge (0) to the left vane's (1), v along it from the base (0) to the tip
@@ -95,12 +95,24 @@ def budgie(u, v):
     return mix(colour, (0.95, 0.85, 0.25), smooth_step(band + 0.1, band + 0.13, v))
 
 
+def stripes(u, v):
+    # Dark and pale bands across v with a slight darkening towards u = 0, to show which way each
+    # mapping runs (models/feather-parameters/texture.l: barb, vane and growth).
+    band = smooth_step(0.35, 0.65, 0.5 + 0.5 * math.cos(2 * math.pi * v * 5))
+    colour = mix((0.9, 0.82, 0.62), (0.3, 0.16, 0.08), band)
+    return mix((0.55, 0.3, 0.15), colour, 0.6 + 0.4 * u)
+
+
 def main():
     write_png(ROOT / "models/peacock-feather/peacock-eye.png", SIZE, peacock)
     write_png(ROOT / "models/feather-types/hawk.png", SIZE, hawk)
     write_png(ROOT / "models/feather-types/budgie.png", SIZE, budgie)
+    write_png(ROOT / "models/feather-parameters/stripes.png", SIZE, stripes)
     for model in ("feather-types", "feather-interpolation", "feather-growth"):
         write_map(ROOT / f"models/{model}/{model}.map", (236, 235, 228))
+    # colour: 2 in models/feather-parameters is a slate blue.
+    write_map(ROOT / "models/feather-parameters/feather-parameters.map", (236, 235, 228),
+              (196, 160, 140), [(70, 90, 140)])
     # The coat's patch of skin is colour 1.
     write_map(ROOT / "models/feather-coat/feather-coat.map", (236, 235, 228), (196, 160, 140))
     # Feather grass against a dusk sky: its leaves (2) and the awns' columns (3).

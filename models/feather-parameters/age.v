@@ -1,0 +1,3 @@
+/* View of age.l. */
+#include "row.v"
+feather: base.fea

@@ -1,0 +1,2 @@
+/* View of coat-age.l. */
+#include "coat.v"

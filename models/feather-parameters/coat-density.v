@@ -1,0 +1,2 @@
+/* View of coat-density.l. */
+#include "coat.v"

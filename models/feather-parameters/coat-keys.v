@@ -1,0 +1,2 @@
+/* View of coat-keys.l. */
+#include "coat.v"

@@ -1,0 +1,2 @@
+/* View of coat-lie.l. */
+#include "coat.v"

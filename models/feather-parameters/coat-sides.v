@@ -1,0 +1,2 @@
+/* View of coat-sides.l. */
+#include "coat.v"

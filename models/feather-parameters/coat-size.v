@@ -1,0 +1,2 @@
+/* View of coat-size.l. */
+#include "coat.v"

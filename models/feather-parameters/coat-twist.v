@@ -1,0 +1,2 @@
+/* View of coat-twist.l. */
+#include "coat.v"

@@ -1,0 +1,3 @@
+/* View of size.l. */
+#include "row.v"
+feather: base.fea

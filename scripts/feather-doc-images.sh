@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Renders the pictures of docs/feathers.md, "Examples", from the models in
+# models/feather-parameters: one headless PNG per model, each with the view of the same name.
+#   HIRSUTE=path/to/hirsute scripts/feather-doc-images.sh   (default build/release/cli/hirsute)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+hirsute="${HIRSUTE:-build/release/cli/hirsute}"
+examples=models/feather-parameters
+out=docs/images/feathers/params
+mkdir -p "$out"
+for l in "$examples"/*.l; do
+  name=$(basename "$l" .l)
+  size=900x300
+  [ "$name" = seed ] && size=600x300  # two feathers only
+  "$hirsute" render "$l" "$examples/$name.v" -o "$out/$name.png" --size "$size"
+done
