@@ -112,7 +112,7 @@ def main():
         write_map(ROOT / f"models/{model}/{model}.map", (236, 235, 228))
     # colour: 2 in models/feather-parameters is a slate blue.
     write_map(ROOT / "models/feather-parameters/feather-parameters.map", (236, 235, 228),
-              (196, 160, 140), [(70, 90, 140)])
+              (196, 160, 140), (70, 90, 140))
     # The coat's patch of skin is colour 1.
     write_map(ROOT / "models/feather-coat/feather-coat.map", (236, 235, 228), (196, 160, 140))
     # Feather grass against a dusk sky: its leaves (2) and the awns' columns (3).
