@@ -18,11 +18,14 @@ constexpr int kMaxRecursionDepth = 4000;
 
 // cpfg: seed48({seed, 0, 155}) for a non-zero seed; drand48's unseeded state otherwise.
 Rand48 choiceStream(const Lsystem& main) {
-  auto seed = main.stochastic ? static_cast<std::uint16_t>(static_cast<long long>(main.seed)) : std::uint16_t{0};
+  auto seed = main.stochastic ? static_cast<std::uint16_t>(static_cast<long long>(main.seed))
+                              : std::uint16_t{0};
   return seed != 0 ? Rand48::seed48(seed, 0, 155) : Rand48(0, 0, 0);
 }
 
-bool isSubLsystemStart(ModuleRef m) { return m.symbol() == '?' && m.parameterCount() > 0; }
+bool isSubLsystemStart(ModuleRef m) {
+  return m.symbol() == '?' && m.parameterCount() > 0;
+}
 
 std::size_t defaultStringLimit() {
   long pages = sysconf(_SC_PHYS_PAGES);
@@ -58,7 +61,8 @@ void requireKnownLsystems(const Program& program, const ModuleString& s, std::si
   for (std::size_t q = from; q < s.end(); q = s.next(q)) {
     ModuleRef m = s.at(q);
     if (isSubLsystemStart(m) && program.lsystemIndex(m.parameter(0)) < 0) {
-      throw DiagnosticError(where, "the string calls sub-L-system " + formatParameter(m.parameter(0)) +
+      throw DiagnosticError(where, "the string calls sub-L-system " +
+                                       formatParameter(m.parameter(0)) +
                                        " with ?(…), but no L-system has that label");
     }
   }
@@ -115,11 +119,12 @@ void Derivation::start() {
   for (const Lsystem& l : program_.lsystems) evaluator_.run(l.start, nullptr);
   // The axiom's parameters are evaluated after Start:, so they may use its variables.
   const double* v = evaluator_.values(main.axiomValues, nullptr, 0);
-  std::vector<double> values(v, v + [&] {
-    std::size_t n = 0;
-    for (const SuccessorModule& m : main.axiom) n += m.parameterCount;
-    return n;
-  }());
+  std::vector<double> values(
+      v, v + [&] {
+        std::size_t n = 0;
+        for (const SuccessorModule& m : main.axiom) n += m.parameterCount;
+        return n;
+      }());
   std::size_t k = 0;
   for (const SuccessorModule& m : main.axiom) {
     current_.appendRounded(m.symbol, std::span<const double>(values.data() + k, m.parameterCount));
@@ -154,8 +159,9 @@ bool Derivation::step() {
     try {
       decompose(next_, current_);
     } catch (const ModuleStringTooLarge& e) {
-      throw DiagnosticError(main.where, "the decomposed string needs more than " + std::to_string(e.bytes >> 20) +
-                                            " MiB in step " + std::to_string(stepsDone_ + 1) +
+      throw DiagnosticError(main.where, "the decomposed string needs more than " +
+                                            std::to_string(e.bytes >> 20) + " MiB in step " +
+                                            std::to_string(stepsDone_ + 1) +
                                             ", more than this machine allows");
     }
   } else {
@@ -394,7 +400,7 @@ bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t
   if (ids.empty()) return false;
   candidates_.clear();
   std::size_t neighbour = kUnknownNeighbour;  // of a left context, found once for all productions
-  std::vector<double>& weights = weights_;  // reused: no allocation per module
+  std::vector<double>& weights = weights_;    // reused: no allocation per module
   weights.clear();
   const std::size_t parameterCount = s.at(at).parameterCount();
   for (std::uint32_t id : ids) {
@@ -484,17 +490,19 @@ void Derivation::appendValues(const Production& p, const double* values, ModuleS
 }
 
 bool Derivation::ruleContextsMatch(const Production& p, const Lsystem& l, const ModuleString& s,
-                                   std::size_t at, std::size_t end, bool inMainString, std::size_t anchor,
-                                   double* frame) const {
+                                   std::size_t at, std::size_t end, bool inMainString,
+                                   std::size_t anchor, double* frame) const {
   if (inMainString) return matchContexts(p, l, s, at, end, frame);
   // Modules a rule has produced take the contexts of the module they came from.
   const ModuleString& whole = *contextString_;
   return anchor < whole.end() && matchContexts(p, l, whole, anchor, whole.next(anchor), frame);
 }
 
-bool Derivation::wouldApply(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
-                            std::size_t end, bool inMainString, std::size_t anchor, double* frame) {
-  if (p.hasContext() && !ruleContextsMatch(p, l, s, at, end, inMainString, anchor, frame)) return false;
+bool Derivation::wouldApply(const Production& p, const Lsystem& l, const ModuleString& s,
+                            std::size_t at, std::size_t end, bool inMainString, std::size_t anchor,
+                            double* frame) {
+  if (p.hasContext() && !ruleContextsMatch(p, l, s, at, end, inMainString, anchor, frame))
+    return false;
   // A pre-condition block may have effects, so its production counts as applicable untested.
   return !p.before.empty() || evaluator_.isTrue(p.condition, frame);
 }
@@ -506,8 +514,9 @@ ModuleString& Derivation::levelBuffer(int level) {
   return buffer;
 }
 
-bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_t at, bool inMainString,
-                         std::size_t anchor, int level, std::size_t& end, ModuleSink& out) {
+bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_t at,
+                         bool inMainString, std::size_t anchor, int level, std::size_t& end,
+                         ModuleSink& out) {
   const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
   const RuleSet& rules = ruleSet(l, set);
   const auto& ids = rules.bySymbol[static_cast<unsigned char>(s.at(at).symbol())];
@@ -516,9 +525,12 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
     double* frame = frames_.data() + frameOffset(lsystem, set, id);
     if (!matchStrict(p, s, at, end, frame)) continue;
     if (level > rules.maximumDepth) {
-      if (rules.warnings && wouldApply(p, l, s, at, end, inMainString, anchor, frame)) {
+      if (rules.warnings && !depthWarned_.contains(&p) &&
+          wouldApply(p, l, s, at, end, inMainString, anchor, frame)) {
+        depthWarned_.insert(&p);
         diagnostics_.warn(p.where, std::string(set == 1 ? "decomposition" : "homomorphism") +
-                                       " reached its maximum depth (" + std::to_string(rules.maximumDepth) +
+                                       " reached its maximum depth (" +
+                                       std::to_string(rules.maximumDepth) +
                                        ") with this production still applicable");
       }
       return false;
@@ -531,7 +543,8 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
     if (!evaluator_.isTrue(p.condition, frame)) continue;
     if (!p.after.empty()) evaluator_.run(p.after, frame);
     if (level >= kMaxRecursionDepth) {
-      throw DiagnosticError(p.where, "rules nest deeper than " + std::to_string(kMaxRecursionDepth) + " levels");
+      throw DiagnosticError(
+          p.where, "rules nest deeper than " + std::to_string(kMaxRecursionDepth) + " levels");
     }
     ModuleString& produced = levelBuffer(level);
     appendValues(p, evaluator_.values(p.successorValues, frame, 0), produced);
@@ -541,9 +554,10 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
         e = produced.next(q);
         // Rules that double their module at every level must not run for ever.
         if (++ruleOutput_ > options_.maxModules) {
-          throw DiagnosticError(p.where, std::string(set == 1 ? "decomposition" : "the homomorphism") +
-                                             " produced more than " + std::to_string(options_.maxModules) +
-                                             " modules (the limit is set with --max-modules)");
+          throw DiagnosticError(p.where,
+                                std::string(set == 1 ? "decomposition" : "the homomorphism") +
+                                    " produced more than " + std::to_string(options_.maxModules) +
+                                    " modules (the limit is set with --max-modules)");
         }
         out.module(produced.at(q));
       }
@@ -626,7 +640,8 @@ void Derivation::rewriteStep() {
   } catch (const ModuleStringTooLarge& e) {
     throw DiagnosticError(program_.lsystems.front().where,
                           "the string needs more than " + std::to_string(e.bytes >> 20) +
-                              " MiB in step " + std::to_string(stepsDone_ + 1) + ", more than this machine allows");
+                              " MiB in step " + std::to_string(stepsDone_ + 1) +
+                              ", more than this machine allows");
   }
 }
 
@@ -655,7 +670,8 @@ void Derivation::decompose(const ModuleString& from, ModuleString& into) {
   for (std::size_t pos = 0, after = 0; pos < from.end(); pos = after) {
     int lsystem = stack.back();
     const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
-    bool rewritten = !l.decomposition.productions.empty() && applyAt(1, lsystem, from, pos, true, pos, 1, after, sink);
+    bool rewritten = !l.decomposition.productions.empty() &&
+                     applyAt(1, lsystem, from, pos, true, pos, 1, after, sink);
     if (!rewritten) {
       after = from.next(pos);
       into.append(from.at(pos));
@@ -687,7 +703,8 @@ void Derivation::trackSubLsystems(const ModuleString& s, std::size_t from, std::
 void Derivation::emit(ModuleSink& sink, bool applyHomomorphism) {
   start();
   const Lsystem& main = program_.lsystems.front();
-  if (program_.lsystems.size() == 1 && (!applyHomomorphism || main.homomorphism.productions.empty())) {
+  if (program_.lsystems.size() == 1 &&
+      (!applyHomomorphism || main.homomorphism.productions.empty())) {
     // Nothing to rewrite and no sub-L-systems to track: the string goes out in one piece.
     sink.modules(current_, current_.begin(), current_.end());
     return;

@@ -10,6 +10,7 @@
 #include <deque>
 #include <functional>
 #include <optional>
+#include <unordered_set>
 #include <vector>
 
 #include "hirsute/lsys/branch_index.h"
@@ -131,6 +132,9 @@ class Derivation {
   ModuleString current_, next_;
   std::vector<std::vector<std::size_t>> frameOffsets_;
   std::vector<double> frames_;
+  // Productions already warned about reaching the maximum depth: an exploding homomorphism meets
+  // the limit once per module, and the message is built only the first time.
+  std::unordered_set<const Production*> depthWarned_;
   Rand48 choice_;  // cpfg's drand48 stream for stochastic productions
   int stepsDone_ = 0;
   int totalSteps_ = 0;
