@@ -8,7 +8,7 @@
 
 namespace hirsute {
 namespace {
-constexpr int kStillLevel = 5;  // as the POV-Ray scene
+constexpr int kStillLevel = 5;  // a still's detail: featherDetailLevel's 512 pixels
 }  // namespace
 
 void ObjWriter::feathers(const Scene& scene) {

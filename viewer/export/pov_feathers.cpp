@@ -1,5 +1,6 @@
-// Feathers in the POV-Ray scene (DESIGN.md, "Feathers"; docs/export.md, "Feathers"): built at a
-// still's level of detail (feather_buffers.h), the shafts one opaque mesh2, the barbs another
+// Feathers in the POV-Ray scene (DESIGN.md, "Feathers"; docs/export.md, "Feathers"): built at the
+// level of detail of their size in the scene's image (--width, --height), as the GL renderer
+// builds them (feather_buffers.h), one level finer, the shafts one opaque mesh2, the barbs another
 // whose vertices carry their colour and a transparency that fades to the barb tips (and, on
 // strips, to their edges), interpolated across each triangle as POV-Ray does for a face with three
 // texture indices. Polyline barbs become thin ribbons facing the feather's front, since POV-Ray
@@ -15,7 +16,6 @@
 namespace hirsute {
 namespace {
 
-constexpr int kStillLevel = 5;        // 512 pixels: featherDetailLevel's scale
 constexpr int kAlphaLevels = 16;      // transparency is written in steps of 1/16
 constexpr float kRibbonShare = 0.3f;  // a polyline barb's ribbon: this share of the spacing
 
@@ -36,7 +36,9 @@ Shade shadeOf(const glm::vec3& c, float alpha) {
 void PovWriter::feathers(const Scene& scene) {
   closeRun();
   if (scene.feathers.empty()) return;
-  const std::vector<std::uint8_t> levels(scene.feathers.size(), kStillLevel);
+  // A still is looked at closer than a preview: one level finer than the camera asks for.
+  std::vector<std::uint8_t> levels = featherDetailLevels(scene, camera_);
+  for (std::uint8_t& level : levels) level = static_cast<std::uint8_t>(std::min(level + 1, 7));
   FeatherBuffers b = buildFeatherBuffers(scene, levels);
 
   // Polyline barbs as ribbons: each segment (i, j) a quad across the barb in the vane plane.
