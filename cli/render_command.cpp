@@ -5,52 +5,10 @@
 #include <string>
 
 #include "command.h"
-#include "hirsute/viewer/gl/offscreen.h"
-#include "hirsute/viewer/gl/png_image.h"
-#include "model_pipeline.h"
+#include "drawing_commands.h"
+#include "drawing_loader.h"
 
 namespace hirsute::cli {
-namespace {
-
-struct RenderOptions {
-  ModelOptions model;
-  std::string output;
-  std::string size = "800x600";
-  int samples = 4;
-};
-
-int runRender(const RenderOptions& o) {
-  Diagnostics diagnostics(&std::cerr);
-  BuiltScene built;
-  try {
-    built = buildScene(o.model, diagnostics);
-  } catch (const DiagnosticError& e) {
-    std::cerr << e.diagnostic().text() << '\n';
-    return kExitBadInput;
-  }
-  OffscreenOptions options;
-  std::size_t x = o.size.find('x');
-  options.width = std::stoi(o.size.substr(0, x));
-  options.height = std::stoi(o.size.substr(x + 1));
-  options.samples = o.samples;
-  RgbaImage image;
-  try {
-    image =
-        renderOffscreen(built.scene, built.resources.view, built.resources.materialMode, options);
-  } catch (const std::runtime_error& e) {
-    std::cerr << "hirsute: error: cannot render: " << e.what() << '\n';
-    return kExitIoError;
-  }
-  try {
-    writePng(o.output, image);
-  } catch (const std::runtime_error& e) {
-    std::cerr << "hirsute: error: " << e.what() << '\n';
-    return kExitIoError;
-  }
-  return kExitOk;
-}
-
-}  // namespace
 
 void registerRenderCommand(CLI::App& app, Action& action) {
   auto options = std::make_shared<RenderOptions>();
@@ -75,7 +33,9 @@ void registerRenderCommand(CLI::App& app, Action& action) {
       ->add_option("--samples", options->samples,
                    "Multisample antialiasing: samples a pixel (default 4; 1 turns it off)")
       ->check(CLI::Range(1, 64));
-  render->callback([options, &action] { action = [options] { return runRender(*options); }; });
+  render->callback([options, &action] {
+    action = [options] { return runInDrawingModule("hirsuteRunRender", options.get()); };
+  });
 }
 
 }  // namespace hirsute::cli

@@ -497,4 +497,40 @@ TEST(OutputFile, DevStdoutWritesToTheProcessOutput) {
   EXPECT_EQ(run.out, "F(1)[+F(0.5)[+A(0.25)]A(1.5)]F(2)[+A(1)]A(3)\n");
 }
 
+// The program links no GL library: commands that draw nothing start without OSMesa, libGL, GLFW,
+// X11 or LLVM, which only the drawing module (libhirsute-drawing.so) loads.
+TEST(DrawingModule, ProgramLinksNoGlLibrary) {
+  const RunResult run = [] {
+    // ldd prints the libraries the dynamic loader would map.
+    TemporaryFolder folder;
+    const std::string listing = (folder.path() / "libraries").string();
+    const std::string command = std::string("ldd '") + HIRSUTE_BINARY + "' > '" + listing + "'";
+    RunResult result;
+    result.exitCode = std::system(command.c_str());
+    result.out = readFile(listing);
+    return result;
+  }();
+  ASSERT_EQ(run.exitCode, 0);
+  ASSERT_NE(run.out.find("libc.so"), std::string::npos) << run.out;
+  for (const char* library : {"libOSMesa", "libGL", "libglfw", "libX11", "libLLVM"})
+    EXPECT_EQ(run.out.find(library), std::string::npos) << library << " in\n" << run.out;
+}
+
+TEST(DrawingModule, MissingModuleIsAClearError) {
+  const fs::path herb = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "herb";
+  TemporaryFolder folder;
+  setenv("HIRSUTE_DRAWING_MODULE", (folder.path() / "libnothing.so").c_str(), 1);
+  const RunResult run = runHirsute({"render", (herb / "herb.l").string(), (herb / "herb.v").string(),
+                                    "-o", (folder.path() / "herb.png").string()});
+  unsetenv("HIRSUTE_DRAWING_MODULE");
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("cannot load the drawing library"), std::string::npos) << run.err;
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{});
+  // Commands that draw nothing do not need it.
+  setenv("HIRSUTE_DRAWING_MODULE", (folder.path() / "libnothing.so").c_str(), 1);
+  const RunResult derive = runHirsute({"derive", (herb / "herb.l").string()});
+  unsetenv("HIRSUTE_DRAWING_MODULE");
+  EXPECT_EQ(derive.exitCode, 0) << derive.err;
+}
+
 }  // namespace

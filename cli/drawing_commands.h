@@ -1,0 +1,43 @@
+// The options of the commands that draw (`render`, `view`), shared by the program, which parses
+// them, and the drawing module (libhirsute-drawing.so, drawing_module.cpp), which runs them: the
+// program itself loads no GL library, so that every command that draws nothing starts without
+// one (drawing_loader.h).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "model_pipeline.h"
+
+namespace hirsute::cli {
+
+struct RenderOptions {
+  ModelOptions model;
+  std::string output;
+  std::string size = "800x600";
+  int samples = 4;
+};
+
+struct ViewOptions {
+  ModelOptions model;
+  std::string animation;
+  std::string commands;
+  std::string scriptFile;
+  std::string size = "800x600";
+  int samples = 4;
+  bool save = false;
+  bool noWatch = false;
+  bool noPanel = false;
+  std::size_t movingHairs = 20000;
+};
+
+// In the drawing module.
+int runRender(const RenderOptions& options);
+int runView(const ViewOptions& options);
+
+}  // namespace hirsute::cli
+
+// The drawing module's entry points (C names, found with dlsym): each runs its command and
+// returns its exit code; nothing is thrown across.
+extern "C" int hirsuteRunRender(const hirsute::cli::RenderOptions* options);
+extern "C" int hirsuteRunView(const hirsute::cli::ViewOptions* options);

@@ -1,0 +1,44 @@
+// `hirsute render`, in the drawing module: the model drawn headless (OSMesa) into a PNG, framed
+// as cpfg frames it.
+#include <iostream>
+#include <string>
+
+#include "command.h"
+#include "drawing_commands.h"
+#include "hirsute/viewer/gl/offscreen.h"
+#include "hirsute/viewer/gl/png_image.h"
+
+namespace hirsute::cli {
+
+int runRender(const RenderOptions& o) {
+  Diagnostics diagnostics(&std::cerr);
+  BuiltScene built;
+  try {
+    built = buildScene(o.model, diagnostics);
+  } catch (const DiagnosticError& e) {
+    std::cerr << e.diagnostic().text() << '\n';
+    return kExitBadInput;
+  }
+  OffscreenOptions options;
+  std::size_t x = o.size.find('x');
+  options.width = std::stoi(o.size.substr(0, x));
+  options.height = std::stoi(o.size.substr(x + 1));
+  options.samples = o.samples;
+  RgbaImage image;
+  try {
+    image =
+        renderOffscreen(built.scene, built.resources.view, built.resources.materialMode, options);
+  } catch (const std::runtime_error& e) {
+    std::cerr << "hirsute: error: cannot render: " << e.what() << '\n';
+    return kExitIoError;
+  }
+  try {
+    writePng(o.output, image);
+  } catch (const std::runtime_error& e) {
+    std::cerr << "hirsute: error: " << e.what() << '\n';
+    return kExitIoError;
+  }
+  return kExitOk;
+}
+
+}  // namespace hirsute::cli

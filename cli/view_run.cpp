@@ -1,0 +1,139 @@
+// `hirsute view`, in the drawing module: the interactive window (viewer_window.h) with its
+// builder, buildScene on the worker's thread, the panel's `#define` values applied to a hidden
+// copy of the `.l` beside it.
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "command.h"
+#include "drawing_commands.h"
+#include "hirsute/viewer/interaction/define_editor.h"
+#include "hirsute/viewer/interaction/view_script.h"
+#include "hirsute/viewer/window/viewer_window.h"
+
+namespace hirsute::cli {
+namespace {
+
+std::string readFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error(file.string() + ": cannot read the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void replaceAll(std::string& text, const std::string& from, const std::string& to) {
+  if (from.empty()) return;
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at)) {
+    text.replace(at, from.size(), to);
+    at += to.size();
+  }
+}
+
+// One build for the window, on the worker's thread.
+ModelBuild buildForViewer(const ModelOptions& base, const ModelRequest& request,
+                          BuildProgress& progress) {
+  ModelOptions options = base;
+  // cpfg's frames: the string after that many steps of the whole derivation.
+  options.stopAfter = request.steps;
+  options.progress = [&progress](int stage, int done, int total) {
+    progress.phase = stage;
+    progress.stepsDone = done;
+    progress.totalSteps = total;
+  };
+  // The panel's values go into a hidden copy beside the .l (includes and fopen stay relative to
+  // its folder, and the file watcher skips hidden files); messages name the user's file.
+  std::filesystem::path original = base.lsystemFile, temporary;
+  if (!request.defines.empty()) {
+    temporary = original.parent_path() / ("." + original.filename().string() + ".hirsute-view.l");
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << replaceDefineValues(readFile(original), request.defines);
+    if (!out.flush()) throw std::runtime_error(temporary.string() + ": cannot write the file");
+    options.lsystemFile = temporary.string();
+  }
+  struct RemoveTemporary {
+    std::filesystem::path file;
+    ~RemoveTemporary() {
+      std::error_code ec;
+      if (!file.empty()) std::filesystem::remove(file, ec);
+    }
+  } removeTemporary{temporary};
+  auto ownNames = [&](std::string text) {
+    if (!temporary.empty()) replaceAll(text, temporary.string(), original.string());
+    return text;
+  };
+
+  std::ostringstream warnings;
+  Diagnostics diagnostics(&warnings);
+  ModelBuild build;
+  try {
+    BuiltScene built = buildScene(options, diagnostics);
+    auto model = std::make_shared<ViewerModel>();
+    const Lsystem& main = built.model.program.lsystems.front();
+    model->derivationLength = options.steps.value_or(main.derivationLength);
+    model->steps = request.steps ? std::clamp(*request.steps, 0, model->derivationLength)
+                                 : model->derivationLength;
+    model->scene = std::move(built.scene);
+    model->bounds = model->scene.bounds();
+    model->view = built.resources.view;
+    model->materialMode = built.resources.materialMode;
+    build.model = std::move(model);
+  } catch (const DiagnosticError& e) {
+    build.error = ownNames(e.diagnostic().text());
+  }
+  std::cerr << ownNames(warnings.str());
+  return build;
+}
+
+}  // namespace
+
+int runView(const ViewOptions& o) {
+  ViewerOptions options;
+  options.lsystemFile = o.model.lsystemFile;
+  options.viewFile = o.model.viewFile;
+  options.animationFile = o.animation;
+  // cpfg's order is .l .v .a; a lone .a after the .l is the animation file.
+  if (options.animationFile.empty() && options.viewFile.extension() == ".a") {
+    std::swap(options.animationFile, options.viewFile);
+  }
+  ModelOptions model = o.model;
+  model.viewFile = options.viewFile.string();
+  for (const auto& list : {o.model.colormaps, o.model.materials}) {
+    for (const std::string& entry : list) {
+      std::size_t colon = entry.find(':');
+      options.extraFiles.push_back(colon != std::string::npos &&
+                                           entry.find_first_not_of("0123456789") == colon
+                                       ? entry.substr(colon + 1)
+                                       : entry);
+    }
+  }
+  std::size_t x = o.size.find('x');
+  options.width = std::stoi(o.size.substr(0, x));
+  options.height = std::stoi(o.size.substr(x + 1));
+  options.samples = o.samples;
+  options.steps = o.model.steps;
+  options.saveDefines = o.save;
+  options.watch = !o.noWatch;
+  options.showPanel = !o.noPanel;
+  options.movingHairBudget = o.movingHairs;
+  try {
+    if (!o.scriptFile.empty() || !o.commands.empty()) {
+      std::vector<ViewCommand> script;
+      if (!o.scriptFile.empty()) script = parseViewScript(readFile(o.scriptFile), o.scriptFile);
+      std::vector<ViewCommand> more = parseViewScript(o.commands, "--commands");
+      script.insert(script.end(), more.begin(), more.end());
+      options.script = std::move(script);
+    }
+  } catch (const DiagnosticError& e) {
+    std::cerr << e.diagnostic().text() << '\n';
+    return kExitBadInput;
+  }
+  return runViewer(options, [model](const ModelRequest& request, BuildProgress& progress) {
+    return buildForViewer(model, request, progress);
+  });
+}
+
+}  // namespace hirsute::cli
