@@ -22,7 +22,7 @@ constexpr double kTiny = 1e-12;
 // The rachis of Sec. 4.3.1 and its frame.
 class Rachis {
  public:
-  explicit Rachis(const FeatherType& type) : length_(type.rachisLength) {
+  explicit Rachis(const FeatherType& type) {
     const float cl = type.calamusLength;
     const float rl = type.rachisLength;
     const float front = type.rachisFrontCurvature * rl;
@@ -48,7 +48,6 @@ class Rachis {
   }
 
  private:
-  float length_;
   std::array<glm::vec3, 4> vertices_;
 };
 
