@@ -14,3 +14,6 @@ for l in "$examples"/*.l; do
   [ "$name" = seed ] && size=600x300  # two feathers only
   "$hirsute" render "$l" "$examples/$name.v" -o "$out/$name.png" --size "$size"
 done
+# material: needs a material file, so its example has a folder of its own.
+"$hirsute" render models/feather-material/feather-material.l \
+  models/feather-material/feather-material.v -o "$out/material.png" --size 900x300
