@@ -1,0 +1,228 @@
+// Continuous collision detection by inclusion-based bisection over (t, u, v), with every discard
+// backed by a bound on the rounding error (continuous_collision.h states the guarantee).
+#include "hirsute/hairs/dynamics/continuous_collision.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace hirsute::dynamics {
+namespace {
+
+using Eigen::Vector3d;
+
+enum class Kind { VertexFace, EdgeEdge };
+
+constexpr double kUnitRoundoff = 0x1p-53;
+// Both F expressions take at most 7 rounded operations from the inputs to a corner value: d = end
+// - start, x(t) = start + t d (3 along the path), then 4 more for the combination. On absolute
+// values each is at most 18 M, M the largest |coordinate| on that axis (t, u, v in [0, 1]):
+// |x(t)| <= 3 M, the two terms of either form 9 M each. gamma_7 < 7.01 u; 10 u leaves room for
+// the rounding of the comparisons that use the bound.
+constexpr double kErrorPerMagnitude = 10.0 * kUnitRoundoff * 18.0;
+// Gradual underflow adds at most 2^-1075 absolute error an operation; this covers all of them.
+constexpr double kUnderflowError = 0x1p-1060;
+// Boxes are not halved below this width: every bound stays a multiple of 2^-40, so the midpoints
+// and the vertex-face test u0 + v0 > 1 are exact in double.
+constexpr double kMinimumWidth = 0x1p-40;
+
+// A box of (u, v) within a slab of time [t0, t1].
+struct Box {
+  double t0, t1, u0, u1, v0, v1;
+};
+
+struct Query {
+  std::array<Vector3d, 4> start, delta;
+  Vector3d error;       // bound on the rounding error of one corner value, per axis
+  double acceptChange;  // changes of F smaller than this along a parameter are resolved
+  double eta;
+};
+
+Query prepare(const MovingPrimitives& motion, const CcdOptions& options) {
+  if (!(options.minimumSeparation >= 0) || !std::isfinite(options.minimumSeparation)) {
+    throw std::invalid_argument("the minimum separation must be a finite number >= 0");
+  }
+  if (!(options.relativeTolerance >= 0) || !std::isfinite(options.relativeTolerance)) {
+    throw std::invalid_argument("the CCD tolerance must be a finite number >= 0");
+  }
+  Query q;
+  Vector3d largest = Vector3d::Zero();
+  Vector3d low = motion.start[0], high = motion.start[0];
+  for (int i = 0; i < 4; ++i) {
+    for (const Vector3d* x : {&motion.start[i], &motion.end[i]}) {
+      if (!x->allFinite()) throw std::invalid_argument("a CCD vertex is not finite");
+      largest = largest.cwiseMax(x->cwiseAbs());
+      low = low.cwiseMin(*x);
+      high = high.cwiseMax(*x);
+    }
+    q.start[i] = motion.start[i];
+    q.delta[i] = motion.end[i] - motion.start[i];
+  }
+  q.error = (largest * kErrorPerMagnitude).array() + kUnderflowError;
+  const double span = (high - low).maxCoeff();
+  q.acceptChange = std::max(4.0 * q.error.maxCoeff(), options.relativeTolerance * span);
+  q.eta = options.minimumSeparation;
+  return q;
+}
+
+// F at the eight corners of the box, corner index 4 ti + 2 ui + vi, in the evaluation order the
+// error bound counts.
+template <Kind kind>
+void cornerValues(const Query& q, const Box& box, std::array<Vector3d, 8>& values) {
+  const double ts[2] = {box.t0, box.t1}, us[2] = {box.u0, box.u1}, vs[2] = {box.v0, box.v1};
+  for (int ti = 0; ti < 2; ++ti) {
+    Vector3d x[4];
+    for (int i = 0; i < 4; ++i) x[i] = q.start[i] + ts[ti] * q.delta[i];
+    if constexpr (kind == Kind::EdgeEdge) {
+      const Vector3d alongA = x[1] - x[0], alongB = x[3] - x[2];
+      for (int ui = 0; ui < 2; ++ui) {
+        const Vector3d onA = x[0] + us[ui] * alongA;
+        for (int vi = 0; vi < 2; ++vi)
+          values[4 * ti + 2 * ui + vi] = onA - (x[2] + vs[vi] * alongB);
+      }
+    } else {
+      const Vector3d fromCorner = x[0] - x[1], edgeU = x[2] - x[1], edgeV = x[3] - x[1];
+      for (int ui = 0; ui < 2; ++ui) {
+        const Vector3d partial = fromCorner - us[ui] * edgeU;
+        for (int vi = 0; vi < 2; ++vi) values[4 * ti + 2 * ui + vi] = partial - vs[vi] * edgeV;
+      }
+    }
+  }
+}
+
+// Whether some axis of F over the box (the corners' hull, widened by the rounding bound) misses
+// [-eta, eta]: then no point of the box is a contact, in exact arithmetic too.
+bool discarded(const Query& q, const std::array<Vector3d, 8>& values) {
+  for (int k = 0; k < 3; ++k) {
+    double lo = values[0][k], hi = values[0][k];
+    for (int c = 1; c < 8; ++c) {
+      lo = std::min(lo, values[c][k]);
+      hi = std::max(hi, values[c][k]);
+    }
+    if (lo - q.error[k] > q.eta || hi + q.error[k] < -q.eta) return true;
+  }
+  return false;
+}
+
+// How much F changes along t, u and v over the box: the largest difference between two corners
+// that differ in that parameter alone, over the axes. F is multilinear, so its spread over the
+// box is at most the sum of the three.
+std::array<double, 3> changes(const std::array<Vector3d, 8>& values) {
+  constexpr int kStrides[3] = {4, 2, 1};
+  std::array<double, 3> result{0, 0, 0};
+  for (int p = 0; p < 3; ++p) {
+    for (int c = 0; c < 8; ++c) {
+      if (c & kStrides[p]) continue;
+      result[p] = std::max(result[p], (values[c + kStrides[p]] - values[c]).cwiseAbs().maxCoeff());
+    }
+  }
+  return result;
+}
+
+// A box of (u, v) parameters.
+struct ParameterBox {
+  double u0, u1, v0, v1;
+};
+
+// The search of one time slab: whether some (u, v) box over it may hold a contact, resolved in
+// u and v until F changes there no more along u and v than along t (or than the tolerance).
+// `boxes` holds the (u, v) boxes still to search, the next at the back; on a possible contact it
+// keeps every box not yet discarded, the one found at the back, and on none it is empty. A box
+// discarded over a slab is discarded over every part of it, so a slab's halves need search only
+// what it left.
+struct SlabAnswer {
+  bool possible = false;
+  double changeAlongT = 0;  // of the box found
+};
+
+template <Kind kind>
+SlabAnswer searchSlab(const Query& q, double t0, double t1, std::vector<ParameterBox>& boxes,
+                      int& checks, int maxChecks) {
+  std::array<Vector3d, 8> values;
+  while (!boxes.empty()) {
+    if (checks >= maxChecks) return SlabAnswer{true, 0};  // out of budget: may still hold one
+    const ParameterBox uv = boxes.back();
+    if (kind == Kind::VertexFace && uv.u0 + uv.v0 > 1) {  // outside the triangle
+      boxes.pop_back();
+      continue;
+    }
+    ++checks;
+    cornerValues<kind>(q, Box{t0, t1, uv.u0, uv.u1, uv.v0, uv.v1}, values);
+    if (discarded(q, values)) {
+      boxes.pop_back();
+      continue;
+    }
+    const std::array<double, 3> change = changes(values);
+    const double resolved = std::max(change[0], q.acceptChange);
+    const bool splitU = uv.u1 - uv.u0 > kMinimumWidth && change[1] > resolved;
+    const bool splitV = uv.v1 - uv.v0 > kMinimumWidth && change[2] > resolved;
+    if (!splitU && !splitV) return SlabAnswer{true, change[0]};
+    ParameterBox low = uv, high = uv;
+    if (splitU && (!splitV || change[1] >= change[2])) {
+      low.u1 = high.u0 = 0.5 * (uv.u0 + uv.u1);
+    } else {
+      low.v1 = high.v0 = 0.5 * (uv.v0 + uv.v1);
+    }
+    boxes.back() = high;
+    boxes.push_back(low);
+  }
+  return SlabAnswer{};
+}
+
+// A time slab waiting its turn; its (u, v) boxes are arena[begin, end of arena).
+struct PendingSlab {
+  double t0, t1;
+  std::size_t begin;
+};
+
+// Time slabs in increasing order of time (depth first, earlier half first): when a slab is
+// accepted, every earlier one has been discarded, so its start is no later than the first
+// contact. The later halves wait on a stack whose box lists lie end to end in one arena, so that
+// the search allocates nothing once warm.
+template <Kind kind>
+CcdResult detect(const MovingPrimitives& motion, const CcdOptions& options) {
+  const Query q = prepare(motion, options);
+  CcdResult result;
+  std::vector<ParameterBox> boxes = {ParameterBox{0, 1, 0, 1}}, arena;
+  std::vector<PendingSlab> pending;
+  double t0 = 0, t1 = 1;
+  for (;;) {
+    const SlabAnswer answer = searchSlab<kind>(q, t0, t1, boxes, result.checks, options.maxChecks);
+    if (!answer.possible) {
+      if (pending.empty()) return result;
+      const PendingSlab next = pending.back();
+      pending.pop_back();
+      boxes.assign(arena.begin() + static_cast<std::ptrdiff_t>(next.begin), arena.end());
+      arena.resize(next.begin);
+      t0 = next.t0;
+      t1 = next.t1;
+      continue;
+    }
+    const bool exhausted = result.checks >= options.maxChecks;
+    if (exhausted || answer.changeAlongT <= q.acceptChange || t1 - t0 <= kMinimumWidth) {
+      result.contact = true;
+      result.timeOfImpact = t0;
+      result.budgetExhausted = exhausted;
+      return result;
+    }
+    const double middle = 0.5 * (t0 + t1);
+    pending.push_back(PendingSlab{middle, t1, arena.size()});
+    arena.insert(arena.end(), boxes.begin(), boxes.end());
+    t1 = middle;
+  }
+}
+
+}  // namespace
+
+CcdResult vertexFaceCcd(const MovingPrimitives& motion, const CcdOptions& options) {
+  return detect<Kind::VertexFace>(motion, options);
+}
+
+CcdResult edgeEdgeCcd(const MovingPrimitives& motion, const CcdOptions& options) {
+  return detect<Kind::EdgeEdge>(motion, options);
+}
+
+}  // namespace hirsute::dynamics
