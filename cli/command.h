@@ -19,5 +19,6 @@ void registerDeriveCommand(CLI::App& app, Action& action);
 void registerRenderCommand(CLI::App& app, Action& action);
 void registerExportCommand(CLI::App& app, Action& action);
 void registerViewCommand(CLI::App& app, Action& action);
+void registerBenchCommand(CLI::App& app, Action& action);
 
 }  // namespace hirsute::cli

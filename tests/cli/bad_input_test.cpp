@@ -534,3 +534,69 @@ TEST(DrawingModule, MissingModuleIsAClearError) {
 }
 
 }  // namespace
+
+// ---- hirsute bench ccd: broken CCD query files ----
+
+struct BrokenQueryFile {
+  const char* folder;  // the folder names the query kind
+  std::string text;
+  int line;
+  int column;  // 0: the error is about the whole file
+  const char* message;
+};
+
+std::string repeatRows(const std::string& row, int count) {
+  std::string text;
+  for (int i = 0; i < count; ++i) text += row;
+  return text;
+}
+
+TEST(BenchCcdBadInput, EachMistakeIsReportedAtItsPlace) {
+  const std::string row = "0,1,0,1,0,1,0\n";
+  const BrokenQueryFile cases[] = {
+      {"edge-edge", "0,1,0,1,0,1\n", 1, 12, "7 comma-separated integers, this one has 6"},
+      {"edge-edge", row + "0,1,0,1,0,1,0,5\n", 2, 15, "this one has more"},
+      {"vertex-face", repeatRows(row, 3) + "0,1,0.5,1,0,1,0\n", 4, 6, "expected an integer"},
+      {"vertex-face", "0,1,,1,0,1,0\n", 1, 5, "expected an integer"},
+      {"edge-edge", "1,0,0,1,0,1,0\n", 1, 3, "a zero denominator"},
+      {"edge-edge", row + "0,1,0,1,0,1,2\n", 2, 13, "the ground truth is 0 or 1"},
+      {"edge-edge", repeatRows(row, 5) + "0,1,0,1,0,1,1\n", 6, 13, "differs from the query's first row"},
+      {"vertex-face", repeatRows(row, 9), 9, 1, "ends inside the query that starts here"},
+      {"edge-edge", "1" + std::string(500, '0') + ",1,0,1,0,1,0\n", 1, 1, "more than 400 digits"},
+      {"edge-edge", "1" + std::string(350, '0') + ",1,0,1,0,1,0\n", 1, 1, "beyond the range"},
+      {"queries", repeatRows(row, 8), 0, 0, "cannot tell the query kind"},
+  };
+  for (const BrokenQueryFile& c : cases) {
+    TemporaryFolder folder;
+    fs::create_directories(folder.path() / c.folder);
+    const fs::path file = folder.path() / c.folder / "broken.csv";
+    std::ofstream(file, std::ios::binary) << c.text;
+    // A good file before it: bad input prints no figures at all.
+    fs::create_directories(folder.path() / "edge-edge");
+    const fs::path good = folder.path() / "edge-edge" / "good.csv";
+    std::ofstream(good, std::ios::binary) << repeatRows(row, 8);
+    const RunResult run = runHirsute({"bench", "ccd", good.string(), file.string()});
+    ASSERT_FALSE(run.killed) << c.message;
+    ASSERT_TRUE(run.exited) << c.message << ": signal " << run.signal;
+    EXPECT_EQ(run.exitCode, 2) << c.message << ":\n" << run.err;
+    EXPECT_EQ(run.out, "") << c.message;
+    const std::optional<std::string> message =
+        errorAt(run.err, file.string(), c.line, c.column ? std::optional<int>(c.column) : std::nullopt);
+    ASSERT_TRUE(message) << "expected " << file.string() << ":" << c.line << ":" << c.column
+                         << ": error: " << c.message << "; stderr:\n" << run.err;
+    EXPECT_NE(message->find(c.message), std::string::npos) << *message;
+  }
+}
+
+TEST(BenchCcdBadInput, AMissingFileOrAFolderCannotBeRead) {
+  TemporaryFolder folder;
+  fs::create_directories(folder.path() / "edge-edge" / "sub.csv");
+  for (const fs::path& path : {folder.path() / "edge-edge" / "absent.csv", folder.path() / "edge-edge" / "sub.csv"}) {
+    const RunResult run = runHirsute({"bench", "ccd", path.string()});
+    ASSERT_FALSE(run.killed);
+    EXPECT_EQ(run.exitCode, 2) << run.err;
+    const std::optional<std::string> message = errorAt(run.err, path.string(), 0, std::nullopt);
+    ASSERT_TRUE(message) << run.err;
+    EXPECT_NE(message->find("cannot read"), std::string::npos) << *message;
+  }
+}
