@@ -172,6 +172,25 @@ SlabAnswer searchSlab(const Query& q, double t0, double t1, std::vector<Paramete
   return SlabAnswer{};
 }
 
+// Before a slab is halved: the boxes its search left untested (all but the one found, at the
+// back) are tested over the whole slab once, and those discarded are dropped, so that neither
+// half tests them again.
+template <Kind kind>
+void pruneOverSlab(const Query& q, double t0, double t1, std::vector<ParameterBox>& boxes,
+                   int& checks) {
+  std::array<Vector3d, 8> values;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i + 1 < boxes.size(); ++i) {
+    const ParameterBox& uv = boxes[i];
+    if (kind == Kind::VertexFace && uv.u0 + uv.v0 > 1) continue;
+    ++checks;
+    cornerValues<kind>(q, Box{t0, t1, uv.u0, uv.u1, uv.v0, uv.v1}, values);
+    if (!discarded(q, values)) boxes[kept++] = uv;
+  }
+  boxes[kept++] = boxes.back();
+  boxes.resize(kept);
+}
+
 // A time slab waiting its turn; its (u, v) boxes are arena[begin, end of arena).
 struct PendingSlab {
   double t0, t1;
@@ -208,6 +227,7 @@ CcdResult detect(const MovingPrimitives& motion, const CcdOptions& options) {
       result.budgetExhausted = exhausted;
       return result;
     }
+    pruneOverSlab<kind>(q, t0, t1, boxes, result.checks);
     const double middle = 0.5 * (t0 + t1);
     pending.push_back(PendingSlab{middle, t1, arena.size()});
     arena.insert(arena.end(), boxes.begin(), boxes.end());

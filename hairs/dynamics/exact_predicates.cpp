@@ -5,6 +5,8 @@
 #include <gmpxx.h>
 
 #include <cmath>
+#include <initializer_list>
+#include <stdexcept>
 
 namespace hirsute::dynamics {
 namespace {
@@ -32,8 +34,16 @@ int filteredSign(double det, double permanent, double relativeBound) {
   return 2;
 }
 
+// GMP cannot hold an infinity or a NaN (it traps on them).
+void requireFinite(std::initializer_list<const Eigen::Vector3d*> points) {
+  for (const Eigen::Vector3d* p : points) {
+    if (!p->allFinite()) throw std::invalid_argument("an orientation test of a non-finite point");
+  }
+}
+
 int exactOrient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                   const Eigen::Vector3d& d) {
+  requireFinite({&a, &b, &c, &d});
   mpq_class m[3][3];
   const Eigen::Vector3d* rows[3] = {&a, &b, &c};
   for (int r = 0; r < 3; ++r) {
@@ -72,6 +82,7 @@ int orient2d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
   const double permanent = std::abs(left) + std::abs(right);
   const int sign = filteredSign(det, permanent, kOrient2dBound);
   if (sign != 2) return sign;
+  requireFinite({&a, &b, &c});
   const mpq_class ax(a[i]), ay(a[j]), bx(b[i]), by(b[j]), cx(c[i]), cy(c[j]);
   return signOf((ax - cx) * (by - cy) - (ay - cy) * (bx - cx));
 }

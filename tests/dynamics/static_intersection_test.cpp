@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "hirsute/hairs/dynamics/exact_predicates.h"
 
@@ -59,6 +60,13 @@ TEST(ExactPredicates, Orient2dSeesOneUlp) {
   EXPECT_EQ(orient2d(a, b, Vector3d(0.1, std::nextafter(0.1, 1.0), 5), 0, 1), 1);
   EXPECT_EQ(orient2d(a, b, Vector3d(0.1, std::nextafter(0.1, 0.0), 5), 0, 1), -1);
   EXPECT_EQ(orient2d(Vector3d(1e-300, 0, 0), Vector3d(0, 1e-300, 0), Vector3d(0, 0, 0), 0, 1), 1);
+}
+
+TEST(ExactPredicates, NonFinitePointsAreRefused) {
+  const Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  EXPECT_THROW(orient3d(a, b, c, Vector3d(0, 0, INFINITY)), std::invalid_argument);
+  EXPECT_THROW(orient2d(a, b, Vector3d(std::nan(""), 0, 0), 0, 1), std::invalid_argument);
+  EXPECT_THROW(trianglesIntersect(a, b, c, a, b, Vector3d(0, 0, INFINITY)), std::invalid_argument);
 }
 
 // The triangle of the plane x + y + z = 1 cut by the coordinate axes; (0.25, 0.25, 0.5) lies on
