@@ -161,7 +161,7 @@ TEST(Ccd, PlantedContactsAreNeverMissed) {
   std::mt19937_64 random(12);
   std::uniform_real_distribution<double> coordinate(-3, 3);
   auto point = [&] { return Vector3d(coordinate(random), coordinate(random), coordinate(random)); };
-  for (int i = 0; i < 2000; ++i) {
+  for (int i = 0; i < 600; ++i) {
     MovingPrimitives m;
     for (int k = 0; k < 4; ++k) {
       m.start[k] = point();

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <stdexcept>
 
@@ -34,7 +35,7 @@ TEST(ExactPredicates, Orient3dAgreesWithRationalsOnNearlyCoplanarPoints) {
   std::mt19937_64 random(7);
   std::uniform_real_distribution<double> coordinate(-10, 10), weight(-2, 2);
   int zeros = 0, undecidedByRounding = 0;
-  for (int i = 0; i < 20000; ++i) {
+  for (int i = 0; i < 5000; ++i) {
     const Vector3d a(coordinate(random), coordinate(random), coordinate(random));
     const Vector3d b(coordinate(random), coordinate(random), coordinate(random));
     const Vector3d c = i % 4 == 0
@@ -50,6 +51,8 @@ TEST(ExactPredicates, Orient3dAgreesWithRationalsOnNearlyCoplanarPoints) {
     ASSERT_EQ(orient3d(a, b, c, d), expected) << i;
   }
   // The test reaches the cases the filter must hand over: plain rounding gets many wrong.
+  std::printf("[   INFO   ] plain rounding got %d of 5000 signs wrong, %d zeros\n",
+              undecidedByRounding, zeros);
   EXPECT_GT(undecidedByRounding, 1000);
   EXPECT_GT(zeros, 0);
 }
