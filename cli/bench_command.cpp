@@ -3,9 +3,11 @@
 // prints, per file and in total, the queries, false negatives, false positives and the time per
 // query.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -90,6 +92,23 @@ int runBenchCcd(const BenchCcdOptions& o) {
   return kExitOk;
 }
 
+// A finite number >= 0, said in words.
+const CLI::Validator kNonNegative(
+    [](std::string& text) -> std::string {
+      double value = 0;
+      std::size_t used = 0;
+      try {
+        value = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != text.size() || !std::isfinite(value) || value < 0) {
+        return "expected a number >= 0, found \"" + text + "\"";
+      }
+      return {};
+    },
+    "NUMBER >= 0");
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& app, Action& action) {
@@ -106,11 +125,11 @@ void registerBenchCommand(CLI::App& app, Action& action) {
   ccd->add_option("--eta", options->eta,
                   "Minimum separation: a contact is any time the primitives come within it in "
                   "every coordinate (default 0)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   ccd->add_option("--tolerance", options->tolerance,
                   "How near a near miss may come and still be reported, relative to the query's "
                   "size (default 1e-9)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   ccd->callback([options, &action] { action = [options] { return runBenchCcd(*options); }; });
 }
 

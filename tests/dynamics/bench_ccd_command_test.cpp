@@ -38,25 +38,38 @@ std::string quoted(const std::string& text) {
   return out;
 }
 
-TEST(BenchCcdCommand, PrintsEveryFileAndTheTotalWithoutFalseNegatives) {
-  const fs::path root = fs::path(HIRSUTE_SOURCE_DIR) / ".." / "shared" / "ccd-queries";
-  if (!fs::exists(root)) GTEST_SKIP() << "no public CCD queries at " << root;
+const fs::path kPublicQueries = fs::path(HIRSUTE_SOURCE_DIR) / ".." / "shared" / "ccd-queries";
+
+// The query files of the public set, in order.
+std::vector<std::string> publicFiles() {
   std::vector<std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+  for (const auto& entry : fs::recursive_directory_iterator(kPublicQueries)) {
     const std::string folder = entry.path().parent_path().filename().string();
     if (entry.path().extension() == ".csv" && (folder == "edge-edge" || folder == "vertex-face")) {
       files.push_back(entry.path().string());
     }
   }
   std::sort(files.begin(), files.end());
-  ASSERT_FALSE(files.empty());
+  return files;
+}
+
+// `hirsute bench ccd OPTIONS FILES…`
+Output benchCcd(const std::string& options, const std::vector<std::string>& files) {
   std::string command = quoted(HIRSUTE_BINARY);
-  command += " bench ccd";
+  command += " bench ccd ";
+  command += options;
   for (const std::string& f : files) {
     command += ' ';
     command += quoted(f);
   }
-  const Output out = run(command);
+  return run(command);
+}
+
+TEST(BenchCcdCommand, PrintsEveryFileAndTheTotalWithoutFalseNegatives) {
+  if (!fs::exists(kPublicQueries)) GTEST_SKIP() << "no public CCD queries at " << kPublicQueries;
+  const std::vector<std::string> files = publicFiles();
+  ASSERT_FALSE(files.empty());
+  const Output out = benchCcd("", files);
   ASSERT_EQ(out.status, 0) << out.text;
 
   static const std::regex kLine(
@@ -85,6 +98,19 @@ TEST(BenchCcdCommand, PrintsEveryFileAndTheTotalWithoutFalseNegatives) {
     }
   }
   std::printf("[   INFO   ] %s\n", lines.back().c_str());
+}
+
+TEST(BenchCcdCommand, AMinimumSeparationTurnsNearMissesIntoContacts) {
+  if (!fs::exists(kPublicQueries)) GTEST_SKIP() << "no public CCD queries at " << kPublicQueries;
+  // Half a unit of separation: the queries' near misses, a fraction of a unit apart, collide.
+  const Output out = benchCcd("--eta 0.5", publicFiles());
+  ASSERT_EQ(out.status, 0) << out.text;
+  static const std::regex kTotal(
+      R"((?:^|\n)total: (\d+) queries, 0 false negatives, (\d+) false positives, )");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(out.text, m, kTotal)) << out.text;
+  EXPECT_GT(std::stol(m[2].str()), 0) << out.text;
+  EXPECT_NE(benchCcd("--eta -1 2>/dev/null", publicFiles()).status, 0);
 }
 
 }  // namespace
