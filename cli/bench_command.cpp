@@ -128,7 +128,7 @@ void registerBenchCommand(CLI::App& app, Action& action) {
       ->check(kNonNegative);
   ccd->add_option("--tolerance", options->tolerance,
                   "How near a near miss may come and still be reported, relative to the query's "
-                  "size (default 1e-9)")
+                  "size (default 1e-6)")
       ->check(kNonNegative);
   ccd->callback([options, &action] { action = [options] { return runBenchCcd(*options); }; });
 }
