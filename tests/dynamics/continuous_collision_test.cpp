@@ -175,6 +175,45 @@ TEST(Ccd, PlantedContactsAreNeverMissed) {
   }
 }
 
+// Seeded random falls through the plane z = 0, where the first contact is known: a vertex above
+// a point of a triangle lying in the plane, and an edge parallel to the y axis across the x axis
+// edge, both falling from z0 > 0 to z1 < 0, meeting at t = z0 / (z0 - z1). The time of impact is
+// never after it, and close before it.
+TEST(Ccd, TimeOfImpactIsNeverLate) {
+  std::mt19937_64 random(56);
+  std::uniform_real_distribution<double> unit(0, 1), above(0.01, 2), below(-2, 0),
+      across(-0.9, 0.9);
+  for (int i = 0; i < 300; ++i) {
+    const double z0 = above(random), z1 = below(random);
+    const double contact = z0 / (z0 - z1);
+    const Vector3d f0(across(random), across(random), 0), f1(across(random), across(random), 0),
+        f2(across(random), across(random), 0);
+    double u = unit(random), v = unit(random);
+    if (u + v > 1) {
+      u = 1 - u;
+      v = 1 - v;
+    }
+    // Kept off the edges, so that rounding cannot put the point outside.
+    u = 0.05 + 0.9 * u;
+    v = 0.05 + 0.9 * v;
+    const Vector3d onFace = f0 + u * (f1 - f0) + v * (f2 - f0);
+    MovingPrimitives fall;
+    fall.start = {Vector3d(onFace.x(), onFace.y(), z0), f0, f1, f2};
+    fall.end = {Vector3d(onFace.x(), onFace.y(), z1), f0, f1, f2};
+    const CcdResult vf = vertexFaceCcd(fall);
+    ASSERT_TRUE(vf.contact) << i;
+    EXPECT_LE(vf.timeOfImpact, contact) << i;
+    EXPECT_GE(vf.timeOfImpact, contact - 1e-4) << i;
+
+    const double x = across(random);
+    const CcdResult ee = edgeEdgeCcd(edges({-1, 0, 0}, {1, 0, 0}, {x, -1, z0}, {x, 1, z0},  //
+                                           {-1, 0, 0}, {1, 0, 0}, {x, -1, z1}, {x, 1, z1}));
+    ASSERT_TRUE(ee.contact) << i;
+    EXPECT_LE(ee.timeOfImpact, contact) << i;
+    EXPECT_GE(ee.timeOfImpact, contact - 1e-4) << i;
+  }
+}
+
 // Seeded random motions where the two primitives stay in separate half-spaces x < 0 and x > 1:
 // a contact reported there is a false positive of the kind that would stall a simulation.
 TEST(Ccd, SeparatedMotionsAreNoContacts) {
