@@ -127,6 +127,22 @@ struct ParameterBox {
   double u0, u1, v0, v1;
 };
 
+// How far the corners on the upper (or lower) side of the parameter of this stride lie from
+// zero: the largest, over the axes, of the gap between their hull and 0. A heuristic only.
+double gapOfCorners(const std::array<Vector3d, 8>& values, int stride, bool upper) {
+  double gap = 0;
+  for (int k = 0; k < 3; ++k) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (int c = 0; c < 8; ++c) {
+      if (((c & stride) != 0) != upper) continue;
+      lo = std::min(lo, values[c][k]);
+      hi = std::max(hi, values[c][k]);
+    }
+    gap = std::max(gap, std::max(lo, -hi));
+  }
+  return gap;
+}
+
 // The search of one time slab: whether some (u, v) box over it may hold a contact, resolved in
 // u and v until F changes there no more along u and v than along t (or than the tolerance).
 // `boxes` holds the (u, v) boxes still to search, the next at the back; on a possible contact it
@@ -161,13 +177,20 @@ SlabAnswer searchSlab(const Query& q, double t0, double t1, std::vector<Paramete
     const bool splitV = uv.v1 - uv.v0 > kMinimumWidth && change[2] > resolved;
     if (!splitU && !splitV) return SlabAnswer{true, change[0]};
     ParameterBox low = uv, high = uv;
-    if (splitU && (!splitV || change[1] >= change[2])) {
+    const bool alongU = splitU && (!splitV || change[1] >= change[2]);
+    if (alongU) {
       low.u1 = high.u0 = 0.5 * (uv.u0 + uv.u1);
     } else {
       low.v1 = high.v0 = 0.5 * (uv.v0 + uv.v1);
     }
-    boxes.back() = high;
-    boxes.push_back(low);
+    // The half whose own corners come nearer to zero is searched first: it more likely holds
+    // the contact, and the search stops at the first box that may.
+    const int stride = alongU ? 2 : 1;
+    if (gapOfCorners(values, stride, true) < gapOfCorners(values, stride, false)) {
+      std::swap(low, high);
+    }
+    boxes.back() = low;
+    boxes.push_back(high);
   }
   return SlabAnswer{};
 }
