@@ -256,7 +256,7 @@ TEST(PublicCcdQueries, NoCollisionIsMissed) {
   }
   const std::vector<std::filesystem::path> files = queryFiles(publicQueries());
   ASSERT_FALSE(files.empty()) << "no query files under " << publicQueries();
-  std::size_t queries = 0, colliding = 0, falsePositives = 0, exhausted = 0;
+  std::size_t queries = 0, colliding = 0, falsePositives = 0, exhausted = 0, checks = 0;
   for (const std::filesystem::path& path : files) {
     const CcdQueryFile file = readCcdQueryFile(path);
     for (const CcdQuery& query : file.queries) {
@@ -264,6 +264,7 @@ TEST(PublicCcdQueries, NoCollisionIsMissed) {
       ++queries;
       colliding += query.collides;
       exhausted += result.budgetExhausted;
+      checks += static_cast<std::size_t>(result.checks);
       if (query.collides) {
         EXPECT_TRUE(result.contact) << path << ":" << query.line << ": a collision missed";
       } else {
@@ -271,8 +272,11 @@ TEST(PublicCcdQueries, NoCollisionIsMissed) {
       }
     }
   }
-  std::printf("[   INFO   ] %zu queries (%zu colliding): %zu false positives, %zu out of budget\n",
-              queries, colliding, falsePositives, exhausted);
+  std::printf(
+      "[   INFO   ] %zu queries (%zu colliding): %zu false positives, %zu out of budget, %.0f box "
+      "checks a query\n",
+      queries, colliding, falsePositives, exhausted,
+      static_cast<double>(checks) / static_cast<double>(queries));
   RecordProperty("false_positives", static_cast<int>(falsePositives));
   EXPECT_GT(colliding, 0u);
   // A detector that answers "contact" to everything has no false negatives either.
