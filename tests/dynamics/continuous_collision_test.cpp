@@ -161,7 +161,7 @@ TEST(Ccd, PlantedContactsAreNeverMissed) {
   std::mt19937_64 random(12);
   std::uniform_real_distribution<double> coordinate(-3, 3);
   auto point = [&] { return Vector3d(coordinate(random), coordinate(random), coordinate(random)); };
-  for (int i = 0; i < 600; ++i) {
+  for (int i = 0; i < 300; ++i) {
     MovingPrimitives m;
     for (int k = 0; k < 4; ++k) {
       m.start[k] = point();
@@ -183,7 +183,7 @@ TEST(Ccd, TimeOfImpactIsNeverLate) {
   std::mt19937_64 random(56);
   std::uniform_real_distribution<double> unit(0, 1), above(0.01, 2), below(-2, 0),
       across(-0.9, 0.9);
-  for (int i = 0; i < 300; ++i) {
+  for (int i = 0; i < 200; ++i) {
     const double z0 = above(random), z1 = below(random);
     const double contact = z0 / (z0 - z1);
     const Vector3d f0(across(random), across(random), 0), f1(across(random), across(random), 0),
