@@ -68,7 +68,7 @@ class SideValues : public SegmentValues<HairSideAttributes> {
 struct Placer {
   Scene& scene;
   const HairPlacementSettings& settings;
-  const SurfaceSampler& sampler;
+  SurfaceSampler& sampler;
   int templates = 1;
   HairPlacementReport report;
 
@@ -266,7 +266,7 @@ HairTemplate straightHairTemplate() {
 
 HairPlacementReport placeHairs(Scene& scene, const HairPlacementSettings& settings) {
   if (scene.hairTemplates.empty()) scene.hairTemplates.push_back(straightHairTemplate());
-  const SurfaceSampler sampler(PointDiffusionTexture::generate(settings.texture));
+  SurfaceSampler sampler(PointDiffusionTexture::generate(settings.texture));
   Placer placer{scene, settings, sampler, 0, {}};
   placer.templates =
       static_cast<int>(std::min<std::size_t>(scene.hairTemplates.size(), kMaxHairTemplates));
