@@ -24,10 +24,6 @@ constexpr int kRunInRows = 16;
 void remapAroundGirth(const std::vector<double>& from, std::size_t cells, std::vector<double>& to) {
   to.assign(cells, 0.0);
   if (from.empty()) return;
-  if (from.size() == cells) {
-    to = from;
-    return;
-  }
   const double oldCells = static_cast<double>(from.size());
   const double newCells = static_cast<double>(cells);
   // Sweep both rows in fractions of the girth: [i/new, (i+1)/new) against [j/old, (j+1)/old).
@@ -140,9 +136,13 @@ void DiffusionStrip::generateRow(double girth, std::vector<StripPoint>* points) 
   const std::size_t cells = static_cast<std::size_t>(std::clamp(std::round(around), 1.0, 1e9));
   const double cellFill =
       density_ * (girth > 0.0 ? girth : 0.0) / static_cast<double>(cells) * cell_;
-  remapAroundGirth(diffusion_, cells, upper_);
   const double lastAbove = diffusion_.empty() ? 0.0 : diffusion_.back();
-  diffusion_.resize(cells);
+  if (diffusion_.size() == cells) {
+    upper_.swap(diffusion_);  // the same cells: the row above as it is
+  } else {
+    remapAroundGirth(diffusion_, cells, upper_);
+  }
+  diffusion_.resize(cells);  // every cell is written below
   for (Row& r : rows_) r.cursor = 0;
   Row& row = rows_[static_cast<std::size_t>(row_) % rows_.size()];
   row.girth = girth;

@@ -276,6 +276,91 @@ void SurfaceSampler::sampleTiles(const SegmentUnfolding& unfolding, const Faces&
   }
 }
 
+void SurfaceSampler::samplePatch(const PatchUnfolding& unfolding, SurfaceFace face,
+                                 float maxDensity, std::uint64_t key,
+                                 AttachmentVisitor& visitor) const {
+  const float maxRatio = unfolding.maxAreaRatio();
+  if (!(maxDensity > 0.0f) || !(maxRatio > 0.0f) || points_.empty()) return;
+  const double tileSide =
+      std::sqrt(static_cast<double>(points_.size()) / (static_cast<double>(maxDensity) * maxRatio));
+  const float flip = face == SurfaceFace::Back ? -1.0f : 1.0f;
+  // The back uses the tile shifted by half, so its points are not the front's.
+  const double shift = face == SurfaceFace::Back ? 0.5 : 0.0;
+  const int height = rows_;
+  for (std::size_t i = 0; i < unfolding.triangles(); ++i) {
+    const float ratio = unfolding.areaRatio(i);
+    if (!(ratio > 0.0f)) continue;
+    std::uint32_t vertex[3];
+    glm::dvec2 tile[3];
+    glm::vec2 where[3];
+    CornerVectors corner[3];
+    float twist[3];
+    const glm::vec3 h = unfolding.heightVector(i);
+    for (int c = 0; c < 3; ++c) {
+      vertex[c] = unfolding.corner(i, c);
+      tile[c] = glm::dvec2(unfolding.plane(vertex[c])) / tileSide - shift;
+      where[c] = unfolding.normalized(vertex[c]);
+      const glm::vec3 n = normalizedOr(flip * unfolding.normal(vertex[c]), anyPerpendicular(h));
+      const CornerAngles angles = visitor.cornerAngles(where[c].x, where[c].y);
+      corner[c] = reorient(n, h, angles.incline, angles.wrap);
+      twist[c] = angles.twist;
+    }
+    const glm::dvec2 low = glm::min(tile[0], glm::min(tile[1], tile[2]));
+    const glm::dvec2 high = glm::max(tile[0], glm::max(tile[1], tile[2]));
+    const glm::dvec2 e1 = tile[1] - tile[0], e2 = tile[2] - tile[0];
+    const double det = e1.x * e2.y - e1.y * e2.x;
+    if (det == 0.0) continue;
+    visitor.expectPoints((high.x - low.x + 1.0) * (high.y - low.y + 1.0) *
+                             static_cast<double>(points_.size()) +
+                         (high.y - low.y + 1.0) * height);
+    const long firstRow = static_cast<long>(std::floor(low.y * height));
+    const long lastRow = static_cast<long>(std::floor(high.y * height));
+    const long firstColumn = static_cast<long>(std::floor(low.x));
+    const long lastColumn = static_cast<long>(std::floor(high.x));
+    for (long row = firstRow; row <= lastRow; ++row) {
+      const long tileRow = row >= 0 ? row / height : -((-row + height - 1) / height);
+      const int r = static_cast<int>(row - tileRow * height);
+      for (std::uint32_t p = rowStart_[static_cast<std::size_t>(r)];
+           p < rowStart_[static_cast<std::size_t>(r) + 1]; ++p) {
+        const TexturePoint& point = points_[p];
+        const double v = static_cast<double>(tileRow) + point.v;
+        if (v < low.y || v > high.y) continue;
+        for (long column = firstColumn; column <= lastColumn; ++column) {
+          const double u = static_cast<double>(column) + point.u;
+          if (u < low.x || u > high.x) continue;
+          // Barycentric coordinates in the triangle's (U, V).
+          const glm::dvec2 d = glm::dvec2(u, v) - tile[0];
+          const double b1 = (d.x * e2.y - d.y * e2.x) / det;
+          const double b2 = (e1.x * d.y - e1.y * d.x) / det;
+          const double b0 = 1.0 - b1 - b2;
+          if (b0 < 0.0 || b1 < 0.0 || b2 < 0.0) continue;
+          visitor.pointTested();
+          const float w[3] = {static_cast<float>(b0), static_cast<float>(b1),
+                              static_cast<float>(b2)};
+          AttachmentPoint candidate;
+          const glm::vec2 at = w[0] * where[0] + w[1] * where[1] + w[2] * where[2];
+          candidate.s = at.x;
+          candidate.tau = at.y;
+          candidate.girthRatio = ratio / maxRatio;
+          candidate.random = PlacementRandom(
+              placementKey(key, placementKey(static_cast<std::uint64_t>(row),
+                                             static_cast<std::uint64_t>(p) * 65536u +
+                                                 static_cast<std::uint64_t>(column))));
+          if (!visitor.keep(candidate)) continue;
+          AttachmentFrame frame;
+          for (int c = 0; c < 3; ++c) {
+            frame.position += w[c] * unfolding.position(vertex[c]);
+            frame.direction += w[c] * corner[c].direction;
+            frame.across += w[c] * corner[c].across;
+            frame.twist += w[c] * twist[c];
+          }
+          visitor.place(candidate, frame);
+        }
+      }
+    }
+  }
+}
+
 // An edge has no area: points lie as densely as along a line through the surface pattern of
 // the same density.
 void SurfaceSampler::sampleEdge(const SegmentUnfolding& unfolding, int which, float maxDensity,

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <numbers>
 #include <set>
 #include <sstream>
@@ -574,6 +575,175 @@ TEST(HairSpacing, NoSeamAroundTheGirthOrBetweenSegments) {
   };
   compare(pooled.girthSeam, pooled.girthMiddle, "girth_seam");
   compare(pooled.segmentBoundary, pooled.segmentMiddle, "segment_boundary");
+}
+
+// ---- `~` surfaces and `{ }` polygons (in their own (u, v)) ---------------------------------
+
+// The triangles of the scene's organ surfaces (scene.h, OrganSurface).
+struct SurfaceTriangle {
+  glm::dvec3 a, b, c;
+  glm::dvec3 normal() const { return glm::normalize(glm::cross(b - a, c - a)); }
+  double area() const { return glm::length(glm::cross(b - a, c - a)) / 2; }
+};
+
+std::vector<SurfaceTriangle> organSurfaceTriangles(const Scene& scene) {
+  std::vector<SurfaceTriangle> triangles;
+  for (const OrganSurface& record : scene.organSurfaces) {
+    const TriangleMesh& mesh = scene.meshes.at(static_cast<std::size_t>(record.mesh));
+    for (std::uint32_t i = record.firstIndex; i + 2 < record.firstIndex + record.indexCount;
+         i += 3) {
+      triangles.push_back({glm::dvec3(mesh.positions[mesh.indices[i]]),
+                           glm::dvec3(mesh.positions[mesh.indices[i + 1]]),
+                           glm::dvec3(mesh.positions[mesh.indices[i + 2]])});
+    }
+  }
+  return triangles;
+}
+
+double areaOf(const std::vector<SurfaceTriangle>& triangles) {
+  double area = 0;
+  for (const SurfaceTriangle& t : triangles) area += t.area();
+  return area;
+}
+
+// The distance from p to triangle t, and the closest triangle of a set (Ericson, Real-Time
+// Collision Detection, 5.1.5: the closest point by Voronoi regions).
+glm::dvec3 closestOnTriangle(const glm::dvec3& p, const SurfaceTriangle& t) {
+  const glm::dvec3 ab = t.b - t.a, ac = t.c - t.a, ap = p - t.a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return t.a;
+  const glm::dvec3 bp = p - t.b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return t.b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return t.a + ab * (d1 / (d1 - d3));
+  const glm::dvec3 cp = p - t.c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return t.c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return t.a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return t.b + (t.c - t.b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = 1 / (va + vb + vc);
+  return t.a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+std::size_t nearestTriangle(const glm::dvec3& p, const std::vector<SurfaceTriangle>& triangles,
+                            double& distance) {
+  std::size_t best = 0;
+  distance = 1e300;
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const double d = glm::length(p - closestOnTriangle(p, triangles[i]));
+    if (d < distance) {
+      distance = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+// The count of one side against density × area, and every root on the surface with its hair
+// on that side of the triangle it lies on (hairs point along the normal without angles).
+void expectOnSurface(const std::vector<Hair>& hairs, const std::vector<SurfaceTriangle>& triangles,
+                     double density, const std::string& name, double sign) {
+  const double expected = density * areaOf(triangles);
+  const double count = static_cast<double>(hairs.size());
+  measured(name + "_count_over_expected", count / expected);
+  std::printf("%s: %g hairs for %.0f expected (%+.2f%%)\n", name.c_str(), count, expected,
+              100 * (count / expected - 1));
+  EXPECT_NEAR(count, expected, 0.02 * expected) << name;
+  double farthest = 0;
+  for (const Hair& h : hairs) {
+    double distance = 0;
+    const std::size_t t = nearestTriangle(glm::dvec3(h.root), triangles, distance);
+    farthest = std::max(farthest, distance);
+    const double facing = glm::dot(glm::dvec3(h.direction()), triangles[t].normal());
+    ASSERT_GT(sign * facing, 0) << name << ": a hair on the wrong side";
+  }
+  measured(name + "_farthest_root", farthest);
+  EXPECT_LT(farthest, 1e-4) << name;
+}
+
+TEST(HairSurfaces, BicubicSurfaceGetsDensityTimesAreaOnItsFront) {
+  const PlacedHairs placed = place("surface_front.l", "surface.v");
+  ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
+  ASSERT_EQ(placed.scene.organSurfaces.size(), 1u);
+  EXPECT_EQ(placed.scene.organSurfaces[0].kind, OrganSurfaceKind::BicubicPatch);
+  EXPECT_EQ(placed.report.surfaces, 1u);
+  expectOnSurface(placed.scene.hairs, organSurfaceTriangles(placed.scene), 4000, "bicubic", 1);
+}
+
+TEST(HairSurfaces, BicubicSurfaceHasAFrontAndABackAndNoEdges) {
+  const PlacedHairs placed = place("surface_sides.l", "surface.v");
+  ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
+  const std::vector<SurfaceTriangle> triangles = organSurfaceTriangles(placed.scene);
+  EXPECT_TRUE(onSide(placed.scene.hairs, HairSide::Edge).empty());
+  expectOnSurface(onSide(placed.scene.hairs, HairSide::Front), triangles, 1000, "front", 1);
+  expectOnSurface(onSide(placed.scene.hairs, HairSide::Back), triangles, 500, "back", -1);
+}
+
+TEST(HairSurfaces, ConcavePolygonHasAFrontAndABack) {
+  const PlacedHairs placed = place("polygon_sides.l", "surface.v");
+  ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
+  ASSERT_EQ(placed.scene.organSurfaces.size(), 1u);
+  EXPECT_EQ(placed.scene.organSurfaces[0].kind, OrganSurfaceKind::Polygon);
+  const std::vector<SurfaceTriangle> triangles = organSurfaceTriangles(placed.scene);
+  EXPECT_NEAR(areaOf(triangles), 12, 1e-4);
+  expectOnSurface(onSide(placed.scene.hairs, HairSide::Front), triangles, 400, "front", 1);
+  expectOnSurface(onSide(placed.scene.hairs, HairSide::Back), triangles, 200, "back", -1);
+}
+
+// The turtle records a surface for the organs only where some organ's attributes are set, and a
+// surface whose hair sides are all off gets none.
+TEST(HairSurfaces, SurfacesWithoutHairAttributesGetNoHairs) {
+  const PlacedHairs placed = place("plain_surface.l", "surface.v");
+  ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
+  EXPECT_EQ(placed.scene.organSurfaces.size(), 1u);  // the last blade, @Hf(0) in force
+  EXPECT_TRUE(placed.scene.hairs.empty());
+  EXPECT_EQ(placed.report.surfaces, 0u);
+}
+
+// A polygon's (u, v) are world distances in its plane: the tile is laid unstretched, so the
+// roots keep the texture's spacing (ρ measured in the plane, r_max for the polygon's area).
+TEST(HairSurfaces, FlatPolygonKeepsTheTexturesSpacing) {
+  const PlacedHairs placed = place("square_polygon.l", "surface.v");
+  ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
+  const std::vector<SurfaceTriangle> triangles = organSurfaceTriangles(placed.scene);
+  expectOnSurface(placed.scene.hairs, triangles, 100, "square", 1);
+  // The square spans x in [-10, 0] or [0, 10] and y in [0, 10]; distances in that plane, found
+  // through a bucket grid of unit cells.
+  const std::vector<Hair>& hairs = placed.scene.hairs;
+  ASSERT_GT(hairs.size(), 1000u);
+  std::map<std::pair<int, int>, std::vector<std::size_t>> grid;
+  auto cellOf = [](const glm::vec3& p) {
+    return std::make_pair(static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y)));
+  };
+  for (std::size_t i = 0; i < hairs.size(); ++i) {
+    ASSERT_NEAR(hairs[i].root.z, 0, 1e-5);
+    grid[cellOf(hairs[i].root)].push_back(i);
+  }
+  double smallest = 1e300;
+  for (std::size_t i = 0; i < hairs.size(); ++i) {
+    const auto [cx, cy] = cellOf(hairs[i].root);
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        const auto found = grid.find({cx + dx, cy + dy});
+        if (found == grid.end()) continue;
+        for (std::size_t j : found->second) {
+          if (j != i)
+            smallest =
+                std::min(smallest, static_cast<double>(glm::length(hairs[i].root - hairs[j].root)));
+        }
+      }
+    }
+  }
+  const double rMax =
+      std::sqrt(areaOf(triangles) / (2 * std::sqrt(3.0) * static_cast<double>(hairs.size())));
+  const double rho = smallest / 2 / rMax;
+  measured("rho", rho);
+  std::printf("square polygon: rho %.3f\n", rho);
+  EXPECT_GE(rho, 0.65);
 }
 
 // ---- length and radius, rng (Sec. 4.1, 4.3) ------------------------------------------------

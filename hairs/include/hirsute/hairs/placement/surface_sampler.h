@@ -17,6 +17,7 @@
 
 #include "hirsute/hairs/placement/corner_frame.h"
 #include "hirsute/hairs/placement/diffusion_strip.h"
+#include "hirsute/hairs/placement/patch_unfolding.h"
 #include "hirsute/hairs/placement/placement_random.h"
 #include "hirsute/hairs/placement/point_diffusion.h"
 #include "hirsute/hairs/placement/segment_unfolding.h"
@@ -35,7 +36,8 @@ struct CornerAngles {
 struct AttachmentPoint {
   float s = 0;           // girth position in [0, 1) (0 or 1 on the edges of open contours)
   float tau = 0;         // fraction along the segment: the attributes' interpolation parameter
-  float girthRatio = 1;  // the girth here over the widest, where a tile is stretched around it
+  float girthRatio = 1;  // where a tile is stretched: the girth (or a surface's area ratio) here
+                         // over the largest
   bool edge = false;     // on an edge of an open contour (placed per unit length)
   PlacementRandom random{0};  // this point's numbers, keyed by the seed and the point
 };
@@ -91,6 +93,14 @@ class SurfaceSampler {
   // Every point gets the numbers of placementKey(key, the point).
   void sampleSurface(const SegmentUnfolding& unfolding, SurfaceFace face, float maxDensity,
                      std::uint64_t key, AttachmentVisitor& visitor);
+
+  // Surfaces and polygons in their own (u, v) (patch_unfolding.h): the tile over the plane (U, V)
+  // in scan-line order, a tile with K points covering K / (maxDensity · the largest area ratio)
+  // of it, each point kept in the triangle it falls in. The organ thins where a triangle's area
+  // ratio is below the largest (AttachmentPoint::girthRatio); on a polygon every ratio is 1.
+  // The corner frames are the vertex normals with V's direction as the height vector h.
+  void samplePatch(const PatchUnfolding& unfolding, SurfaceFace face, float maxDensity,
+                   std::uint64_t key, AttachmentVisitor& visitor) const;
 
   // Sec. 3.2: points along edge `which` (0: the contour's first point, 1: its last) of an open
   // segment, √maxDensity per unit length, spaced evenly with a jitter and counted in arc length
