@@ -24,19 +24,20 @@ constexpr int kRunInRows = 16;
 void remapAroundGirth(const std::vector<double>& from, std::size_t cells, std::vector<double>& to) {
   to.assign(cells, 0.0);
   if (from.empty()) return;
-  const double oldCells = static_cast<double>(from.size());
-  const double newCells = static_cast<double>(cells);
-  // Sweep both rows in fractions of the girth: [i/new, (i+1)/new) against [j/old, (j+1)/old).
+  // Both rows in whole units of 1 / (old · new) of the girth: new cell i is [i·old, (i+1)·old),
+  // old cell j is [j·new, (j+1)·new); exact, and without a division in the sweep. Cell counts
+  // stay under 10⁹ (generateRow), so the units fit 64 bits.
+  const std::uint64_t oldCells = from.size(), newCells = cells;
+  const double share = 1.0 / static_cast<double>(newCells);  // of an old cell, per unit
   std::size_t i = 0, j = 0;
-  double at = 0;
+  std::uint64_t at = 0;
   while (i < cells && j < from.size()) {
-    const double newEnd = static_cast<double>(i + 1) / newCells;
-    const double oldEnd = static_cast<double>(j + 1) / oldCells;
-    const double end = std::min(newEnd, oldEnd);
-    to[i] += from[j] * (end - at) * oldCells;
+    const std::uint64_t newEnd = (i + 1) * oldCells, oldEnd = (j + 1) * newCells;
+    const std::uint64_t end = std::min(newEnd, oldEnd);
+    to[i] += from[j] * static_cast<double>(end - at) * share;
     at = end;
-    if (newEnd <= end) ++i;
-    if (oldEnd <= end) ++j;
+    if (newEnd == end) ++i;
+    if (oldEnd == end) ++j;
   }
 }
 
@@ -59,11 +60,6 @@ void DiffusionStrip::setDensity(double density) {
   cell_ = std::sqrt(fill_ / density);
   // Lagae & Dutré 2008: r_max for `density` points per unit area is sqrt(1 / (2·sqrt(3)·d)).
   minDistance_ = kSpacing * 2.0 * std::sqrt(1.0 / (2.0 * std::sqrt(3.0) * density));
-}
-
-double DiffusionStrip::unit() {
-  random_ += 0x9e3779b97f4a7c15ull;
-  return static_cast<double>(mixBits(random_) >> 11) * 0x1.0p-53;
 }
 
 void DiffusionStrip::extend(double vEnd, const GirthAt& girthAt, std::vector<StripPoint>& points) {

@@ -16,6 +16,8 @@
 #include <functional>
 #include <vector>
 
+#include "hirsute/hairs/placement/placement_random.h"
+
 namespace hirsute {
 
 // A point of the strip: s the girth position in [0, 1) (a fraction of the row's girth), v arc
@@ -64,7 +66,10 @@ class DiffusionStrip {
   void generateRow(double girth, std::vector<StripPoint>* points);
   bool farFromPlacedPoints(double s, double v, double girth);
   // A double in [0, 1) from the strip's own SplitMix64 sequence (the same on every platform).
-  double unit();
+  double unit() {
+    random_ += 0x9e3779b97f4a7c15ull;
+    return static_cast<double>(mixBits(random_) >> 11) * 0x1.0p-53;
+  }
 
   double fill_, density_ = 0, cell_ = 0, minDistance_ = 0;
   double vStart_, nextV_;
