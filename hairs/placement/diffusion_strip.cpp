@@ -141,8 +141,6 @@ void DiffusionStrip::generateRow(double girth, std::vector<StripPoint>* points) 
   diffusion_.resize(cells);  // every cell is written below
   for (Row& r : rows_) r.cursor = 0;
   Row& row = rows_[static_cast<std::size_t>(row_) % rows_.size()];
-  row.girth = girth;
-  row.cells = cells;
   row.s.clear();
   row.v.clear();
   const double rowStart = nextV_;

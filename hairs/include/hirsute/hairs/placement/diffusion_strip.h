@@ -54,12 +54,9 @@ class DiffusionStrip {
   void extend(double vEnd, const GirthAt& girthAt, std::vector<StripPoint>& points);
 
  private:
-  // A row of cells around the girth and its points in order of s. The spacing test of the
-  // next rows walks each row's points with a cursor that only moves on, since the cells of a row
-  // are tested in order of s.
+  // The points of a row in order of s. The spacing test of the next rows walks each row's
+  // points with a cursor that only moves on, since the cells of a row are tested in order of s.
   struct Row {
-    double girth = 0;
-    std::size_t cells = 0;
     std::vector<double> s, v;
     std::size_t cursor = 0;
   };
