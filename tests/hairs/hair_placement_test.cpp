@@ -577,6 +577,40 @@ TEST(HairSpacing, NoSeamAroundTheGirthOrBetweenSegments) {
   compare(pooled.segmentBoundary, pooled.segmentMiddle, "segment_boundary");
 }
 
+// Where the density changes from one segment to the next the strip goes on at the new cell size:
+// each segment gets its density × area, and the pairs across the boundary keep the spacing of
+// the denser side.
+TEST(HairSpacing, StripGoesOnAcrossADensityStep) {
+  const PlacedHairs placed = place("density_step.l", "radius_cylinders.v");
+  ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
+  const Scene& scene = placed.scene;
+  ASSERT_EQ(scene.cylinderSegments.size(), 2u);
+  const UnrolledTube tube(scene, scene.cylinderSegments[0].tube);
+  std::vector<UnrolledTube::Point> points;
+  for (const Hair& h : scene.hairs) points.push_back(tube.unroll(h.root));
+  const double boundary = scene.cylinderSegments[1].axisStart;
+  const double densities[2] = {1000, 2000};
+  for (int i = 0; i < 2; ++i) {
+    const double count = static_cast<double>(
+        std::count_if(points.begin(), points.end(),
+                      [&](const UnrolledTube::Point& p) { return (p.z >= boundary) == (i == 1); }));
+    const double expected = densities[i] * segmentArea(scene, scene.cylinderSegments[i]);
+    measured("segment" + std::to_string(i) + "_count_over_expected", count / expected);
+    EXPECT_NEAR(count, expected, 0.02 * expected) << "segment " << i;
+  }
+  const std::vector<std::size_t> nearest = nearestOnTube(tube, points, 3 / std::sqrt(1000.0));
+  // r_max of the denser side: 2·0.65·r_max is the closest its own pairs may stand.
+  const double rMax = std::sqrt(1 / (2 * std::sqrt(3.0) * 2000));
+  double closest = 1e300;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const UnrolledTube::Point &a = points[i], &b = points[nearest[i]];
+    if ((a.z - boundary) * (b.z - boundary) < 0)
+      closest = std::min(closest, tube.distance(a, b) / rMax);
+  }
+  measured("closest_across_boundary", closest);
+  EXPECT_GE(closest, 2 * 0.65);
+}
+
 // ---- `~` surfaces and `{ }` polygons (in their own (u, v)) ---------------------------------
 
 // The triangles of the scene's organ surfaces (scene.h, OrganSurface).
