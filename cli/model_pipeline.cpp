@@ -122,8 +122,10 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     const HairPlacementReport report =
         growPlantHairs(built.scene, built.resources, built.model.functions, hairOptions, diagnostics);
     if (o.verbose) {
-      std::cerr << fmt::format("placed {} hairs on {} segments ({} templates) in {:.3f} s\n", report.hairs,
-                               report.segments, built.scene.hairTemplates.size(), seconds(started));
+      std::cerr << fmt::format(
+          "placed {} hairs on {} segments and {} surfaces ({} templates) in {:.3f} s\n",
+          report.hairs, report.segments, report.surfaces, built.scene.hairTemplates.size(),
+          seconds(started));
     }
   }
   if (o.feathers && hasFeathers(built.scene, built.resources)) {

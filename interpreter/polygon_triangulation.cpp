@@ -110,4 +110,23 @@ PolygonTriangulation triangulatePolygon(const std::vector<glm::dvec3>& points) {
   return result;
 }
 
+std::vector<glm::vec2> polygonPlaneCoordinates(const std::vector<glm::dvec3>& points,
+                                               const glm::dvec3& normal) {
+  std::vector<glm::vec2> uv(points.size(), glm::vec2(0.0f));
+  if (points.empty() || !(glm::length(normal) > 0.0)) return uv;
+  glm::dvec3 u(0.0);
+  for (std::size_t i = 1; i < points.size() && !(glm::length(u) > 0.0); ++i) {
+    const glm::dvec3 edge = points[i] - points[0];
+    u = edge - normal * glm::dot(edge, normal);
+  }
+  if (!(glm::length(u) > 0.0)) return uv;
+  u = glm::normalize(u);
+  const glm::dvec3 v = glm::cross(normal, u);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const glm::dvec3 d = points[i] - points[0];
+    uv[i] = glm::vec2(static_cast<float>(glm::dot(d, u)), static_cast<float>(glm::dot(d, v)));
+  }
+  return uv;
+}
+
 }  // namespace hirsute

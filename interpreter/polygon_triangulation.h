@@ -26,4 +26,11 @@ struct PolygonTriangulation {
 // out of ears, is finished by clipping vertices in turn so that every vertex is still covered.
 PolygonTriangulation triangulatePolygon(const std::vector<glm::dvec3>& points);
 
+// The polygon's own (u, v) for organs (scene.h, OrganSurface): world distances in its plane
+// from its first vertex, u along its first edge of non-zero length (projected into the plane),
+// v = normal × u, so that (u, v) is right-handed seen from the front. A polygon without a plane
+// (zero normal) gets (0, 0) everywhere.
+std::vector<glm::vec2> polygonPlaneCoordinates(const std::vector<glm::dvec3>& points,
+                                               const glm::dvec3& normal);
+
 }  // namespace hirsute

@@ -60,6 +60,7 @@ void Scene::clear() {
   discs.clear();
   labels.clear();
   cylinderSegments.clear();
+  organSurfaces.clear();
   hairAttributes.clear();
   hairTemplates.clear();
   hairs.clear();

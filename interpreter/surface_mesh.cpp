@@ -65,7 +65,9 @@ glm::dvec3 placeSurfacePoint(const Surface& surface, const SurfacePlacement& pla
 }
 
 std::size_t appendSurface(Scene& scene, const Surface& surface, const SurfacePlacement& placement,
-                          const SurfaceAppearance& appearance) {
+                          const SurfaceAppearance& appearance,
+                          const OrganAttributeIndices& organs) {
+  const bool organsSet = !(organs == OrganAttributeIndices{});
   const glm::dmat3 m = placementMatrix(surface, placement);
   const int sSteps = std::max(1, surface.sPrecision), tSteps = std::max(1, surface.tPrecision);
   const std::size_t rowLength = static_cast<std::size_t>(sSteps) + 1;
@@ -95,10 +97,16 @@ std::size_t appendSurface(Scene& scene, const Surface& surface, const SurfacePla
     const BezierPatch& patch = surface.patches[p];
     TriangleMesh& mesh = scene.meshFor(appearance.material(patch.topColor), appearance.texture);
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    const auto firstIndex = static_cast<std::uint32_t>(mesh.indices.size());
+    OrganSurface record;
     for (int j = 0; j <= tSteps; ++j) {
       for (int i = 0; i <= sSteps; ++i) {
         const PatchSample& sample =
             samples[p][static_cast<std::size_t>(j) * rowLength + static_cast<std::size_t>(i)];
+        if (organsSet) {
+          record.uv.push_back(
+              glm::vec2(static_cast<float>(i) / sSteps, static_cast<float>(j) / tSteps));
+        }
         mesh.positions.push_back(
             glm::vec3(placement.position + m * (sample.point - surface.contact)));
         // The normal of the placed surface: the cross product of the placed derivatives (this
@@ -132,6 +140,15 @@ std::size_t appendSurface(Scene& scene, const Surface& surface, const SurfacePla
         mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
         triangles += 2;
       }
+    }
+    if (organsSet) {
+      record.kind = OrganSurfaceKind::BicubicPatch;
+      record.mesh = static_cast<int>(&mesh - scene.meshes.data());
+      record.firstVertex = base;
+      record.firstIndex = firstIndex;
+      record.indexCount = static_cast<std::uint32_t>(mesh.indices.size()) - firstIndex;
+      record.organs = organs;
+      scene.organSurfaces.push_back(std::move(record));
     }
   }
   return triangles;

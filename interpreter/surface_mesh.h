@@ -35,8 +35,11 @@ struct SurfaceAppearance {
 };
 
 // Tessellates every Bézier patch into sPrecision × tPrecision quads (two triangles each) in the
-// mesh of its colour; normals from the patch derivatives. Returns the number of triangles.
+// mesh of its colour; normals from the patch derivatives. Where `organs` sets any organ's
+// attributes, each patch is also recorded in Scene::organSurfaces with its (u, v). Returns the
+// number of triangles.
 std::size_t appendSurface(Scene& scene, const Surface& surface, const SurfacePlacement& placement,
-                          const SurfaceAppearance& appearance);
+                          const SurfaceAppearance& appearance,
+                          const OrganAttributeIndices& organs = {});
 
 }  // namespace hirsute

@@ -646,6 +646,7 @@ void Turtle::closePolygon() {
   // Filled with the colour current at `}` (manual §6.5).
   TriangleMesh& mesh = scene_->meshFor(material(state_.color));
   const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  const auto firstIndex = static_cast<std::uint32_t>(mesh.indices.size());
   for (const glm::dvec3& v : polygon.vertices) {
     mesh.positions.push_back(glm::vec3(v));
     mesh.normals.push_back(glm::vec3(triangulation.normal));
@@ -654,6 +655,17 @@ void Turtle::closePolygon() {
     mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[1], base + t[2]});
   }
   counts_.polygonTriangles += triangulation.triangles.size();
+  if (!(state_.organs == OrganAttributeIndices{})) {
+    OrganSurface record;
+    record.kind = OrganSurfaceKind::Polygon;
+    record.mesh = static_cast<int>(&mesh - scene_->meshes.data());
+    record.firstVertex = base;
+    record.firstIndex = firstIndex;
+    record.indexCount = static_cast<std::uint32_t>(mesh.indices.size()) - firstIndex;
+    record.uv = polygonPlaneCoordinates(polygon.vertices, triangulation.normal);
+    record.organs = state_.organs;
+    scene_->organSurfaces.push_back(std::move(record));
+  }
 }
 
 void Turtle::drawSurface(char id, const float* p, std::size_t count) {
@@ -691,7 +703,8 @@ void Turtle::drawSurface(char id, const float* p, std::size_t count) {
                                      declarations[static_cast<std::size_t>(texture - 1)].perSurface;
     }
     ++counts_.surfaces;
-    counts_.surfaceTriangles += appendSurface(*scene_, surface, placement, appearance);
+    counts_.surfaceTriangles +=
+        appendSurface(*scene_, surface, placement, appearance, state_.organs);
   }
   // The turtle goes on from the surface's END POINT.
   state_.position = placeSurfacePoint(surface, placement, surface.endPoint);

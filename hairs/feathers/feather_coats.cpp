@@ -33,7 +33,7 @@ struct CoatPlacer {
   // Where each coat feather lies along the body, in the direction it points: the drawing order.
   std::vector<float> order;
 
-  void segment(std::size_t index, const SurfaceSampler& sampler);
+  void segment(std::size_t index, SurfaceSampler& sampler);
 };
 
 // The key feather's two types and its blend at girth position s (@Fk(k1, k2, fun)).
@@ -129,7 +129,7 @@ class SideCoat : public AttachmentVisitor {
   float maxDensity_;
 };
 
-void CoatPlacer::segment(std::size_t index, const SurfaceSampler& sampler) {
+void CoatPlacer::segment(std::size_t index, SurfaceSampler& sampler) {
   const CylinderSegment& seg = scene.cylinderSegments[index];
   static const FeatherAttributes kNone{};
   auto attributesAt = [&](int i) -> const FeatherAttributes& {
@@ -192,10 +192,9 @@ FeatherCoatReport placeFeatherCoats(Scene& scene, const FeatherCoatSettings& set
   for (const FeatherAttributes& a : scene.featherAttributes) any = any || a.anyEnabled();
   if (!any) return {};
   const int hexColumns = 26, hexRows = 30;
-  const SurfaceSampler sampler =
-      settings.layout == FollicleLayout::Hexagonal
-          ? SurfaceSampler(hexagonalFollicles(hexColumns, hexRows), hexRows)
-          : SurfaceSampler(PointDiffusionTexture::generate(settings.texture));
+  SurfaceSampler sampler = settings.layout == FollicleLayout::Hexagonal
+                               ? SurfaceSampler(hexagonalFollicles(hexColumns, hexRows), hexRows)
+                               : SurfaceSampler(PointDiffusionTexture::generate(settings.texture));
   CoatPlacer placer{scene, settings, {}, {}};
   const std::size_t first = scene.feathers.size();
   for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) placer.segment(i, sampler);

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "hirsute/hairs/placement/corner_frame.h"
+#include "hirsute/hairs/placement/patch_unfolding.h"
 #include "hirsute/hairs/placement/segment_unfolding.h"
 #include "hirsute/hairs/placement/segment_values.h"
 #include "hirsute/hairs/placement/surface_sampler.h"
@@ -68,7 +69,7 @@ class SideValues : public SegmentValues<HairSideAttributes> {
 struct Placer {
   Scene& scene;
   const HairPlacementSettings& settings;
-  const SurfaceSampler& sampler;
+  SurfaceSampler& sampler;
   int templates = 1;
   HairPlacementReport report;
 
@@ -135,7 +136,14 @@ struct Placer {
     ++report.hairs;
   }
 
+  const HairAttributes& attributesAt(int i) const {
+    static const HairAttributes kNone{};
+    return i >= 0 && static_cast<std::size_t>(i) < scene.hairAttributes.size()
+               ? scene.hairAttributes[static_cast<std::size_t>(i)]
+               : kNone;
+  }
   void segment(std::size_t index);
+  void surface(std::size_t index);
 };
 
 // The hairs of one side of a segment at the engine's attachment points: Sec. 4.4's corner angles
@@ -183,12 +191,6 @@ class SideHairs : public AttachmentVisitor {
 void Placer::segment(std::size_t index) {
   const CylinderSegment& seg = scene.cylinderSegments[index];
   if (seg.organEnd.hair < 0 && seg.organStart.hair < 0) return;
-  static const HairAttributes kNone{};
-  auto attributesAt = [&](int i) -> const HairAttributes& {
-    return i >= 0 && static_cast<std::size_t>(i) < scene.hairAttributes.size()
-               ? scene.hairAttributes[static_cast<std::size_t>(i)]
-               : kNone;
-  };
   const HairAttributes& end = attributesAt(seg.organEnd.hair);
   const HairAttributes& start = settings.interpolation ? attributesAt(seg.organStart.hair) : end;
   // Closed cylinders expose only their front (Sec. 2).
@@ -230,6 +232,28 @@ void Placer::segment(std::size_t index) {
   }
 }
 
+// A `~` surface patch or a polygon: its front and back in its own (u, v), with the attributes in
+// force where it was drawn (one record: nothing to interpolate). Edges are the cylinders' only.
+void Placer::surface(std::size_t index) {
+  const OrganSurface& record = scene.organSurfaces[index];
+  if (record.organs.hair < 0 || record.mesh < 0 || record.indexCount < 3) return;
+  const HairAttributes& attributes = attributesAt(record.organs.hair);
+  const bool front = attributes.side(HairSide::Front).enabled;
+  const bool back = attributes.side(HairSide::Back).enabled;
+  if (!front && !back) return;
+  ++report.surfaces;
+  const PatchUnfolding unfolding(record, scene.meshes[static_cast<std::size_t>(record.mesh)]);
+  for (HairSide side : {HairSide::Front, HairSide::Back}) {
+    if (side == HairSide::Front ? !front : !back) continue;
+    const SideValues values(attributes.side(side), attributes.side(side), settings.function);
+    SideHairs hairs(*this, values, side);
+    const std::uint64_t sideKey = placementKey(
+        settings.seed, placementKey(0x7375726661636500u + index, static_cast<std::uint64_t>(side)));
+    sampler.samplePatch(unfolding, side == HairSide::Back ? SurfaceFace::Back : SurfaceFace::Front,
+                        hairs.maxDensity(), sideKey, hairs);
+  }
+}
+
 // The expected number of hairs, to reserve the vector once (bytes per hair stay near 32).
 std::size_t expectedHairs(const Scene& scene) {
   double total = 0;
@@ -250,6 +274,24 @@ std::size_t expectedHairs(const Scene& scene) {
     const HairSideAttributes& e = a.side(HairSide::Edge);
     if (e.enabled && !seg.closed) add(2.0 * std::sqrt(std::abs(e.density.value)) * seg.axisLength);
   }
+  for (const OrganSurface& record : scene.organSurfaces) {
+    const int index = record.organs.hair;
+    if (index < 0 || static_cast<std::size_t>(index) >= scene.hairAttributes.size()) continue;
+    const HairAttributes& a = scene.hairAttributes[static_cast<std::size_t>(index)];
+    const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(record.mesh)];
+    double area = 0;
+    for (std::uint32_t i = record.firstIndex; i + 2 < record.firstIndex + record.indexCount;
+         i += 3) {
+      const glm::vec3 p = mesh.positions[mesh.indices[i]];
+      area += 0.5 * glm::length(glm::cross(mesh.positions[mesh.indices[i + 1]] - p,
+                                           mesh.positions[mesh.indices[i + 2]] - p));
+    }
+    for (HairSide side : {HairSide::Front, HairSide::Back}) {
+      const HairSideAttributes& s = a.side(side);
+      if (s.enabled && std::isfinite(s.density.value * area))
+        total += std::abs(s.density.value) * area;
+    }
+  }
   return static_cast<std::size_t>(std::min(total * 1.02 + 64.0, 1e9));
 }
 
@@ -266,12 +308,13 @@ HairTemplate straightHairTemplate() {
 
 HairPlacementReport placeHairs(Scene& scene, const HairPlacementSettings& settings) {
   if (scene.hairTemplates.empty()) scene.hairTemplates.push_back(straightHairTemplate());
-  const SurfaceSampler sampler(PointDiffusionTexture::generate(settings.texture));
+  SurfaceSampler sampler(PointDiffusionTexture::generate(settings.texture));
   Placer placer{scene, settings, sampler, 0, {}};
   placer.templates =
       static_cast<int>(std::min<std::size_t>(scene.hairTemplates.size(), kMaxHairTemplates));
   scene.hairs.reserve(scene.hairs.size() + std::min(expectedHairs(scene), settings.maxHairs));
   for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) placer.segment(i);
+  for (std::size_t i = 0; i < scene.organSurfaces.size(); ++i) placer.surface(i);
   return placer.report;
 }
 

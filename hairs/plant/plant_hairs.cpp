@@ -19,6 +19,13 @@ bool hasHairs(const Scene& scene) {
       }
     }
   }
+  for (const OrganSurface& surface : scene.organSurfaces) {
+    const int index = surface.organs.hair;
+    if (index >= 0 && static_cast<std::size_t>(index) < scene.hairAttributes.size() &&
+        scene.hairAttributes[static_cast<std::size_t>(index)].anyEnabled()) {
+      return true;
+    }
+  }
   return false;
 }
 

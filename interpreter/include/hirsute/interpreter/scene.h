@@ -126,6 +126,27 @@ struct CylinderSegment {
   OrganAttributeIndices organStart, organEnd;
 };
 
+// A `~` surface patch or a `{ }` polygon as organs see it (DESIGN.md, "Organs": plant hairs and
+// fur grow on bicubic surfaces and polygons in their own (u, v)): its triangles, a range of one
+// mesh, the (u, v) of each of its vertices, and the organ attributes in force where the turtle
+// drew it. The turtle records one only where some organ's attributes are set.
+enum class OrganSurfaceKind : std::uint8_t {
+  BicubicPatch,  // (u, v): the Bézier patch's parameters in [0, 1]², u along a row of control
+                 // points, v across the rows (surface_mesh.h)
+  Polygon,       // (u, v): world distances in the polygon's plane from its first vertex, u
+                 // along its first edge, v = n × u (n its Newell normal, the front)
+};
+
+struct OrganSurface {
+  OrganSurfaceKind kind = OrganSurfaceKind::Polygon;
+  int mesh = -1;                  // the TriangleMesh holding its triangles
+  std::uint32_t firstVertex = 0;  // its vertices, [firstVertex, firstVertex + uv.size())
+  std::uint32_t firstIndex = 0;   // its triangle indices, [firstIndex, firstIndex + indexCount)
+  std::uint32_t indexCount = 0;
+  std::vector<glm::vec2> uv;  // one per vertex
+  OrganAttributeIndices organs;
+};
+
 // A template hair (DESIGN.md, "Template hairs"): the turtle positions of a small L-system,
 // stored once, in the hair's own frame: x along its first segment (the hair direction), y the
 // second axis (the turtle's initial left, made orthogonal), z = x × y. The root is the origin.
@@ -236,6 +257,7 @@ class Scene {
   std::vector<Disc> discs;
   std::vector<Label> labels;
   std::vector<CylinderSegment> cylinderSegments;
+  std::vector<OrganSurface> organSurfaces;  // surfaces and polygons with organ attributes
   std::vector<Texture> textures;
   // Plant hairs (hairs/): the attribute sets segments refer to, the templates, the placed hairs.
   std::vector<HairAttributes> hairAttributes;

@@ -8,12 +8,16 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
+#include <map>
+#include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
-#include <glm/glm.hpp>
-
 #include "hirsute/hairs/placement/corner_frame.h"
+#include "hirsute/hairs/placement/diffusion_strip.h"
+#include "hirsute/hairs/placement/patch_unfolding.h"
 #include "hirsute/hairs/placement/placement_random.h"
 #include "hirsute/hairs/placement/point_diffusion.h"
 #include "hirsute/hairs/placement/segment_unfolding.h"
@@ -32,7 +36,8 @@ struct CornerAngles {
 struct AttachmentPoint {
   float s = 0;           // girth position in [0, 1) (0 or 1 on the edges of open contours)
   float tau = 0;         // fraction along the segment: the attributes' interpolation parameter
-  float girthRatio = 1;  // the girth here over the widest: a closed tile is stretched around it
+  float girthRatio = 1;  // where a tile is stretched: the girth (or a surface's area ratio) here
+                         // over the largest
   bool edge = false;     // on an edge of an open contour (placed per unit length)
   PlacementRandom random{0};  // this point's numbers, keyed by the seed and the point
 };
@@ -68,20 +73,34 @@ enum class SurfaceFace { Front, Back };
 
 class SurfaceSampler {
  public:
-  // Tiles the texture's points.
+  // The texture's points, tiled over open contours; along closed tubes its diffusion is
+  // generated for the girth instead (diffusion_strip.h), with the texture's fill and seed.
   explicit SurfaceSampler(const PointDiffusionTexture& texture);
   // Tiles any pattern of points in the unit tile, in scan-line order over `rows` rows (a point's
-  // row is TexturePoint::row).
+  // row is TexturePoint::row), on closed contours too (stretched to a whole number of tiles
+  // around the girth).
   SurfaceSampler(std::vector<TexturePoint> points, int rows);
+  ~SurfaceSampler();
+  SurfaceSampler(SurfaceSampler&&) noexcept;
 
   std::size_t tilePoints() const { return points_.size(); }
 
-  // Sec. 3.1 and Figure 2: the tile over the unfolded segment in scan-line order; a tile with K
-  // points covers K / maxDensity units of area. Around a closed contour a whole number of tiles
-  // fits, so the pattern wraps without a seam. Every point gets the numbers of
-  // placementKey(key, the point).
+  // Sec. 3.1 and Figure 2: the pattern over the unfolded segment in scan-line order, at
+  // maxDensity points per unit area. On an open contour the tile, a tile with K points covering
+  // K / maxDensity units of area. On a closed contour a diffusion strip along the tube (the
+  // sampler remembers it: the next segment of the tube, sampled next for the same face, continues
+  // it without a seam); with a pattern of its own, a whole number of tiles around the girth.
+  // Every point gets the numbers of placementKey(key, the point).
   void sampleSurface(const SegmentUnfolding& unfolding, SurfaceFace face, float maxDensity,
-                     std::uint64_t key, AttachmentVisitor& visitor) const;
+                     std::uint64_t key, AttachmentVisitor& visitor);
+
+  // Surfaces and polygons in their own (u, v) (patch_unfolding.h): the tile over the plane (U, V)
+  // in scan-line order, a tile with K points covering K / (maxDensity · the largest area ratio)
+  // of it, each point kept in the triangle it falls in. The organ thins where a triangle's area
+  // ratio is below the largest (AttachmentPoint::girthRatio); on a polygon every ratio is 1.
+  // The corner frames are the vertex normals with V's direction as the height vector h.
+  void samplePatch(const PatchUnfolding& unfolding, SurfaceFace face, float maxDensity,
+                   std::uint64_t key, AttachmentVisitor& visitor) const;
 
   // Sec. 3.2: points along edge `which` (0: the contour's first point, 1: its last) of an open
   // segment, √maxDensity per unit length, spaced evenly with a jitter and counted in arc length
@@ -91,9 +110,19 @@ class SurfaceSampler {
                          std::uint64_t key, AttachmentVisitor& visitor);
 
  private:
+  class Faces;
+  struct OpenStrip;
+  void sampleAlongTube(const SegmentUnfolding& unfolding, const Faces& faces, SurfaceFace face,
+                       float maxDensity, std::uint64_t key, AttachmentVisitor& visitor);
+  void sampleTiles(const SegmentUnfolding& unfolding, const Faces& faces, SurfaceFace face,
+                   float maxDensity, std::uint64_t key, AttachmentVisitor& visitor) const;
+
   std::vector<TexturePoint> points_;
   int rows_ = 0;
   std::vector<std::uint32_t> rowStart_;  // points of row r: [rowStart_[r], rowStart_[r+1])
+  double stripFill_ = 0;                 // 0: no strips (a pattern of the caller's)
+  std::uint64_t stripSeed_ = 0;
+  std::map<std::pair<int, int>, std::unique_ptr<OpenStrip>> strips_;  // by tube and face
 };
 
 }  // namespace hirsute

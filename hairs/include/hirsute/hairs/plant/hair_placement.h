@@ -1,7 +1,7 @@
-// Placing plant hairs on generalized-cylinder segments (Fuhrer, Jensen & Prusinkiewicz 2004,
-// Sec. 3 and 4; DESIGN.md, "Plant hairs") at the attachment points of the shared placement engine
-// (hairs/placement/surface_sampler.h). Reads the Scene's cylinder segments, their hair attributes
-// and the templates; appends to Scene::hairs.
+// Placing plant hairs on generalized-cylinder segments, `~` surfaces and polygons (Fuhrer, Jensen
+// & Prusinkiewicz 2004, Sec. 3 and 4; DESIGN.md, "Plant hairs") at the attachment points of the
+// shared placement engine (hairs/placement/surface_sampler.h). Reads the Scene's cylinder
+// segments and organ surfaces, their hair attributes and the templates; appends to Scene::hairs.
 #pragma once
 
 #include <cstddef>
@@ -33,6 +33,7 @@ struct HairPlacementReport {
   std::size_t hairs = 0;                // placed by this call
   std::size_t segments = 0;             // segments that carried hairs
   std::size_t segmentsWithoutMesh = 0;  // hairy segments not drawn as triangles (line styles)
+  std::size_t surfaces = 0;             // `~` surface patches and polygons that carried hairs
 };
 
 // Thrown when placement would exceed HairPlacementSettings::maxHairs.
@@ -40,8 +41,9 @@ struct HairLimitError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Places the hairs of every segment whose attributes enable a side. Scene::hairTemplates must
-// hold the templates (a scene without templates gets a single straight template).
+// Places the hairs of every segment, surface patch and polygon whose attributes enable a side.
+// Scene::hairTemplates must hold the templates (a scene without templates gets a single straight
+// template).
 HairPlacementReport placeHairs(Scene& scene, const HairPlacementSettings& settings);
 
 // The template used when the view file declares none: a straight hair of unit length.
