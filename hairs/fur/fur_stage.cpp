@@ -85,9 +85,29 @@ void appendSegment(const Scene& scene, const CylinderSegment& segment, SurfaceBu
   }
 }
 
+// Whether (u, v, normal) is right-handed over most of the surface's area: u along +dP/du, v
+// along +dP/dv and the fur on the side of dP/du × dP/dv, so that a word written into the wetness
+// mask reads the right way round from the fur's side.
+bool rightHanded(const FurSurface& s, const std::vector<float>& axisDistance) {
+  double sum = 0;
+  for (std::size_t t = 0; t + 2 < s.indices.size(); t += 3) {
+    const std::uint32_t a = s.indices[t], b = s.indices[t + 1], c = s.indices[t + 2];
+    const glm::vec2 d1(s.uv[b].x - s.uv[a].x, axisDistance[b] - axisDistance[a]);
+    const glm::vec2 d2(s.uv[c].x - s.uv[a].x, axisDistance[c] - axisDistance[a]);
+    // Counter-clockwise seen from the fur: the (u, v) triangle turns the same way when the
+    // frame is right-handed.
+    sum += static_cast<double>(d1.x * d2.y - d1.y * d2.x);
+  }
+  return sum >= 0;
+}
+
 void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const ViewSettings& view,
                    int textureIndex, Scene& scene) {
   FurSurface& s = b.surface;
+  if (!rightHanded(s, b.axisDistance)) {
+    for (glm::vec2& uv : s.uv) uv.x = 1 - uv.x;
+    for (glm::vec3& t : s.tangents) t = -t;
+  }
   const auto [lowest, highest] = std::minmax_element(b.axisDistance.begin(), b.axisDistance.end());
   const float start = *lowest, span = std::max(*highest - *lowest, 1e-12f);
   // One tile of the fur texture is size / texelsPerLength fur lengths wide; around the girth

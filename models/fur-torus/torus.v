@@ -8,7 +8,7 @@ view reference point: 0,0,0
 scale factor: 0.92
 z buffer: on
 render mode: shaded
-light: V: 0.5,0.4,1 D: 1,1,1
+light direction: 0.5,0.4,1
 
 fur layers: 16
-fur texture: 256 7
+fur texture: 256 7 14
