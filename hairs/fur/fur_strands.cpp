@@ -80,11 +80,15 @@ void forEachStrand(const Scene& scene, const FurSurface& surface, const ViewSett
     glm::vec3 u = mix3(surface.tangents);
     u = glm::normalize(u - glm::dot(u, normal) * normal);
     const glm::vec3 v = glm::cross(normal, u);
-    glm::vec3 tipOffset = w.x * (surface.tips[tri[0]] - surface.positions[tri[0]]) +
-                          w.y * (surface.tips[tri[1]] - surface.positions[tri[1]]) +
-                          w.z * (surface.tips[tri[2]] - surface.positions[tri[2]]);
+    // The particles' displacements from their rest tips, interpolated: a strand at rest stays
+    // at its own p_0 however the normals turn across the triangle.
+    glm::vec3 moved(0.0f);
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t at = tri[static_cast<std::size_t>(k)];
+      moved += w[k] * (surface.tips[at] - (surface.positions[at] + fur.length * surface.normals[at]));
+    }
     const StrandRoot strand{root, normal, fur.length};
-    const glm::vec3 tip = constrainTip(strand, root + tipOffset);
+    const glm::vec3 tip = constrainTip(strand, strand.restTip() + moved);
     // The (u, v) at the root, and the world motion per unit of (u, v) over the triangle.
     const glm::vec2 uv = w.x * surface.uv[tri[0]] + w.y * surface.uv[tri[1]] + w.z * surface.uv[tri[2]];
     const glm::vec2 du1 = parameterDifference(surface, surface.uv[tri[1]], surface.uv[tri[0]]);
@@ -100,7 +104,10 @@ void forEachStrand(const Scene& scene, const FurSurface& surface, const ViewSett
     const glm::vec4 mask = wetnessAt(surface, uv);
     const float wetness = mask.w;
     const glm::vec2 clumpCentre(mask.x, mask.y);
-    const bool clumped = wetness > 0 && glm::length(parameterDifference(surface, uv, clumpCentre)) <= mask.z;
+    const bool clumped = wetness > 0;
+    // Algorithm 2 discards a wet pixel farther from its clump's centre than the clump's radius
+    // (it belongs to another clump) at every layer: no strand grows there.
+    if (clumped && glm::length(parameterDifference(surface, uv, clumpCentre)) > mask.z) return;
     const float top = static_cast<float>(length) / 255.0f;
     for (int i = 0; i < samples; ++i) {
       const float h = top * static_cast<float>(i) / static_cast<float>(samples - 1);
@@ -115,7 +122,7 @@ void forEachStrand(const Scene& scene, const FurSurface& surface, const ViewSett
       }
       points[static_cast<std::size_t>(i)] = p;
     }
-    emit(FurStrandView{points, uv, radius});
+    emit(FurStrandView{points, normal, uv, top, radius});
   });
 }
 

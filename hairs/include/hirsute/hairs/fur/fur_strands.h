@@ -15,11 +15,14 @@
 
 namespace hirsute::fur {
 
-// One strand: its points from the root up, the surface's (u, v) at the root (where its colour
-// comes from) and its radius (half a texel of the fur texture, in world units).
+// One strand: its points from the root up (h evenly from 0 to `reach`, the strand's own length
+// as a fraction of the fur length), the surface's normal and (u, v) at the root (where its
+// colour comes from) and its radius (half a texel of the fur texture, in world units).
 struct FurStrandView {
   std::span<const glm::vec3> points;
-  glm::vec2 uv;
+  glm::vec3 normal{0, 0, 1};
+  glm::vec2 uv{0.0f};
+  float reach = 1;
   float radius = 0;
 };
 
