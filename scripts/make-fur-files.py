@@ -58,6 +58,10 @@ def droplets(word, left, bottom, height, spacing, radius, wetness):
 def main():
     write_map(ROOT / "models/fur-torus/torus.map", (235, 235, 228), (150, 98, 52))
     write_map(ROOT / "models/fur-square/square.map", (232, 234, 236), (196, 150, 96))
+    write_map(ROOT / "models/fur-curls/curls.map", (236, 236, 232), (178, 142, 104))
+    # Silver-grey catkin fur, the reddish-brown twig.
+    write_map(ROOT / "models/pussy-willow/pussy-willow.map", (226, 232, 238), (196, 194, 190),
+              (112, 52, 38))
     word = ROOT / "models/fur-square/word.v"
     text = ["/* The furry square with a word written in its wetness mask (Silva et al. 2010, Fig. 12):",
             "   droplets along the strokes of the letters, written by scripts/make-fur-files.py. */",

@@ -125,6 +125,8 @@ void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const ViewSettin
     const fur::StrandRoot strand{s.positions[i], s.normals[i], fur.length};
     s.tips[i] = fur::restingTip(strand, fur.stiffness, fur.mass, view.furForce);
   }
+  s.layers = view.furLayers;
+  s.strandRadius = 0.5f * tile / static_cast<float>(view.furTextureSize);
   fur::clearWetness(s, view.wetnessMaskSize);
   s.furTexture = textureIndex;
   scene.furSurfaces.push_back(std::move(s));

@@ -74,4 +74,13 @@ glm::vec2 clumpedPosition(const glm::vec2& root, const glm::vec2& centre, float 
   return centre + (root - centre) / (1 + scale);
 }
 
+glm::vec3 furShade(const glm::vec3& colour, const glm::vec3& t, const glm::vec3& l,
+                   const glm::vec3& e, float specular, float phong, float kShadow, float h) {
+  const float tl = glm::dot(t, l), te = glm::dot(t, e);
+  const float sl = std::sqrt(std::max(0.0f, 1 - tl * tl)), se = std::sqrt(std::max(0.0f, 1 - te * te));
+  const glm::vec3 diffuse = colour * sl;
+  const float highlight = specular * std::pow(std::max(0.0f, tl * te + sl * se), phong);
+  return shadowFactor(h, kShadow) * (diffuse + glm::vec3(highlight));
+}
+
 }  // namespace hirsute::fur

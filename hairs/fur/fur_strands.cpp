@@ -62,13 +62,13 @@ std::size_t countStrands(const Scene& scene, const FurSurface& surface) {
   return n;
 }
 
-void forEachStrand(const Scene& scene, const FurSurface& surface, const ViewSettings& view,
-                   int samples, const std::function<void(const FurStrandView&)>& emit) {
+void forEachStrand(const Scene& scene, const FurSurface& surface, int samples,
+                   const std::function<void(const FurStrandView&)>& emit) {
   if (surface.attributes < 0) return;
   const FurAttributes& fur = scene.furAttributes[static_cast<std::size_t>(surface.attributes)];
   samples = std::max(2, samples);
-  const int layers = view.furLayers;
-  const float radius = 0.5f * fur.length / view.furTexelsPerLength;
+  const int layers = surface.layers;
+  const float radius = surface.strandRadius;
   std::vector<glm::vec3> points(static_cast<std::size_t>(samples));
   visitTexels(scene, surface, [&](const std::array<std::uint32_t, 3>& tri, const glm::vec3& w,
                                   std::uint8_t length) {

@@ -587,12 +587,7 @@ void GlRenderer::draw(const Camera& camera) {
   if (hairsVisible_) r.hairs->draw(camera, hairFraction_);
   // Feather shafts and fur take the light the surfaces have: the eye's, the first light's, or
   // the colour map's light direction.
-  glm::vec3 light = -camera.forward;
-  if (r.lighting.colorMap) {
-    light = r.lighting.colorMapLight;
-  } else if (!r.lighting.headlight && !r.lighting.lights.empty()) {
-    light = r.lighting.lights.front().vector;
-  }
+  const glm::vec3 light = organLight(r.lighting, -camera.forward);
   if (feathersVisible_) r.feathers->draw(camera, light);
   if (furVisible_) r.fur->draw(camera, light);
 

@@ -101,7 +101,7 @@ TEST(FurStage, ExportedStrandCountIsTheFillTimesTheArea) {
   const std::size_t strands = fur::countStrands(b.scene, s);
   EXPECT_NEAR(static_cast<double>(strands), expected, 0.03 * expected);
   std::size_t emitted = 0;
-  fur::forEachStrand(b.scene, s, b.resources.view, 4, [&](const fur::FurStrandView& strand) {
+  fur::forEachStrand(b.scene, s, 4, [&](const fur::FurStrandView& strand) {
     ++emitted;
     EXPECT_EQ(strand.points.size(), 4u);
     EXPECT_NEAR(strand.radius, 0.5 * texel, 1e-6);
@@ -131,7 +131,7 @@ TEST(FurStage, CurlOfExportedStrandsHasItsRadiusAndFrequency) {
   fur.curlFrequency = static_cast<float>(4 * kPi);  // two turns over the length
   const int samples = 41;
   std::size_t measured = 0;
-  fur::forEachStrand(b.scene, b.scene.furSurfaces[0], b.resources.view, samples,
+  fur::forEachStrand(b.scene, b.scene.furSurfaces[0], samples,
                      [&](const fur::FurStrandView& strand) {
     if (measured++ >= 300) return;
     const std::vector<glm::dvec3> side = across(strand);
@@ -164,7 +164,7 @@ TEST(FurStage, WetStrandsDoNotCurlAndLeanTowardsTheirClump) {
   fur::blendDroplet(s, glm::vec2(0.5f, 0.5f), 0.1f, 1.0f);
   const int samples = 17;
   std::size_t wet = 0, dry = 0;
-  fur::forEachStrand(b.scene, s, b.resources.view, samples, [&](const fur::FurStrandView& strand) {
+  fur::forEachStrand(b.scene, s, samples, [&](const fur::FurStrandView& strand) {
     const glm::vec4 mask = fur::wetnessAt(s, strand.uv);
     const std::vector<glm::dvec3> side = across(strand);
     if (mask.w == 0) {

@@ -216,6 +216,8 @@ struct FurSurface {
   bool wrapsU = false;  // a closed cylinder: u = 0 and u = 1 are one line of the surface
   float area = 0;       // world units²
   int furTexture = 0;   // index into Scene::furTextures
+  int layers = 16;      // N, the view file's `fur layers:`
+  float strandRadius = 0;  // half a texel of the fur texture, world units
   // The strands' particles p (Sec. 3.2.1), one per vertex: where the tip of the strand rooted
   // there is (at rest p_0 = position + length · normal). The fur stage leaves them at rest under
   // the view file's force; the viewer steps them.

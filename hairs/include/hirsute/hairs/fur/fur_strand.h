@@ -69,6 +69,11 @@ float clumpScale(float h, float w, int layers, float wetness, float radius);
 // from `root` is seen at centre + (root - centre) / (1 + clumpScale).
 glm::vec2 clumpedPosition(const glm::vec2& root, const glm::vec2& centre, float scale);
 
+// Kajiya-Kay shading of Eq. 6 times the shadow factor: the colour at height h of a strand with
+// unit tangent t, lit from unit direction l, seen from unit direction e (both towards them).
+glm::vec3 furShade(const glm::vec3& colour, const glm::vec3& t, const glm::vec3& l,
+                   const glm::vec3& e, float specular, float phong, float kShadow, float h);
+
 // The shadow factor gamma = (K_shadow - 1 + h) / K_shadow of Sec. 4.
 inline float shadowFactor(float h, float kShadow) { return (kShadow - 1 + h) / kShadow; }
 

@@ -11,7 +11,6 @@
 #include <glm/glm.hpp>
 
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/interpreter/view_settings.h"
 
 namespace hirsute::fur {
 
@@ -27,9 +26,9 @@ struct FurStrandView {
 };
 
 // Calls `emit` for every strand of `surface`, each with `samples` points (at least 2), evenly
-// spaced in h from the root to the strand's own length. `layers` is N of Eq. 5.
-void forEachStrand(const Scene& scene, const FurSurface& surface, const ViewSettings& view,
-                   int samples, const std::function<void(const FurStrandView&)>& emit);
+// spaced in h from the root to the strand's own length.
+void forEachStrand(const Scene& scene, const FurSurface& surface, int samples,
+                   const std::function<void(const FurStrandView&)>& emit);
 
 // The strands forEachStrand makes, without making them.
 std::size_t countStrands(const Scene& scene, const FurSurface& surface);
