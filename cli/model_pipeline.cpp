@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "hirsute/hairs/feathers/feather_stage.h"
+#include "hirsute/hairs/fur/fur_stage.h"
 #include "hirsute/hairs/plant/plant_hairs.h"
 
 #include "hirsute/interpreter/turtle.h"
@@ -45,6 +46,15 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   command.add_option("--max-hairs", o.maxHairs, "More hairs are an error (default 50000000)");
   command.add_flag("!--no-feathers", o.feathers, "Leave out the feathers (@F modules)");
   command.add_option("--max-feathers", o.maxFeathers, "More coat feathers are an error (default 1000000)");
+  command.add_flag("!--no-fur", o.fur, "Leave out the fur (@U modules)");
+  command.add_option("--droplets", o.droplets, "Random droplets of water on the fur (docs/fur.md)")
+      ->check(CLI::Range(0, 10'000'000));
+  command.add_option("--droplet-radius", o.dropletRadius,
+                     "Radius of the random droplets, in the fur surface's [0, 1] units (default 0.05)")
+      ->check(CLI::Range(1e-6, 1.0));
+  command.add_option("--droplet-wetness", o.dropletWetness, "Wetness of the random droplets, 0 to 1 (default 1)")
+      ->check(CLI::Range(0.0, 1.0));
+  command.add_option("--droplet-seed", o.dropletSeed, "Seed of the random droplets (default 1)");
   command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");
 }
 
@@ -143,6 +153,20 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     }
   } else {
     built.scene.feathers.clear();
+  }
+  if (o.fur && hasFur(built.scene)) {
+    started = Clock::now();
+    FurStageOptions furOptions;
+    furOptions.droplets = o.droplets;
+    furOptions.dropletRadius = o.dropletRadius;
+    furOptions.dropletWetness = o.dropletWetness;
+    furOptions.dropletSeed = o.dropletSeed;
+    const FurStageReport report = growFur(built.scene, built.resources, furOptions, diagnostics);
+    if (o.verbose) {
+      std::cerr << fmt::format("fur: {} surfaces, {} triangles, {:.4g} units², {} droplets in {:.3f} s\n",
+                               report.surfaces, report.triangles, report.area, report.droplets,
+                               seconds(started));
+    }
   }
   return built;
 }

@@ -30,6 +30,11 @@ struct ModelOptions {
   std::size_t maxHairs = 50'000'000;
   bool feathers = true;                  // --no-feathers leaves them out
   std::size_t maxFeathers = 1'000'000;
+  bool fur = true;                       // --no-fur leaves it out
+  std::size_t droplets = 0;              // --droplets N: random droplets on the fur
+  float dropletRadius = 0.05f;           // --droplet-radius
+  float dropletWetness = 1.0f;           // --droplet-wetness
+  std::uint32_t dropletSeed = 1;         // --droplet-seed
   bool verbose = false;                  // -v: counts and times on stderr
   // Called as the build goes on (`hirsute view` shows it while building off its render thread):
   // the stage (1 deriving, 2 interpreting, 3 placing hairs, 4 feathers) and, while deriving, the steps done

@@ -12,9 +12,10 @@ namespace hirsute {
 
 std::span<const OrganModuleTable* const> organModuleTables() {
   // One line per organ.
-  static const std::array<const OrganModuleTable*, 2> tables{
+  static const std::array<const OrganModuleTable*, 3> tables{
       &hairModuleTable(),
       &featherModuleTable(),
+      &furModuleTable(),
   };
   return tables;
 }

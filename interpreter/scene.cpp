@@ -38,6 +38,14 @@ Bounds Scene::bounds() const {
     b.add(h.root + glm::vec3(reach));
   }
   b.add(featherBounds);
+  for (const FurSurface& fur : furSurfaces) {
+    const float length =
+        fur.attributes >= 0 ? furAttributes[static_cast<std::size_t>(fur.attributes)].length : 0.0f;
+    for (const glm::vec3& p : fur.positions) {
+      b.add(p - glm::vec3(length));
+      b.add(p + glm::vec3(length));
+    }
+  }
   return b;
 }
 
@@ -68,6 +76,9 @@ void Scene::clear() {
   featherAttributes.clear();
   feathers.clear();
   featherBounds = Bounds{};
+  furAttributes.clear();
+  furSurfaces.clear();
+  furTextures.clear();
   meshIndex_.clear();
 }
 

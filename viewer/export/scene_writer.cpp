@@ -16,6 +16,7 @@ void printScene(const Scene& scene, ScenePrinter& printer) {
   for (const Label& label : scene.labels) printer.label(label);
   if (!scene.hairs.empty()) printer.hairs(scene.hairTemplates, scene.hairs);
   if (!scene.feathers.empty()) printer.feathers(scene);
+  if (!scene.furSurfaces.empty()) printer.fur(scene);
   printer.endScene();
 }
 

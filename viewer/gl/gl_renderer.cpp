@@ -14,6 +14,7 @@
 #include <string>
 
 #include "feather_drawing.h"
+#include "fur_drawing.h"
 #include "gl_objects.h"
 #include "gl_shaders.h"
 #include "hair_drawing.h"
@@ -54,6 +55,7 @@ struct GlRenderer::Resources {
   Program thinLineProgram, wideLineProgram;
   std::unique_ptr<HairDrawing> hairs;        // hair_drawing.cpp
   std::unique_ptr<FeatherDrawing> feathers;  // feather_drawing.cpp
+  std::unique_ptr<FurDrawing> fur;           // fur_drawing.cpp
   GLuint materialBuffer = 0, materialTexture = 0;
   int materialCount = 0;
   std::vector<Mesh> meshes;
@@ -182,6 +184,7 @@ GlRenderer::GlRenderer(const GlFunctions& gl) : gl_(gl), resources_(std::make_un
                                        {shaders::kVersion, shaders::kLineFragmentMain});
     r.hairs = std::make_unique<HairDrawing>(gl_);
     r.feathers = std::make_unique<FeatherDrawing>(gl_);
+    r.fur = std::make_unique<FurDrawing>(gl_);
     // The other programs are built on first use; building the plainest now finds a context
     // that cannot compile them at once.
     surfaceProgram(static_cast<int>(Geometry::Mesh), 0, false);
@@ -200,6 +203,7 @@ GlRenderer::~GlRenderer() {
   gl_.DeleteProgram(resources_->wideLineProgram.id);
   resources_->hairs.reset();
   resources_->feathers.reset();
+  resources_->fur.reset();
   for (auto& [key, program] : resources_->surfacePrograms) gl_.DeleteProgram(program.id);
 }
 
@@ -241,6 +245,7 @@ void GlRenderer::release() {
   r.lineArray = 0;
   if (r.hairs) r.hairs->release();
   if (r.feathers) r.feathers->release();
+  if (r.fur) r.fur->release();
   for (GLuint* b : {&r.sphereInstances, &r.discInstances, &r.lineBuffer, &r.materialBuffer}) {
     if (*b) gl_.DeleteBuffers(1, b);
     *b = 0;
@@ -410,9 +415,17 @@ void GlRenderer::upload(const Scene& scene, const ViewSettings& view, bool mater
   hairSegments_ = r.hairs->segmentCount();
   r.feathers->upload(scene, r.textures);
   feathers_ = r.feathers->featherCount();
+  r.fur->upload(scene, view, r.textures, palette);
   gl_.BindVertexArray(0);
   checkErrors(gl_, "upload");
 }
+
+void GlRenderer::updateFur(const Scene& scene) {
+  resources_->fur->update(scene);
+  checkErrors(gl_, "fur update");
+}
+
+std::size_t GlRenderer::furSurfaceCount() const { return resources_->fur->surfaceCount(); }
 
 void GlRenderer::useSurfaceProgram(const Program& program, const Camera& camera) {
   const Resources& r = *resources_;
@@ -572,17 +585,11 @@ void GlRenderer::draw(const Camera& camera) {
     gl_.DrawArrays(GL_TRIANGLES, 6 * r.thinLineCount, 6 * r.wideLineCount);
   }
   if (hairsVisible_) r.hairs->draw(camera, hairFraction_);
-  if (feathersVisible_) {
-    // The shafts take the light the surfaces have: the eye's, the first light's, or the colour
-    // map's light direction.
-    glm::vec3 light = -camera.forward;
-    if (r.lighting.colorMap) {
-      light = r.lighting.colorMapLight;
-    } else if (!r.lighting.headlight && !r.lighting.lights.empty()) {
-      light = r.lighting.lights.front().vector;
-    }
-    r.feathers->draw(camera, light);
-  }
+  // Feather shafts and fur take the light the surfaces have: the eye's, the first light's, or
+  // the colour map's light direction.
+  const glm::vec3 light = organLight(r.lighting, -camera.forward);
+  if (feathersVisible_) r.feathers->draw(camera, light);
+  if (furVisible_) r.fur->draw(camera, light);
 
   if (opaqueEnd != r.meshes.end()) {
     gl_.PolygonMode(GL_FRONT_AND_BACK, meshMode);

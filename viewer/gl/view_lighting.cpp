@@ -34,4 +34,10 @@ glm::vec3 backgroundColor(const Scene& scene, bool materialMode) {
   return materialMode ? m.emission : m.diffuse;
 }
 
+glm::vec3 organLight(const ViewLighting& lighting, const glm::vec3& towardsEye) {
+  if (lighting.colorMap) return lighting.colorMapLight;
+  if (!lighting.headlight && !lighting.lights.empty()) return lighting.lights.front().vector;
+  return towardsEye;
+}
+
 }  // namespace hirsute

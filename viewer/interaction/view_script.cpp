@@ -30,6 +30,8 @@ const std::map<std::string, Signature>& signatures() {
       {"animate", {Kind::Animate, ""}},
       {"hairs", {Kind::Hairs, "w"}},
       {"feathers", {Kind::Feathers, "w"}},
+      {"fur", {Kind::Fur, "w"}},
+      {"droplets", {Kind::Droplets, "n"}},
       {"wireframe", {Kind::Wireframe, "w"}},
       {"define", {Kind::Define, "ww"}},
       {"help", {Kind::Help, "w"}},
@@ -123,7 +125,7 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
         command.words.push_back(t.text);
       }
     }
-    if ((command.kind == Kind::Hairs || command.kind == Kind::Feathers ||
+    if ((command.kind == Kind::Hairs || command.kind == Kind::Feathers || command.kind == Kind::Fur ||
          command.kind == Kind::Wireframe || command.kind == Kind::Help ||
          command.kind == Kind::Panel) &&
         command.words[0] != "on" && command.words[0] != "off") {

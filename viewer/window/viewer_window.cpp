@@ -15,6 +15,9 @@
 #include <iostream>
 #include <sstream>
 
+#include "hirsute/hairs/fur/fur_motion.h"
+#include "hirsute/hairs/fur/fur_stage.h"
+#include "hirsute/hairs/fur/wetness_mask.h"
 #include "hirsute/viewer/gl/camera.h"
 #include "hirsute/viewer/gl/gl_functions.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
@@ -74,6 +77,11 @@ const std::vector<std::pair<std::string, std::string>>& viewerKeyMap() {
       {"R", "reset the view (and fit the plant again)"},
       {"H", "show / hide hairs"},
       {"E", "show / hide feathers"},
+      {"U", "show / hide fur"},
+      {"ctrl + left click", "a droplet of water on the fur where the mouse points"},
+      {"J", "spray 20 droplets at random on the fur"},
+      {"Y", "let the fur dry (wetness fades over 10 s: curls return, clumps open) / stop"},
+      {"G", "a gust of wind through the fur"},
       {"W", "wireframe on / off"},
       {"S", "save a PNG screenshot (MODEL-N.png in the current folder)"},
       {"C", "show / hide the constants panel"},
@@ -156,6 +164,11 @@ class Viewer {
   void onCursor(double x, double y);
   void onScroll(double dy);
 
+  // Fur (docs/fur.md): the shown fur, stepped and wetted here; the renderer uploads it again.
+  void takeFur();
+  bool stepFur();
+  void dropletAtCursor();
+
   const ViewerOptions& options_;
   ModelBuilder builder_;
   GLFWwindow* window_ = nullptr;
@@ -176,6 +189,15 @@ class Viewer {
   int derivationLength_ = 0;
   MouseCamera mouse_;
   bool hairs_ = true, feathers_ = true, wireframe_ = false, help_ = false, panel_ = true;
+
+  // Fur: a copy of the model's fur surfaces that moves, dries and takes droplets.
+  Scene fur_;
+  fur::FurMotion furMotion_;
+  bool furVisible_ = true, drying_ = false, furMoving_ = false;
+  glm::vec3 gust_{0.0f};
+  float gustLeft_ = 0;  // seconds
+  std::uint32_t spraySeed_ = 1;
+  Clock::time_point lastFurStep_ = Clock::now();
 
   // Animation (cpfg-manual §1.3.3, §8.2)
   AnimationSettings animation_;
@@ -326,6 +348,7 @@ void Viewer::applyBuild(ModelBuild build) {
     for (const TextureDeclaration& texture : model_->view.textures) watcher_->watch(texture.file);
   }
   renderer_->upload(model_->scene, model_->view, model_->materialMode);
+  takeFur();
   bool newLength = derivationLength_ != model_->derivationLength;
   derivationLength_ = model_->derivationLength;
   if (newLength || frames_.empty()) frames_ = animationFrames(animation_, derivationLength_);
@@ -446,6 +469,66 @@ void Viewer::advanceAnimation() {
   goTo(frames_[frameIndex_++].step);
 }
 
+// ---- fur ----
+
+void Viewer::takeFur() {
+  Scene previous = std::move(fur_);
+  fur_ = Scene{};
+  fur_.furAttributes = model_->scene.furAttributes;
+  fur_.furSurfaces = model_->scene.furSurfaces;
+  fur_.furTextures = model_->scene.furTextures;
+  // The frame before's particles and wetness carry over (an animation keeps its wet patches
+  // and drags its fur); the renderer gets them at once.
+  furMotion_.reset(fur_, previous.furSurfaces.empty() ? nullptr : &previous);
+  if (!previous.furSurfaces.empty()) renderer_->updateFur(fur_);
+  lastFurStep_ = Clock::now();
+}
+
+bool Viewer::stepFur() {
+  if (fur_.furSurfaces.empty()) return false;
+  const auto now = Clock::now();
+  const float seconds = static_cast<float>(std::chrono::duration<double>(now - lastFurStep_).count());
+  lastFurStep_ = now;
+  const glm::vec3 force = model_->view.furForce + (gustLeft_ > 0 ? gust_ : glm::vec3(0.0f));
+  const bool wasMoving = furMoving_;
+  bool changed = false;
+  if (furMoving_ || gustLeft_ > 0) {
+    furMoving_ = furMotion_.step(fur_, seconds, force) || gustLeft_ > 0;
+    gustLeft_ = std::max(0.0f, gustLeft_ - seconds);
+    changed = true;
+  }
+  if (drying_) {
+    drying_ = fur::dryFur(fur_, 0.1f, seconds);
+    changed = true;
+  }
+  if (changed || wasMoving != furMoving_) renderer_->updateFur(fur_);
+  return changed;
+}
+
+void Viewer::dropletAtCursor() {
+  if (!model_ || fur_.furSurfaces.empty()) return;
+  int w = 1, h = 1;
+  glfwGetWindowSize(window_, &w, &h);
+  const Camera c = camera();
+  const float x = 2.0f * static_cast<float>(cursorX_) / static_cast<float>(std::max(w, 1)) - 1;
+  const float y = 1 - 2.0f * static_cast<float>(cursorY_) / static_cast<float>(std::max(h, 1));
+  glm::vec3 origin, direction;
+  if (c.projection == Projection::Perspective) {
+    const float t = std::tan(glm::radians(c.fieldOfViewY) * 0.5f);
+    const float aspect = static_cast<float>(c.viewport.x) / static_cast<float>(std::max(c.viewport.y, 1));
+    origin = c.eye;
+    direction = glm::normalize(c.forward + x * t * aspect * c.right + y * t * c.up);
+  } else {
+    direction = c.forward;
+    origin = c.eye + x * c.halfWidth * c.right + y * c.halfHeight * c.up;
+  }
+  if (const auto hit = fur::pickFur(fur_, origin, direction)) {
+    fur::blendDroplet(fur_.furSurfaces[hit->surface], hit->uv, 0.05f, 1.0f);
+    renderer_->updateFur(fur_);
+    dirty_ = true;
+  }
+}
+
 // ---- drawing ----
 
 Camera Viewer::camera() const {
@@ -476,6 +559,7 @@ void Viewer::drawScene(bool moving) {
   }
   renderer_->setHairsVisible(hairs_);
   renderer_->setFeathersVisible(feathers_);
+  renderer_->setFurVisible(furVisible_);
   renderer_->setWireframe(wireframe_);
   float fraction = 1;
   std::size_t hairCount = renderer_->hairCount();
@@ -512,6 +596,11 @@ void Viewer::drawUi() {
     }
     if (model_ && renderer_->featherCount() > 0) {
       ImGui::Text("feathers %zu%s", renderer_->featherCount(), feathers_ ? "" : " (hidden)");
+    }
+    if (model_ && !fur_.furSurfaces.empty()) {
+      ImGui::Text("fur: %zu surfaces, %d layers%s%s%s", fur_.furSurfaces.size(),
+                  fur_.furSurfaces.front().layers, furVisible_ ? "" : " (hidden)",
+                  drying_ ? "  drying" : "", furMoving_ ? "  moving" : "");
     }
     // Builds that end within a quarter of a second show no progress (no flicker).
     if (worker_->busy() && worker_->runningSeconds() > 0.25) {
@@ -729,6 +818,14 @@ void Viewer::runScript() {
       case Kind::Feathers:
         feathers_ = c.words[0] == "on";
         break;
+      case Kind::Fur:
+        furVisible_ = c.words[0] == "on";
+        break;
+      case Kind::Droplets:
+        if (sprayDroplets(fur_, static_cast<std::size_t>(std::max(0.0, c.numbers[0])), 0.05f, 1.0f,
+                          spraySeed_++) > 0)
+          renderer_->updateFur(fur_);
+        break;
       case Kind::Wireframe:
         wireframe_ = c.words[0] == "on";
         break;
@@ -812,6 +909,24 @@ void Viewer::onKey(int key, int mods) {
     case GLFW_KEY_E:
       feathers_ = !feathers_;
       break;
+    case GLFW_KEY_U:
+      furVisible_ = !furVisible_;
+      break;
+    case GLFW_KEY_J:
+      if (sprayDroplets(fur_, 20, 0.05f, 1.0f, spraySeed_++) > 0) renderer_->updateFur(fur_);
+      break;
+    case GLFW_KEY_Y:
+      drying_ = !drying_;
+      lastFurStep_ = Clock::now();
+      break;
+    case GLFW_KEY_G: {
+      // A gust across the line of sight, from alternating sides, as strong as a strand's spring.
+      const Camera c = camera();
+      gust_ = (spraySeed_++ % 2 == 0 ? 1.0f : -1.0f) * 60.0f * c.right;
+      gustLeft_ = 0.6f;
+      lastFurStep_ = Clock::now();
+      break;
+    }
     case GLFW_KEY_W:
       wireframe_ = !wireframe_;
       break;
@@ -845,6 +960,11 @@ void Viewer::onButton(int button, int action, int mods) {
   uiFrames_ = 2;
   if (action == GLFW_PRESS) {
     if (ImGui::GetIO().WantCaptureMouse || dragButton_ >= 0) return;
+    if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_CONTROL) != 0) {
+      glfwGetCursorPos(window_, &cursorX_, &cursorY_);
+      dropletAtCursor();
+      return;
+    }
     dragButton_ = button;
     dragShift_ = (mods & GLFW_MOD_SHIFT) != 0;
     glfwGetCursorPos(window_, &cursorX_, &cursorY_);
@@ -920,6 +1040,7 @@ int Viewer::run() {
     if (auto build = worker_->take()) applyBuild(std::move(*build));
     if (watcher_ && watcher_->poll()) reloadFiles();
     advanceAnimation();
+    if (stepFur()) dirty_ = true;
     if (options_.script) runScript();
     if (glfwWindowShouldClose(window_)) break;
 
@@ -935,7 +1056,7 @@ int Viewer::run() {
       if (uiFrames_ > 0) --uiFrames_;
     }
     // Wakes for input, for a finished build (glfwPostEmptyEvent), and to poll the files.
-    glfwWaitEventsTimeout(options_.script || animating_ ? 0.005
+    glfwWaitEventsTimeout(options_.script || animating_ || furMoving_ ? 0.005
                           : isMoving                    ? 0.03
                           : busy                        ? 0.1
                                                         : 0.2);

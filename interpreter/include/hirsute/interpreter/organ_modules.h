@@ -244,5 +244,7 @@ class AttributeModuleTable : public OrganModuleTable {
 const OrganModuleTable& hairModuleTable();
 // The feathers' table (feather_modules.cpp): @Fe @Fi @Ff @Fb @Fd @Fk @Fa @Fs @Fl @Ft.
 const OrganModuleTable& featherModuleTable();
+// Fur's table (fur_modules.cpp): @Uf @Ul @Ud @Uc @Us @Uh @Uw @Ut.
+const OrganModuleTable& furModuleTable();
 
 }  // namespace hirsute

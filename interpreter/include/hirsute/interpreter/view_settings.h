@@ -83,6 +83,21 @@ enum class FollicleLayout { Diffusion, Hexagonal };
 // The most `feather:` lines a view file may have.
 inline constexpr int kMaxFeatherTypes = 1024;
 
+// A `droplet:` line (DESIGN.md, "Fur"): a drop of water blended into the wetness mask of fur
+// surface `surface` (1-based, in the order the fur stage makes them; 0: every fur surface) at
+// (u, v) of its [0, 1]² parametrization, with radius `radius` in those units and wetness rho.
+struct Droplet {
+  glm::vec2 centre{0.5f};
+  float radius = 0.1f;
+  float wetness = 1;
+  int surface = 0;
+  SourceLocation where;
+};
+
+// The limits of the fur lines: layers per shell stack and texture sizes.
+inline constexpr int kMaxFurLayers = 256;
+inline constexpr int kMaxFurTextureSize = 4096;
+
 struct ContourDeclaration {
   int id = 0;
   std::string file;                    // resolved against the view file's folder
@@ -155,6 +170,17 @@ struct ViewSettings {
   // layout.
   std::vector<FeatherTypeDeclaration> featherTypes;
   FollicleLayout follicleLayout = FollicleLayout::Diffusion;
+
+  // Fur (DESIGN.md, docs/fur.md): the shells, the fur geometry texture (SIZE² texels from SEED,
+  // one strand a texel, `furTexelsPerLength` texels along a strand's length), the wetness mask,
+  // its droplets, and the force on every strand (gravity and wind, per unit mass).
+  int furLayers = 16;
+  int furTextureSize = 256;
+  unsigned furTextureSeed = 1;
+  float furTexelsPerLength = 40;
+  int wetnessMaskSize = 256;
+  std::vector<Droplet> droplets;
+  glm::vec3 furForce{0.0f};
 };
 
 }  // namespace hirsute

@@ -38,6 +38,7 @@ class HairCsvWriter : public ScenePrinter {
   void label(const Label&) override {}
   void hairs(const std::vector<HairTemplate>& templates, const std::vector<Hair>& hairs) override;
   void feathers(const Scene&) override {}  // feather_csv_writer.h has their table
+  void fur(const Scene&) override {}
   void endScene() override;
 
   const HairCsvStats& stats() const { return stats_; }

@@ -31,6 +31,7 @@ struct ObjExportStats {
   std::uint64_t lineElements = 0;  // `l` polylines (hairs' included)
   std::uint64_t hairs = 0;         // hairs written (their template has segments)
   std::uint64_t feathers = 0;      // feathers written
+  std::uint64_t furStrands = 0;    // fur strands written, one `l` each
   std::size_t materials = 0;       // `newmtl` entries
 };
 
@@ -52,6 +53,8 @@ class ObjWriter : public ScenePrinter {
   // `o feathers`: the shafts as faces, the barbs as `l` polylines (drawing: lines) or faces
   // (strips), one material a colour (obj_feathers.cpp).
   void feathers(const Scene& scene) override;
+  // `o fur`: each fur strand one `l` polyline in its surface's material (obj_fur.cpp).
+  void fur(const Scene& scene) override;
   void endScene() override;
 
   const ObjExportStats& stats() const { return stats_; }

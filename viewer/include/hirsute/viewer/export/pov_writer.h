@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -38,6 +39,7 @@ struct PovExportStats {
   std::size_t hairMeshes = 0;    // declared hair tubes: one per template and radius/length bucket
   std::size_t hairsSkipped = 0;  // no template with segments, zero radius or length
   std::size_t feathers = 0;      // feathers written (pov_feathers.cpp)
+  std::size_t furStrands = 0;    // fur strands written (pov_fur.cpp)
 };
 
 class PovWriter : public ScenePrinter {
@@ -58,6 +60,10 @@ class PovWriter : public ScenePrinter {
   void hairs(const std::vector<HairTemplate>& templates, const std::vector<Hair>& hairs) override;
   // Shafts and barbs as two mesh2, the barbs' transparency fading to their tips.
   void feathers(const Scene& scene) override;
+  // Fur as explicit strands (hirsute/hairs/fur/fur_strands.h): per fur surface one mesh2 of
+  // ribbons facing the camera, each vertex coloured by the shells' own shading (Kajiya-Kay times
+  // the shadow factor, Eq. 6) so that the still matches the preview, emitted rather than lit.
+  void fur(const Scene& scene) override;
   void endScene() override;
 
   // Sides of a hair's tube, and the step of the radius/length buckets: a hair's tube radius is
@@ -80,6 +86,18 @@ class PovWriter : public ScenePrinter {
   const PovExportStats& stats() const { return stats_; }
 
  private:
+  // A colour and an opacity per vertex, quantized so that a mesh2's texture_list stays short.
+  struct Shade {
+    int r, g, b, a;  // colour in 1/255, alpha in 1/kShadeAlphaLevels
+    auto key() const { return std::tie(r, g, b, a); }
+    bool operator<(const Shade& o) const { return key() < o.key(); }
+  };
+  static constexpr int kShadeAlphaLevels = 16;
+  static Shade shadeOf(const glm::vec3& colour, float alpha);
+  // A mesh2 whose vertices carry their shades (interpolated across each face), with `finish`.
+  void writeShadedMesh(std::string_view comment, const std::vector<glm::vec3>& points,
+                       const std::vector<Shade>& shades, const std::vector<std::uint32_t>& faces,
+                       std::string_view finish);
   void writeMesh2(std::string_view name, const TriangleMesh& mesh);
   void writeHeader(const Scene& scene);
   void writeCamera();

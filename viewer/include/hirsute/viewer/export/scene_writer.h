@@ -33,6 +33,9 @@ class ScenePrinter {
   // feather is built from its types (hirsute/hairs/feathers/feather_instances.h) and formats
   // group them.
   virtual void feathers(const Scene& scene) = 0;
+  // Fur, after the feathers, once, when the scene has fur surfaces: as explicit strands
+  // (hirsute/hairs/fur/fur_strands.h), since no format draws shells.
+  virtual void fur(const Scene& scene) = 0;
   // After the last element: close what is open and commit the files.
   virtual void endScene() = 0;
 };

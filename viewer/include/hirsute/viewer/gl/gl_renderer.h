@@ -70,6 +70,14 @@ class GlRenderer {
   bool feathersVisible() const { return feathersVisible_; }
   std::size_t featherCount() const { return feathers_; }
 
+  // Shell fur (DESIGN.md, "Fur"; docs/fur.md): the fur surfaces as layers over their base
+  // surface. The setting outlasts upload(); updateFur() uploads the strands' particles and the
+  // wetness masks again after the viewer moved or wetted them.
+  void setFurVisible(bool visible) { furVisible_ = visible; }
+  bool furVisible() const { return furVisible_; }
+  void updateFur(const Scene& scene);
+  std::size_t furSurfaceCount() const;
+
   // The viewer's wireframe switch: every polygon drawn as its edges, whatever the render mode
   // (as cpfg's `render mode: wireframe`). Outlasts upload().
   void setWireframe(bool wireframe) { wireframe_ = wireframe; }
@@ -94,6 +102,7 @@ class GlRenderer {
   std::size_t hairs_ = 0, hairSegments_ = 0;
   bool hairsVisible_ = true;
   bool feathersVisible_ = true;
+  bool furVisible_ = true;
   std::size_t feathers_ = 0;
   float hairFraction_ = 1.0f;
   bool wireframe_ = false;

@@ -16,6 +16,8 @@
 //   define NAME VAL  set a #define constant and re-derive;  save  write the constants to the .l
 //   wait-reload [S]  wait (up to S seconds, default 10) until a model file changes and is re-read
 //   sleep S          wait S seconds, drawing
+//   fur on|off       show or hide the fur
+//   droplets N       N droplets of water at random on the fur (the J key's spray)
 //   measure [N]      print the frame time over N frames still and N frames moving
 //   screenshot FILE [ui]  write the window's picture to a PNG (with ui: with the overlays)
 //   quit             close the window
@@ -41,6 +43,8 @@ struct ViewCommand {
     Animate,
     Hairs,
     Feathers,
+    Fur,       // fur on|off
+    Droplets,  // droplets N: N droplets at random on the fur, as the J key sprays them
     Wireframe,
     Help,
     Panel,

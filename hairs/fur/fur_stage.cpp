@@ -1,0 +1,233 @@
+#include "hirsute/hairs/fur/fur_stage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "hirsute/hairs/fur/fur_strand.h"
+#include "hirsute/hairs/fur/fur_texture.h"
+#include "hirsute/hairs/fur/wetness_mask.h"
+
+namespace hirsute {
+namespace {
+
+// The fur record a segment's triangles take: its end's, as hairs do without interpolation (the
+// modules before the @Gc that closes a segment apply to it); -1 when the fur there is off.
+int furRecordOf(const Scene& scene, const CylinderSegment& segment) {
+  const int record = segment.organEnd.fur;
+  if (record < 0 || !scene.furAttributes[static_cast<std::size_t>(record)].enabled()) return -1;
+  if (scene.furAttributes[static_cast<std::size_t>(record)].length <= 0) return -1;
+  return record;
+}
+
+// A surface under construction: the segments' vertices, and the arc length along the axis of
+// each (normalized into v once the surface is complete).
+struct SurfaceBuilder {
+  FurSurface surface;
+  std::vector<float> axisDistance;
+  double girthSum = 0;
+  int rings = 0;
+};
+
+// Appends a segment's rings and strips (its tube vertices: ring k, vertex j at firstVertex +
+// k (sides + 1) + j) to the surface.
+void appendSegment(const Scene& scene, const CylinderSegment& segment, SurfaceBuilder& b) {
+  const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(segment.mesh)];
+  const int sides = segment.sides;
+  const int rings = static_cast<int>(segment.rings.size());
+  FurSurface& s = b.surface;
+  const auto base = static_cast<std::uint32_t>(s.positions.size());
+  for (int k = 0; k < rings; ++k) {
+    const CylinderRing& ring = segment.rings[static_cast<std::size_t>(k)];
+    const std::uint32_t first = segment.firstVertex + static_cast<std::uint32_t>(k * (sides + 1));
+    for (int j = 0; j <= sides; ++j) {
+      const std::uint32_t at = first + static_cast<std::uint32_t>(j);
+      const glm::vec3 p = mesh.positions[at];
+      glm::vec3 n = mesh.normals[at];
+      // Around the girth: the neighbours' chord (the seam's neighbours across it when closed).
+      const int before = j > 0 ? j - 1 : (segment.closed ? sides - 1 : 0);
+      const int after = j < sides ? j + 1 : (segment.closed ? 1 : sides);
+      glm::vec3 along = mesh.positions[first + static_cast<std::uint32_t>(after)] -
+                        mesh.positions[first + static_cast<std::uint32_t>(before)];
+      n = glm::length(n) > 0 ? glm::normalize(n) : glm::vec3(ring.frame.up);
+      along -= glm::dot(along, n) * n;
+      if (glm::length(along) < 1e-12f) along = glm::cross(ring.frame.heading, n);
+      s.positions.push_back(p);
+      s.normals.push_back(n);
+      s.tangents.push_back(glm::normalize(along));
+      s.uv.emplace_back(static_cast<float>(j) / static_cast<float>(sides), 0.0f);
+      b.axisDistance.push_back(ring.axisDistance);
+    }
+    b.girthSum += (k == 0 ? segment.girthStart : k == rings - 1 ? segment.girthEnd
+                          : 0.5f * (segment.girthStart + segment.girthEnd));
+    ++b.rings;
+  }
+  for (int k = 1; k < rings; ++k) {
+    for (int j = 0; j < sides; ++j) {
+      const std::uint32_t a = base + static_cast<std::uint32_t>((k - 1) * (sides + 1) + j);
+      const std::uint32_t c = base + static_cast<std::uint32_t>(k * (sides + 1) + j);
+      std::array<std::uint32_t, 6> quad{a, a + 1, c + 1, a, c + 1, c};
+      for (int t = 0; t < 2; ++t) {
+        std::uint32_t* tri = &quad[static_cast<std::size_t>(3 * t)];
+        const glm::vec3 e1 = s.positions[tri[1]] - s.positions[tri[0]];
+        const glm::vec3 e2 = s.positions[tri[2]] - s.positions[tri[0]];
+        const glm::vec3 face = glm::cross(e1, e2);
+        const float area = 0.5f * glm::length(face);
+        if (area <= 0) continue;
+        // Counter-clockwise seen from the side the fur grows on.
+        const glm::vec3 normal = s.normals[tri[0]] + s.normals[tri[1]] + s.normals[tri[2]];
+        if (glm::dot(face, normal) < 0) std::swap(tri[1], tri[2]);
+        s.indices.insert(s.indices.end(), tri, tri + 3);
+        s.area += area;
+      }
+    }
+  }
+}
+
+// Whether (u, v, normal) is right-handed over most of the surface's area: u along +dP/du, v
+// along +dP/dv and the fur on the side of dP/du × dP/dv, so that a word written into the wetness
+// mask reads the right way round from the fur's side.
+bool rightHanded(const FurSurface& s, const std::vector<float>& axisDistance) {
+  double sum = 0;
+  for (std::size_t t = 0; t + 2 < s.indices.size(); t += 3) {
+    const std::uint32_t a = s.indices[t], b = s.indices[t + 1], c = s.indices[t + 2];
+    const glm::vec2 d1(s.uv[b].x - s.uv[a].x, axisDistance[b] - axisDistance[a]);
+    const glm::vec2 d2(s.uv[c].x - s.uv[a].x, axisDistance[c] - axisDistance[a]);
+    // Counter-clockwise seen from the fur: the (u, v) triangle turns the same way when the
+    // frame is right-handed.
+    sum += static_cast<double>(d1.x * d2.y - d1.y * d2.x);
+  }
+  return sum >= 0;
+}
+
+void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const ViewSettings& view,
+                   int textureIndex, Scene& scene) {
+  FurSurface& s = b.surface;
+  if (!rightHanded(s, b.axisDistance)) {
+    for (glm::vec2& uv : s.uv) uv.x = 1 - uv.x;
+    for (glm::vec3& t : s.tangents) t = -t;
+  }
+  const auto [lowest, highest] = std::minmax_element(b.axisDistance.begin(), b.axisDistance.end());
+  const float start = *lowest, span = std::max(*highest - *lowest, 1e-12f);
+  // One tile of the fur texture is size / texelsPerLength fur lengths wide; around the girth
+  // a whole number of tiles, so that u = 0 and u = 1 meet without a seam.
+  const float tile = static_cast<float>(view.furTextureSize) * fur.length / view.furTexelsPerLength;
+  const double girth = b.rings > 0 ? b.girthSum / b.rings : 0.0;
+  const float around = std::max(1.0f, std::round(static_cast<float>(girth) / tile));
+  s.texcoordsPerUv = glm::vec2(around, span / tile);
+  for (std::size_t i = 0; i < s.uv.size(); ++i) {
+    s.uv[i].y = (b.axisDistance[i] - start) / span;
+    s.texcoords.emplace_back(s.uv[i].x * around, (b.axisDistance[i] - start) / tile);
+  }
+  s.tips.resize(s.positions.size());
+  for (std::size_t i = 0; i < s.positions.size(); ++i) {
+    const fur::StrandRoot strand{s.positions[i], s.normals[i], fur.length};
+    s.tips[i] = fur::restingTip(strand, fur.stiffness, fur.mass, view.furForce);
+  }
+  s.layers = view.furLayers;
+  s.strandRadius = 0.5f * tile / static_cast<float>(view.furTextureSize);
+  fur::clearWetness(s, view.wetnessMaskSize);
+  s.furTexture = textureIndex;
+  scene.furSurfaces.push_back(std::move(s));
+}
+
+}  // namespace
+
+bool hasFur(const Scene& scene) {
+  for (const FurAttributes& fur : scene.furAttributes) {
+    if (fur.enabled()) return true;
+  }
+  return false;
+}
+
+FurStageReport growFur(Scene& scene, const ModelResources& resources,
+                       const FurStageOptions& options, Diagnostics& diagnostics) {
+  const ViewSettings& view = resources.view;
+  FurStageReport report;
+  scene.furSurfaces.clear();
+  scene.furTextures.clear();
+  std::map<float, int> textureForDensity;
+  auto textureFor = [&](float density) {
+    const auto found = textureForDensity.find(density);
+    if (found != textureForDensity.end()) return found->second;
+    scene.furTextures.push_back(fur::makeFurTexture(view.furTextureSize, view.furTextureSeed, density));
+    const int index = static_cast<int>(scene.furTextures.size() - 1);
+    textureForDensity.emplace(density, index);
+    return index;
+  };
+
+  SurfaceBuilder builder;
+  int openRecord = -1, openTube = -1;
+  auto close = [&] {
+    if (openRecord >= 0 && !builder.surface.indices.empty()) {
+      if (scene.furSurfaces.size() >= options.maxSurfaces)
+        throw DiagnosticError(SourceLocation{}, "more than " + std::to_string(options.maxSurfaces) +
+                                                    " fur surfaces (each run of furry cylinder segments is one)");
+      const FurAttributes& fur = scene.furAttributes[static_cast<std::size_t>(openRecord)];
+      builder.surface.attributes = openRecord;
+      finishSurface(builder, fur, view, textureFor(fur.density), scene);
+    }
+    builder = SurfaceBuilder{};
+    openRecord = -1;
+  };
+  for (const CylinderSegment& segment : scene.cylinderSegments) {
+    const int record = furRecordOf(scene, segment);
+    const bool drawn = segment.mesh >= 0 && segment.sides > 0 && segment.vertexCount > 0 &&
+                       segment.rings.size() >= 2;
+    if (record < 0 || !drawn || record != openRecord || segment.tube != openTube) close();
+    if (record < 0 || !drawn) continue;
+    if (openRecord < 0) {
+      openRecord = record;
+      openTube = segment.tube;
+      builder.surface.material = scene.meshes[static_cast<std::size_t>(segment.mesh)].material;
+      builder.surface.wrapsU = segment.closed;
+    }
+    appendSegment(scene, segment, builder);
+  }
+  close();
+
+  for (const Droplet& d : view.droplets) {
+    if (d.surface > static_cast<int>(scene.furSurfaces.size())) {
+      throw DiagnosticError(d.where, "no fur surface " + std::to_string(d.surface) + " (the model has " +
+                                         std::to_string(scene.furSurfaces.size()) + ")");
+    }
+    for (std::size_t i = 0; i < scene.furSurfaces.size(); ++i) {
+      if (d.surface != 0 && static_cast<std::size_t>(d.surface - 1) != i) continue;
+      fur::blendDroplet(scene.furSurfaces[i], d.centre, d.radius, d.wetness);
+    }
+    ++report.droplets;
+  }
+  if (!view.droplets.empty() && scene.furSurfaces.empty())
+    diagnostics.warn(view.droplets.front().where, "the model has no fur for the droplets to fall on");
+  report.droplets += sprayDroplets(scene, options.droplets, options.dropletRadius,
+                                   options.dropletWetness, options.dropletSeed);
+  report.surfaces = scene.furSurfaces.size();
+  for (const FurSurface& s : scene.furSurfaces) {
+    report.triangles += s.triangleCount();
+    report.area += s.area;
+  }
+  return report;
+}
+
+std::size_t sprayDroplets(Scene& scene, std::size_t count, float radius, float wetness,
+                          std::uint32_t seed) {
+  if (count == 0 || scene.furSurfaces.empty()) return 0;
+  std::vector<double> cumulative;
+  double total = 0;
+  for (const FurSurface& s : scene.furSurfaces) cumulative.push_back(total += s.area);
+  if (!(total > 0)) return 0;
+  std::mt19937 random(seed);
+  auto unit = [&random] { return random() / 4294967296.0; };
+  for (std::size_t i = 0; i < count; ++i) {
+    const double pick = unit() * total;
+    const auto at = static_cast<std::size_t>(
+        std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
+    FurSurface& s = scene.furSurfaces[std::min(at, scene.furSurfaces.size() - 1)];
+    const glm::vec2 centre(static_cast<float>(unit()), static_cast<float>(unit()));
+    fur::blendDroplet(s, centre, radius, wetness);
+  }
+  return count;
+}
+
+}  // namespace hirsute

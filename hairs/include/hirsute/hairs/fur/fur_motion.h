@@ -1,0 +1,53 @@
+// Fur that moves (Silva et al. 2010, Sec. 3.2.1; DESIGN.md, "Fur"): the strands' particles stepped
+// in time under the view file's force, a gust of wind and the motion of the surface they grow on,
+// and the wetness drying off; and the point of a fur surface under a ray, where a click drops a
+// droplet. `hirsute view` runs it every frame; it changes only the Scene's fur surfaces (their
+// particles and masks), which the renderer then uploads again.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "hirsute/interpreter/scene.h"
+
+namespace hirsute::fur {
+
+class FurMotion {
+ public:
+  // Damping of the particles per second, and the longest sub-step taken.
+  static constexpr float kDamping = 3.0f;
+  static constexpr float kMaxStep = 1.0f / 240;
+
+  // Starts from the scene's particles at rest. When `previous` (the fur of the frame before, as
+  // stepped) has surfaces of the same vertex counts, each particle keeps its offset from its
+  // root and its velocity there, so that a moving plant drags its fur, and each mask its wetness.
+  void reset(Scene& fur, const Scene* previous = nullptr);
+
+  // Advances `seconds` under `force` per unit mass (the view file's plus any gust). Returns
+  // whether a particle still moves.
+  bool step(Scene& fur, float seconds, const glm::vec3& force);
+
+  // Whether any particle moves faster than `speed` fur lengths per second.
+  bool moving(const Scene& fur, float speed = 1e-3f) const;
+
+ private:
+  std::vector<std::vector<glm::vec3>> velocities_;  // per surface, per vertex
+};
+
+// The wetness falls by `rate` per second: a fur drying over 1 / rate seconds. Returns whether any
+// texel is still wet.
+bool dryFur(Scene& fur, float rate, float seconds);
+
+// Where the ray from `origin` along `direction` first meets a fur surface's base: the surface's
+// index and the (u, v) there.
+struct FurHit {
+  std::size_t surface = 0;
+  glm::vec2 uv{0.0f};
+  float distance = 0;
+};
+std::optional<FurHit> pickFur(const Scene& fur, const glm::vec3& origin, const glm::vec3& direction);
+
+}  // namespace hirsute::fur

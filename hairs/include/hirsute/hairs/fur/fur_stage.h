@@ -1,0 +1,48 @@
+// The fur stage of the pipeline (DESIGN.md, "Fur"): after interpretation, every run of
+// generalized-cylinder segments the turtle covered with fur (@Uf(1)) becomes a fur surface in the
+// Scene, with its (u, v) around the girth and along the axis, its fur texture, its strands at
+// rest under the view file's `fur force:`, and its wetness mask with the view file's droplets
+// and any random ones blended in.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/diagnostic.h"
+
+namespace hirsute {
+
+struct FurStageOptions {
+  // Random droplets (`--droplets N`), spread over the fur surfaces by area.
+  std::size_t droplets = 0;
+  float dropletRadius = 0.05f;   // in the surfaces' [0, 1] units
+  float dropletWetness = 1.0f;
+  std::uint32_t dropletSeed = 1;
+  std::size_t maxSurfaces = 100'000;  // more fur surfaces are an error
+};
+
+struct FurStageReport {
+  std::size_t surfaces = 0;
+  std::size_t triangles = 0;
+  std::size_t droplets = 0;  // blended, the view file's and the random ones
+  double area = 0;
+};
+
+// Whether the turtle put fur on anything.
+bool hasFur(const Scene& scene);
+
+// Builds scene.furSurfaces and scene.furTextures. Throws DiagnosticError for a `droplet:` line
+// naming a fur surface the model does not have (at that line) and for more surfaces than the
+// limit.
+FurStageReport growFur(Scene& scene, const ModelResources& resources,
+                       const FurStageOptions& options, Diagnostics& diagnostics);
+
+// Blends `count` droplets, seeded, at random points of the fur surfaces (each surface's chance
+// its share of the area), as `--droplets` and the viewer's spray do. Returns how many landed.
+std::size_t sprayDroplets(Scene& scene, std::size_t count, float radius, float wetness,
+                          std::uint32_t seed);
+
+}  // namespace hirsute

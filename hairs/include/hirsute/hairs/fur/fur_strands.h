@@ -1,0 +1,36 @@
+// Fur as explicit strands (DESIGN.md, "Fur": POV-Ray and OBJ cannot draw shells): one strand per
+// strand texel of the fur texture where the tiled texture covers a fur surface, bent by the
+// strands' particles, curled by Eq. 4 and gathered into the wetness mask's clumps by Eq. 5,
+// evaluated exactly where the shells evaluate them.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "hirsute/interpreter/scene.h"
+
+namespace hirsute::fur {
+
+// One strand: its points from the root up (h evenly from 0 to `reach`, the strand's own length
+// as a fraction of the fur length), the surface's normal and (u, v) at the root (where its
+// colour comes from) and its radius (half a texel of the fur texture, in world units).
+struct FurStrandView {
+  std::span<const glm::vec3> points;
+  glm::vec3 normal{0, 0, 1};
+  glm::vec2 uv{0.0f};
+  float reach = 1;
+  float radius = 0;
+};
+
+// Calls `emit` for every strand of `surface`, each with `samples` points (at least 2), evenly
+// spaced in h from the root to the strand's own length.
+void forEachStrand(const Scene& scene, const FurSurface& surface, int samples,
+                   const std::function<void(const FurStrandView&)>& emit);
+
+// The strands forEachStrand makes, without making them.
+std::size_t countStrands(const Scene& scene, const FurSurface& surface);
+
+}  // namespace hirsute::fur

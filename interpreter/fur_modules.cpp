@@ -1,0 +1,121 @@
+// The @U modules of shell fur (Silva et al. 2010; DESIGN.md, "Fur"): the switch and the strand,
+// curl, shading and clump parameters of the following surfaces, one row each, read by the turtle
+// through organ_modules.h.
+#include <cmath>
+#include <cstdio>
+#include <array>
+#include <string_view>
+
+#include "cpfg_numbers.h"
+#include "hirsute/interpreter/organ_modules.h"
+
+namespace hirsute {
+namespace {
+
+using FurRow = OrganModuleRow<FurAttributes>;
+
+// One fur parameter: its member, what it is called in warnings, and the range it must lie in.
+struct FurParameter {
+  float FurAttributes::*member;
+  std::string_view name;
+  float min, max;
+};
+
+constexpr float kHuge = 1e30f;
+
+std::string shown(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", static_cast<double>(v));
+  return text;
+}
+
+// A module's parameters, in order: every one must be given and in range, else the module is
+// ignored with a warning and the record stays as it was.
+template <const auto& kParameters>
+bool readNumbers(FurAttributes& record, const OrganModuleCall& call, const std::string& name) {
+  std::string form;
+  for (const FurParameter& p : kParameters) form += (form.empty() ? "" : ", ") + std::string(p.name);
+  if (call.count < kParameters.size()) {
+    call.warnOnce(name + " count", name + " needs (" + form + "); module ignored");
+    return false;
+  }
+  if (call.count > kParameters.size())
+    call.warnOnce(name + " many", name + " takes (" + form + "); the rest are ignored");
+  for (std::size_t i = 0; i < kParameters.size(); ++i) {
+    const FurParameter& p = kParameters[i];
+    const float v = call.parameters[i];
+    if (!std::isfinite(v) || v < p.min || v > p.max) {
+      call.warnOnce(name + " range " + std::string(p.name),
+                    name + ": " + std::string(p.name) + " " + shown(v) + " is outside [" +
+                        shown(p.min) + ", " + shown(p.max) + "]; module ignored");
+      return false;
+    }
+  }
+  for (std::size_t i = 0; i < kParameters.size(); ++i)
+    record.*(kParameters[i].member) = call.parameters[i];
+  return true;
+}
+
+template <const auto& kParameters>
+FurRow numbers(char letter) {
+  FurRow row;
+  row.letter = letter;
+  row.form = ParameterForm::Custom;
+  row.custom = &readNumbers<kParameters>;
+  return row;
+}
+
+constexpr std::array<FurParameter, 1> kLength{{{&FurAttributes::length, "length", 0, kHuge}}};
+constexpr std::array<FurParameter, 1> kDensity{{{&FurAttributes::density, "density", 0, 1}}};
+constexpr std::array<FurParameter, 2> kCurl{{{&FurAttributes::curlRadius, "Ka", 0, kHuge},
+                                             {&FurAttributes::curlFrequency, "w", -kHuge, kHuge}}};
+constexpr std::array<FurParameter, 2> kStrand{{{&FurAttributes::stiffness, "k", 0, kHuge},
+                                               {&FurAttributes::mass, "m", 1e-6f, kHuge}}};
+constexpr std::array<FurParameter, 3> kShading{{{&FurAttributes::specular, "Ks", 0, kHuge},
+                                                {&FurAttributes::phong, "p", 0, 1e4f},
+                                                {&FurAttributes::shadow, "Kshadow", 1, kHuge}}};
+constexpr std::array<FurParameter, 1> kClump{{{&FurAttributes::clumpShape, "w", 0, 1}}};
+
+// @Ut(i): the view file's i-th `texture:` (0: the surface's colour).
+FurRow colourTexture(char letter) {
+  FurRow row;
+  row.letter = letter;
+  row.form = ParameterForm::Custom;
+  row.custom = [](FurAttributes& record, const OrganModuleCall& call, const std::string& name) {
+    if (call.count == 0) {
+      call.warnOnce(name + " count", name + " needs (i), a texture of the view file or 0");
+      return false;
+    }
+    const int index = truncated(call.parameters[0]);
+    const std::size_t declared = call.resources.view.textures.size();
+    if (index < 0 || static_cast<std::size_t>(index) > declared) {
+      call.warnOnce(name + " texture " + std::to_string(index),
+                    name + ": no texture " + std::to_string(index) + " (the view file declares " +
+                        std::to_string(declared) + "); module ignored");
+      return false;
+    }
+    record.texture = index;
+    return true;
+  };
+  return row;
+}
+
+}  // namespace
+
+const OrganModuleTable& furModuleTable() {
+  static const AttributeModuleTable<FurAttributes> table(
+      'U', "fur", &Scene::furAttributes, &OrganAttributeIndices::fur,
+      {
+          switchRow<FurAttributes>('f', 1, &FurSideAttributes::enabled),
+          numbers<kLength>('l'),
+          numbers<kDensity>('d'),
+          numbers<kCurl>('c'),
+          numbers<kStrand>('s'),
+          numbers<kShading>('h'),
+          numbers<kClump>('w'),
+          colourTexture('t'),
+      });
+  return table;
+}
+
+}  // namespace hirsute

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Renders the pictures of docs/fur.md and of the fur models' READMEs: each model headless, dry
+# and wet, and the furry square's word through POV-Ray (when povray is on the PATH).
+#   HIRSUTE=path/to/hirsute scripts/fur-doc-images.sh   (default build/release/cli/hirsute)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+hirsute="$(realpath "${HIRSUTE:-build/release/cli/hirsute}")"
+out="$(pwd)/docs/images/fur"
+mkdir -p "$out"
+render() {  # folder lsystem view picture size
+  (cd "models/$1" && "$hirsute" render "$2" "$3" -o "$out/$4.png" --size "$5")
+}
+render fur-torus torus.l torus.v torus 640x480
+render fur-torus torus.l wet.v torus-wet 640x480
+render fur-square square.l square.v square 520x440
+render fur-square square.l word.v word 520x440
+render fur-curls curls.l curls.v curls 1000x380
+render pussy-willow pussy-willow.l pussy-willow.v pussy-willow 560x560
+render pussy-willow pussy-willow.l wet.v pussy-willow-wet 560x560
+if command -v povray >/dev/null; then
+  work="$(mktemp -d)"
+  trap 'rm -rf "$work"' EXIT
+  (cd models/fur-square && "$hirsute" export square.l word.v --pov "$work/word.pov" --render \
+    --width 520 --height 440)
+  cp "$work/word.png" "$out/word-povray.png"
+fi

@@ -1,0 +1,2 @@
+/* shells need at least one layer */
+fur layers: 0

@@ -1,0 +1,214 @@
+// The fur stage and the explicit strands on the shipped models (models/fur-torus,
+// models/fur-square): the torus is one fur surface of the paper's 9 360 triangles, its (u, v)
+// covers [0, 1]² continuously around the ring; exported strands number the texture's fill times
+// the area and show the curl of Eq. 4 with its radius and frequency; wet strands do not curl and
+// lean towards their clump's centre; the view file's droplets land in the mask.
+#include "hirsute/hairs/fur/fur_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "hirsute/hairs/fur/fur_strand.h"
+#include "hirsute/hairs/fur/fur_strands.h"
+#include "hirsute/hairs/fur/wetness_mask.h"
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/turtle.h"
+#include "hirsute/lsys/derivation.h"
+#include "hirsute/lsys/evaluator.h"
+#include "hirsute/lsys/model.h"
+
+namespace hirsute {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kModels = fs::path(HIRSUTE_SOURCE_DIR) / "models";
+constexpr double kPi = 3.14159265358979;
+
+struct Built {
+  ModelResources resources;
+  Model model;
+  Scene scene;
+  Diagnostics diagnostics;
+  FurStageReport report;
+};
+
+// Derived, interpreted and given its fur as `hirsute render` does (cli/model_pipeline.cpp).
+void build(Built& out, const fs::path& lsystem, const fs::path& view, FurStageOptions options = {}) {
+  out.resources = loadModelResources(view, {}, out.diagnostics);
+  out.model = loadModel(lsystem, view, out.diagnostics);
+  std::ostringstream printed;
+  Evaluator evaluator(out.model.program, out.diagnostics, &out.model.functions, out.model.folder,
+                      printed);
+  Derivation derivation(out.model.program, evaluator, out.diagnostics);
+  installQueryPass(derivation, out.resources, out.diagnostics);
+  derivation.run();
+  interpret(derivation, out.resources, out.scene, out.diagnostics);
+  out.report = growFur(out.scene, out.resources, options, out.diagnostics);
+}
+
+void buildTorus(Built& b, const char* view = "torus.v") {
+  build(b, kModels / "fur-torus" / "torus.l", kModels / "fur-torus" / view);
+}
+
+// The component of `offset` in the tangent plane of unit normal n.
+glm::dvec3 tangential(const glm::dvec3& offset, const glm::dvec3& n) { return offset - glm::dot(offset, n) * n; }
+
+TEST(FurStage, TorusIsOneSurfaceOfThePapersTriangles) {
+  Built b;
+  buildTorus(b);
+  ASSERT_EQ(b.scene.furSurfaces.size(), 1u);
+  const FurSurface& s = b.scene.furSurfaces[0];
+  EXPECT_EQ(s.triangleCount(), 9360u);
+  EXPECT_TRUE(s.wrapsU);
+  // A ring of radius 3 around a tube of radius 1: 4 pi² R r, less the polygons' shortfall.
+  EXPECT_NEAR(s.area, 4 * kPi * kPi * 3, 0.01 * 4 * kPi * kPi * 3);
+  float lowest = 1, highest = 0;
+  for (std::size_t i = 0; i < s.uv.size(); ++i) {
+    EXPECT_GE(s.uv[i].x, 0.0f);
+    EXPECT_LE(s.uv[i].x, 1.0f);
+    lowest = std::min(lowest, s.uv[i].y);
+    highest = std::max(highest, s.uv[i].y);
+    EXPECT_NEAR(glm::length(s.normals[i]), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(s.normals[i], s.tangents[i]), 0.0f, 1e-5f);
+    // At rest without a force, the particle is p_0.
+    EXPECT_LT(glm::distance(s.tips[i], s.positions[i] + 0.35f * s.normals[i]), 1e-5f);
+  }
+  EXPECT_EQ(lowest, 0.0f);
+  EXPECT_EQ(highest, 1.0f);
+  // Continuous along the axis: vertices at one place have one (u, v) (the segments' shared
+  // rings; u = 0 and u = 1 meet at the girth's seam).
+  for (std::size_t i = 0; i < s.positions.size(); ++i) {
+    for (std::size_t j = i + 1; j < std::min(s.positions.size(), i + 2000); ++j) {
+      if (glm::distance(s.positions[i], s.positions[j]) > 1e-5f) continue;
+      const float du = std::abs(s.uv[i].x - s.uv[j].x);
+      EXPECT_TRUE(du < 1e-5f || std::abs(du - 1) < 1e-5f) << i << " " << j;
+      EXPECT_NEAR(s.uv[i].y, s.uv[j].y, 1e-5f);
+    }
+  }
+}
+
+TEST(FurStage, ExportedStrandCountIsTheFillTimesTheArea) {
+  Built b;
+  buildTorus(b);
+  const FurSurface& s = b.scene.furSurfaces[0];
+  const FurAttributes& fur = b.scene.furAttributes[static_cast<std::size_t>(s.attributes)];
+  const double texel = fur.length / b.resources.view.furTexelsPerLength;  // world units
+  const double expected = fur.density * s.area / (texel * texel);
+  const std::size_t strands = fur::countStrands(b.scene, s);
+  EXPECT_NEAR(static_cast<double>(strands), expected, 0.03 * expected);
+  std::size_t emitted = 0;
+  fur::forEachStrand(b.scene, s, 4, [&](const fur::FurStrandView& strand) {
+    ++emitted;
+    EXPECT_EQ(strand.points.size(), 4u);
+    EXPECT_NEAR(strand.radius, 0.5 * texel, 1e-6);
+  });
+  EXPECT_EQ(emitted, strands);
+}
+
+// The part of each point of a strand across its normal, from the root: the curl (and any clump
+// shift), since a strand at rest rises along the normal.
+std::vector<glm::dvec3> across(const fur::FurStrandView& strand) {
+  std::vector<glm::dvec3> out;
+  const glm::dvec3 root = strand.points[0], n = strand.normal;
+  for (const glm::vec3& p : strand.points) out.push_back(tangential(glm::dvec3(p) - root, n));
+  return out;
+}
+
+// The angle from a to b about n, in (-pi, pi].
+double turn(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& n) {
+  return std::atan2(glm::dot(glm::cross(a, b), n), glm::dot(a, b));
+}
+
+TEST(FurStage, CurlOfExportedStrandsHasItsRadiusAndFrequency) {
+  Built b;
+  buildTorus(b);
+  FurAttributes& fur = b.scene.furAttributes[static_cast<std::size_t>(b.scene.furSurfaces[0].attributes)];
+  fur.curlRadius = 0.3f;
+  fur.curlFrequency = static_cast<float>(4 * kPi);  // two turns over the length
+  const int samples = 41;
+  std::size_t measured = 0;
+  fur::forEachStrand(b.scene, b.scene.furSurfaces[0], samples,
+                     [&](const fur::FurStrandView& strand) {
+    if (measured++ >= 300) return;
+    const std::vector<glm::dvec3> side = across(strand);
+    double winding = 0;
+    for (int i = 1; i < samples; ++i) {
+      const double h = strand.reach * i / (samples - 1.0);
+      // alpha(h) = K_alpha L h: the radius grows linearly along the strand.
+      ASSERT_NEAR(glm::length(side[static_cast<std::size_t>(i)]), 0.3 * 0.35 * h, 1e-4);
+      // The rise along the normal is the rest strand's, (2h - h²) L.
+      const double rise = glm::dot(glm::dvec3(strand.points[static_cast<std::size_t>(i)]) -
+                                       glm::dvec3(strand.points[0]), glm::dvec3(strand.normal));
+      ASSERT_NEAR(rise, (2 * h - h * h) * 0.35, 1e-4);
+      if (i > 1) winding += turn(side[static_cast<std::size_t>(i - 1)], side[static_cast<std::size_t>(i)],
+                                 glm::dvec3(strand.normal));
+    }
+    // omega radians per unit h, whichever way round the surface's frame winds.
+    const double expected = 4 * kPi * strand.reach * (samples - 2.0) / (samples - 1.0);
+    EXPECT_NEAR(std::abs(winding), expected, 1e-3 * expected);
+  });
+  EXPECT_GT(measured, 300u);
+}
+
+TEST(FurStage, WetStrandsDoNotCurlAndLeanTowardsTheirClump) {
+  Built b;
+  buildTorus(b);
+  FurSurface& s = b.scene.furSurfaces[0];
+  FurAttributes& fur = b.scene.furAttributes[static_cast<std::size_t>(s.attributes)];
+  fur.curlRadius = 0.3f;
+  fur.curlFrequency = static_cast<float>(4 * kPi);
+  fur::blendDroplet(s, glm::vec2(0.5f, 0.5f), 0.1f, 1.0f);
+  const int samples = 17;
+  std::size_t wet = 0, dry = 0;
+  fur::forEachStrand(b.scene, s, samples, [&](const fur::FurStrandView& strand) {
+    const glm::vec4 mask = fur::wetnessAt(s, strand.uv);
+    const std::vector<glm::dvec3> side = across(strand);
+    if (mask.w == 0) {
+      ++dry;
+      return;
+    }
+    const glm::vec2 fromCentre = fur::parameterDifference(s, strand.uv, glm::vec2(mask.x, mask.y));
+    if (glm::length(fromCentre) < 0.02f) return;  // too near the centre to lean measurably
+    ++wet;
+    ASSERT_LE(glm::length(fromCentre), mask.z);  // the rim of a clump has no strands
+    // No winding: every point across the normal lies on one line from the root.
+    for (int i = 2; i < samples; ++i) {
+      const glm::dvec3 a = side[1], c = side[static_cast<std::size_t>(i)];
+      ASSERT_LT(glm::length(glm::cross(a, c)), 1e-3 * glm::length(a) * glm::length(c) + 1e-12);
+      // Further along the strand, further towards the clump's centre.
+      ASSERT_GE(glm::length(c), glm::length(side[static_cast<std::size_t>(i - 1)]) - 1e-7);
+    }
+  });
+  EXPECT_GT(wet, 100u);
+  EXPECT_GT(dry, 10 * wet);
+}
+
+TEST(FurStage, ViewFileDropletsLandInTheMask) {
+  Built b;
+  buildTorus(b, "wet.v");
+  ASSERT_EQ(b.report.droplets, 5u);
+  const FurSurface& s = b.scene.furSurfaces[0];
+  EXPECT_EQ(s.wetnessSize, 256);
+  // wet.v's first droplet: (0.2, 0.1), radius 0.08, wetness 1.
+  EXPECT_EQ(fur::wetnessAt(s, glm::vec2(0.2f, 0.1f)).w, 1.0f);
+  EXPECT_EQ(fur::wetnessAt(s, glm::vec2(0.2f, 0.3f)).w, 0.0f);
+  // Random droplets add to them, seeded.
+  FurStageOptions options;
+  options.droplets = 40;
+  options.dropletSeed = 9;
+  Built sprayed, again;
+  build(sprayed, kModels / "fur-torus" / "torus.l", kModels / "fur-torus" / "torus.v", options);
+  build(again, kModels / "fur-torus" / "torus.l", kModels / "fur-torus" / "torus.v", options);
+  EXPECT_EQ(sprayed.report.droplets, 40u);
+  EXPECT_EQ(sprayed.scene.furSurfaces[0].wetness, again.scene.furSurfaces[0].wetness);
+  std::size_t wetTexels = 0;
+  for (const glm::vec4& t : sprayed.scene.furSurfaces[0].wetness) wetTexels += t.w > 0;
+  EXPECT_GT(wetTexels, 0u);
+}
+
+}  // namespace
+}  // namespace hirsute

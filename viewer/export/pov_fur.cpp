@@ -1,0 +1,93 @@
+// Fur in the POV-Ray scene (DESIGN.md, "Fur"; docs/fur.md, "Stills"): POV-Ray draws no shells, so
+// every strand of the fur texture on a fur surface becomes a ribbon of its own, bent, curled and
+// clumped by the shells' equations (hirsute/hairs/fur/fur_strands.h), facing the camera and a
+// strand thick. Each vertex carries the colour the shells' fragment shader computes there
+// (Kajiya-Kay, Eq. 6, times the shadow factor) and the ribbons emit it, so that the still shows
+// the preview's fur, clumps where the preview has them.
+#include <algorithm>
+#include <cmath>
+
+#include "hirsute/hairs/fur/fur_strand.h"
+#include "hirsute/hairs/fur/fur_strands.h"
+#include "hirsute/viewer/export/pov_writer.h"
+#include "hirsute/viewer/gl/view_lighting.h"
+
+namespace hirsute {
+namespace {
+
+constexpr int kStrandPoints = 7;  // six ribbon segments a strand
+constexpr char kEmittedFinish[] = "emission 1 diffuse 0 ambient 0";
+
+// The colour of `texture` at (u, v) as GL samples it (nearest texel, repeating; v = 0 is the
+// image's last row, as the renderer uploads it).
+glm::vec3 textureColour(const Texture& texture, const glm::vec2& uv) {
+  auto wrap = [](float t, int n) {
+    const int i = static_cast<int>(std::floor(t * static_cast<float>(n)));
+    return ((i % n) + n) % n;
+  };
+  const int x = wrap(uv.x, texture.width);
+  const int y = texture.height - 1 - wrap(uv.y, texture.height);
+  const std::uint8_t* p =
+      &texture.rgba[4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(texture.width) +
+                         static_cast<std::size_t>(x))];
+  return glm::vec3(p[0], p[1], p[2]) / 255.0f;
+}
+
+}  // namespace
+
+void PovWriter::fur(const Scene& scene) {
+  closeRun();
+  const glm::vec3 towardsEye = -camera_.forward;
+  const glm::vec3 light =
+      glm::normalize(organLight(viewLighting(options_.view, options_.materialMode, towardsEye), towardsEye));
+  const bool perspective = camera_.projection == Projection::Perspective;
+  for (std::size_t index = 0; index < scene.furSurfaces.size(); ++index) {
+    const FurSurface& surface = scene.furSurfaces[index];
+    if (surface.attributes < 0) continue;
+    const FurAttributes& a = scene.furAttributes[static_cast<std::size_t>(surface.attributes)];
+    const Material material = static_cast<std::size_t>(surface.material) < scene.materials.size()
+                                  ? scene.materials[static_cast<std::size_t>(surface.material)]
+                                  : Material{};
+    const Texture* texture = nullptr;
+    if (a.texture > 0 && static_cast<std::size_t>(a.texture) < scene.textures.size()) {
+      const Texture& t = scene.textures[static_cast<std::size_t>(a.texture)];
+      if (t.width > 0 && t.height > 0) texture = &t;
+    }
+    std::vector<glm::vec3> points;
+    std::vector<Shade> shades;
+    std::vector<std::uint32_t> faces;
+    std::size_t strands = 0;
+    fur::forEachStrand(scene, surface, kStrandPoints, [&](const fur::FurStrandView& strand) {
+      const glm::vec3 colour = texture ? textureColour(*texture, strand.uv) : material.diffuse;
+      const auto base = static_cast<std::uint32_t>(points.size());
+      const std::size_t n = strand.points.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec3 p = strand.points[i];
+        glm::vec3 tangent = strand.points[std::min(i + 1, n - 1)] - strand.points[i == 0 ? 0 : i - 1];
+        tangent = glm::length(tangent) > 0 ? glm::normalize(tangent) : strand.normal;
+        const glm::vec3 eye = perspective ? glm::normalize(camera_.eye - p) : towardsEye;
+        glm::vec3 across = glm::cross(tangent, eye);
+        if (glm::length(across) < 1e-12f) across = glm::cross(tangent, camera_.up);
+        across = strand.radius * glm::normalize(across);
+        const float h = strand.reach * static_cast<float>(i) / static_cast<float>(n - 1);
+        const Shade shade =
+            shadeOf(fur::furShade(colour, tangent, light, eye, a.specular, a.phong, a.shadow, h), 1);
+        points.push_back(p - across);
+        points.push_back(p + across);
+        shades.push_back(shade);
+        shades.push_back(shade);
+      }
+      for (std::uint32_t i = 0; i + 1 < n; ++i) {
+        const std::uint32_t k = base + 2 * i;
+        faces.insert(faces.end(), {k, k + 1, k + 3, k, k + 3, k + 2});
+      }
+      ++strands;
+    });
+    if (faces.empty()) continue;
+    writeShadedMesh("fur surface " + std::to_string(index + 1) + ": " + std::to_string(strands) + " strands",
+                    points, shades, faces, kEmittedFinish);
+    stats_.furStrands += strands;
+  }
+}
+
+}  // namespace hirsute
