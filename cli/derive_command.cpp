@@ -11,6 +11,7 @@
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
 #include "hirsute/lsys/output_target.h"
+#include "hirsute/lsys/progress.h"
 #include "hirsute/lsys/string_writer.h"
 
 namespace hirsute::cli {
@@ -29,7 +30,9 @@ struct DeriveOptions {
 };
 
 int runDerive(const DeriveOptions& o) {
+  Progress progress = Progress::onTerminal(stderr);
   Diagnostics diagnostics(&std::cerr);
+  diagnostics.setProgress(&progress);
   try {
     std::optional<std::filesystem::path> view;
     if (!o.viewFile.empty()) view = o.viewFile;
@@ -41,6 +44,7 @@ int runDerive(const DeriveOptions& o) {
     DerivationOptions options;
     options.steps = o.steps;
     options.maxModules = o.maxModules;
+    options.progress = &progress;
     // ?P ?H ?L ?U take the turtle's values before every step (cpfg manual §6.9), so a model
     // with queries needs its view file's turtle settings; colours play no part in them. The
     // resources outlive the derivation whose query pass reads them.
@@ -78,6 +82,7 @@ int runDerive(const DeriveOptions& o) {
       derivation.run();
       derivation.emit(writer, o.homomorphism);
     }
+    progress.clear();
     if (!writer.finish() || (!file && std::fflush(stdout) != 0)) {
       std::cerr << (file ? o.output : std::string("<stdout>"))
                 << ": error: cannot write: " << std::strerror(errno) << '\n';
@@ -93,6 +98,7 @@ int runDerive(const DeriveOptions& o) {
     }
     return kExitOk;
   } catch (const DiagnosticError& e) {
+    progress.clear();
     std::cerr << e.diagnostic().text() << '\n';
     return kExitBadInput;
   }

@@ -146,6 +146,10 @@ bool Derivation::step() {
   evaluator_.run(main.startEach, nullptr);
   // cpfg: query modules (?P ?H ?L ?U) are filled by an interpretation of the string before
   // it is rewritten.
+  if (options_.progress) {
+    if (stepsDone_ == 0) options_.progress->begin("deriving", Progress::Unit::Steps, totalSteps_);
+    options_.progress->update(stepsDone_ + 1);  // the step under way
+  }
   if (queryPass_ && program_.usesQueries) queryPass_(*this);
   rewriteStep();
   if (stream_) {

@@ -19,6 +19,7 @@
 #include "hirsute/lsys/module_sink.h"
 #include "hirsute/lsys/module_string.h"
 #include "hirsute/lsys/program.h"
+#include "hirsute/lsys/progress.h"
 #include "hirsute/lsys/random_streams.h"
 
 namespace hirsute {
@@ -27,6 +28,7 @@ struct DerivationOptions {
   std::optional<int> steps;                  // overrides `derivation length:`
   std::size_t maxModules = 100'000'000;      // a longer string is an error
   std::size_t maxStringBytes = 0;            // 0: a share of the machine's memory
+  Progress* progress = nullptr;              // shows `deriving: step k/n` (null: nothing)
 };
 
 class Derivation {
