@@ -106,6 +106,30 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
     copied['%'] = copied['?'] = copied['$'] = false;
     isCopiedAsIs_.push_back(copied);
   }
+  const Lsystem& main = program_.lsystems.front();
+  for (std::size_t c = 0; c < 128; ++c) {
+    const auto& ids = main.productions.bySymbol[c];
+    if (ids.empty() || c == '%' || c == '?' || c == '$') continue;
+    needsLeft_[c] = std::all_of(ids.begin(), ids.end(), [&](std::uint32_t id) {
+      const Production& p = main.productions.productions[id];
+      return !p.left.empty() && p.strict.size() == 1;
+    });
+    for (std::uint32_t id : ids) {
+      const Production& p = main.productions.productions[id];
+      if (!p.left.empty()) leftLast_[c].set(static_cast<unsigned char>(p.left.back().symbol) & 0x7f);
+    }
+  }
+}
+
+// Whether choose() would refuse the module at `at` on its left neighbour alone, as it does before
+// binding or evaluating anything: every production of the symbol needs a left context, and the
+// neighbour ends none of them (or there is none).
+bool Derivation::leftRefuses(const ModuleString& s, const Lsystem& l, std::size_t at) {
+  const auto c = static_cast<unsigned char>(s.at(at).symbol());
+  if (!needsLeft_[c]) return false;
+  const std::size_t neighbour = leftNeighbours_.before(s, l, at);
+  return neighbour == BranchIndex::kNone ||
+         !leftLast_[c].test(static_cast<unsigned char>(s.at(neighbour).symbol()));
 }
 
 void Derivation::start() {
@@ -593,10 +617,13 @@ void Derivation::rewriteStep() {
       int lsystem = subLsystems_.back();
       const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
       if (!l.stochastic) {
-        // A run of modules that no production can rewrite is copied in one piece.
+        // A run of modules that no production can rewrite is copied in one piece; in the main
+        // L-system, so are modules whose left neighbour no production's context ends with.
         std::size_t from = pos, count = 0;
         const std::array<bool, 128>& copied = isCopiedAsIs_[static_cast<std::size_t>(lsystem)];
-        while (pos < s.end() && copied[static_cast<unsigned char>(s.at(pos).symbol())]) {
+        const bool refusals = leftNeighbours_.enabled;
+        while (pos < s.end() && (copied[static_cast<unsigned char>(s.at(pos).symbol())] ||
+                                 (refusals && leftRefuses(s, l, pos)))) {
           pos = s.next(pos);
           ++count;
         }

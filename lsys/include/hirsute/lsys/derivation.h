@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -166,6 +167,12 @@ class Derivation {
     std::size_t before(const ModuleString& s, const Lsystem& l, std::size_t at);
   };
   LeftNeighbours leftNeighbours_;
+  // Symbols of the main L-system whose every production needs a left context (and one strict
+  // module): such a module whose left neighbour is none of `leftLast_[symbol]`, the symbols
+  // those contexts end with, cannot be rewritten and joins the run copied as it is.
+  std::array<bool, 128> needsLeft_{};
+  std::array<std::bitset<128>, 128> leftLast_{};
+  bool leftRefuses(const ModuleString& s, const Lsystem& l, std::size_t at);
   std::size_t ruleOutput_ = 0;  // modules decomposition or homomorphism produced in this pass
 };
 
