@@ -116,7 +116,9 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
     });
     for (std::uint32_t id : ids) {
       const Production& p = main.productions.productions[id];
-      if (!p.left.empty()) leftLast_[c].set(static_cast<unsigned char>(p.left.back().symbol) & 0x7f);
+      if (!p.left.empty()) {
+        leftLast_[c].set(static_cast<unsigned char>(p.left.back().symbol) & 0x7f);
+      }
     }
   }
 }
@@ -226,7 +228,8 @@ bool Derivation::runStreamingLastStep(ModuleSink& sink, bool applyHomomorphism) 
 // While the last step streams, the new string goes out in pieces of about this size.
 constexpr std::size_t kStreamChunkBytes = std::size_t{1} << 20;
 
-void Derivation::streamIfFull() {
+// Inline: the rewriting loop calls it after every production it applies.
+inline void Derivation::streamIfFull() {
   if (stream_ == nullptr || next_.byteSize() < kStreamChunkBytes) return;
   stream_->modules(next_, next_.begin(), next_.end());
   streamed_ += next_.moduleCount();
@@ -496,13 +499,19 @@ std::size_t Derivation::skipCut(const ModuleString& s, std::size_t at) const {
   return pos;
 }
 
-void Derivation::checkSize(const ModuleString& s, const SourceLocation& where) {
+namespace {
+// Out of line, so that the check before it stays small enough to inline into the loops.
+[[noreturn, gnu::noinline]] void throwStringTooLong(const SourceLocation& where,
+                                                    std::size_t limit, int step) {
+  throw DiagnosticError(where, "the string grew past " + std::to_string(limit) +
+                                   " modules in step " + std::to_string(step) +
+                                   " (the limit is set with --max-modules)");
+}
+}  // namespace
+
+inline void Derivation::checkSize(const ModuleString& s, const SourceLocation& where) {
   const std::size_t modules = s.moduleCount() + (&s == &next_ ? streamed_ : 0);
-  if (modules > options_.maxModules) {
-    throw DiagnosticError(where, "the string grew past " + std::to_string(options_.maxModules) +
-                                     " modules in step " + std::to_string(stepsDone_ + 1) +
-                                     " (the limit is set with --max-modules)");
-  }
+  if (modules > options_.maxModules) throwStringTooLong(where, options_.maxModules, stepsDone_ + 1);
 }
 
 void Derivation::appendValues(const Production& p, const double* values, ModuleString& out) {
