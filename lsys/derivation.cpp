@@ -126,7 +126,7 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
 // Whether choose() would refuse the module at `at` on its left neighbour alone, as it does before
 // binding or evaluating anything: every production of the symbol needs a left context, and the
 // neighbour ends none of them (or there is none).
-bool Derivation::leftRefuses(const ModuleString& s, const Lsystem& l, std::size_t at) {
+inline bool Derivation::leftRefuses(const ModuleString& s, const Lsystem& l, std::size_t at) {
   const auto c = static_cast<unsigned char>(s.at(at).symbol());
   if (!needsLeft_[c]) return false;
   const std::size_t neighbour = leftNeighbours_.before(s, l, at);
@@ -337,7 +337,7 @@ void Derivation::LeftNeighbours::reset(const Program& program) {
 // The module a left context's last pattern is compared with, as matchLeft's backward search
 // would find it (ignored modules passed over, a complete branch to the left skipped, a `[`
 // stepped out of), found by carrying that search's answer forward through the string.
-std::size_t Derivation::LeftNeighbours::before(const ModuleString& s, const Lsystem& l,
+inline std::size_t Derivation::LeftNeighbours::before(const ModuleString& s, const Lsystem& l,
                                                std::size_t at) {
   const std::uint8_t* const bytes = s.bytes();
   for (std::size_t q = trackedTo; q < at;) {
