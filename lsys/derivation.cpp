@@ -68,6 +68,11 @@ void requireKnownLsystems(const Program& program, const ModuleString& s, std::si
   }
 }
 
+// A weight written as a number (`: 3`) is read as it is, without a run of the evaluator.
+bool isConstant(const Code& code) {
+  return code.instructions.size() == 1 && code.instructions[0].op == Op::Constant;
+}
+
 void bind(const ModulePattern& pattern, ModuleRef m, double* frame) {
   for (std::size_t i = 0; i < pattern.slots.size(); ++i) frame[pattern.slots[i]] = m.parameter(i);
 }
@@ -420,6 +425,14 @@ bool Derivation::matchContexts(const Production& p, const Lsystem& l, const Modu
   return true;
 }
 
+double Derivation::weightOf(const Production& p, double* frame) {
+  if (p.probability.empty()) return 1.0;
+  if (isConstant(p.probability)) {
+    return p.probability.constants[static_cast<std::size_t>(p.probability.instructions[0].operand)];
+  }
+  return evaluator_.run(p.probability, frame);
+}
+
 bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match) {
   const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
   const RuleSet& rules = ruleSet(l, set);
@@ -457,7 +470,7 @@ bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t
       return true;
     }
     candidates_.push_back(Match{&p, end, frame});
-    weights.push_back(p.probability.empty() ? 1.0 : evaluator_.run(p.probability, frame));
+    weights.push_back(weightOf(p, frame));
   }
   if (candidates_.empty()) return false;
   double sum = 0;

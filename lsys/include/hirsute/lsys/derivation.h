@@ -108,6 +108,8 @@ class Derivation {
   bool matchContexts(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
                      std::size_t end, double* frame,
                      std::size_t leftNeighbour = kUnknownNeighbour) const;
+  // A stochastic production's weight (`: w`) in its frame.
+  double weightOf(const Production& p, double* frame);
   // Finds the production to apply at `at`, running pre-condition blocks and conditions.
   bool choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match);
   void rewriteStep();
