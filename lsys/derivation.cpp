@@ -669,7 +669,11 @@ void Derivation::rewriteStep() {
         appendRun();
         const Production& p = *match.production;
         if (!p.after.empty()) evaluator_.run(p.after, match.frame);
-        appendValues(p, evaluator_.values(p.successorValues, match.frame, 0), next_);
+        // A successor without parameters (S --> T) has no values to compute.
+        const double* values = p.successorValues.empty()
+                                   ? nullptr
+                                   : evaluator_.values(p.successorValues, match.frame, 0);
+        appendValues(p, values, next_);
         checkSize(next_, p.where);
         streamIfFull();
         after = match.end;
