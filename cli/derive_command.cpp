@@ -61,26 +61,32 @@ int runDerive(const DeriveOptions& o) {
     std::FILE* out = file ? file->stream() : stdout;
     StringWriter writer(out, o.format == "compact" ? StringFormat::Compact : StringFormat::Cpfg);
     writer.setStrings(&model.program.strings);  // @L("text") is written with its text
+    // The string may go to the terminal the progress line is on: the line is cleared first.
+    const auto emitString = [&] {
+      progress.clear();
+      derivation.emit(writer, o.homomorphism);
+    };
     derivation.start();
     if (o.eachStep) {
       // Every string from the axiom on; in the cpfg format they are separated by an empty line.
-      derivation.emit(writer, o.homomorphism);
+      emitString();
       writer.finish();
       while (derivation.step()) {
+        progress.clear();
         if (o.format != "compact") std::fputc('\n', out);
-        derivation.emit(writer, o.homomorphism);
+        emitString();
         writer.finish();
       }
     } else if (!o.output.empty() && o.output != "-") {
       // Into a file, the last step's string is written while it is derived and never held
       // whole; the file only appears once it is complete (OutputTarget::commit).
       if (!derivation.runStreamingLastStep(writer, o.homomorphism)) {
-        derivation.emit(writer, o.homomorphism);
+        emitString();
       }
     } else {
       // On standard output an error must leave nothing written, so the string is built first.
       derivation.run();
-      derivation.emit(writer, o.homomorphism);
+      emitString();
     }
     progress.clear();
     if (!writer.finish() || (!file && std::fflush(stdout) != 0)) {
