@@ -634,8 +634,12 @@ void Derivation::rewriteStep() {
     runCount = 0;
     streamIfFull();
   };
+  // A long step shows itself too (a countdown per pass of the loop, the clock read rarely).
+  Progress* const progress = options_.progress;
+  const double stepUnderWay = stepsDone_ + 1;
   try {
     while (pos < s.end()) {
+      if (progress) progress->tick(stepUnderWay);
       int lsystem = subLsystems_.back();
       const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
       if (!l.stochastic) {
