@@ -11,6 +11,7 @@
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
 #include "hirsute/lsys/output_target.h"
+#include "hirsute/lsys/progress.h"
 #include "hirsute/lsys/string_writer.h"
 
 namespace hirsute::cli {
@@ -29,7 +30,9 @@ struct DeriveOptions {
 };
 
 int runDerive(const DeriveOptions& o) {
+  Progress progress = Progress::onTerminal(stderr);
   Diagnostics diagnostics(&std::cerr);
+  diagnostics.setProgress(&progress);
   try {
     std::optional<std::filesystem::path> view;
     if (!o.viewFile.empty()) view = o.viewFile;
@@ -41,6 +44,7 @@ int runDerive(const DeriveOptions& o) {
     DerivationOptions options;
     options.steps = o.steps;
     options.maxModules = o.maxModules;
+    options.progress = &progress;
     // ?P ?H ?L ?U take the turtle's values before every step (cpfg manual §6.9), so a model
     // with queries needs its view file's turtle settings; colours play no part in them. The
     // resources outlive the derivation whose query pass reads them.
@@ -57,27 +61,34 @@ int runDerive(const DeriveOptions& o) {
     std::FILE* out = file ? file->stream() : stdout;
     StringWriter writer(out, o.format == "compact" ? StringFormat::Compact : StringFormat::Cpfg);
     writer.setStrings(&model.program.strings);  // @L("text") is written with its text
+    // The string may go to the terminal the progress line is on: the line is cleared first.
+    const auto emitString = [&] {
+      progress.clear();
+      derivation.emit(writer, o.homomorphism);
+    };
     derivation.start();
     if (o.eachStep) {
       // Every string from the axiom on; in the cpfg format they are separated by an empty line.
-      derivation.emit(writer, o.homomorphism);
+      emitString();
       writer.finish();
       while (derivation.step()) {
+        progress.clear();
         if (o.format != "compact") std::fputc('\n', out);
-        derivation.emit(writer, o.homomorphism);
+        emitString();
         writer.finish();
       }
     } else if (!o.output.empty() && o.output != "-") {
       // Into a file, the last step's string is written while it is derived and never held
       // whole; the file only appears once it is complete (OutputTarget::commit).
       if (!derivation.runStreamingLastStep(writer, o.homomorphism)) {
-        derivation.emit(writer, o.homomorphism);
+        emitString();
       }
     } else {
       // On standard output an error must leave nothing written, so the string is built first.
       derivation.run();
-      derivation.emit(writer, o.homomorphism);
+      emitString();
     }
+    progress.clear();
     if (!writer.finish() || (!file && std::fflush(stdout) != 0)) {
       std::cerr << (file ? o.output : std::string("<stdout>"))
                 << ": error: cannot write: " << std::strerror(errno) << '\n';
@@ -93,6 +104,7 @@ int runDerive(const DeriveOptions& o) {
     }
     return kExitOk;
   } catch (const DiagnosticError& e) {
+    progress.clear();
     std::cerr << e.diagnostic().text() << '\n';
     return kExitBadInput;
   }

@@ -28,12 +28,15 @@ struct ExportOptions {
   int width = 800, height = 600;
 };
 
-int runExport(const ExportOptions& o) {
+int runExport(ExportOptions o) {
+  Progress progress = Progress::onTerminal(stderr);
+  o.model.terminalProgress = &progress;
   Diagnostics diagnostics(&std::cerr);
   BuiltScene built;
   try {
     built = buildScene(o.model, diagnostics);
   } catch (const DiagnosticError& e) {
+    progress.clear();
     std::cerr << e.diagnostic().text() << '\n';
     return kExitBadInput;
   }
@@ -44,16 +47,23 @@ int runExport(const ExportOptions& o) {
       options.materialMode = built.resources.materialMode;
       options.width = o.width;
       options.height = o.height;
-      writePov(built.scene, options, o.pov);
+      writePov(built.scene, options, o.pov, &progress);
     }
-    if (!o.obj.empty()) writeObj(built.scene, o.obj);
-    if (!o.hairs.empty()) writeHairCsv(built.scene, o.hairs);
-    if (!o.feathers.empty()) writeFeatherCsv(built.scene, o.feathers);
+    if (!o.obj.empty()) writeObj(built.scene, o.obj, {}, &progress);
+    if (!o.hairs.empty()) writeHairCsv(built.scene, o.hairs, &progress);
+    if (!o.feathers.empty()) {
+      progress.begin("writing feathers", Progress::Unit::None);
+      progress.update(0);
+      writeFeatherCsv(built.scene, o.feathers);
+    }
+    progress.clear();
   } catch (const std::invalid_argument& e) {
+    progress.clear();
     // The model produced geometry no format can hold (a coordinate that is not a number).
     std::cerr << o.model.lsystemFile << ": error: cannot export: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const std::runtime_error& e) {
+    progress.clear();
     std::cerr << e.what() << '\n';
     return kExitIoError;
   }

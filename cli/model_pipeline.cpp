@@ -95,7 +95,14 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   DerivationOptions options;
   options.steps = o.steps;
   options.maxModules = o.maxModules;
+  options.progress = o.terminalProgress;
+  diagnostics.setProgress(o.terminalProgress);
   Derivation derivation(built.model.program, evaluator, diagnostics, options);
+  // -v's lines go to the terminal the progress line is on: it is cleared first.
+  const auto say = [&o](const std::string& text) {
+    if (o.terminalProgress) o.terminalProgress->clear();
+    std::cerr << text;
+  };
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point since) {
     return std::chrono::duration<double>(Clock::now() - since).count();
@@ -109,18 +116,19 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   }
   if (o.progress) o.progress(2, 0, 0);
   if (o.verbose) {
-    std::cerr << fmt::format("derived {} modules in {:.3f} s\n", derivation.string().moduleCount(), seconds(started));
+    say(fmt::format("derived {} modules in {:.3f} s\n", derivation.string().moduleCount(), seconds(started)));
   }
   started = Clock::now();
   try {
-    interpret(derivation, built.resources, built.scene, diagnostics, o.maxVertices);
+    interpret(derivation, built.resources, built.scene, diagnostics, o.maxVertices,
+              o.terminalProgress);
   } catch (const GeometryLimitError& e) {
     throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(o.lsystemFile), 0, 0}, e.what());
   }
   if (o.verbose) {
-    std::cerr << fmt::format("interpreted: {} triangles, {} lines, {} cylinder segments in {:.3f} s\n",
+    say(fmt::format("interpreted: {} triangles, {} lines, {} cylinder segments in {:.3f} s\n",
                              built.scene.triangleCount(), built.scene.lines.size(),
-                             built.scene.cylinderSegments.size(), seconds(started));
+                             built.scene.cylinderSegments.size(), seconds(started)));
   }
   if (o.hairs && hasHairs(built.scene)) {
     started = Clock::now();
@@ -129,13 +137,13 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     hairOptions.seed = o.hairSeed;
     hairOptions.maxHairs = o.maxHairs;
     hairOptions.lsystemFile = o.lsystemFile;
+    hairOptions.progress = o.terminalProgress;
     const HairPlacementReport report =
         growPlantHairs(built.scene, built.resources, built.model.functions, hairOptions, diagnostics);
     if (o.verbose) {
-      std::cerr << fmt::format(
-          "placed {} hairs on {} segments and {} surfaces ({} templates) in {:.3f} s\n",
-          report.hairs, report.segments, report.surfaces, built.scene.hairTemplates.size(),
-          seconds(started));
+      say(fmt::format("placed {} hairs on {} segments and {} surfaces ({} templates) in {:.3f} s\n",
+                      report.hairs, report.segments, report.surfaces,
+                      built.scene.hairTemplates.size(), seconds(started)));
     }
   }
   if (o.feathers && hasFeathers(built.scene, built.resources)) {
@@ -145,11 +153,12 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     featherOptions.lsystemFile = o.lsystemFile;
     featherOptions.seed = o.hairSeed;
     featherOptions.maxFeathers = o.maxFeathers;
+    featherOptions.progress = o.terminalProgress;
     const FeatherStageReport report =
         growFeathers(built.scene, built.resources, built.model.functions, featherOptions, diagnostics);
     if (o.verbose) {
-      std::cerr << fmt::format("feathers: {} ({} in coats) of {} types in {:.3f} s\n",
-                               report.feathers, report.coat, report.types, seconds(started));
+      say(fmt::format("feathers: {} ({} in coats) of {} types in {:.3f} s\n",
+                               report.feathers, report.coat, report.types, seconds(started)));
     }
   } else {
     built.scene.feathers.clear();
@@ -163,9 +172,9 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     furOptions.dropletSeed = o.dropletSeed;
     const FurStageReport report = growFur(built.scene, built.resources, furOptions, diagnostics);
     if (o.verbose) {
-      std::cerr << fmt::format("fur: {} surfaces, {} triangles, {:.4g} units², {} droplets in {:.3f} s\n",
-                               report.surfaces, report.triangles, report.area, report.droplets,
-                               seconds(started));
+      say(fmt::format("fur: {} surfaces, {} triangles, {:.4g} units², {} droplets in {:.3f} s\n",
+                      report.surfaces, report.triangles, report.area, report.droplets,
+                      seconds(started)));
     }
   }
   return built;

@@ -13,6 +13,7 @@
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/lsys/diagnostic.h"
 #include "hirsute/lsys/model.h"
+#include "hirsute/lsys/progress.h"
 
 namespace hirsute::cli {
 
@@ -43,6 +44,9 @@ struct ModelOptions {
   // Stop after this many steps of the derivation, whose length stays the file's (the derivation
   // length the model sees, and End, are as in the whole run): cpfg's animation frames.
   std::optional<int> stopAfter;
+  // The terminal's progress line (stderr when it is a terminal, Progress::onTerminal): each stage
+  // shows how far it has got. Null: nothing is shown.
+  Progress* terminalProgress = nullptr;
 };
 
 // Adds the model arguments and options shared by render and export to `command`.

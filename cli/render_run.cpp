@@ -11,11 +11,15 @@
 namespace hirsute::cli {
 
 int runRender(const RenderOptions& o) {
+  Progress progress = Progress::onTerminal(stderr);
+  ModelOptions model = o.model;
+  model.terminalProgress = &progress;
   Diagnostics diagnostics(&std::cerr);
   BuiltScene built;
   try {
-    built = buildScene(o.model, diagnostics);
+    built = buildScene(model, diagnostics);
   } catch (const DiagnosticError& e) {
+    progress.clear();
     std::cerr << e.diagnostic().text() << '\n';
     return kExitBadInput;
   }
@@ -25,13 +29,17 @@ int runRender(const RenderOptions& o) {
   options.height = std::stoi(o.size.substr(x + 1));
   options.samples = o.samples;
   RgbaImage image;
+  progress.begin("rendering", Progress::Unit::None);
+  progress.update(0);
   try {
     image =
         renderOffscreen(built.scene, built.resources.view, built.resources.materialMode, options);
   } catch (const std::runtime_error& e) {
+    progress.clear();
     std::cerr << "hirsute: error: cannot render: " << e.what() << '\n';
     return kExitIoError;
   }
+  progress.clear();
   try {
     writePng(o.output, image);
   } catch (const std::runtime_error& e) {

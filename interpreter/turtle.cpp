@@ -105,6 +105,12 @@ int Turtle::material(int color) const {
   return std::clamp(color, 0, static_cast<int>(scene_->materials.size()) - 1);
 }
 
+void Turtle::setProgress(Progress* progress, std::size_t modules) {
+  progress_ = progress;
+  // The homomorphism may make more modules than the string has: the share stops at 100%.
+  if (progress_) progress_->begin("interpreting", Progress::Unit::Percent, static_cast<double>(modules));
+}
+
 void Turtle::setMaxVertices(std::size_t vertices) {
   maxVertices_ = vertices;
   if (cylinders_) cylinders_->setMaxVertices(vertices);
@@ -113,9 +119,12 @@ void Turtle::setMaxVertices(std::size_t vertices) {
 void Turtle::dispatch(char symbol, const float* p, std::size_t count) {
   // The geometry limit, checked every few modules (one module adds a bounded amount; tubes
   // check before they build).
-  if (++modulesSeen_ % 64 == 0 && scene_ != nullptr && scene_->vertexCount() > maxVertices_) {
-    throw GeometryLimitError("the geometry grew past " + std::to_string(maxVertices_) +
-                             " vertices (raise the limit with --max-vertices)");
+  if (++modulesSeen_ % 64 == 0 && scene_ != nullptr) {
+    if (scene_->vertexCount() > maxVertices_) {
+      throw GeometryLimitError("the geometry grew past " + std::to_string(maxVertices_) +
+                               " vertices (raise the limit with --max-vertices)");
+    }
+    if (progress_) progress_->update(static_cast<double>(modulesSeen_));
   }
   if (skipping_) {
     // After `%` with `interpretation past %: off`: the rest of the branch is not interpreted,
@@ -776,9 +785,10 @@ std::string Turtle::labelText(const float* p, std::size_t count) {
 }
 
 void interpret(Derivation& derivation, const ModelResources& resources, Scene& scene,
-               Diagnostics& diagnostics, std::size_t maxVertices) {
+               Diagnostics& diagnostics, std::size_t maxVertices, Progress* progress) {
   Turtle turtle(resources, &scene, diagnostics);
   turtle.setMaxVertices(maxVertices);
+  turtle.setProgress(progress, derivation.string().moduleCount());
   turtle.setStrings(&derivation.program().strings);
   turtle.setSourceString(&derivation.mutableString());
   derivation.emit(turtle, true);

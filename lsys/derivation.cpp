@@ -68,6 +68,11 @@ void requireKnownLsystems(const Program& program, const ModuleString& s, std::si
   }
 }
 
+// A weight written as a number (`: 3`) is read as it is, without a run of the evaluator.
+bool isConstant(const Code& code) {
+  return code.instructions.size() == 1 && code.instructions[0].op == Op::Constant;
+}
+
 void bind(const ModulePattern& pattern, ModuleRef m, double* frame) {
   for (std::size_t i = 0; i < pattern.slots.size(); ++i) frame[pattern.slots[i]] = m.parameter(i);
 }
@@ -106,6 +111,32 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
     copied['%'] = copied['?'] = copied['$'] = false;
     isCopiedAsIs_.push_back(copied);
   }
+  const Lsystem& main = program_.lsystems.front();
+  for (std::size_t c = 0; c < 128; ++c) {
+    const auto& ids = main.productions.bySymbol[c];
+    if (ids.empty() || c == '%' || c == '?' || c == '$') continue;
+    needsLeft_[c] = std::all_of(ids.begin(), ids.end(), [&](std::uint32_t id) {
+      const Production& p = main.productions.productions[id];
+      return !p.left.empty() && p.strict.size() == 1;
+    });
+    for (std::uint32_t id : ids) {
+      const Production& p = main.productions.productions[id];
+      if (!p.left.empty()) {
+        leftLast_[c].set(static_cast<unsigned char>(p.left.back().symbol) & 0x7f);
+      }
+    }
+  }
+}
+
+// Whether choose() would refuse the module at `at` on its left neighbour alone, as it does before
+// binding or evaluating anything: every production of the symbol needs a left context, and the
+// neighbour ends none of them (or there is none).
+inline bool Derivation::leftRefuses(const ModuleString& s, const Lsystem& l, std::size_t at) {
+  const auto c = static_cast<unsigned char>(s.at(at).symbol());
+  if (!needsLeft_[c]) return false;
+  const std::size_t neighbour = leftNeighbours_.before(s, l, at);
+  return neighbour == BranchIndex::kNone ||
+         !leftLast_[c].test(static_cast<unsigned char>(s.at(neighbour).symbol()));
 }
 
 void Derivation::start() {
@@ -146,6 +177,10 @@ bool Derivation::step() {
   evaluator_.run(main.startEach, nullptr);
   // cpfg: query modules (?P ?H ?L ?U) are filled by an interpretation of the string before
   // it is rewritten.
+  if (options_.progress) {
+    if (stepsDone_ == 0) options_.progress->begin("deriving", Progress::Unit::Steps, totalSteps_);
+    options_.progress->update(stepsDone_ + 1);  // the step under way
+  }
   if (queryPass_ && program_.usesQueries) queryPass_(*this);
   rewriteStep();
   if (stream_) {
@@ -198,7 +233,8 @@ bool Derivation::runStreamingLastStep(ModuleSink& sink, bool applyHomomorphism) 
 // While the last step streams, the new string goes out in pieces of about this size.
 constexpr std::size_t kStreamChunkBytes = std::size_t{1} << 20;
 
-void Derivation::streamIfFull() {
+// Inline: the rewriting loop calls it after every production it applies.
+inline void Derivation::streamIfFull() {
   if (stream_ == nullptr || next_.byteSize() < kStreamChunkBytes) return;
   stream_->modules(next_, next_.begin(), next_.end());
   streamed_ += next_.moduleCount();
@@ -306,7 +342,7 @@ void Derivation::LeftNeighbours::reset(const Program& program) {
 // The module a left context's last pattern is compared with, as matchLeft's backward search
 // would find it (ignored modules passed over, a complete branch to the left skipped, a `[`
 // stepped out of), found by carrying that search's answer forward through the string.
-std::size_t Derivation::LeftNeighbours::before(const ModuleString& s, const Lsystem& l,
+inline std::size_t Derivation::LeftNeighbours::before(const ModuleString& s, const Lsystem& l,
                                                std::size_t at) {
   const std::uint8_t* const bytes = s.bytes();
   for (std::size_t q = trackedTo; q < at;) {
@@ -389,6 +425,14 @@ bool Derivation::matchContexts(const Production& p, const Lsystem& l, const Modu
   return true;
 }
 
+double Derivation::weightOf(const Production& p, double* frame) {
+  if (p.probability.empty()) return 1.0;
+  if (isConstant(p.probability)) {
+    return p.probability.constants[static_cast<std::size_t>(p.probability.instructions[0].operand)];
+  }
+  return evaluator_.run(p.probability, frame);
+}
+
 bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match) {
   const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
   const RuleSet& rules = ruleSet(l, set);
@@ -426,7 +470,7 @@ bool Derivation::choose(int lsystem, int set, const ModuleString& s, std::size_t
       return true;
     }
     candidates_.push_back(Match{&p, end, frame});
-    weights.push_back(p.probability.empty() ? 1.0 : evaluator_.run(p.probability, frame));
+    weights.push_back(weightOf(p, frame));
   }
   if (candidates_.empty()) return false;
   double sum = 0;
@@ -468,13 +512,19 @@ std::size_t Derivation::skipCut(const ModuleString& s, std::size_t at) const {
   return pos;
 }
 
-void Derivation::checkSize(const ModuleString& s, const SourceLocation& where) {
+namespace {
+// Out of line, so that the check before it stays small enough to inline into the loops.
+[[noreturn, gnu::noinline]] void throwStringTooLong(const SourceLocation& where,
+                                                    std::size_t limit, int step) {
+  throw DiagnosticError(where, "the string grew past " + std::to_string(limit) +
+                                   " modules in step " + std::to_string(step) +
+                                   " (the limit is set with --max-modules)");
+}
+}  // namespace
+
+inline void Derivation::checkSize(const ModuleString& s, const SourceLocation& where) {
   const std::size_t modules = s.moduleCount() + (&s == &next_ ? streamed_ : 0);
-  if (modules > options_.maxModules) {
-    throw DiagnosticError(where, "the string grew past " + std::to_string(options_.maxModules) +
-                                     " modules in step " + std::to_string(stepsDone_ + 1) +
-                                     " (the limit is set with --max-modules)");
-  }
+  if (modules > options_.maxModules) throwStringTooLong(where, options_.maxModules, stepsDone_ + 1);
 }
 
 void Derivation::appendValues(const Production& p, const double* values, ModuleString& out) {
@@ -584,15 +634,22 @@ void Derivation::rewriteStep() {
     runCount = 0;
     streamIfFull();
   };
+  // A long step shows itself too (a countdown per pass of the loop, the clock read rarely).
+  Progress* const progress = options_.progress;
+  const double stepUnderWay = stepsDone_ + 1;
   try {
     while (pos < s.end()) {
+      if (progress) progress->tick(stepUnderWay);
       int lsystem = subLsystems_.back();
       const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
       if (!l.stochastic) {
-        // A run of modules that no production can rewrite is copied in one piece.
+        // A run of modules that no production can rewrite is copied in one piece; in the main
+        // L-system, so are modules whose left neighbour no production's context ends with.
         std::size_t from = pos, count = 0;
         const std::array<bool, 128>& copied = isCopiedAsIs_[static_cast<std::size_t>(lsystem)];
-        while (pos < s.end() && copied[static_cast<unsigned char>(s.at(pos).symbol())]) {
+        const bool refusals = leftNeighbours_.enabled;
+        while (pos < s.end() && (copied[static_cast<unsigned char>(s.at(pos).symbol())] ||
+                                 (refusals && leftRefuses(s, l, pos)))) {
           pos = s.next(pos);
           ++count;
         }
@@ -616,7 +673,11 @@ void Derivation::rewriteStep() {
         appendRun();
         const Production& p = *match.production;
         if (!p.after.empty()) evaluator_.run(p.after, match.frame);
-        appendValues(p, evaluator_.values(p.successorValues, match.frame, 0), next_);
+        // A successor without parameters (S --> T) has no values to compute.
+        const double* values = p.successorValues.empty()
+                                   ? nullptr
+                                   : evaluator_.values(p.successorValues, match.frame, 0);
+        appendValues(p, values, next_);
         checkSize(next_, p.where);
         streamIfFull();
         after = match.end;

@@ -1,5 +1,6 @@
 #include "hirsute/lsys/diagnostic.h"
 
+#include "hirsute/lsys/progress.h"
 
 namespace hirsute {
 
@@ -35,7 +36,10 @@ void Diagnostics::warn(const SourceLocation& where, const std::string& message) 
     return;
   }
   warnings_.push_back(Diagnostic{Severity::Warning, where, message});
-  if (echo_) *echo_ << warnings_.back().text() << '\n';
+  if (echo_) {
+    if (progress_) progress_->clear();
+    *echo_ << warnings_.back().text() << '\n';
+  }
 }
 
 }  // namespace hirsute

@@ -75,7 +75,8 @@ std::size_t formatWithPrintf(float value, char* out) {
 // differently (infinities, NaNs) and the smallest subnormals go through printf itself. Compared
 // with glibc's snprintf over all 2^32 bit patterns when it was written: no difference;
 // tests/lsys/module_string_test.cpp keeps a million-pattern sample of that comparison.
-std::size_t formatParameter(float value, char* out) {
+// Out of line: the writer's cache answers most numbers, and its loop stays small without this.
+[[gnu::noinline]] std::size_t formatParameter(float value, char* out) {
   std::uint32_t bits = std::bit_cast<std::uint32_t>(value);
   std::uint32_t exponentBits = (bits >> 23) & 0xff;
   std::uint32_t fraction = bits & 0x7fffff;
@@ -153,7 +154,8 @@ void StringWriter::flush() {
   used_ = 0;
 }
 
-std::size_t StringWriter::formatNumber(float value, char* out) {
+// Inline: called for every parameter written; a hit in the cache is a compare and one move.
+inline std::size_t StringWriter::formatNumber(float value, char* out) {
   std::uint32_t bits = std::bit_cast<std::uint32_t>(value);
   CacheEntry& entry = cache_[(bits ^ (bits >> 11) ^ (bits >> 23)) & (std::size(cache_) - 1)];
   if (entry.bits != bits) {

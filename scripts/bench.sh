@@ -7,16 +7,37 @@
 # INTERPRET_ARGS to the interpretation benchmark (e.g. "--model tubes --repeat 10").
 #   scripts/bench.sh --repeat 5
 # BUILD_DIR overrides the build folder; JOBS the build's parallel jobs (default: all cores).
+# HIRSUTE=PATH skips the build and the in-process benchmarks and prints only the whole-process
+# table for that program (e.g. HIRSUTE=build/release/cli/hirsute, an existing Release build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 build="${BUILD_DIR:-build/bench}"
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DHIRSUTE_BUILD_TESTS=OFF \
-  -DHIRSUTE_BUILD_BENCH=ON >/dev/null
-cmake --build "$build" --target hirsute hirsute_derive_bench hirsute_interpret_bench \
-  -j "${JOBS:-$(nproc)}"
-"$build/bench/hirsute_derive_bench" "$@"
-echo
+program="${HIRSUTE:-}"
+if [[ -z "$program" ]]; then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DHIRSUTE_BUILD_TESTS=OFF \
+    -DHIRSUTE_BUILD_BENCH=ON >/dev/null
+  cmake --build "$build" --target hirsute hirsute_derive_bench hirsute_interpret_bench \
+    -j "${JOBS:-$(nproc)}"
+  "$build/bench/hirsute_derive_bench" "$@"
+  echo
+  program="$build/cli/hirsute"
+fi
+
+# cpfg on the same kinds of model, as issue 10 of the project measured it (cpfg built from vlab
+# 9bf820d, `cpfg -g -str`, string written with -o, whole process, best of 5, on the machines
+# the project is measured on): seconds and peak MiB. cpfg is not installed here, so these are
+# that measurement's figures, not a run of this script. The goal is 3x cpfg's speed and at most
+# its peak memory. Kinds without a figure (branching) print none.
+cpfg_reference() {
+  case "$1" in
+    parametric) echo "1.03 56" ;;
+    signal) echo "0.98 18" ;;
+    loops) echo "1.21 18" ;;
+    stochastic) echo "0.16 20" ;;
+    *) echo "" ;;
+  esac
+}
 
 # The same models as a user runs them: the whole `hirsute derive MODEL.l [MODEL.v] -o OUT`
 # process (start-up, preprocessor, derivation, -str text), best wall time of RUNS (default 5)
@@ -24,27 +45,49 @@ echo
 runs="${RUNS:-5}"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
-printf '%-11s %12s %14s %12s\n' "model" "whole s" "peak MiB" "text bytes"
+printf '%-11s %8s %6s %9s %10s %13s %14s %8s %8s %5s\n' "model" "whole s" "cpu s" "peak MiB" \
+  "text bytes" "cpfg s (ref)" "cpfg MiB (ref)" "speed" "memory" "goal"
 for model in models/bench/*.l; do
   name="$(basename "$model" .l)"
-  [[ "$name" == tubes ]] && continue  # the interpretation benchmark's, not a derivation kind
+  # The interpretation and feather benchmarks' models, not derivation kinds.
+  [[ "$name" == tubes || "$name" == feather-coat ]] && continue
   view=()
   [[ -f "${model%.l}.v" ]] && view=("${model%.l}.v")
   best=""
+  cpu=""
   peak=0
   for ((run = 0; run < runs; ++run)); do
-    /usr/bin/time -f '%e %M' -o "$out/time" "$build/cli/hirsute" derive "$model" "${view[@]}" \
+    /usr/bin/time -f '%e %U %S %M' -o "$out/time" "$program" derive "$model" "${view[@]}" \
       -o "$out/$name.str"
-    read -r seconds kib <"$out/time"
+    read -r seconds user system kib <"$out/time"
     if [[ -z "$best" ]] || awk -v a="$seconds" -v b="$best" 'BEGIN { exit !(a < b) }'; then
       best="$seconds"
     fi
+    used="$(awk -v u="$user" -v s="$system" 'BEGIN { printf "%.2f", u + s }')"
+    if [[ -z "$cpu" ]] || awk -v a="$used" -v b="$cpu" 'BEGIN { exit !(a < b) }'; then
+      cpu="$used"
+    fi
     ((kib > peak)) && peak="$kib"
   done
-  printf '%-11s %12s %14.1f %12s\n' "$name" "$best" "$(awk -v k="$peak" 'BEGIN { print k / 1024 }')" \
-    "$(stat -c %s "$out/$name.str")"
+  mib="$(awk -v k="$peak" 'BEGIN { printf "%.1f", k / 1024 }')"
+  read -r cpfg_s cpfg_mib <<<"$(cpfg_reference "$name")"
+  if [[ -n "${cpfg_s:-}" ]]; then
+    # speed: how many times faster than cpfg; memory: our peak as a share of cpfg's.
+    read -r speed memory goal <<<"$(awk -v s="$best" -v m="$mib" -v cs="$cpfg_s" -v cm="$cpfg_mib" \
+      'BEGIN { sp = cs / s; me = m / cm; printf "%.2fx %.2fx %s", sp, me, (sp >= 3 && me <= 1) ? "met" : "no" }')"
+  else
+    cpfg_s="-" cpfg_mib="-" speed="-" memory="-" goal="-"
+  fi
+  printf '%-11s %8s %6s %9s %10s %13s %14s %8s %8s %5s\n' "$name" "$best" "$cpu" "$mib" \
+    "$(stat -c %s "$out/$name.str")" "$cpfg_s" "$cpfg_mib" "$speed" "$memory" "$goal"
+  unset cpfg_s cpfg_mib
 done
-echo "(whole process, best of $runs; peak resident size the largest of the runs, GNU time's %M)"
+echo "(whole process, best of $runs: wall time, and the CPU time (user + system) of hirsute and its cpp;"
+echo " peak resident size the largest of the runs, GNU time's %M,"
+echo " which counts the preprocessor cpp that hirsute runs as cpfg does; cpfg columns: issue 10's"
+echo " measurement of cpfg, not run here; speed = cpfg s / ours, memory = ours / cpfg's;"
+echo " goal: at least 3x the speed at no more than cpfg's memory)"
+[[ -n "${HIRSUTE:-}" ]] && exit 0
 echo
 # shellcheck disable=SC2086  # INTERPRET_ARGS is a list of arguments
 "$build/bench/hirsute_interpret_bench" ${INTERPRET_ARGS:-}

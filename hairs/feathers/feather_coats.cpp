@@ -197,7 +197,11 @@ FeatherCoatReport placeFeatherCoats(Scene& scene, const FeatherCoatSettings& set
                                : SurfaceSampler(PointDiffusionTexture::generate(settings.texture));
   CoatPlacer placer{scene, settings, {}, {}};
   const std::size_t first = scene.feathers.size();
-  for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) placer.segment(i, sampler);
+  if (settings.progress) settings.progress->begin("placing feather coats", Progress::Unit::Count);
+  for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) {
+    placer.segment(i, sampler);
+    if (settings.progress) settings.progress->update(static_cast<double>(placer.report.feathers));
+  }
 
   // The coat from its bottom feather to its top one; singles keep their place before it.
   std::vector<std::size_t> byOrder(placer.order.size());

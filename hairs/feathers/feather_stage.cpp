@@ -84,6 +84,7 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
     coats.texture.seed = placementKey(seed, 0x666f6c6cu);
     coats.seed = placementKey(seed, 0x636f6174u);
     coats.maxFeathers = options.maxFeathers;
+    coats.progress = options.progress;
     const std::vector<FunctionCurve>& curves = functions.functions;
     coats.function = [&curves](int index, double x) {
       if (index < 1 || static_cast<std::size_t>(index) > curves.size()) return std::nan("");

@@ -313,8 +313,15 @@ HairPlacementReport placeHairs(Scene& scene, const HairPlacementSettings& settin
   placer.templates =
       static_cast<int>(std::min<std::size_t>(scene.hairTemplates.size(), kMaxHairTemplates));
   scene.hairs.reserve(scene.hairs.size() + std::min(expectedHairs(scene), settings.maxHairs));
-  for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) placer.segment(i);
-  for (std::size_t i = 0; i < scene.organSurfaces.size(); ++i) placer.surface(i);
+  if (settings.progress) settings.progress->begin("placing hairs", Progress::Unit::Count);
+  for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) {
+    placer.segment(i);
+    if (settings.progress) settings.progress->update(static_cast<double>(placer.report.hairs));
+  }
+  for (std::size_t i = 0; i < scene.organSurfaces.size(); ++i) {
+    placer.surface(i);
+    if (settings.progress) settings.progress->update(static_cast<double>(placer.report.hairs));
+  }
   return placer.report;
 }
 

@@ -41,6 +41,7 @@ HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources
   settings.seed = options.seed != 0 ? options.seed : view.hairTextureSeed;
   settings.interpolation = view.hairInterpolation;
   settings.maxHairs = options.maxHairs;
+  settings.progress = options.progress;
   const std::vector<FunctionCurve>& curves = functions.functions;
   settings.function = [&curves](int index, double x) {
     if (index < 1 || static_cast<std::size_t>(index) > curves.size()) return std::nan("");

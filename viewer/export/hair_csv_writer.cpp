@@ -56,6 +56,7 @@ void HairCsvWriter::hairs(const std::vector<HairTemplate>&, const std::vector<Ha
     out_.put(hairSideName(h.side));
     out_.put('\n');
     ++stats_.rows;
+    advance();
   }
 }
 
@@ -64,9 +65,10 @@ void HairCsvWriter::endScene() {
   stats_.bytes = out_.bytesWritten();
 }
 
-HairCsvStats writeHairCsv(const Scene& scene, const std::filesystem::path& target) {
+HairCsvStats writeHairCsv(const Scene& scene, const std::filesystem::path& target,
+                          Progress* progress) {
   HairCsvWriter writer(target);
-  printScene(scene, writer);
+  printScene(scene, writer, progress, "writing hairs");
   return writer.stats();
 }
 

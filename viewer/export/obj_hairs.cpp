@@ -49,6 +49,7 @@ void ObjWriter::hairs(const std::vector<HairTemplate>& templates, const std::vec
           finishPolyline();
         }
         ++stats_.hairs;
+        advance();
       }
     }
   }

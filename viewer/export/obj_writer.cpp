@@ -329,9 +329,9 @@ void ObjWriter::endScene() {
 }
 
 ObjExportStats writeObj(const Scene& scene, const std::filesystem::path& target,
-                        ObjOptions options) {
+                        ObjOptions options, Progress* progress) {
   ObjWriter writer(target, options);
-  printScene(scene, writer);
+  printScene(scene, writer, progress, "writing OBJ");
   return writer.stats();
 }
 

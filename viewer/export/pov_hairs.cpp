@@ -160,6 +160,7 @@ void PovWriter::hairs(const std::vector<HairTemplate>& templates, const std::vec
       }
       out_.put(">}\n");
       ++stats_.hairs;
+      advance();
     }
     if (!alone) {
       out_.put("texture{");

@@ -551,9 +551,9 @@ void PovWriter::endScene() {
 }
 
 PovExportStats writePov(const Scene& scene, const PovOptions& options,
-                        const std::filesystem::path& target) {
+                        const std::filesystem::path& target, Progress* progress) {
   PovWriter writer(target, options);
-  printScene(scene, writer);
+  printScene(scene, writer, progress, "writing POV-Ray");
   return writer.stats();
 }
 

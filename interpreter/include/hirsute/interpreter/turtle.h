@@ -17,6 +17,7 @@
 #include "hirsute/interpreter/turtle_state.h"
 #include "hirsute/lsys/diagnostic.h"
 #include "hirsute/lsys/module_sink.h"
+#include "hirsute/lsys/progress.h"
 
 namespace hirsute {
 
@@ -49,6 +50,9 @@ class Turtle : public ModuleSink {
 
   // More vertices in the scene than this ends interpretation with GeometryLimitError.
   void setMaxVertices(std::size_t vertices);
+
+  // Shows `interpreting: N%` of `modules` (the string's length) on `progress` (null: nothing).
+  void setProgress(Progress* progress, std::size_t modules);
 
   const TurtleState& state() const { return state_; }
 
@@ -121,6 +125,7 @@ class Turtle : public ModuleSink {
   // then the module's) changes that record in place rather than copying it.
   std::size_t modulesSeen_ = 0;
   std::size_t maxVertices_ = kDefaultMaxVertices;
+  Progress* progress_ = nullptr;
   struct OrganScratch {
     int record = -1;
     std::size_t module = 0;
@@ -140,8 +145,10 @@ class Turtle : public ModuleSink {
 
 // Interprets the derivation's current string into `scene` (homomorphism applied). Throws
 // GeometryLimitError past `maxVertices`.
+// Throws GeometryLimitError past `maxVertices`; shows its progress on `progress` when given.
 void interpret(Derivation& derivation, const ModelResources& resources, Scene& scene,
-               Diagnostics& diagnostics, std::size_t maxVertices = kDefaultMaxVertices);
+               Diagnostics& diagnostics, std::size_t maxVertices = kDefaultMaxVertices,
+               Progress* progress = nullptr);
 
 // Installs the query pass: before each rewriting, the turtle walks the string and fills the
 // parameters of ?P ?H ?L ?U with its position, heading, left and up vectors.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -19,6 +20,7 @@
 #include "hirsute/lsys/module_sink.h"
 #include "hirsute/lsys/module_string.h"
 #include "hirsute/lsys/program.h"
+#include "hirsute/lsys/progress.h"
 #include "hirsute/lsys/random_streams.h"
 
 namespace hirsute {
@@ -27,6 +29,7 @@ struct DerivationOptions {
   std::optional<int> steps;                  // overrides `derivation length:`
   std::size_t maxModules = 100'000'000;      // a longer string is an error
   std::size_t maxStringBytes = 0;            // 0: a share of the machine's memory
+  Progress* progress = nullptr;              // shows `deriving: step k/n` (null: nothing)
 };
 
 class Derivation {
@@ -105,6 +108,8 @@ class Derivation {
   bool matchContexts(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
                      std::size_t end, double* frame,
                      std::size_t leftNeighbour = kUnknownNeighbour) const;
+  // A stochastic production's weight (`: w`) in its frame.
+  double weightOf(const Production& p, double* frame);
   // Finds the production to apply at `at`, running pre-condition blocks and conditions.
   bool choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match);
   void rewriteStep();
@@ -164,6 +169,12 @@ class Derivation {
     std::size_t before(const ModuleString& s, const Lsystem& l, std::size_t at);
   };
   LeftNeighbours leftNeighbours_;
+  // Symbols of the main L-system whose every production needs a left context (and one strict
+  // module): such a module whose left neighbour is none of `leftLast_[symbol]`, the symbols
+  // those contexts end with, cannot be rewritten and joins the run copied as it is.
+  std::array<bool, 128> needsLeft_{};
+  std::array<std::bitset<128>, 128> leftLast_{};
+  bool leftRefuses(const ModuleString& s, const Lsystem& l, std::size_t at);
   std::size_t ruleOutput_ = 0;  // modules decomposition or homomorphism produced in this pass
 };
 

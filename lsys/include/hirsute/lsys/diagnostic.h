@@ -12,6 +12,8 @@
 
 namespace hirsute {
 
+class Progress;
+
 struct SourceLocation {
   std::shared_ptr<const std::string> file;  // shared: every location of one file points to one name
   int line = 0;                              // 1-based; 0 when unknown
@@ -56,9 +58,12 @@ class Diagnostics {
   const std::vector<Diagnostic>& warnings() const { return warnings_; }
   std::size_t suppressed() const { return suppressed_; }
   void setEcho(std::ostream* echo) { echo_ = echo; }
+  // The progress line on the same terminal, cleared before a warning is printed.
+  void setProgress(Progress* progress) { progress_ = progress; }
 
  private:
   std::ostream* echo_;
+  Progress* progress_ = nullptr;
   std::vector<Diagnostic> warnings_;
   std::size_t suppressed_ = 0;
 };

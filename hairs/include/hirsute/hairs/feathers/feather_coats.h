@@ -13,6 +13,7 @@
 #include "hirsute/hairs/placement/segment_values.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
+#include "hirsute/lsys/progress.h"
 
 namespace hirsute {
 
@@ -23,6 +24,7 @@ struct FeatherCoatSettings {
   std::uint64_t seed = 1;  // the per-follicle random offsets
   std::size_t maxFeathers = 1'000'000;
   GirthFunction function;  // the model's function set, for the `fun` parameters and @Fk's
+  Progress* progress = nullptr;  // shows `placing feather coats: N` (null: nothing)
 };
 
 struct FeatherCoatReport {

@@ -11,6 +11,7 @@
 #include "hirsute/hairs/placement/point_diffusion.h"
 #include "hirsute/hairs/placement/segment_values.h"
 #include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/progress.h"
 
 namespace hirsute {
 
@@ -27,6 +28,8 @@ struct HairPlacementSettings {
   // The model's function set for the `fun` parameters: function `index` (1-based) at x in
   // [0, 1]. Null, or an index it does not know (it returns NaN), reads as no function.
   GirthFunction function;
+  // Shows `placing hairs: N` as the hairs are placed (null: nothing).
+  Progress* progress = nullptr;
 };
 
 struct HairPlacementReport {

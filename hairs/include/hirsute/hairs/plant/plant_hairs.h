@@ -19,6 +19,7 @@ struct PlantHairOptions {
   std::uint64_t seed = 0;             // 0: the view file's `hair texture:` seed
   std::size_t maxHairs = 50'000'000;  // more is an error
   std::string lsystemFile;            // where the limit error points
+  Progress* progress = nullptr;       // shows the placement's progress (null: nothing)
 };
 
 // Whether any segment of the scene has a side with hairs switched on.

@@ -53,7 +53,9 @@ class HairCsvWriter : public ScenePrinter {
 // "front", "back" or "edge".
 const char* hairSideName(HairSide side);
 
-// Writes a row for every hair of `scene` to `target`, through a temporary file renamed into place.
-HairCsvStats writeHairCsv(const Scene& scene, const std::filesystem::path& target);
+// Writes a row for every hair of `scene` to `target`, through a temporary file renamed into place;
+// shows its progress on `progress` when given.
+HairCsvStats writeHairCsv(const Scene& scene, const std::filesystem::path& target,
+                          Progress* progress = nullptr);
 
 }  // namespace hirsute

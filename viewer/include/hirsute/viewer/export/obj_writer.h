@@ -90,8 +90,8 @@ class ObjWriter : public ScenePrinter {
 };
 
 // Writes `scene` to `target` and its material library beside it (and textures, see
-// texture_file.h); returns the figures.
+// texture_file.h); returns the figures. Shows its progress on `progress` when given.
 ObjExportStats writeObj(const Scene& scene, const std::filesystem::path& target,
-                        ObjOptions options = {});
+                        ObjOptions options = {}, Progress* progress = nullptr);
 
 }  // namespace hirsute

@@ -139,8 +139,9 @@ class PovWriter : public ScenePrinter {
   PovExportStats stats_;
 };
 
-// Writes `scene` to `target` (textures beside it, see texture_file.h) and returns the figures.
+// Writes `scene` to `target` (textures beside it, see texture_file.h) and returns the figures;
+// shows its progress on `progress` when given.
 PovExportStats writePov(const Scene& scene, const PovOptions& options,
-                        const std::filesystem::path& target);
+                        const std::filesystem::path& target, Progress* progress = nullptr);
 
 }  // namespace hirsute

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/progress.h"
 
 namespace hirsute {
 
@@ -38,11 +39,32 @@ class ScenePrinter {
   virtual void fur(const Scene& scene) = 0;
   // After the last element: close what is open and commit the files.
   virtual void endScene() = 0;
+
+ protected:
+  // A printer whose one call writes many items (hairs() a hair at a time) calls this after each,
+  // so that the progress line moves while it runs.
+  void advance(double items = 1) {
+    if (progress_ == nullptr) return;
+    done_ += items;
+    // A big step (a mesh of many triangles) is worth a look at the clock; small ones count down.
+    if (items >= 64) {
+      progress_->update(done_);
+    } else {
+      progress_->tick(done_);
+    }
+  }
+
+ private:
+  friend void printScene(const Scene&, ScenePrinter&, Progress*, const char*);
+  Progress* progress_ = nullptr;
+  double done_ = 0;  // items written: triangles, lines, spheres, discs, labels, hairs, feathers
 };
 
 // Visits meshes, lines, spheres, discs, labels, hairs and feathers, in that order and each in scene
-// order. Meshes without triangles are skipped.
-void printScene(const Scene& scene, ScenePrinter& printer);
+// order. Meshes without triangles are skipped. With `progress`, shows `STAGE: N%` of the items
+// written (a mesh counts its triangles).
+void printScene(const Scene& scene, ScenePrinter& printer, Progress* progress = nullptr,
+                const char* stage = "writing");
 
 // Whether `mesh` is drawn with its texture image: it names a texture of the scene that has pixels,
 // and has one texture coordinate per vertex. As in the GL renderer, a texture that could not be
