@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/environment/environment.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -74,8 +75,21 @@ std::vector<std::string> modules(const std::string& text) {
   return out;
 }
 
+// The model's .e file (cpfg -e), the only one in its folder.
+std::optional<fs::path> communicationFile(const fs::path& folder) {
+  std::optional<fs::path> found;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.path().extension() != ".e") continue;
+    if (found) return std::nullopt;
+    found = entry.path();
+  }
+  return found;
+}
+
 // The derived string (after the homomorphism when asked), in cpfg's format without newlines.
-std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bool batchMode) {
+// `environment` is the model's .e file for an open L-system.
+std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bool batchMode,
+                   const std::optional<fs::path>& environmentFile = std::nullopt) {
   Diagnostics diagnostics;  // warnings are not printed here
   std::optional<fs::path> view;
   if (row.vfile != "-") view = folder / row.vfile;
@@ -87,11 +101,14 @@ std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bo
   DerivationOptions options;
   options.steps = row.steps;
   Derivation derivation(model.program, evaluator, diagnostics, options);
-  // Query modules (?P ?H ?L ?U) are filled by the turtle before each step.
+  // Query modules (?P ?H ?L ?U) are filled by the turtle before each step, and the
+  // environment answers ?E in the same pass.
+  std::unique_ptr<Environment> environment;
+  if (environmentFile) environment = openEnvironment(*environmentFile, diagnostics);
   std::optional<ModelResources> resources;
-  if (model.program.usesQueries) {
+  if (model.program.usesQueries || environment) {
     resources = loadModelResources(view, ColorFiles{}, diagnostics);
-    installQueryPass(derivation, *resources, diagnostics);
+    installQueryPass(derivation, *resources, diagnostics, environment.get());
   }
   derivation.run();
   char* buffer = nullptr;
@@ -147,10 +164,23 @@ int main(int argc, char** argv) {
   int passed = 0, failed = 0, excused = 0, skipped = 0;
   for (const Row& row : readIndex(root / "index.tsv")) {
     fs::path folder = root / row.id;
+    std::optional<fs::path> environmentFile;
     if (row.environment == "yes") {
-      std::cout << row.id << ": skipped (needs cpfg's environment programs, -e)\n";
-      ++skipped;
-      continue;
+      // An open L-system runs against its environment when its program is built in.
+      environmentFile = communicationFile(folder);
+      std::string why;
+      if (!environmentFile) {
+        why = "no single .e file in its folder";
+      } else {
+        Diagnostics quiet;
+        CommunicationFile e = readCommunicationFile(*environmentFile, quiet);
+        if (!makeBuiltinProgram(e, quiet)) why = "its environmental program is not built in";
+      }
+      if (!why.empty()) {
+        std::cout << row.id << ": skipped (" << why << ")\n";
+        ++skipped;
+        continue;
+      }
     }
     for (bool homomorphism : {false, true}) {
       fs::path expectedFile = folder / (homomorphism ? "expected.homo.str" : "expected.str");
@@ -162,7 +192,7 @@ int main(int argc, char** argv) {
       if (batchMode) label += " [as cpfg -g: function-set names undefined]";
       std::string result;
       try {
-        result = compare(derive(folder, row, homomorphism, batchMode),
+        result = compare(derive(folder, row, homomorphism, batchMode, environmentFile),
                          withoutNewlines(readFile(expectedFile)));
       } catch (const DiagnosticError& e) {
         result = "error: " + e.diagnostic().text();
