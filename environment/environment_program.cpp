@@ -74,6 +74,7 @@ const std::vector<Builtin>& builtins() {
       {"honda81", programs::makeHonda81},
       {"ecosystem", programs::makeEcosystem},
       {"clover", programs::makeClover},
+      {"chiba", programs::makeChiba},
   };
   return table;
 }

@@ -27,7 +27,5 @@ std::unique_ptr<EnvironmentProgram> makeClover(const CommunicationFile& file, co
                                                Diagnostics& diagnostics);
 std::unique_ptr<EnvironmentProgram> makeChiba(const CommunicationFile& file, const ProgramCommand& command,
                                               Diagnostics& diagnostics);
-std::unique_ptr<EnvironmentProgram> makeDensity(const CommunicationFile& file, const ProgramCommand& command,
-                                                Diagnostics& diagnostics);
 
 }  // namespace hirsute::programs

@@ -3,9 +3,14 @@
 // the homomorphism), newlines removed. Prints one line per model and a final count; exits 1 when
 // a model that must match does not, 77 (skip) when the folder is absent.
 //
-// Every model with environment=no must match, except the understood differences named below.
+// Every model must match, except the understood differences named below. Open L-systems
+// (environment=yes) run against their environmental program: a built-in one, or the model's
+// own, built with its makefile against Hirsute's communication library.
+#include <unistd.h>
+
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -84,6 +89,38 @@ std::optional<fs::path> communicationFile(const fs::path& folder) {
     found = entry.path();
   }
   return found;
+}
+
+// A model whose environmental program is its own (`executable: ./NAME`, built by NAME.mak)
+// runs in a scratch folder beside links to the model's files: the program is built there with
+// the model's own makefile against Hirsute's communication library. Returns the scratch
+// folder's .e file, or nullopt with `why` set.
+std::vector<fs::path> scratchFolders;  // removed when the runner ends
+
+std::optional<fs::path> buildModelProgram(const fs::path& folder, const fs::path& efile, std::string& why) {
+  Diagnostics quiet;
+  CommunicationFile e = readCommunicationFile(efile, quiet);
+  const ProgramCommand command = parseProgramCommand(e);
+  const std::string name = fs::path(command.program).filename().string();
+  if (command.program.rfind("./", 0) != 0 || !fs::exists(folder / (name + ".mak"))) {
+    why = "its environmental program " + command.program + " is neither built in nor built by the model";
+    return std::nullopt;
+  }
+  fs::path scratch = fs::temp_directory_path() / ("hirsute-conformance-" + std::to_string(::getpid()) + "-" + name);
+  fs::remove_all(scratch);
+  fs::create_directories(scratch);
+  scratchFolders.push_back(scratch);
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.path().extension() == ".a") continue;  // a prebuilt library of another platform
+    fs::create_symlink(fs::absolute(entry.path()), scratch / entry.path().filename());
+  }
+  const std::string make = "cd '" + scratch.string() + "' && make -s -f " + name + ".mak LOCAL='" +
+                           HIRSUTE_COMM_LIBRARY_DIR + "' >make.log 2>&1";
+  if (std::system(make.c_str()) != 0) {
+    why = "building " + name + " with " + name + ".mak failed (see " + (scratch / "make.log").string() + ")";
+    return std::nullopt;
+  }
+  return scratch / efile.filename();
 }
 
 // The derived string (after the homomorphism when asked), in cpfg's format without newlines.
@@ -167,6 +204,7 @@ int main(int argc, char** argv) {
     std::optional<fs::path> environmentFile;
     if (row.environment == "yes") {
       // An open L-system runs against its environment when its program is built in.
+      // A program of the model's own is built with its makefile first.
       environmentFile = communicationFile(folder);
       std::string why;
       if (!environmentFile) {
@@ -174,7 +212,7 @@ int main(int argc, char** argv) {
       } else {
         Diagnostics quiet;
         CommunicationFile e = readCommunicationFile(*environmentFile, quiet);
-        if (!makeBuiltinProgram(e, quiet)) why = "its environmental program is not built in";
+        if (!makeBuiltinProgram(e, quiet)) environmentFile = buildModelProgram(folder, *environmentFile, why);
       }
       if (!why.empty()) {
         std::cout << row.id << ": skipped (" << why << ")\n";
@@ -215,6 +253,7 @@ int main(int argc, char** argv) {
       }
     }
   }
+  for (const fs::path& scratch : scratchFolders) fs::remove_all(scratch);
   std::cout << passed << " passed, " << failed << " failed";
   if (excused) std::cout << " (" << excused << " known differences explained above)";
   if (skipped) std::cout << ", " << skipped << " skipped";
