@@ -87,7 +87,7 @@ class ExternalProgram : public EnvironmentProgram {
   void stop() {
     // The exit line; the program finishes on its own, or is ended.
     try {
-      if (pid_ > 0 && alive()) {
+      if (pid_ > 0 && !failed_ && alive()) {
         if (file_.transport == Transport::Pipes) {
           writeAll(toProgram_, std::string(kExitLine));
           char byte;
@@ -102,7 +102,7 @@ class ExternalProgram : public EnvironmentProgram {
     if (fromProgram_ >= 0) ::close(fromProgram_);
     toProgram_ = fromProgram_ = -1;
     if (pid_ > 0) {
-      const auto until = Clock::now() + std::chrono::seconds(2);
+      const auto until = Clock::now() + (failed_ ? std::chrono::seconds(0) : std::chrono::seconds(2));
       while (alive() && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(10));
       if (alive()) {
         ::kill(pid_, SIGKILL);
@@ -120,7 +120,8 @@ class ExternalProgram : public EnvironmentProgram {
     if (!fromField_.empty()) std::filesystem::remove(fromField_, ec);
   }
 
-  [[noreturn]] void fail(const std::string& what) const {
+  [[noreturn]] void fail(const std::string& what) {
+    failed_ = true;
     throw DiagnosticError(file_.executableWhere, "environmental program " + name_ + ": " + what);
   }
 
@@ -298,7 +299,11 @@ class ExternalProgram : public EnvironmentProgram {
       char buffer[4096];
       const ssize_t n = ::read(fromProgram_, buffer, sizeof buffer);
       if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) fail("closed its output before answering");
+      if (n <= 0) {
+        const auto until = Clock::now() + std::chrono::seconds(1);
+        while (alive() && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        fail(alive() ? "closed its output before answering" : "died before answering: it " + deathText());
+      }
       answers.append(buffer, static_cast<std::size_t>(n));
       if (answers.size() > (std::size_t{1} << 30)) fail("answered more than 1 GiB");
       for (std::size_t nl; (nl = answers.find('\n', lineStart)) != std::string::npos; lineStart = nl + 1) {
@@ -313,6 +318,7 @@ class ExternalProgram : public EnvironmentProgram {
   std::filesystem::path folder_;
   pid_t pid_ = -1;
   int exitStatus_ = 0;
+  bool failed_ = false;  // after an error the program is ended, not asked to finish
   int toProgram_ = -1, fromProgram_ = -1;
   int semaphores_ = -1, segment_ = -1;
   char* memory_ = nullptr;

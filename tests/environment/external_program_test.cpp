@@ -1,0 +1,127 @@
+// Environmental programs of a model's own, built against Hirsute's libcomm.a (programs/), run
+// over each transport cpfg offers; and the programs that die, hang or answer garbage end the
+// run with an error that names them instead of hanging it.
+#include <chrono>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "hirsute/environment/environment.h"
+#include "support/test_files.h"
+
+namespace hirsute {
+namespace {
+
+class ExternalProgramTest : public testing::TemporaryFolderTest {
+ protected:
+  ExternalProgramTest() : TemporaryFolderTest("hirsute_external_") {}
+
+  std::unique_ptr<Environment> open(const std::string& program, const std::string& argument,
+                                    const std::string& transport, int timeout = 20) {
+    std::ofstream(file("data.txt")) << "obstacles\n";
+    std::ofstream(file("model.e")) << "executable: " << program << " " << argument << "\n"
+                                   << "communication type: " << transport << "\n"
+                                   << "turtle position:P:%.4f %.4f %.4f\n";
+    EnvironmentOptions options;
+    options.timeoutSeconds = timeout;
+    return openEnvironment(file("model.e"), diagnostics_, options);
+  }
+
+  // One pass with the query ?E(x, 0) at a turtle standing at (2.5, 0, 0), twice; the values
+  // of the E module after each.
+  std::vector<std::pair<float, float>> twoPasses(Environment& environment, float x) {
+    ModuleString s;
+    s.append('F');
+    s.append('?');
+    const std::size_t at = s.end();
+    const float values[] = {x, 0};
+    s.append('E', std::span<const float>(values, 2));
+    TurtleState turtle;
+    turtle.position = {2.5, 0, 0};
+    std::vector<std::pair<float, float>> out;
+    for (int step = 0; step < 2; ++step) {
+      environment.beginPass(s, step);
+      EnvironmentQuery q;
+      q.turtle = &turtle;
+      const float current[] = {s.at(at).parameter(0), s.at(at).parameter(1)};
+      q.parameters = current;
+      q.count = 2;
+      q.position = at;
+      environment.query(q);
+      environment.endPass();
+      out.emplace_back(s.at(at).parameter(0), s.at(at).parameter(1));
+    }
+    return out;
+  }
+
+  std::string errorOf(const std::function<void()>& run) {
+    try {
+      run();
+    } catch (const DiagnosticError& e) {
+      return e.diagnostic().text();
+    }
+    return "no error";
+  }
+
+  Diagnostics diagnostics_;
+};
+
+const std::vector<std::pair<float, float>> kTwoAnswers = {{2, 2.5f}, {3, 2.5f}};
+
+TEST_F(ExternalProgramTest, AnswersOverPipes) {
+  auto environment = open(HIRSUTE_PLUS_ONE, "data.txt", "pipes");
+  EXPECT_EQ(twoPasses(*environment, 1), kTwoAnswers);
+}
+
+TEST_F(ExternalProgramTest, AnswersOverFiles) {
+  auto environment = open(HIRSUTE_PLUS_ONE, "data.txt", "files");
+  EXPECT_EQ(twoPasses(*environment, 1), kTwoAnswers);
+  // The exchange files lie beside the .e while the program runs, and go with it.
+  environment.reset();
+  for (const auto& entry : std::filesystem::directory_iterator(folder_)) {
+    EXPECT_EQ(entry.path().filename().string().find(".to_field"), std::string::npos);
+  }
+}
+
+TEST_F(ExternalProgramTest, AnswersOverSharedMemory) {
+  auto environment = open(HIRSUTE_PLUS_ONE, "data.txt", "memory");
+  EXPECT_EQ(twoPasses(*environment, 1), kTwoAnswers);
+}
+
+TEST_F(ExternalProgramTest, AProgramThatCannotStartIsAnError) {
+  const std::string message = errorOf([&] { open(file("no-such-program").string(), "data.txt", "pipes"); });
+  EXPECT_NE(message.find("model.e:1:"), std::string::npos) << message;
+  EXPECT_NE(message.find("did not start"), std::string::npos) << message;
+  // plus_one connects, then exits without its argument file: the first batch finds it gone.
+  auto environment = open(HIRSUTE_PLUS_ONE, "missing.txt", "files");
+  EXPECT_NE(errorOf([&] { twoPasses(*environment, 1); }).find("exited with status 1"), std::string::npos);
+}
+
+TEST_F(ExternalProgramTest, AProgramThatDiesIsAnErrorNamingIt) {
+  for (const char* transport : {"pipes", "files", "memory"}) {
+    auto environment = open(HIRSUTE_MISBEHAVING, "die", transport);
+    const std::string message = errorOf([&] { twoPasses(*environment, 1); });
+    EXPECT_NE(message.find(HIRSUTE_MISBEHAVING), std::string::npos) << message;
+    EXPECT_NE(message.find("exited with status 3"), std::string::npos) << transport << ": " << message;
+  }
+}
+
+TEST_F(ExternalProgramTest, AProgramThatHangsRunsIntoTheTimeout) {
+  for (const char* transport : {"pipes", "files"}) {
+    auto environment = open(HIRSUTE_MISBEHAVING, "hang", transport, 1);
+    const auto started = std::chrono::steady_clock::now();
+    const std::string message = errorOf([&] { twoPasses(*environment, 1); });
+    EXPECT_NE(message.find("did not answer within the time limit"), std::string::npos) << message;
+    EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(10));
+  }
+}
+
+TEST_F(ExternalProgramTest, GarbageAnswersAreWarningsAndChangeNothing) {
+  auto environment = open(HIRSUTE_MISBEHAVING, "garbage", "pipes");
+  EXPECT_EQ(twoPasses(*environment, 1), (std::vector<std::pair<float, float>>{{1, 0}, {1, 0}}));
+  ASSERT_FALSE(diagnostics_.warnings().empty());
+  EXPECT_NE(diagnostics_.warnings().back().message.find("not an answer record"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hirsute
