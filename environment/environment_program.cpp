@@ -75,6 +75,7 @@ const std::vector<Builtin>& builtins() {
       {"ecosystem", programs::makeEcosystem},
       {"clover", programs::makeClover},
       {"chiba", programs::makeChiba},
+      {"density", programs::makeDensity},
   };
   return table;
 }

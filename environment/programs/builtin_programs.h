@@ -25,6 +25,8 @@ std::unique_ptr<EnvironmentProgram> makeEcosystem(const CommunicationFile& file,
                                                   Diagnostics& diagnostics);
 std::unique_ptr<EnvironmentProgram> makeClover(const CommunicationFile& file, const ProgramCommand& command,
                                                Diagnostics& diagnostics);
+std::unique_ptr<EnvironmentProgram> makeDensity(const CommunicationFile& file, const ProgramCommand& command,
+                                                Diagnostics& diagnostics);
 std::unique_ptr<EnvironmentProgram> makeChiba(const CommunicationFile& file, const ProgramCommand& command,
                                               Diagnostics& diagnostics);
 

@@ -343,5 +343,25 @@ TEST_F(EnvironmentTest, ChibaShadesABallUnderAnother) {
             "0 E(1)\n8 E(1)\nControl: 5\n");
 }
 
+// ---- density -------------------------------------------------------------------------------
+
+TEST_F(EnvironmentTest, DensitySumsTheFieldOfSourcesAndQueries) {
+  const std::string e = "executable: density field.spec\nturtle position:P:%g %g %g\n";
+  write("field.spec", "one point value: on\nreturn vector: yes\n");
+  // A source of strength 4 three units away gives 4/(1+3) = 1 and the gradient -4/(3·4²)·3 =
+  // -0.25 along x; a plain query one unit off along y adds 1/(1+1) = 0.5 and -2/(1+1)²·(-1) =
+  // 0.5 along y. Only the three-parameter query is answered.
+  const std::string batch = "0 E(4)\nP:0 0 0\n8 E(0,0,0)\nP:3 0 0\n16 E(5,5)\nP:3 1 0\n";
+  file_ = read(std::string(e));
+  program_ = makeBuiltinProgram(file_, diagnostics_);
+  EXPECT_EQ(program_->exchange(batch + "Control: 5 0\n"), "8 E(1.5,-0.25,0.5)\nControl: 5\n");
+  // As an angle and a length, and the least value on the square of side 1 around the point:
+  // with the source alone, its far corner (3.5, ±0.5), 4/(1 + √12.5).
+  write("field.spec", "");
+  program_ = makeBuiltinProgram(read(e), diagnostics_);
+  EXPECT_EQ(program_->exchange("0 E(4)\nP:0 0 0\n8 E(0,0,0)\nP:3 0 0\nControl: 5 0\n"),
+            "8 E(0.881925,180,0.25)\nControl: 5\n");
+}
+
 }  // namespace
 }  // namespace hirsute
