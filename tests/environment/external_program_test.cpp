@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "hirsute/environment/environment.h"
+#include "hirsute/environment/external_program.h"
 #include "support/test_files.h"
 
 namespace hirsute {
@@ -121,6 +122,22 @@ TEST_F(ExternalProgramTest, GarbageAnswersAreWarningsAndChangeNothing) {
   EXPECT_EQ(twoPasses(*environment, 1), (std::vector<std::pair<float, float>>{{1, 0}, {1, 0}}));
   ASSERT_FALSE(diagnostics_.warnings().empty());
   EXPECT_NE(diagnostics_.warnings().back().message.find("not an answer record"), std::string::npos);
+}
+
+TEST_F(ExternalProgramTest, TheBuiltinProgramsRunAsAProcessOfTheirOwn) {
+  // hirsute-environment under the name honda81 answers as the built-in does: the tip of vigor
+  // 1 lies within the radius of the tip of vigor 2 and stops.
+  std::filesystem::create_symlink(HIRSUTE_ENVIRONMENT_SERVER, file("honda81"));
+  std::ofstream(file("density.spec")) << "radius: 1\n3d case: on\n";
+  const std::string batch = "0 E(1)\nP:0 0 0\n8 E(2)\nP:0.5 0 0\nControl: 5 0\n";
+  for (const char* transport : {"pipes", "files", "memory"}) {
+    std::ofstream(file("model.e")) << "executable: ./honda81 density.spec\ncommunication type: " << transport
+                                   << "\nturtle position:P:%.4f %.4f %.4f\n";
+    CommunicationFile e = readCommunicationFile(file("model.e"), diagnostics_);
+    std::unique_ptr<EnvironmentProgram> program = startExternalProgram(e, 20, diagnostics_);
+    EXPECT_EQ(program->exchange(batch), "0 E(0)\n8 E(1)\nControl: 5\n") << transport;
+    EXPECT_EQ(makeBuiltinProgram(e, diagnostics_)->exchange(batch), "0 E(0)\n8 E(1)\nControl: 5\n");
+  }
 }
 
 }  // namespace
