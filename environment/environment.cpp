@@ -23,7 +23,8 @@ void Environment::beginPass(ModuleString& string, int step) {
   string_ = &string;
   step_ = step;
   batch_.clear();
-  batchQueries_ = 0;
+  recordEnds_.clear();
+  answerBounds_.clear();
   positions_.clear();
 }
 
@@ -42,16 +43,49 @@ void Environment::query(const EnvironmentQuery& q) {
     positions_[id] = q.position;
   }
   appendQueryRecord(batch_, id, q, file_);
-  ++batchQueries_;
+  recordEnds_.push_back(batch_.size());
+  // `<id> E(` and `)\n`, and per value at most 12 characters of %g and a comma.
+  answerBounds_.push_back(25 + 13 * q.count);
 }
 
 void Environment::endPass() {
-  if (batchQueries_ == 0) return;  // the program is not woken for a pass without ?E
-  batch_ += batchEndLine(step_);
-  queriesSent_ += batchQueries_;
+  if (recordEnds_.empty()) return;  // the program is not woken for a pass without ?E
+  queriesSent_ += recordEnds_.size();
   ++batchesSent_;
+  // A batch larger than the program takes at once goes in parts, as cpfg splits it: the
+  // control line of each part but the last says that more follow.
+  const EnvironmentProgram::PartLimits limits = program_->partLimits();
+  constexpr std::size_t kControlReserve = 25;
+  std::size_t from = 0;
+  bool first = true;
+  while (from < recordEnds_.size()) {
+    const std::size_t start = from == 0 ? 0 : recordEnds_[from - 1];
+    std::size_t to = from + 1, answers = answerBounds_[from];
+    while (to < recordEnds_.size() && to - from < limits.queries &&
+           recordEnds_[to] - start + kControlReserve <= limits.bytes &&
+           answers + answerBounds_[to] + kControlReserve <= limits.answerBytes) {
+      answers += answerBounds_[to];
+      ++to;
+    }
+    sendPart(from, to, first, to == recordEnds_.size());
+    first = false;
+    from = to;
+  }
+  batch_.clear();
+  recordEnds_.clear();
+  answerBounds_.clear();
+}
+
+void Environment::sendPart(std::size_t from, std::size_t to, bool first, bool last) {
+  const std::size_t start = from == 0 ? 0 : recordEnds_[from - 1];
+  std::string part = batch_.substr(start, recordEnds_[to - 1] - start);
+  if (first && last) {
+    part += batchEndLine(step_);
+  } else {
+    part += last ? "Control: 4 " + std::to_string(step_) + "\n" : first ? "Control: 1 0\n" : "Control: 0 0\n";
+  }
   std::vector<std::string> rejected;
-  const std::string answers = program_->exchange(batch_);
+  const std::string answers = program_->exchange(part);
   const SourceLocation where{std::make_shared<const std::string>(file_.file.string()), 0, 0};
   for (const AnswerRecord& a : parseAnswers(answers, &rejected)) {
     if (a.id == 1) continue;
@@ -79,8 +113,6 @@ void Environment::endPass() {
     diagnostics_.warn(where, program_->name() + " answered a line that is not an answer record: '" +
                                  rejected.front() + "'");
   }
-  batch_.clear();
-  batchQueries_ = 0;
 }
 
 std::unique_ptr<Environment> openEnvironment(const std::filesystem::path& file, Diagnostics& diagnostics,

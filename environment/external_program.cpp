@@ -59,6 +59,18 @@ class ExternalProgram : public EnvironmentProgram {
 
   const std::string& name() const override { return name_; }
 
+  // cpfg's parts: files and pipes by the .e's number of queries, shared memory by its blocks.
+  PartLimits partLimits() const override {
+    PartLimits limits;
+    if (file_.transport == Transport::Memory) {
+      limits.bytes = kToProgramBytes;
+      limits.answerBytes = kFromProgramBytes;
+    } else {
+      limits.queries = static_cast<std::size_t>(file_.chunkLimit);
+    }
+    return limits;
+  }
+
   std::string exchange(const std::string& batch) override {
     if (file_.transport == Transport::Pipes) {
       writeAll(toProgram_, batch);

@@ -15,6 +15,7 @@
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
+#include "hirsute/lsys/string_writer.h"
 #include "support/test_files.h"
 
 namespace hirsute {
@@ -223,6 +224,44 @@ TEST_F(EnvironmentTest, IdentifiersAreBytesOfCpfgsStringAndAnswersFillTheQueries
   bool warned = false;
   for (const Diagnostic& d : diagnostics_.warnings()) warned |= d.message.find("not enough room") != std::string::npos;
   EXPECT_TRUE(warned);
+}
+
+// A recorder that takes two queries at a time, as an external program over `pipes 2` does.
+class TwoAtATime : public RecordingProgram {
+ public:
+  using RecordingProgram::RecordingProgram;
+  PartLimits partLimits() const override {
+    PartLimits limits;
+    limits.queries = 2;
+    return limits;
+  }
+};
+
+TEST_F(EnvironmentTest, LargeBatchesGoInPartsAndEveryAnswerArrives) {
+  write("five.l", "Lsystem: 1\nderivation length: 1\nAxiom: ?E(0)?E(0)?E(0)?E(0)?E(0)\nendlsystem\n");
+  Model model = loadModel(file("five.l"), std::nullopt, diagnostics_);
+  std::ostringstream printed;
+  Evaluator evaluator(model.program, diagnostics_, &model.functions, model.folder, printed);
+  Derivation derivation(model.program, evaluator, diagnostics_);
+  std::vector<std::string> batches;
+  Environment environment(read("following module: no\n"), std::make_unique<TwoAtATime>(batches), diagnostics_);
+  ModelResources resources;
+  installQueryPass(derivation, resources, diagnostics_, &environment);
+  derivation.run();
+  // ?E(0) takes 7 bytes and ? one: the identifiers are 0, 8, 16, 24, 32.
+  EXPECT_EQ(batches, (std::vector<std::string>{"0 E(0)\n8 E(0)\nControl: 1 0\n", "16 E(0)\n24 E(0)\nControl: 0 0\n",
+                                               "32 E(0)\nControl: 4 0\n"}));
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  std::FILE* memory = open_memstream(&buffer, &size);
+  {
+    StringWriter writer(memory, StringFormat::Compact);
+    derivation.emit(writer, false);
+    writer.finish();
+  }
+  std::fclose(memory);
+  EXPECT_EQ(std::string(buffer, size), "?E(0.5)?E(8.5)?E(16.5)?E(24.5)?E(32.5)\n");
+  std::free(buffer);
 }
 
 // ---- honda81 -------------------------------------------------------------------------------

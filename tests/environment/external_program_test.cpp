@@ -124,6 +124,16 @@ TEST_F(ExternalProgramTest, GarbageAnswersAreWarningsAndChangeNothing) {
   EXPECT_NE(diagnostics_.warnings().back().message.find("not an answer record"), std::string::npos);
 }
 
+TEST_F(ExternalProgramTest, LibcommAnswersEachPartOfASplitBatch) {
+  for (const char* transport : {"pipes 1", "files 1", "memory"}) {
+    open(HIRSUTE_PLUS_ONE, "data.txt", transport);  // writes data.txt and model.e
+    CommunicationFile e = readCommunicationFile(file("model.e"), diagnostics_);
+    std::unique_ptr<EnvironmentProgram> program = startExternalProgram(e, 20, diagnostics_);
+    EXPECT_EQ(program->exchange("0 E(1)\nP:1 2 3\nControl: 1 0\n"), "0 E(2)\nControl: 5\n") << transport;
+    EXPECT_EQ(program->exchange("8 E(5,0)\nP:1 2 3\nControl: 4 0\n"), "8 E(6,1)\nControl: 5\n") << transport;
+  }
+}
+
 TEST_F(ExternalProgramTest, TheBuiltinProgramsRunAsAProcessOfTheirOwn) {
   // hirsute-environment under the name honda81 answers as the built-in does: the tip of vigor
   // 1 lies within the radius of the tip of vigor 2 and stops.

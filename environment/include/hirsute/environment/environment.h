@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "hirsute/environment/communication_file.h"
 #include "hirsute/environment/environment_program.h"
@@ -40,8 +41,12 @@ class Environment : public EnvironmentQueries {
   Diagnostics& diagnostics_;
   ModuleString* string_ = nullptr;
   int step_ = 0;
+  // The records of the pass: their text one after the other, where each ends, and a bound on
+  // the bytes of each one's answer.
   std::string batch_;
-  std::size_t batchQueries_ = 0;
+  std::vector<std::size_t> recordEnds_;
+  std::vector<std::size_t> answerBounds_;
+  void sendPart(std::size_t from, std::size_t to, bool first, bool last);
   // cpfg's identifiers: the bytes of its packed string from the first ?E of the pass.
   std::size_t lastPosition_ = 0;
   unsigned long lastIdentifier_ = 0;

@@ -18,9 +18,18 @@ class EnvironmentProgram {
   virtual ~EnvironmentProgram() = default;
   // The program's name for messages.
   virtual const std::string& name() const = 0;
-  // One batch: query records ending with a control line in; answer records ending with
-  // `Control: 5` out.
+  // One batch, or one part of a batch: query records ending with a control line in; answer
+  // records ending with `Control: 5` out.
   virtual std::string exchange(const std::string& batch) = 0;
+
+  // How large one part of a batch may be (cpfg splits larger batches into parts): bytes of
+  // query text, queries, and a bound on the bytes of their answers. Unlimited in-process.
+  struct PartLimits {
+    std::size_t bytes = static_cast<std::size_t>(-1);
+    std::size_t queries = static_cast<std::size_t>(-1);
+    std::size_t answerBytes = static_cast<std::size_t>(-1);
+  };
+  virtual PartLimits partLimits() const { return {}; }
 };
 
 // The `executable:` line taken apart as cpfg's programs take their command line: the program,
