@@ -1,5 +1,6 @@
 #include "hirsute/environment/exchange_text.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -91,10 +92,12 @@ void appendQueryRecord(std::string& batch, unsigned long id, const EnvironmentQu
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%lu E", id);
   batch += buffer;
-  appendParameters(batch, q.parameters, q.count);
+  // cpfg sends at most 20 parameters of a module (CMAXPARAMS of its library).
+  constexpr std::size_t kMaxSent = 20;
+  appendParameters(batch, q.parameters, std::min(q.count, kMaxSent));
   if (file.followingModule && !q.followingSymbols.empty()) {
     batch += q.followingSymbols;
-    appendParameters(batch, q.followingParameters, q.followingCount);
+    appendParameters(batch, q.followingParameters, std::min(q.followingCount, kMaxSent));
   }
   batch += '\n';
   for (int v = 0; v < kTurtleValues; ++v) {
