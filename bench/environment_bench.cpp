@@ -66,13 +66,15 @@ Result derive(const fs::path& folder, bool external, const char* transport) {
   ModelResources resources;
   {
     std::ofstream e(folder / "model.e");
-    e << "executable: ./" << folder.filename().string() << " model.spec\ncommunication type: " << transport << "\n"
+    e << "executable: ./" << folder.filename().string()
+      << " model.spec\ncommunication type: " << transport << "\n"
       << std::ifstream(folder / "position").rdbuf();
   }
   const auto start = std::chrono::steady_clock::now();
   EnvironmentOptions options;
   options.forceExternal = external;
-  std::unique_ptr<Environment> environment = openEnvironment(folder / "model.e", diagnostics, options);
+  std::unique_ptr<Environment> environment =
+      openEnvironment(folder / "model.e", diagnostics, options);
   installQueryPass(derivation, resources, diagnostics, environment.get());
   derivation.run();
   Result r;
@@ -103,15 +105,17 @@ void bench(const BenchModel& m, const fs::path& root) {
   std::ofstream(folder / "position") << m.position;
   fs::create_symlink(HIRSUTE_ENVIRONMENT_SERVER, folder / m.program);
   const Result builtin = derive(folder, false, "pipes");
-  std::printf("%s: %zu queries in %zu batches, %zu bytes of string\n", m.name, builtin.queries, builtin.batches,
-              builtin.string.size());
-  std::printf("  %-22s %9.3f s  %12.0f queries/s\n", "built in", builtin.seconds, builtin.queries / builtin.seconds);
+  std::printf("%s: %zu queries in %zu batches, %zu bytes of string\n", m.name, builtin.queries,
+              builtin.batches, builtin.string.size());
+  std::printf("  %-22s %9.3f s  %12.0f queries/s\n", "built in", builtin.seconds,
+              builtin.queries / builtin.seconds);
   for (const char* transport : {"pipes", "files", "memory"}) {
     Result external;
     try {
       external = derive(folder, true, transport);
     } catch (const DiagnosticError& e) {
-      std::printf("  %-22s %s\n", (std::string("process over ") + transport).c_str(), e.diagnostic().message.c_str());
+      std::printf("  %-22s %s\n", (std::string("process over ") + transport).c_str(),
+                  e.diagnostic().message.c_str());
       continue;
     }
     std::printf("  %-22s %9.3f s  %12.0f queries/s  built in %.1fx faster, %s string\n",
@@ -124,7 +128,8 @@ void bench(const BenchModel& m, const fs::path& root) {
 }  // namespace
 
 int main() {
-  const fs::path root = fs::temp_directory_path() / ("hirsute-environment-bench-" + std::to_string(getpid()));
+  const fs::path root =
+      fs::temp_directory_path() / ("hirsute-environment-bench-" + std::to_string(getpid()));
   fs::create_directories(root);
   try {
     bench(kCollision, root);

@@ -14,7 +14,8 @@ constexpr std::size_t kMaxLine = 4095;
 // Checks that printf can apply `format` to `values` doubles: every conversion a floating one
 // (flags, width and precision as digits, an optional `l`), at most `values` of them. Returns the
 // number of conversions and sets `first` to the offset of the first one.
-int checkFormat(const KeywordLine& line, const std::string& format, int values, std::size_t& first) {
+int checkFormat(const KeywordLine& line, const std::string& format, int values,
+                std::size_t& first) {
   const int base = static_cast<int>(line.rest) + 1;
   int conversions = 0;
   first = 0;
@@ -50,7 +51,9 @@ int checkFormat(const KeywordLine& line, const std::string& format, int values, 
 }
 
 // The first word of the rest of the line (words separated by blanks, TABs and `:`).
-std::vector<KeywordToken> words(const KeywordLine& line) { return line.tokens(" \t:"); }
+std::vector<KeywordToken> words(const KeywordLine& line) {
+  return line.tokens(" \t:");
+}
 
 bool firstWordIs(const KeywordLine& line, const char* word) {
   std::vector<KeywordToken> w = words(line);
@@ -67,21 +70,23 @@ void readInterpretedModules(const KeywordLine& line, CommunicationFile& out) {
                t.text[2] <= '6') {
       out.interpreted.push_back(InterpretedModule{t.text[0], t.text[2] - '0'});
     } else {
-      throw DiagnosticError(line.at(t.column), "expected 'all', a module symbol or a module with "
-                                               "its parameter count such as F(2), found '" +
-                                                   t.text + "'");
+      throw DiagnosticError(line.at(t.column),
+                            "expected 'all', a module symbol or a module with "
+                            "its parameter count such as F(2), found '" +
+                                t.text + "'");
     }
   }
 }
 
 }  // namespace
 
-CommunicationFile readCommunicationFile(const std::filesystem::path& file, Diagnostics& diagnostics) {
+CommunicationFile readCommunicationFile(const std::filesystem::path& file,
+                                        Diagnostics& diagnostics) {
   CommunicationFile out;
   out.file = file;
   static const char* const kTurtleKeywords[kTurtleValues] = {
-      "turtle position", "turtle heading", "turtle left", "turtle up", "turtle line width",
-      "turtle scale factor"};
+      "turtle position", "turtle heading",    "turtle left",
+      "turtle up",       "turtle line width", "turtle scale factor"};
   for (const KeywordLine& line : readKeywordLines(file, kMaxLine)) {
     const std::string& k = line.keyword;
     bool known = true;
@@ -123,14 +128,16 @@ CommunicationFile readCommunicationFile(const std::filesystem::path& file, Diagn
     } else if (k == "when interpret") {
       for (const KeywordToken& t : line.tokens(",; \t")) {
         const int n = keywordInteger(line, t);
-        if (n > 6) throw DiagnosticError(line.at(t.column), "a module has at most 6 parameters here");
+        if (n > 6)
+          throw DiagnosticError(line.at(t.column), "a module has at most 6 parameters here");
         out.whenInterpret.push_back(n);
       }
     } else if (k == "verbose") {
       out.verbose = firstWordIs(line, "on");
     } else if (k == "strings only" || k == "binary data") {
       if (firstWordIs(line, "on")) {
-        throw DiagnosticError(line.at(1), "'" + k + "' exchanges are not supported; only ?E records are");
+        throw DiagnosticError(line.at(1),
+                              "'" + k + "' exchanges are not supported; only ?E records are");
       }
     } else if (k == "remote host") {
       out.remoteHost = line.restText();

@@ -35,7 +35,8 @@ void Environment::query(const EnvironmentQuery& q) {
       id = 0;
     } else {
       std::size_t bytes = 0;
-      for (std::size_t p = lastPosition_; p < q.position; p = string_->next(p)) bytes += packedSize(string_->at(p));
+      for (std::size_t p = lastPosition_; p < q.position; p = string_->next(p))
+        bytes += packedSize(string_->at(p));
       id = lastIdentifier_ + bytes;
     }
     lastPosition_ = q.position;
@@ -82,7 +83,9 @@ void Environment::sendPart(std::size_t from, std::size_t to, bool first, bool la
   if (first && last) {
     part += batchEndLine(step_);
   } else {
-    part += last ? "Control: 4 " + std::to_string(step_) + "\n" : first ? "Control: 1 0\n" : "Control: 0 0\n";
+    part += last    ? "Control: 4 " + std::to_string(step_) + "\n"
+            : first ? "Control: 1 0\n"
+                    : "Control: 0 0\n";
   }
   std::vector<std::string> rejected;
   const std::string answers = program_->exchange(part);
@@ -115,12 +118,14 @@ void Environment::sendPart(std::size_t from, std::size_t to, bool first, bool la
   }
 }
 
-std::unique_ptr<Environment> openEnvironment(const std::filesystem::path& file, Diagnostics& diagnostics,
+std::unique_ptr<Environment> openEnvironment(const std::filesystem::path& file,
+                                             Diagnostics& diagnostics,
                                              const EnvironmentOptions& options) {
   CommunicationFile e = readCommunicationFile(file, diagnostics);
   if (!e.executable) {
-    diagnostics.warn(SourceLocation{std::make_shared<const std::string>(file.string()), 0, 0},
-                     "no executable: line; the environment is ignored and ?E modules keep their values");
+    diagnostics.warn(
+        SourceLocation{std::make_shared<const std::string>(file.string()), 0, 0},
+        "no executable: line; the environment is ignored and ?E modules keep their values");
     return nullptr;
   }
   std::unique_ptr<EnvironmentProgram> program;

@@ -62,8 +62,8 @@ void BuiltinProgram::reject(const std::string& why) {
 
 namespace {
 
-using Factory = std::function<std::unique_ptr<EnvironmentProgram>(const CommunicationFile&, const ProgramCommand&,
-                                                                   Diagnostics&)>;
+using Factory = std::function<std::unique_ptr<EnvironmentProgram>(
+    const CommunicationFile&, const ProgramCommand&, Diagnostics&)>;
 struct Builtin {
   const char* name;
   Factory make;
@@ -71,10 +71,8 @@ struct Builtin {
 
 const std::vector<Builtin>& builtins() {
   static const std::vector<Builtin> table = {
-      {"honda81", programs::makeHonda81},
-      {"ecosystem", programs::makeEcosystem},
-      {"clover", programs::makeClover},
-      {"chiba", programs::makeChiba},
+      {"honda81", programs::makeHonda81}, {"ecosystem", programs::makeEcosystem},
+      {"clover", programs::makeClover},   {"chiba", programs::makeChiba},
       {"density", programs::makeDensity},
   };
   return table;
@@ -91,7 +89,8 @@ const std::vector<std::string>& builtinProgramNames() {
   return names;
 }
 
-std::unique_ptr<EnvironmentProgram> makeBuiltinProgram(const CommunicationFile& file, Diagnostics& diagnostics) {
+std::unique_ptr<EnvironmentProgram> makeBuiltinProgram(const CommunicationFile& file,
+                                                       Diagnostics& diagnostics) {
   const ProgramCommand command = parseProgramCommand(file);
   const std::string name = std::filesystem::path(command.program).filename().string();
   for (const Builtin& b : builtins()) {
@@ -108,16 +107,17 @@ int floorIndex(double v) {
   return f > 1e9 ? 1'000'000'000 : static_cast<int>(f);
 }
 
-std::vector<KeywordLine> readSpecification(const ProgramCommand& command, const CommunicationFile& file) {
+std::vector<KeywordLine> readSpecification(const ProgramCommand& command,
+                                           const CommunicationFile& file) {
   if (!command.specification) {
     throw DiagnosticError(file.executableWhere,
                           command.program + " needs its specification file on the executable line");
   }
   std::error_code ec;
   if (!std::filesystem::is_regular_file(*command.specification, ec)) {
-    throw DiagnosticError(command.specificationWhere,
-                          "cannot read " + command.program + "'s specification file " +
-                              command.specification->string());
+    throw DiagnosticError(command.specificationWhere, "cannot read " + command.program +
+                                                          "'s specification file " +
+                                                          command.specification->string());
   }
   return readKeywordLines(*command.specification, 254);
 }

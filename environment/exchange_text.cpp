@@ -27,14 +27,22 @@ void appendParameters(std::string& out, const float* values, std::size_t count) 
 // The f32 values the turtle line of `which` formats.
 std::array<double, 3> turtleValues(const TurtleState& t, int which) {
   const auto f32 = [](double v) { return static_cast<double>(static_cast<float>(v)); };
-  const auto vector = [&](const glm::dvec3& v) { return std::array<double, 3>{f32(v.x), f32(v.y), f32(v.z)}; };
+  const auto vector = [&](const glm::dvec3& v) {
+    return std::array<double, 3>{f32(v.x), f32(v.y), f32(v.z)};
+  };
   switch (which) {
-    case kPosition: return vector(t.position);
-    case kHeading: return vector(t.heading);
-    case kLeft: return vector(t.left);
-    case kUp: return vector(t.up);
-    case kLineWidth: return {f32(t.lineWidth), 0, 0};
-    default: return {f32(t.scale), 0, 0};
+    case kPosition:
+      return vector(t.position);
+    case kHeading:
+      return vector(t.heading);
+    case kLeft:
+      return vector(t.left);
+    case kUp:
+      return vector(t.up);
+    case kLineWidth:
+      return {f32(t.lineWidth), 0, 0};
+    default:
+      return {f32(t.scale), 0, 0};
   }
 }
 
@@ -83,7 +91,9 @@ ModuleValues readModule(std::string_view line, std::size_t& at) {
   return m;
 }
 
-bool isControl(std::string_view line) { return line.substr(0, 8) == "Control:"; }
+bool isControl(std::string_view line) {
+  return line.substr(0, 8) == "Control:";
+}
 
 }  // namespace
 
@@ -116,7 +126,9 @@ void appendQueryRecord(std::string& batch, unsigned long id, const EnvironmentQu
   }
 }
 
-std::string batchEndLine(int step) { return "Control: 5 " + std::to_string(step) + "\n"; }
+std::string batchEndLine(int step) {
+  return "Control: 5 " + std::to_string(step) + "\n";
+}
 
 std::vector<AnswerRecord> parseAnswers(std::string_view text, std::vector<std::string>* rejected) {
   std::vector<AnswerRecord> out;

@@ -41,7 +41,8 @@ class ExternalProgram : public EnvironmentProgram {
       argv.push_back("-e");
       argv.push_back(efile);
     }
-    if (file.transport == Transport::Sockets) fail("the sockets transport is not supported; use files, memory or pipes");
+    if (file.transport == Transport::Sockets)
+      fail("the sockets transport is not supported; use files, memory or pipes");
     try {
       if (file.transport == Transport::Pipes) {
         argv.insert(argv.end(), command.words.begin() + 1, command.words.end());
@@ -114,8 +115,10 @@ class ExternalProgram : public EnvironmentProgram {
     if (fromProgram_ >= 0) ::close(fromProgram_);
     toProgram_ = fromProgram_ = -1;
     if (pid_ > 0) {
-      const auto until = Clock::now() + (failed_ ? std::chrono::seconds(0) : std::chrono::seconds(2));
-      while (alive() && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      const auto until =
+          Clock::now() + (failed_ ? std::chrono::seconds(0) : std::chrono::seconds(2));
+      while (alive() && Clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
       if (alive()) {
         ::kill(pid_, SIGKILL);
         ::waitpid(pid_, nullptr, 0);
@@ -148,8 +151,10 @@ class ExternalProgram : public EnvironmentProgram {
   }
 
   std::string deathText() const {
-    if (WIFEXITED(exitStatus_)) return "exited with status " + std::to_string(WEXITSTATUS(exitStatus_));
-    if (WIFSIGNALED(exitStatus_)) return std::string("was killed by signal ") + strsignal(WTERMSIG(exitStatus_));
+    if (WIFEXITED(exitStatus_))
+      return "exited with status " + std::to_string(WEXITSTATUS(exitStatus_));
+    if (WIFSIGNALED(exitStatus_))
+      return std::string("was killed by signal ") + strsignal(WTERMSIG(exitStatus_));
     return "ended";
   }
 
@@ -181,7 +186,8 @@ class ExternalProgram : public EnvironmentProgram {
     // The program writes one byte of value 1 as soon as it starts.
     char byte = 0;
     if (!waitReadable(fromProgram_, timeout_) || ::read(fromProgram_, &byte, 1) != 1 || byte != 1) {
-      fail(alive() ? "did not start (no start byte on its standard output)" : "did not start: it " + deathText());
+      fail(alive() ? "did not start (no start byte on its standard output)"
+                   : "did not start: it " + deathText());
     }
   }
 
@@ -193,7 +199,8 @@ class ExternalProgram : public EnvironmentProgram {
       semaphores_ = ::semget(key, 2, IPC_CREAT | IPC_EXCL | 0600);
       if (semaphores_ < 0) continue;
       if (file_.transport == Transport::Memory) {
-        segment_ = ::shmget(key - 1, kToProgramBytes + kFromProgramBytes, IPC_CREAT | IPC_EXCL | 0600);
+        segment_ =
+            ::shmget(key - 1, kToProgramBytes + kFromProgramBytes, IPC_CREAT | IPC_EXCL | 0600);
         if (segment_ < 0) {
           ::semctl(semaphores_, 0, IPC_RMID);
           semaphores_ = -1;
@@ -238,7 +245,8 @@ class ExternalProgram : public EnvironmentProgram {
       out.close();
       if (!out) fail("cannot write " + toField_.string());
     } else {
-      if (text.size() > kToProgramBytes) fail("a batch is larger than the shared memory block (50000 bytes)");
+      if (text.size() > kToProgramBytes)
+        fail("a batch is larger than the shared memory block (50000 bytes)");
       std::memcpy(memory_, text.data(), text.size());
       if (text.size() < kToProgramBytes) memory_[text.size()] = '\0';
     }
@@ -253,7 +261,8 @@ class ExternalProgram : public EnvironmentProgram {
       sembuf take{1, -1, 0};
       timespec slice{0, 50'000'000};
       if (::semtimedop(semaphores_, &take, 1, &slice) == 0) return;
-      if (errno != EAGAIN && errno != EINTR) fail(std::string("cannot wait for it: ") + std::strerror(errno));
+      if (errno != EAGAIN && errno != EINTR)
+        fail(std::string("cannot wait for it: ") + std::strerror(errno));
       if (!alive()) fail("died before answering: it " + deathText());
       if (Clock::now() > until) fail("did not answer within the time limit");
     }
@@ -306,19 +315,23 @@ class ExternalProgram : public EnvironmentProgram {
     while (true) {
       const auto left = until - Clock::now();
       if (left <= Clock::duration::zero() || !waitReadable(fromProgram_, left)) {
-        fail(alive() ? "did not answer within the time limit" : "died before answering: it " + deathText());
+        fail(alive() ? "did not answer within the time limit"
+                     : "died before answering: it " + deathText());
       }
       char buffer[4096];
       const ssize_t n = ::read(fromProgram_, buffer, sizeof buffer);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) {
         const auto until = Clock::now() + std::chrono::seconds(1);
-        while (alive() && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        fail(alive() ? "closed its output before answering" : "died before answering: it " + deathText());
+        while (alive() && Clock::now() < until)
+          std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        fail(alive() ? "closed its output before answering"
+                     : "died before answering: it " + deathText());
       }
       answers.append(buffer, static_cast<std::size_t>(n));
       if (answers.size() > (std::size_t{1} << 30)) fail("answered more than 1 GiB");
-      for (std::size_t nl; (nl = answers.find('\n', lineStart)) != std::string::npos; lineStart = nl + 1) {
+      for (std::size_t nl; (nl = answers.find('\n', lineStart)) != std::string::npos;
+           lineStart = nl + 1) {
         if (answers.compare(lineStart, 8, "Control:") == 0) return answers;
       }
     }
@@ -339,7 +352,8 @@ class ExternalProgram : public EnvironmentProgram {
 
 }  // namespace
 
-std::unique_ptr<EnvironmentProgram> startExternalProgram(const CommunicationFile& file, int timeoutSeconds,
+std::unique_ptr<EnvironmentProgram> startExternalProgram(const CommunicationFile& file,
+                                                         int timeoutSeconds,
                                                          Diagnostics& /*diagnostics*/) {
   return std::make_unique<ExternalProgram>(file, timeoutSeconds);
 }

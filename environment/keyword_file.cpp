@@ -15,12 +15,14 @@ std::vector<KeywordToken> KeywordLine::tokens(const char* separators) const {
     while (i < text.size() && std::strchr(separators, text[i]) != nullptr) ++i;
     const std::size_t from = i;
     while (i < text.size() && std::strchr(separators, text[i]) == nullptr) ++i;
-    if (i > from) out.push_back(KeywordToken{text.substr(from, i - from), static_cast<int>(from) + 1});
+    if (i > from)
+      out.push_back(KeywordToken{text.substr(from, i - from), static_cast<int>(from) + 1});
   }
   return out;
 }
 
-std::vector<KeywordLine> readKeywordLines(const std::filesystem::path& file, std::size_t maxLength) {
+std::vector<KeywordLine> readKeywordLines(const std::filesystem::path& file,
+                                          std::size_t maxLength) {
   auto name = std::make_shared<const std::string>(file.string());
   std::ifstream in(file, std::ios::binary);
   if (!in) throw DiagnosticError(SourceLocation{name, 0, 0}, "cannot read the file");
@@ -68,10 +70,11 @@ int keywordInteger(const KeywordLine& line, const KeywordToken& token) {
   return static_cast<int>(value);
 }
 
-void warnUnknownKeyword(const KeywordLine& line, Diagnostics& diagnostics, const std::string& what) {
-  diagnostics.warn(line.at(1), line.text.empty() ? "empty line ignored"
-                                                 : "unknown " + what + " keyword '" + line.keyword +
-                                                       "' ignored");
+void warnUnknownKeyword(const KeywordLine& line, Diagnostics& diagnostics,
+                        const std::string& what) {
+  diagnostics.warn(line.at(1), line.text.empty()
+                                   ? "empty line ignored"
+                                   : "unknown " + what + " keyword '" + line.keyword + "' ignored");
 }
 
 }  // namespace hirsute

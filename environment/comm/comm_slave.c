@@ -7,8 +7,6 @@
    batch at a time between CSBeginTransmission and CSEndTransmission; CSMainLoop does all of it.
    The text is the one in the specification of the protocol (records, `Control:` lines). */
 #define _GNU_SOURCE
-#include "comm_lib.h"
-
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,13 +16,15 @@
 #include <sys/shm.h>
 #include <unistd.h>
 
+#include "comm_lib.h"
+
 enum { TO_SLAVE_BYTES = 50000, FROM_SLAVE_BYTES = 10000 };
 enum { POSITION, HEADING, LEFT, UP, LINE_WIDTH, SCALE_FACTOR, TURTLE_VALUES };
 enum { PIPES, FILES, MEMORY };
 
-static const char *const turtle_keywords[TURTLE_VALUES] = {
-    "turtle position", "turtle heading", "turtle left", "turtle up", "turtle line width",
-    "turtle scale factor"};
+static const char* const turtle_keywords[TURTLE_VALUES] = {
+    "turtle position", "turtle heading",    "turtle left",
+    "turtle up",       "turtle line width", "turtle scale factor"};
 
 static struct {
   int transport;
@@ -34,22 +34,22 @@ static struct {
   size_t skip[TURTLE_VALUES];
   float stale[TURTLE_VALUES][3];
   int semaphores;
-  char *memory;
+  char* memory;
   char to_field[512], from_field[512];
   /* The batch being read (files, memory), and the answers being written. */
-  char *in;
+  char* in;
   size_t in_size, in_at;
-  char *out;
+  char* out;
   size_t out_size, out_capacity;
   int batch_over;
   int terminate;
 } comm = {PIPES, 1, {0}, {0}, {0}, {{0}}, -1, NULL, "", "", NULL, 0, 0, NULL, 0, 0, 0, 0};
 
-static void append(const char *text, size_t n) {
+static void append(const char* text, size_t n) {
   if (comm.out_size + n + 1 > comm.out_capacity) {
     size_t capacity = comm.out_capacity ? comm.out_capacity : 4096;
     while (comm.out_size + n + 1 > capacity) capacity *= 2;
-    char *grown = realloc(comm.out, capacity);
+    char* grown = realloc(comm.out, capacity);
     if (grown == NULL) {
       Message("communication library: out of memory\n");
       exit(1);
@@ -64,7 +64,7 @@ static void append(const char *text, size_t n) {
 
 /* The number of conversions in a format (each % not followed by %, at most 3) and the offset
    of the first. */
-static void read_format(const char *format, int *count, size_t *first) {
+static void read_format(const char* format, int* count, size_t* first) {
   *count = 0;
   *first = 0;
   for (size_t i = 0; format[i] != '\0'; ++i) {
@@ -78,8 +78,8 @@ static void read_format(const char *format, int *count, size_t *first) {
   }
 }
 
-static void read_communication_file(const char *name) {
-  FILE *f = fopen(name, "r");
+static void read_communication_file(const char* name) {
+  FILE* f = fopen(name, "r");
   if (f == NULL) {
     Message("communication library: cannot open %s\n", name);
     exit(1);
@@ -88,7 +88,7 @@ static void read_communication_file(const char *name) {
   while (fgets(line, sizeof line, f) != NULL) {
     line[strcspn(line, "\n")] = '\0';
     const size_t end = strcspn(line, ":\t");
-    const char *rest = line[end] == '\0' ? line + end : line + end + 1;
+    const char* rest = line[end] == '\0' ? line + end : line + end + 1;
     char keyword[4097];
     memcpy(keyword, line, end);
     keyword[end] = '\0';
@@ -119,12 +119,12 @@ static void semaphore(int which, int change) {
   }
 }
 
-void CSInitialize(int *argc, char ***argv) {
+void CSInitialize(int* argc, char*** argv) {
   const char *efile = NULL, *extension = NULL;
   int key = -1, remote = 0;
   int kept = 1;
   for (int i = 1; i < *argc; ++i) {
-    const char *a = (*argv)[i];
+    const char* a = (*argv)[i];
     if (i + 1 < *argc && strcmp(a, "-e") == 0) {
       efile = (*argv)[++i];
     } else if (i + 1 < *argc && strcmp(a, "-ext") == 0) {
@@ -160,8 +160,8 @@ void CSInitialize(int *argc, char ***argv) {
   }
   if (comm.transport == MEMORY) {
     const int segment = shmget(key - 1, TO_SLAVE_BYTES + FROM_SLAVE_BYTES, 0);
-    void *at = segment < 0 ? (void *)-1 : shmat(segment, NULL, 0);
-    if (at == (void *)-1) {
+    void* at = segment < 0 ? (void*)-1 : shmat(segment, NULL, 0);
+    if (at == (void*)-1) {
       Message("communication library: no shared memory for key %d\n", key);
       exit(1);
     }
@@ -174,9 +174,13 @@ void CSInitialize(int *argc, char ***argv) {
   semctl(comm.semaphores, 1, SETVAL, 0);
 }
 
-int CSGetNumberOfMasters(void) { return 1; }
+int CSGetNumberOfMasters(void) {
+  return 1;
+}
 
-int CShouldTerminate(void) { return comm.terminate; }
+int CShouldTerminate(void) {
+  return comm.terminate;
+}
 
 int CSBeginTransmission(void) {
   comm.out_size = 0;
@@ -194,7 +198,7 @@ int CSBeginTransmission(void) {
     comm.in[comm.in_size] = '\0';
     return 1;
   }
-  FILE *f = fopen(comm.to_field, "rb");
+  FILE* f = fopen(comm.to_field, "rb");
   if (f == NULL) {
     Message("communication library: cannot read %s\n", comm.to_field);
     exit(1);
@@ -203,7 +207,7 @@ int CSBeginTransmission(void) {
   for (;;) {
     if (comm.in_size + 4096 + 1 > capacity) {
       capacity = capacity ? capacity * 2 : 65536;
-      char *grown = realloc(comm.in, capacity);
+      char* grown = realloc(comm.in, capacity);
       if (grown == NULL) exit(1);
       comm.in = grown;
     }
@@ -218,8 +222,8 @@ int CSBeginTransmission(void) {
 
 /* The next line of the batch, without its newline, in a buffer of the library's (NULL at the
    end of the input). */
-static char *next_line(void) {
-  static char *line = NULL;
+static char* next_line(void) {
+  static char* line = NULL;
   static size_t capacity = 0;
   if (comm.transport == PIPES) {
     const ssize_t n = getline(&line, &capacity, stdin);
@@ -228,11 +232,11 @@ static char *next_line(void) {
     return line;
   }
   if (comm.in == NULL || comm.in_at >= comm.in_size) return NULL;
-  const char *start = comm.in + comm.in_at;
+  const char* start = comm.in + comm.in_at;
   const size_t length = strcspn(start, "\n");
   if (length + 1 > capacity) {
     capacity = length + 1;
-    char *grown = realloc(line, capacity);
+    char* grown = realloc(line, capacity);
     if (grown == NULL) exit(1);
     line = grown;
   }
@@ -243,9 +247,9 @@ static char *next_line(void) {
 }
 
 /* A module at *at: one character (two for ~ and @) and its parameters between ( and ). */
-static void read_module(const char **at, Cmodule_type *m) {
+static void read_module(const char** at, Cmodule_type* m) {
   memset(m, 0, sizeof *m);
-  const char *p = *at;
+  const char* p = *at;
   if (*p == '\0') return;
   int length = 0;
   m->symbol[length++] = *p++;
@@ -256,7 +260,7 @@ static void read_module(const char **at, Cmodule_type *m) {
     for (;;) {
       const size_t piece = strcspn(p, ",)");
       if (m->num_params < CMAXPARAMS) {
-        struct param_type *param = &m->params[m->num_params++];
+        struct param_type* param = &m->params[m->num_params++];
         if (piece > 0) {
           char number[64];
           const size_t n = piece < sizeof number - 1 ? piece : sizeof number - 1;
@@ -275,10 +279,10 @@ static void read_module(const char **at, Cmodule_type *m) {
   *at = p;
 }
 
-int CSGetData(int *master, unsigned long *distance, Cmodule_type *two_modules, CTURTLE *turtle) {
+int CSGetData(int* master, unsigned long* distance, Cmodule_type* two_modules, CTURTLE* turtle) {
   *master = CMIN_MASTER_INDEX;
   if (comm.batch_over) return 0;
-  const char *line = next_line();
+  const char* line = next_line();
   if (line == NULL) {
     /* The master has gone. */
     comm.batch_over = 1;
@@ -293,26 +297,26 @@ int CSGetData(int *master, unsigned long *distance, Cmodule_type *two_modules, C
     return 0;
   }
   *distance = strtoul(line, NULL, 10);
-  const char *at = strchr(line, 'E');
+  const char* at = strchr(line, 'E');
   memset(&two_modules[0], 0, sizeof two_modules[0]);
   memset(&two_modules[1], 0, sizeof two_modules[1]);
   if (at != NULL) {
     read_module(&at, &two_modules[0]);
     if (comm.following_module) read_module(&at, &two_modules[1]);
   }
-  float *vectors[TURTLE_VALUES] = {turtle->position, turtle->heading, turtle->left, turtle->up,
-                                   &turtle->line_width, &turtle->scale_factor};
-  int *counts[TURTLE_VALUES] = {&turtle->positionC, &turtle->headingC, &turtle->leftC,
-                                &turtle->upC, &turtle->line_widthC, &turtle->scale_factorC};
+  float* vectors[TURTLE_VALUES] = {turtle->position, turtle->heading,     turtle->left,
+                                   turtle->up,       &turtle->line_width, &turtle->scale_factor};
+  int* counts[TURTLE_VALUES] = {&turtle->positionC, &turtle->headingC,    &turtle->leftC,
+                                &turtle->upC,       &turtle->line_widthC, &turtle->scale_factorC};
   for (int v = 0; v < TURTLE_VALUES; ++v) {
     *counts[v] = 0;
     if (!comm.present[v]) continue;
-    const char *values = next_line();
+    const char* values = next_line();
     const int n = v < LINE_WIDTH ? 3 : 1;
     if (values != NULL) {
-      const char *p = values + (strlen(values) < comm.skip[v] ? strlen(values) : comm.skip[v]);
+      const char* p = values + (strlen(values) < comm.skip[v] ? strlen(values) : comm.skip[v]);
       for (int k = 0; k < n; ++k) {
-        char *end;
+        char* end;
         const float value = strtof(p, &end);
         if (end == p) break;
         comm.stale[v][k] = value;
@@ -325,7 +329,7 @@ int CSGetData(int *master, unsigned long *distance, Cmodule_type *two_modules, C
   return 1;
 }
 
-void CSSendData(int master, unsigned long dist, Cmodule_type *comm_symbol) {
+void CSSendData(int master, unsigned long dist, Cmodule_type* comm_symbol) {
   (void)master;
   if (comm_symbol->num_params <= 0) return;
   char text[64];
@@ -339,15 +343,15 @@ void CSSendData(int master, unsigned long dist, Cmodule_type *comm_symbol) {
   append(")\n", 2);
 }
 
-int CSGetString(int *master, char *str, int length) {
+int CSGetString(int* master, char* str, int length) {
   *master = CMIN_MASTER_INDEX;
-  const char *line = next_line();
+  const char* line = next_line();
   if (line == NULL || length <= 0) return 0;
   snprintf(str, (size_t)length, "%s", line);
   return 1;
 }
 
-int CSSendString(int index, char *item) {
+int CSSendString(int index, char* item) {
   (void)index;
   append(item, strlen(item));
   return 1;
@@ -369,7 +373,7 @@ int CSEndTransmission(void) {
     memcpy(comm.memory + TO_SLAVE_BYTES, comm.out, comm.out_size);
     if (comm.out_size < FROM_SLAVE_BYTES) comm.memory[TO_SLAVE_BYTES + comm.out_size] = '\0';
   } else {
-    FILE *f = fopen(comm.from_field, "wb");
+    FILE* f = fopen(comm.from_field, "wb");
     if (f == NULL || fwrite(comm.out, 1, comm.out_size, f) != comm.out_size || fclose(f) != 0) {
       Message("communication library: cannot write %s\n", comm.from_field);
       exit(1);
@@ -379,7 +383,7 @@ int CSEndTransmission(void) {
   return 1;
 }
 
-void CSMainLoop(int (*AnswerQuery)(Cmodule_type *, CTURTLE *)) {
+void CSMainLoop(int (*AnswerQuery)(Cmodule_type*, CTURTLE*)) {
   Cmodule_type two_modules[2];
   CTURTLE turtle;
   memset(&turtle, 0, sizeof turtle);
@@ -409,4 +413,6 @@ void CSTerminate(void) {
   comm.out_size = comm.out_capacity = 0;
 }
 
-void CTerminate(void) { CSTerminate(); }
+void CTerminate(void) {
+  CSTerminate();
+}

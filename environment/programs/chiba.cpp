@@ -66,10 +66,12 @@ class Chiba : public BuiltinProgram {
       if (line.keyword == "grid size") {
         for (std::size_t c = 0; c < 3 && c < a.size(); ++c) {
           cells_[c] = static_cast<int>(keywordNumber(line, a[c]));
-          if (cells_[c] < 1) throw DiagnosticError(line.at(a[c].column), "the grid needs at least one cell");
+          if (cells_[c] < 1)
+            throw DiagnosticError(line.at(a[c].column), "the grid needs at least one cell");
         }
         if (static_cast<long>(cells_[0]) * cells_[1] * cells_[2] > kMaxCells) {
-          throw DiagnosticError(line.at(a[0].column), "the grid has more than " + std::to_string(kMaxCells) + " cells");
+          throw DiagnosticError(line.at(a[0].column),
+                                "the grid has more than " + std::to_string(kMaxCells) + " cells");
         }
       } else if (line.keyword == "verbose") {
       } else if (line.keyword == "lower to upper ratio") {
@@ -94,7 +96,8 @@ class Chiba : public BuiltinProgram {
         if (w.empty()) continue;
         s.weight = keywordNumber(line, w[0]);
         if (static_cast<int>(sources.size()) == kMaxSources) {
-          throw DiagnosticError(line.at(1), "more than " + std::to_string(kMaxSources) + " light sources");
+          throw DiagnosticError(line.at(1),
+                                "more than " + std::to_string(kMaxSources) + " light sources");
         }
         sources.push_back(s);
       } else if (line.keyword == "estimate intersection area") {
@@ -201,7 +204,8 @@ class Chiba : public BuiltinProgram {
     for (const Face& f : faces) {
       Vec d;
       for (int c = 0; c < 3; ++c) {
-        const float sum = static_cast<float>(f[0][c]) + static_cast<float>(f[1][c]) + static_cast<float>(f[2][c]);
+        const float sum =
+            static_cast<float>(f[0][c]) + static_cast<float>(f[1][c]) + static_cast<float>(f[2][c]);
         d[c] = static_cast<float>(sum / 3.0);
       }
       d = normalise(d);
@@ -211,11 +215,12 @@ class Chiba : public BuiltinProgram {
     const float onePlus = 1 + ratio_;
     if (!cie) {
       for (Source& s : sources_) {
-        s.weight = s.direction[1] >= 0
-                       ? static_cast<float>(1.0 / upper / static_cast<double>(onePlus))
-                   : n == upper ? 0.0f
-                                : static_cast<float>(static_cast<double>(ratio_ / static_cast<float>(n - upper)) /
-                                                     static_cast<double>(onePlus));
+        s.weight =
+            s.direction[1] >= 0 ? static_cast<float>(1.0 / upper / static_cast<double>(onePlus))
+            : n == upper
+                ? 0.0f
+                : static_cast<float>(static_cast<double>(ratio_ / static_cast<float>(n - upper)) /
+                                     static_cast<double>(onePlus));
       }
       return;
     }
@@ -225,7 +230,8 @@ class Chiba : public BuiltinProgram {
       if (d[1] <= 0) {
         s.weight = 0;
       } else {
-        const double c = d[1] / std::sqrt(static_cast<double>(d[0]) * d[0] + static_cast<double>(d[1]) * d[1]);
+        const double c =
+            d[1] / std::sqrt(static_cast<double>(d[0]) * d[0] + static_cast<double>(d[1]) * d[1]);
         s.weight = static_cast<float>((1 + c) / 3 * (8.6 * c + 0.123) / 0.203);
       }
       sum = sum + s.weight;
@@ -268,8 +274,10 @@ class Chiba : public BuiltinProgram {
       int lo[3], hi[3];
       for (int c = 0; c < 3; ++c) {
         const float n = static_cast<float>(cells_[c]);
-        lo[c] = std::max(0, floorIndex((b.centre[c] - b.r - reach - origin_[c]) / extent_[c] * n) - 1);
-        hi[c] = std::min(cells_[c] - 1, 1 + floorIndex((b.centre[c] + b.r + reach - origin_[c]) / extent_[c] * n));
+        lo[c] =
+            std::max(0, floorIndex((b.centre[c] - b.r - reach - origin_[c]) / extent_[c] * n) - 1);
+        hi[c] = std::min(cells_[c] - 1,
+                         1 + floorIndex((b.centre[c] + b.r + reach - origin_[c]) / extent_[c] * n));
       }
       const float R = b.r + reach + half;
       const float R2 = R * R;
@@ -280,10 +288,12 @@ class Chiba : public BuiltinProgram {
             float e[3];
             for (int c = 0; c < 3; ++c) {
               const float m = static_cast<float>(
-                  origin_[c] + (static_cast<double>(static_cast<float>(index[c])) + 0.5) / cells_[c] * extent_[c]);
+                  origin_[c] + (static_cast<double>(static_cast<float>(index[c])) + 0.5) /
+                                   cells_[c] * extent_[c]);
               e[c] = b.centre[c] - m;
             }
-            if (e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= R2) cellLists_[cellIndex(x, y, z)].push_front(i);
+            if (e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= R2)
+              cellLists_[cellIndex(x, y, z)].push_front(i);
           }
     }
   }
@@ -370,7 +380,8 @@ class Chiba : public BuiltinProgram {
       const float x2 = (R2s + delta * delta - R1s) / (2 * delta);
       const float y = static_cast<float>(std::sqrt(static_cast<double>(R2s - x2 * x2)));
       return static_cast<float>(R1s * std::acos(static_cast<double>(x1 / R1)) +
-                                R2s * std::acos(static_cast<double>(x2 / R2)) - static_cast<double>(y * delta));
+                                R2s * std::acos(static_cast<double>(x2 / R2)) -
+                                static_cast<double>(y * delta));
     }
     const float rr = o.r + b.r * beam_;
     const float D = alpha * alpha - vv + rr * rr;
@@ -393,7 +404,8 @@ class Chiba : public BuiltinProgram {
 
 }  // namespace
 
-std::unique_ptr<EnvironmentProgram> makeChiba(const CommunicationFile& file, const ProgramCommand& command,
+std::unique_ptr<EnvironmentProgram> makeChiba(const CommunicationFile& file,
+                                              const ProgramCommand& command,
                                               Diagnostics& diagnostics) {
   return std::make_unique<Chiba>(file, command, diagnostics);
 }

@@ -24,27 +24,33 @@ class Clover : public BuiltinProgram {
       if (line.keyword == "grid size") {
         for (std::size_t c = 0; c < 2 && c < grid.size(); ++c) {
           size_[c] = keywordInteger(line, grid[c]);
-          if (size_[c] < 1) throw DiagnosticError(line.at(grid[c].column), "the grid needs at least one cell");
+          if (size_[c] < 1)
+            throw DiagnosticError(line.at(grid[c].column), "the grid needs at least one cell");
         }
         if (static_cast<long>(size_[0]) * size_[1] > kMaxCells) {
-          throw DiagnosticError(line.at(grid[0].column), "the grid has more than " + std::to_string(kMaxCells) + " cells");
+          throw DiagnosticError(line.at(grid[0].column),
+                                "the grid has more than " + std::to_string(kMaxCells) + " cells");
         }
       } else if (line.keyword == "grid position") {
-        for (std::size_t c = 0; c < 2 && c < grid.size(); ++c) corner_[c] = keywordNumber(line, grid[c]);
+        for (std::size_t c = 0; c < 2 && c < grid.size(); ++c)
+          corner_[c] = keywordNumber(line, grid[c]);
       } else if (line.keyword == "grid range") {
-        for (std::size_t c = 0; c < 2 && c < grid.size(); ++c) range_[c] = keywordNumber(line, grid[c]);
+        for (std::size_t c = 0; c < 2 && c < grid.size(); ++c)
+          range_[c] = keywordNumber(line, grid[c]);
       } else if (line.keyword == "verbose") {
       } else if (line.keyword == "transmittance") {
         if (!values.empty()) transmittance_ = keywordNumber(line, values[0]);
         if (transmittance_ == 0) transmittance_ = 0.0001f;
       } else if (line.keyword == "input image") {
-        if (values.empty()) throw DiagnosticError(line.at(static_cast<int>(line.rest) + 1), "expected an image file");
+        if (values.empty())
+          throw DiagnosticError(line.at(static_cast<int>(line.rest) + 1), "expected an image file");
         std::filesystem::path name = first;
         if (name.is_relative()) name = file.file.parent_path() / name;
         try {
           image = loadTexture(name);
         } catch (const DiagnosticError& e) {
-          throw DiagnosticError(line.at(values[0].column), e.diagnostic().message + " (" + name.string() + ")");
+          throw DiagnosticError(line.at(values[0].column),
+                                e.diagnostic().message + " (" + name.string() + ")");
         }
       } else if (line.keyword == "remove old leaves") {
         removeOldLeaves_ = first == "on" || first == "yes";
@@ -54,7 +60,8 @@ class Clover : public BuiltinProgram {
         warnUnknownKeyword(line, diagnostics, "clover");
       }
     }
-    const std::size_t cells = static_cast<std::size_t>(size_[0]) * static_cast<std::size_t>(size_[1]);
+    const std::size_t cells =
+        static_cast<std::size_t>(size_[0]) * static_cast<std::size_t>(size_[1]);
     light_.assign(cells, 255);
     ratio_.assign(cells, 255);
     leaves_.assign(cells, 0);
@@ -109,11 +116,16 @@ class Clover : public BuiltinProgram {
   // Cell (i, j) takes the pixel in column int(i·rx) of row int(j·ry), rows from the bottom:
   // the light from green, the ratio from red.
   void sample(const Texture& image) {
-    const float rx = size_[0] > 1 ? static_cast<float>(image.width - 1) / static_cast<float>(size_[0] - 1) : 0.0f;
-    const float ry = size_[1] > 1 ? static_cast<float>(image.height - 1) / static_cast<float>(size_[1] - 1) : 0.0f;
+    const float rx = size_[0] > 1
+                         ? static_cast<float>(image.width - 1) / static_cast<float>(size_[0] - 1)
+                         : 0.0f;
+    const float ry = size_[1] > 1
+                         ? static_cast<float>(image.height - 1) / static_cast<float>(size_[1] - 1)
+                         : 0.0f;
     for (int j = 0; j < size_[1]; ++j) {
       const int row = std::min(image.height - 1, static_cast<int>(static_cast<float>(j) * ry));
-      const std::uint8_t* pixels = image.rgba.data() + static_cast<std::size_t>(image.height - 1 - row) * image.width * 4;
+      const std::uint8_t* pixels =
+          image.rgba.data() + static_cast<std::size_t>(image.height - 1 - row) * image.width * 4;
       for (int i = 0; i < size_[0]; ++i) {
         const int column = std::min(image.width - 1, static_cast<int>(static_cast<float>(i) * rx));
         light_[cell(i, j)] = pixels[4 * column + 1];
@@ -144,7 +156,8 @@ class Clover : public BuiltinProgram {
     for (long v = vFrom; v < vTo; ++v) {
       for (long u = uFrom; u < uTo; ++u) {
         if (static_cast<float>(u * u) / hx2 + static_cast<float>(v * v) / hy2 > 1) continue;
-        std::uint8_t& o = leaves_[cell(static_cast<int>(centre[0] + u), static_cast<int>(centre[1] + v))];
+        std::uint8_t& o =
+            leaves_[cell(static_cast<int>(centre[0] + u), static_cast<int>(centre[1] + v))];
         if (add && o < 255) ++o;
         if (!add && o > 0) --o;
       }
@@ -163,7 +176,8 @@ class Clover : public BuiltinProgram {
 
 }  // namespace
 
-std::unique_ptr<EnvironmentProgram> makeClover(const CommunicationFile& file, const ProgramCommand& command,
+std::unique_ptr<EnvironmentProgram> makeClover(const CommunicationFile& file,
+                                               const ProgramCommand& command,
                                                Diagnostics& diagnostics) {
   return std::make_unique<Clover>(file, command, diagnostics);
 }

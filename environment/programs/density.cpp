@@ -27,11 +27,14 @@ class Density : public BuiltinProgram {
       } else if (line.keyword == "return vector") {
         returnVector_ = first == "on" || first == "yes";
       } else if (line.keyword == "verbose") {
-      } else if (line.keyword == "range" || line.keyword == "position" || line.keyword == "frame intervals" ||
-                 line.keyword == "quantization step" || line.keyword == "gamma") {
-        for (const KeywordToken& t : values) keywordNumber(line, t);  // checked; they only shape the image
+      } else if (line.keyword == "range" || line.keyword == "position" ||
+                 line.keyword == "frame intervals" || line.keyword == "quantization step" ||
+                 line.keyword == "gamma") {
+        for (const KeywordToken& t : values)
+          keywordNumber(line, t);  // checked; they only shape the image
       } else if (line.keyword == "output image") {
-        diagnostics.warn(line.at(1), "density: the field is not written as an image; the line is ignored");
+        diagnostics.warn(line.at(1),
+                         "density: the field is not written as an image; the line is ignored");
       } else {
         warnUnknownKeyword(line, diagnostics, "density");
       }
@@ -52,7 +55,8 @@ class Density : public BuiltinProgram {
         continue;
       }
       const std::size_t n = q.module.values.size();
-      points.push_back(Point{q.id, q.turtle[kPosition][0], q.turtle[kPosition][1], q.module.value(0), n == 1, n == 3});
+      points.push_back(Point{q.id, q.turtle[kPosition][0], q.turtle[kPosition][1],
+                             q.module.value(0), n == 1, n == 3});
     }
     for (std::size_t i = 0; i < points.size(); ++i) {
       if (!points[i].asks) continue;
@@ -69,7 +73,8 @@ class Density : public BuiltinProgram {
       double value = field(p.x, p.y);
       if (!onePoint_) {
         for (int a = 0; a < 6; ++a)
-          for (int b = 0; b < 6; ++b) value = std::min(value, field(p.x + a / 5.0 - 0.5, p.y + b / 5.0 - 0.5));
+          for (int b = 0; b < 6; ++b)
+            value = std::min(value, field(p.x + a / 5.0 - 0.5, p.y + b / 5.0 - 0.5));
       }
       double gx = 0, gy = 0;
       for (std::size_t j = 0; j < points.size(); ++j) {
@@ -86,12 +91,15 @@ class Density : public BuiltinProgram {
         gy += k * dy;
       }
       if (returnVector_) {
-        appendAnswerRecord(answers, p.id, {static_cast<float>(value), static_cast<float>(gx), static_cast<float>(gy)});
+        appendAnswerRecord(
+            answers, p.id,
+            {static_cast<float>(value), static_cast<float>(gx), static_cast<float>(gy)});
       } else {
         double angle = std::atan2(gy, gx) * 180 / M_PI;
         if (angle < 0) angle += 360;
         appendAnswerRecord(answers, p.id,
-                           {static_cast<float>(value), static_cast<float>(angle), static_cast<float>(std::hypot(gx, gy))});
+                           {static_cast<float>(value), static_cast<float>(angle),
+                            static_cast<float>(std::hypot(gx, gy))});
       }
     }
   }
@@ -103,7 +111,8 @@ class Density : public BuiltinProgram {
 
 }  // namespace
 
-std::unique_ptr<EnvironmentProgram> makeDensity(const CommunicationFile& file, const ProgramCommand& command,
+std::unique_ptr<EnvironmentProgram> makeDensity(const CommunicationFile& file,
+                                                const ProgramCommand& command,
                                                 Diagnostics& diagnostics) {
   return std::make_unique<Density>(file, command, diagnostics);
 }

@@ -50,8 +50,9 @@ class Ecosystem : public BuiltinProgram {
     std::array<float, 3> low{}, high{};
     for (const EnvironmentQueryRecord& e : batch) {
       if (e.counts[kPosition] < 3 || e.module.values.size() < (vigorMode_ ? 2u : 1u)) {
-        reject(vigorMode_ ? "ecosystem needs ?E(radius,vigor) and the turtle position (three values)"
-                          : "ecosystem needs ?E(radius[,group]) and the turtle position (three values)");
+        reject(vigorMode_
+                   ? "ecosystem needs ?E(radius,vigor) and the turtle position (three values)"
+                   : "ecosystem needs ?E(radius[,group]) and the turtle position (three values)");
         continue;
       }
       const auto& t = e.turtle[kPosition];
@@ -149,7 +150,8 @@ class Ecosystem : public BuiltinProgram {
 
 }  // namespace
 
-std::unique_ptr<EnvironmentProgram> makeEcosystem(const CommunicationFile& file, const ProgramCommand& command,
+std::unique_ptr<EnvironmentProgram> makeEcosystem(const CommunicationFile& file,
+                                                  const ProgramCommand& command,
                                                   Diagnostics& diagnostics) {
   return std::make_unique<Ecosystem>(file, command, diagnostics);
 }

@@ -43,7 +43,8 @@ class Honda81 : public BuiltinProgram {
         continue;
       }
       const auto& p = q.turtle[kPosition];
-      tips.push_back(Tip{q.id, p[0], threeD_ ? p[1] : p[2], threeD_ ? p[2] : 0.0f, q.module.value(0),
+      tips.push_back(Tip{q.id, p[0], threeD_ ? p[1] : p[2], threeD_ ? p[2] : 0.0f,
+                         q.module.value(0),
                          q.module.values.size() > 1 ? static_cast<int>(q.module.value(1)) : 0});
     }
     // The pairwise test of the original over every pair, with the pairs sought among the tips
@@ -54,7 +55,8 @@ class Honda81 : public BuiltinProgram {
     for (std::size_t i = 0; i < tips.size(); ++i) {
       if (!std::isnan(tips[i].x)) order.push_back(i);
     }
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return tips[a].x < tips[b].x; });
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return tips[a].x < tips[b].x; });
     const double reach = std::sqrt(static_cast<double>(radiusSquared_)) * 1.001 + 1e-30;
     std::vector<bool> blocked(tips.size(), false);
     for (std::size_t a = 0; a < order.size(); ++a) {
@@ -87,7 +89,8 @@ class Honda81 : public BuiltinProgram {
 
 }  // namespace
 
-std::unique_ptr<EnvironmentProgram> makeHonda81(const CommunicationFile& file, const ProgramCommand& command,
+std::unique_ptr<EnvironmentProgram> makeHonda81(const CommunicationFile& file,
+                                                const ProgramCommand& command,
                                                 Diagnostics& diagnostics) {
   return std::make_unique<Honda81>(file, command, diagnostics);
 }

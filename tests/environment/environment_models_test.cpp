@@ -1,12 +1,11 @@
 // The models of models/ that grow against a built-in environmental program, through
 // `hirsute derive -e`, against strings worked out by hand; and broken .e and .spec files,
 // which end the run with exit code 2 and an error in the user's file.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "support/test_files.h"
 
@@ -27,10 +26,10 @@ class EnvironmentModelsTest : public testing::TemporaryFolderTest {
   Run derive(const fs::path& folder, const std::string& model, const std::string& more = "",
              const std::string& efile = "") {
     const fs::path e = efile.empty() ? folder / (model + ".e") : folder / efile;
-    const std::string command = std::string("'") + HIRSUTE_BINARY + "' derive '" + (folder / (model + ".l")).string() +
-                                "' '" + (folder / (model + ".v")).string() + "' -e '" + e.string() +
-                                "' --format compact " + more + " >'" + file("out").string() + "' 2>'" +
-                                file("err").string() + "'";
+    const std::string command =
+        std::string("'") + HIRSUTE_BINARY + "' derive '" + (folder / (model + ".l")).string() +
+        "' '" + (folder / (model + ".v")).string() + "' -e '" + e.string() + "' --format compact " +
+        more + " >'" + file("out").string() + "' 2>'" + file("err").string() + "'";
     const int status = std::system(command.c_str());
     Run run;
     run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -39,7 +38,9 @@ class EnvironmentModelsTest : public testing::TemporaryFolderTest {
     return run;
   }
 
-  static fs::path shipped(const std::string& model) { return fs::path(HIRSUTE_SOURCE_DIR) / "models" / model; }
+  static fs::path shipped(const std::string& model) {
+    return fs::path(HIRSUTE_SOURCE_DIR) / "models" / model;
+  }
 
   // A copy of a shipped model in the test's folder, to break.
   fs::path copyOf(const std::string& model) {
@@ -79,7 +80,9 @@ TEST_F(EnvironmentModelsTest, CloverShadesTheCellsUnderTheLeaf) {
   // The second pass lifts the leaf before it answers the light queries: all in full light.
   run = derive(shipped("shaded-ground"), "shaded-ground", "-n 2");
   ASSERT_EQ(run.code, 0) << run.err;
-  EXPECT_EQ(run.out, "F[@M(2.5,0.5,0)?E(1)][@M(-3.5,0.5,0)?E(1)][@M(2.5,2.5,0)?E(1)][@M(-2.5,-2.5,0)?E(1)]\n");
+  EXPECT_EQ(
+      run.out,
+      "F[@M(2.5,0.5,0)?E(1)][@M(-3.5,0.5,0)?E(1)][@M(2.5,2.5,0)?E(1)][@M(-2.5,-2.5,0)?E(1)]\n");
 }
 
 TEST_F(EnvironmentModelsTest, ChibaDimsTheBallInTheShadow) {
@@ -92,17 +95,20 @@ TEST_F(EnvironmentModelsTest, ChibaDimsTheBallInTheShadow) {
 
 TEST_F(EnvironmentModelsTest, BrokenCommunicationFilesEndWithAnErrorInThem) {
   const fs::path model = copyOf("tip-collision");
-  std::ofstream(model / "broken.e") << "executable: honda81 density.spec\ncommunication type: files\n"
-                                    << "turtle position: %d %d %d\n";
+  std::ofstream(model / "broken.e")
+      << "executable: honda81 density.spec\ncommunication type: files\n"
+      << "turtle position: %d %d %d\n";
   Run run = derive(model, "tip-collision", "", "broken.e");
   EXPECT_EQ(run.code, 2);
-  EXPECT_NE(run.err.find((model / "broken.e").string() + ":3:18: error: "), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find((model / "broken.e").string() + ":3:18: error: "), std::string::npos)
+      << run.err;
   EXPECT_TRUE(run.out.empty());
   // A specification file that is not there: the error points at its name on the executable line.
   std::ofstream(model / "broken.e") << "executable: honda81 nowhere.spec\n";
   run = derive(model, "tip-collision", "", "broken.e");
   EXPECT_EQ(run.code, 2);
-  EXPECT_NE(run.err.find((model / "broken.e").string() + ":1:21: error: cannot read honda81's specification"),
+  EXPECT_NE(run.err.find((model / "broken.e").string() +
+                         ":1:21: error: cannot read honda81's specification"),
             std::string::npos)
       << run.err;
 }
@@ -112,13 +118,15 @@ TEST_F(EnvironmentModelsTest, BrokenSpecificationFilesEndWithAnErrorInThem) {
   std::ofstream(model / "density.spec") << "verbose: off\nradius: wide\n";
   Run run = derive(model, "tip-collision");
   EXPECT_EQ(run.code, 2);
-  EXPECT_NE(run.err.find((model / "density.spec").string() + ":2:9: error: expected a number"), std::string::npos)
+  EXPECT_NE(run.err.find((model / "density.spec").string() + ":2:9: error: expected a number"),
+            std::string::npos)
       << run.err;
   const fs::path shade = copyOf("shaded-ground");
   std::ofstream(shade / "ground.spec") << "input image: missing.rgb\n";
   run = derive(shade, "shaded-ground");
   EXPECT_EQ(run.code, 2);
-  EXPECT_NE(run.err.find((shade / "ground.spec").string() + ":1:14: error: "), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find((shade / "ground.spec").string() + ":1:14: error: "), std::string::npos)
+      << run.err;
 }
 
 TEST_F(EnvironmentModelsTest, WithoutAnExecutableTheQueriesKeepTheirValues) {

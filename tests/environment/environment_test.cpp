@@ -1,15 +1,16 @@
 // The .e file, the text of the exchange both ways, the L-system's side (identifiers, answers
 // written into the string) and every built-in program on batches whose answers are worked out
 // by hand from the specification.
+#include "hirsute/environment/environment.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <memory>
 #include <sstream>
 
-#include <gtest/gtest.h>
-
-#include "hirsute/environment/environment.h"
 #include "hirsute/environment/exchange_text.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -30,7 +31,9 @@ class EnvironmentTest : public testing::TemporaryFolderTest {
     return file(name);
   }
 
-  CommunicationFile read(const std::string& text) { return readCommunicationFile(write("model.e", text), diagnostics_); }
+  CommunicationFile read(const std::string& text) {
+    return readCommunicationFile(write("model.e", text), diagnostics_);
+  }
 
   // The error a .e text gives, as "line:col: message".
   std::string errorOf(const std::string& text) {
@@ -75,7 +78,8 @@ TEST_F(EnvironmentTest, CommunicationFileDefaults) {
 
 TEST_F(EnvironmentTest, FormatsAreKeptByteForByte) {
   const CommunicationFile e = read(
-      "executable: x\ncommunication type: files 20\nturtle position:P:%.4f %.4f\nturtle heading: %g %g %g\n"
+      "executable: x\ncommunication type: files 20\nturtle position:P:%.4f %.4f\nturtle heading: "
+      "%g %g %g\n"
       "turtle line width:w=%%%.2f\nfollowing module: no\n");
   EXPECT_EQ(e.transport, Transport::Files);
   EXPECT_EQ(e.chunkLimit, 20);
@@ -103,7 +107,8 @@ TEST_F(EnvironmentTest, KeywordsAreComparedExactly) {
 TEST_F(EnvironmentTest, UnsafeFormatsAndUnsupportedExchangesAreErrors) {
   EXPECT_EQ(errorOf("turtle position: %d %d %d\n").substr(0, 5), "1:18:");
   EXPECT_EQ(errorOf("executable: x\nturtle up: %f %f %f %f\n").substr(0, 5), "2:21:");
-  EXPECT_NE(errorOf("turtle line width: %f %f\n").find("more conversions than the 1 value"), std::string::npos);
+  EXPECT_NE(errorOf("turtle line width: %f %f\n").find("more conversions than the 1 value"),
+            std::string::npos);
   EXPECT_NE(errorOf("turtle position: %s\n").find("floating"), std::string::npos);
   EXPECT_NE(errorOf("strings only: on\n").find("not supported"), std::string::npos);
   EXPECT_NE(errorOf("following module: perhaps\n").find("'yes' or 'no'"), std::string::npos);
@@ -155,11 +160,14 @@ TEST_F(EnvironmentTest, TheSlaveSideSkipsThePrefixAndKeepsStaleValues) {
   const CommunicationFile e = read("turtle position:P:%.4f %.4f\nturtle scale factor:s %g\n");
   QueryReader reader(e);
   std::vector<EnvironmentQueryRecord> records;
-  EXPECT_EQ(reader.read("48 E(1,,2)S(1,0)\nP:1.5000 2.2500\ns 3\n49 E\nP:7\ns\nControl: 5 3\n", records), 5);
+  EXPECT_EQ(
+      reader.read("48 E(1,,2)S(1,0)\nP:1.5000 2.2500\ns 3\n49 E\nP:7\ns\nControl: 5 3\n", records),
+      5);
   ASSERT_EQ(records.size(), 2u);
   EXPECT_EQ(records[0].id, 48u);
   EXPECT_EQ(records[0].module.symbols, "E");
-  EXPECT_EQ(records[0].module.values, (std::vector<std::optional<float>>{1.0f, std::nullopt, 2.0f}));
+  EXPECT_EQ(records[0].module.values,
+            (std::vector<std::optional<float>>{1.0f, std::nullopt, 2.0f}));
   EXPECT_EQ(records[0].following.symbols, "S");
   EXPECT_EQ(records[0].counts[kPosition], 2);
   EXPECT_EQ(records[0].turtle[kPosition][1], 2.25f);
@@ -222,7 +230,8 @@ TEST_F(EnvironmentTest, IdentifiersAreBytesOfCpfgsStringAndAnswersFillTheQueries
   // it; the identifier-0 answer's extra value is dropped with a warning.
   EXPECT_EQ(environment.queriesSent(), 3u);
   bool warned = false;
-  for (const Diagnostic& d : diagnostics_.warnings()) warned |= d.message.find("not enough room") != std::string::npos;
+  for (const Diagnostic& d : diagnostics_.warnings())
+    warned |= d.message.find("not enough room") != std::string::npos;
   EXPECT_TRUE(warned);
 }
 
@@ -238,18 +247,21 @@ class TwoAtATime : public RecordingProgram {
 };
 
 TEST_F(EnvironmentTest, LargeBatchesGoInPartsAndEveryAnswerArrives) {
-  write("five.l", "Lsystem: 1\nderivation length: 1\nAxiom: ?E(0)?E(0)?E(0)?E(0)?E(0)\nendlsystem\n");
+  write("five.l",
+        "Lsystem: 1\nderivation length: 1\nAxiom: ?E(0)?E(0)?E(0)?E(0)?E(0)\nendlsystem\n");
   Model model = loadModel(file("five.l"), std::nullopt, diagnostics_);
   std::ostringstream printed;
   Evaluator evaluator(model.program, diagnostics_, &model.functions, model.folder, printed);
   Derivation derivation(model.program, evaluator, diagnostics_);
   std::vector<std::string> batches;
-  Environment environment(read("following module: no\n"), std::make_unique<TwoAtATime>(batches), diagnostics_);
+  Environment environment(read("following module: no\n"), std::make_unique<TwoAtATime>(batches),
+                          diagnostics_);
   ModelResources resources;
   installQueryPass(derivation, resources, diagnostics_, &environment);
   derivation.run();
   // ?E(0) takes 7 bytes and ? one: the identifiers are 0, 8, 16, 24, 32.
-  EXPECT_EQ(batches, (std::vector<std::string>{"0 E(0)\n8 E(0)\nControl: 1 0\n", "16 E(0)\n24 E(0)\nControl: 0 0\n",
+  EXPECT_EQ(batches, (std::vector<std::string>{"0 E(0)\n8 E(0)\nControl: 1 0\n",
+                                               "16 E(0)\n24 E(0)\nControl: 0 0\n",
                                                "32 E(0)\nControl: 4 0\n"}));
   char* buffer = nullptr;
   std::size_t size = 0;
@@ -302,7 +314,8 @@ TEST_F(EnvironmentTest, SpecificationErrorsPointIntoTheSpecification) {
     EXPECT_EQ(error.diagnostic().where.line, 1);
     EXPECT_EQ(error.diagnostic().where.column, 21);
   }
-  EXPECT_EQ(makeBuiltinProgram(read("executable: ./obcheck obstacles.dat\n"), diagnostics_), nullptr);
+  EXPECT_EQ(makeBuiltinProgram(read("executable: ./obcheck obstacles.dat\n"), diagnostics_),
+            nullptr);
 }
 
 // ---- ecosystem -----------------------------------------------------------------------------
@@ -315,7 +328,8 @@ TEST_F(EnvironmentTest, EcosystemDominatesTheSmallerOfTwoMeetingCircles) {
                     "0 E(1)\n 0 7 0\n8 E(2)\n 2.5 0 0\n16 E(1,1)\n 0 0 0.5\n24 E(1)\n 20 0 20\n"),
             "0 E(0)\n8 E(1)\n16 E(1)\n24 E(1)\nControl: 5\n");
   // Equal radii dominate each other; in 3-D the y distance counts.
-  EXPECT_EQ(answers(e, "3d case: on\ngrid size: 4 4 4\n", "0 E(1)\n 0 0 0\n8 E(1)\n 0 1.5 0\n16 E(1)\n 0 9 0\n"),
+  EXPECT_EQ(answers(e, "3d case: on\ngrid size: 4 4 4\n",
+                    "0 E(1)\n 0 0 0\n8 E(1)\n 0 1.5 0\n16 E(1)\n 0 9 0\n"),
             "0 E(0)\n8 E(0)\n16 E(1)\nControl: 5\n");
 }
 
@@ -323,17 +337,21 @@ TEST_F(EnvironmentTest, EcosystemDominatesTheSmallerOfTwoMeetingCircles) {
 
 TEST_F(EnvironmentTest, CloverShadesTheGroundUnderLeaves) {
   const std::string e = "executable: clover program.spec\nturtle position:P:%g %g %g\n";
-  const std::string spec = "grid size: 10x10\ngrid position: 0 0\ngrid range: 10 10\ntransmittance: 0.5\n";
+  const std::string spec =
+      "grid size: 10x10\ngrid position: 0 0\ngrid range: 10 10\ntransmittance: 0.5\n";
   // No image: light 255. A leaf of area π has radius 1, one cell: half-size int(1 + 1) = 2 cells,
   // so cell (5, 5) is under it and cell (8, 5) is not; a second batch adds a second leaf, the
   // counts persist.
-  const std::string batch = "0 E(1,3.14159265)\nP:5.5 5.5 0\n8 E(1)\nP:5.5 5.5 0\n16 E(0,0)\nP:8.5 5.5 0\n"
-                            "24 E(1)\nP:-3 5 0\n";
+  const std::string batch =
+      "0 E(1,3.14159265)\nP:5.5 5.5 0\n8 E(1)\nP:5.5 5.5 0\n16 E(0,0)\nP:8.5 5.5 0\n"
+      "24 E(1)\nP:-3 5 0\n";
   EXPECT_EQ(answers(e, spec, batch), "8 E(0.5)\n16 E(1,1.99219)\n24 E(0)\nControl: 5\n");
-  EXPECT_EQ(program_->exchange(batch + "Control: 5 1\n"), "8 E(0.25)\n16 E(1,1.99219)\n24 E(0)\nControl: 5\n");
+  EXPECT_EQ(program_->exchange(batch + "Control: 5 1\n"),
+            "8 E(0.25)\n16 E(1,1.99219)\n24 E(0)\nControl: 5\n");
   // Removing leaves (?E(2,area)) takes them off again.
-  EXPECT_EQ(program_->exchange("0 E(2,3.14159265)\nP:5.5 5.5 0\n8 E(1)\nP:5.5 5.5 0\nControl: 5 2\n"),
-            "8 E(0.5)\nControl: 5\n");
+  EXPECT_EQ(
+      program_->exchange("0 E(2,3.14159265)\nP:5.5 5.5 0\n8 E(1)\nP:5.5 5.5 0\nControl: 5 2\n"),
+      "8 E(0.5)\nControl: 5\n");
 }
 
 TEST_F(EnvironmentTest, CloverReadsTheGroundLightFromAnSgiImage) {
@@ -343,19 +361,22 @@ TEST_F(EnvironmentTest, CloverReadsTheGroundLightFromAnSgiImage) {
   std::memcpy(image.data(), header, sizeof header);
   const unsigned char pixels[] = {10, 20, 30, 40, 51, 102, 153, 204, 0, 0, 0, 0};
   std::memcpy(image.data() + 512, pixels, sizeof pixels);
-  std::ofstream(file("ground.rgb"), std::ios::binary).write(reinterpret_cast<const char*>(image.data()), image.size());
+  std::ofstream(file("ground.rgb"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(image.data()), image.size());
   const std::string e = "executable: clover program.spec\nturtle position:P:%g %g %g\n";
   // Cell (i, j) of a 2×2 grid over [0,2]² is pixel (i, j); the light is green/255, the ratio
   // red/128.
-  EXPECT_EQ(answers(e, "grid size: 2 2\ngrid position: 0 0\ngrid range: 2 2\ninput image: ground.rgb\n",
-                    "0 E(0,0)\nP:1.5 0.5 0\n8 E(0,0)\nP:0.5 1.5 0\n"),
-            "0 E(0.4,0.15625)\n8 E(0.6,0.234375)\nControl: 5\n");
+  EXPECT_EQ(
+      answers(e, "grid size: 2 2\ngrid position: 0 0\ngrid range: 2 2\ninput image: ground.rgb\n",
+              "0 E(0,0)\nP:1.5 0.5 0\n8 E(0,0)\nP:0.5 1.5 0\n"),
+      "0 E(0.4,0.15625)\n8 E(0.6,0.234375)\nControl: 5\n");
 }
 
 // ---- chiba ---------------------------------------------------------------------------------
 
 TEST_F(EnvironmentTest, ChibaLightsAnUnshadedBallFully) {
-  const std::string e = "executable: chiba -e model.e program.spec\nturtle position:P:%.4g %.4g %.4g\n";
+  const std::string e =
+      "executable: chiba -e model.e program.spec\nturtle position:P:%.4g %.4g %.4g\n";
   // Eight samples: the octahedron's faces, four above the horizon (1/4 each with ratio 0).
   EXPECT_EQ(answers(e, "lower to upper ratio: 0\nnumber of samples: 8\n", "0 E(1)\nP:0 0 0\n"),
             "0 E(1)\nControl: 5\n");
@@ -368,11 +389,13 @@ TEST_F(EnvironmentTest, ChibaLightsAnUnshadedBallFully) {
 }
 
 TEST_F(EnvironmentTest, ChibaShadesABallUnderAnother) {
-  const std::string e = "executable: chiba -e model.e program.spec\nturtle position:P:%.4g %.4g %.4g\n";
+  const std::string e =
+      "executable: chiba -e model.e program.spec\nturtle position:P:%.4g %.4g %.4g\n";
   // Light from straight above; ball B (radius 1 at y = 3) covers ball A (radius 1 at the
   // origin) entirely: the covered area is πr² = A's area, so with transmittance 0 no light
   // reaches A, and with transmittance 0.5 half of it does. B itself is in full light.
-  const std::string spec = "grid size: 4x4x4\nsource direction: 0 1 0 1\nestimate intersection area: on\n";
+  const std::string spec =
+      "grid size: 4x4x4\nsource direction: 0 1 0 1\nestimate intersection area: on\n";
   EXPECT_EQ(answers(e, spec + "transmittance: 0\n", "0 E(1)\nP:0 0 0\n8 E(1)\nP:0 3 0\n"),
             "0 E(0)\n8 E(1)\nControl: 5\n");
   EXPECT_EQ(answers(e, spec + "transmittance: 0.5\n", "0 E(1)\nP:0 0 0\n8 E(1)\nP:0 3 0\n"),

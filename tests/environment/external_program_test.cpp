@@ -1,13 +1,14 @@
 // Environmental programs of a model's own, built against Hirsute's libcomm.a (programs/), run
 // over each transport cpfg offers; and the programs that die, hang or answer garbage end the
 // run with an error that names them instead of hanging it.
-#include <chrono>
-#include <fstream>
+#include "hirsute/environment/external_program.h"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <fstream>
+
 #include "hirsute/environment/environment.h"
-#include "hirsute/environment/external_program.h"
 #include "support/test_files.h"
 
 namespace hirsute {
@@ -90,12 +91,14 @@ TEST_F(ExternalProgramTest, AnswersOverSharedMemory) {
 }
 
 TEST_F(ExternalProgramTest, AProgramThatCannotStartIsAnError) {
-  const std::string message = errorOf([&] { open(file("no-such-program").string(), "data.txt", "pipes"); });
+  const std::string message =
+      errorOf([&] { open(file("no-such-program").string(), "data.txt", "pipes"); });
   EXPECT_NE(message.find("model.e:1:"), std::string::npos) << message;
   EXPECT_NE(message.find("did not start"), std::string::npos) << message;
   // plus_one connects, then exits without its argument file: the first batch finds it gone.
   auto environment = open(HIRSUTE_PLUS_ONE, "missing.txt", "files");
-  EXPECT_NE(errorOf([&] { twoPasses(*environment, 1); }).find("exited with status 1"), std::string::npos);
+  EXPECT_NE(errorOf([&] { twoPasses(*environment, 1); }).find("exited with status 1"),
+            std::string::npos);
 }
 
 TEST_F(ExternalProgramTest, AProgramThatDiesIsAnErrorNamingIt) {
@@ -103,7 +106,8 @@ TEST_F(ExternalProgramTest, AProgramThatDiesIsAnErrorNamingIt) {
     auto environment = open(HIRSUTE_MISBEHAVING, "die", transport);
     const std::string message = errorOf([&] { twoPasses(*environment, 1); });
     EXPECT_NE(message.find(HIRSUTE_MISBEHAVING), std::string::npos) << message;
-    EXPECT_NE(message.find("exited with status 3"), std::string::npos) << transport << ": " << message;
+    EXPECT_NE(message.find("exited with status 3"), std::string::npos)
+        << transport << ": " << message;
   }
 }
 
@@ -129,8 +133,10 @@ TEST_F(ExternalProgramTest, LibcommAnswersEachPartOfASplitBatch) {
     open(HIRSUTE_PLUS_ONE, "data.txt", transport);  // writes data.txt and model.e
     CommunicationFile e = readCommunicationFile(file("model.e"), diagnostics_);
     std::unique_ptr<EnvironmentProgram> program = startExternalProgram(e, 20, diagnostics_);
-    EXPECT_EQ(program->exchange("0 E(1)\nP:1 2 3\nControl: 1 0\n"), "0 E(2)\nControl: 5\n") << transport;
-    EXPECT_EQ(program->exchange("8 E(5,0)\nP:1 2 3\nControl: 4 0\n"), "8 E(6,1)\nControl: 5\n") << transport;
+    EXPECT_EQ(program->exchange("0 E(1)\nP:1 2 3\nControl: 1 0\n"), "0 E(2)\nControl: 5\n")
+        << transport;
+    EXPECT_EQ(program->exchange("8 E(5,0)\nP:1 2 3\nControl: 4 0\n"), "8 E(6,1)\nControl: 5\n")
+        << transport;
   }
 }
 
@@ -141,8 +147,9 @@ TEST_F(ExternalProgramTest, TheBuiltinProgramsRunAsAProcessOfTheirOwn) {
   std::ofstream(file("density.spec")) << "radius: 1\n3d case: on\n";
   const std::string batch = "0 E(1)\nP:0 0 0\n8 E(2)\nP:0.5 0 0\nControl: 5 0\n";
   for (const char* transport : {"pipes", "files", "memory"}) {
-    std::ofstream(file("model.e")) << "executable: ./honda81 density.spec\ncommunication type: " << transport
-                                   << "\nturtle position:P:%.4f %.4f %.4f\n";
+    std::ofstream(file("model.e"))
+        << "executable: ./honda81 density.spec\ncommunication type: " << transport
+        << "\nturtle position:P:%.4f %.4f %.4f\n";
     CommunicationFile e = readCommunicationFile(file("model.e"), diagnostics_);
     std::unique_ptr<EnvironmentProgram> program = startExternalProgram(e, 20, diagnostics_);
     EXPECT_EQ(program->exchange(batch), "0 E(0)\n8 E(1)\nControl: 5\n") << transport;

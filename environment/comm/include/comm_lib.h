@@ -45,9 +45,9 @@ extern "C" {
 #endif
 
 /* The slave side (an environmental program). */
-void CSInitialize(int *argc, char ***argv);
+void CSInitialize(int* argc, char*** argv);
 int CSBeginTransmission(void);
-void CSMainLoop(int (*AnswerQuery)(Cmodule_type *, CTURTLE *));
+void CSMainLoop(int (*AnswerQuery)(Cmodule_type*, CTURTLE*));
 int CSEndTransmission(void);
 void CSTerminate(void);
 
@@ -55,13 +55,13 @@ void CTerminate(void);
 int CShouldTerminate(void);
 
 int CSGetNumberOfMasters(void);
-int CSGetData(int *master, unsigned long *distance, Cmodule_type *two_modules, CTURTLE *turtle);
-void CSSendData(int master, unsigned long dist, Cmodule_type *comm_symbol);
-int CSGetString(int *master, char *str, int length);
-int CSSendString(int index, char *item);
+int CSGetData(int* master, unsigned long* distance, Cmodule_type* two_modules, CTURTLE* turtle);
+void CSSendData(int master, unsigned long dist, Cmodule_type* comm_symbol);
+int CSGetString(int* master, char* str, int length);
+int CSSendString(int index, char* item);
 
 /* Supplied by the program. */
-void Message(const char *format, ...);
+void Message(const char* format, ...);
 
 #ifdef __cplusplus
 }

@@ -8,16 +8,16 @@
 
 #include "comm_lib.h"
 
-static const char *mode = "";
+static const char* mode = "";
 
-void Message(const char *format, ...) {
+void Message(const char* format, ...) {
   va_list args;
   va_start(args, format);
   vfprintf(stderr, format, args);
   va_end(args);
 }
 
-static int AnswerQuery(Cmodule_type *two_modules, CTURTLE *turtle) {
+static int AnswerQuery(Cmodule_type* two_modules, CTURTLE* turtle) {
   (void)two_modules;
   (void)turtle;
   if (strcmp(mode, "die") == 0) exit(3);
@@ -28,7 +28,7 @@ static int AnswerQuery(Cmodule_type *two_modules, CTURTLE *turtle) {
   return 0;
 }
 
-int main(int argc, char **argv) {
+int main(int argc, char** argv) {
   CSInitialize(&argc, &argv);
   if (argc == 2) mode = argv[1];
   CSMainLoop(AnswerQuery);

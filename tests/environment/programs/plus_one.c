@@ -7,15 +7,15 @@
 
 #include "comm_lib.h"
 
-void Message(const char *format, ...) {
+void Message(const char* format, ...) {
   va_list args;
   va_start(args, format);
   vfprintf(stderr, format, args);
   va_end(args);
 }
 
-static int AnswerQuery(Cmodule_type *two_modules, CTURTLE *turtle) {
-  Cmodule_type *e = &two_modules[0];
+static int AnswerQuery(Cmodule_type* two_modules, CTURTLE* turtle) {
+  Cmodule_type* e = &two_modules[0];
   for (int i = 0; i < e->num_params; ++i) e->params[i].set = 0;
   if (e->num_params > 0) {
     e->params[0].value += 1;
@@ -28,7 +28,7 @@ static int AnswerQuery(Cmodule_type *two_modules, CTURTLE *turtle) {
   return 1;
 }
 
-int main(int argc, char **argv) {
+int main(int argc, char** argv) {
   CSInitialize(&argc, &argv);
   if (argc != 2 || fopen(argv[1], "r") == NULL) {
     fprintf(stderr, "usage: %s FILE\n", argv[0]);

@@ -39,7 +39,7 @@ struct CommunicationFile {
   std::optional<std::string> executable;  // the rest of the `executable:` line
   SourceLocation executableWhere;
   Transport transport = Transport::Pipes;
-  int chunkLimit = 100;                   // queries per part of a batch (files 1000)
+  int chunkLimit = 100;  // queries per part of a batch (files 1000)
   std::array<TurtleFormat, kTurtleValues> turtle;
   bool followingModule = true;
   bool interpretAll = false;
@@ -54,6 +54,7 @@ struct CommunicationFile {
 // its values safely (a conversion other than a floating one, more conversions than values), an
 // unsupported exchange (`strings only`, `binary data`) or a file that cannot be read is an
 // error at its line and column.
-CommunicationFile readCommunicationFile(const std::filesystem::path& file, Diagnostics& diagnostics);
+CommunicationFile readCommunicationFile(const std::filesystem::path& file,
+                                        Diagnostics& diagnostics);
 
 }  // namespace hirsute

@@ -59,7 +59,8 @@ class Environment : public EnvironmentQueries {
 // Reads the .e file and starts its program: the built-in of the executable's name, or else the
 // executable as a process. Without an `executable:` line cpfg ignores the environment: a warning,
 // and null.
-std::unique_ptr<Environment> openEnvironment(const std::filesystem::path& file, Diagnostics& diagnostics,
+std::unique_ptr<Environment> openEnvironment(const std::filesystem::path& file,
+                                             Diagnostics& diagnostics,
                                              const EnvironmentOptions& options = {});
 
 }  // namespace hirsute

@@ -36,8 +36,8 @@ class EnvironmentProgram {
 // its own options (-e FILE, -ext X, -k KEY, -h HOST) and the first remaining argument, the
 // specification file (resolved against the folder of the .e file, where cpfg runs).
 struct ProgramCommand {
-  std::string program;                // as written
-  std::vector<std::string> words;     // every word, the program first
+  std::string program;             // as written
+  std::vector<std::string> words;  // every word, the program first
   std::optional<std::filesystem::path> specification;
   SourceLocation specificationWhere;  // its word on the executable line
 };

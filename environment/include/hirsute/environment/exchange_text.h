@@ -34,7 +34,8 @@ struct AnswerRecord {
 };
 // The answer records of `text` up to its control line, read as cpfg does (atof to float).
 // Lines that are not records (no `E`) are returned in `rejected` by number.
-std::vector<AnswerRecord> parseAnswers(std::string_view text, std::vector<std::string>* rejected = nullptr);
+std::vector<AnswerRecord> parseAnswers(std::string_view text,
+                                       std::vector<std::string>* rejected = nullptr);
 
 // ---- slave side ---------------------------------------------------------------------------
 

@@ -13,7 +13,8 @@ namespace hirsute {
 // Starts the executable of `file` in the folder of the .e file. A program that cannot be
 // started, dies, takes more than `timeoutSeconds` for a batch or answers garbage is an error
 // naming it.
-std::unique_ptr<EnvironmentProgram> startExternalProgram(const CommunicationFile& file, int timeoutSeconds,
+std::unique_ptr<EnvironmentProgram> startExternalProgram(const CommunicationFile& file,
+                                                         int timeoutSeconds,
                                                          Diagnostics& diagnostics);
 
 }  // namespace hirsute
