@@ -113,8 +113,9 @@ void Environment::sendPart(std::size_t from, std::size_t to, bool first, bool la
     }
   }
   if (!rejected.empty()) {
-    diagnostics_.warn(where, program_->name() + " answered a line that is not an answer record: '" +
-                                 rejected.front() + "'");
+    throw DiagnosticError(file_.executableWhere, "environmental program " + program_->name() +
+                                                     " answered a line that is not an answer record: '" +
+                                                     rejected.front() + "'");
   }
 }
 

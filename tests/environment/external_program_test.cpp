@@ -121,11 +121,13 @@ TEST_F(ExternalProgramTest, AProgramThatHangsRunsIntoTheTimeout) {
   }
 }
 
-TEST_F(ExternalProgramTest, GarbageAnswersAreWarningsAndChangeNothing) {
+TEST_F(ExternalProgramTest, GarbageAnswersAreAnErrorNamingTheProgram) {
   auto environment = open(HIRSUTE_MISBEHAVING, "garbage", "pipes");
-  EXPECT_EQ(twoPasses(*environment, 1), (std::vector<std::pair<float, float>>{{1, 0}, {1, 0}}));
-  ASSERT_FALSE(diagnostics_.warnings().empty());
-  EXPECT_NE(diagnostics_.warnings().back().message.find("not an answer record"), std::string::npos);
+  const std::string message = errorOf([&] { twoPasses(*environment, 1); });
+  EXPECT_NE(message.find("model.e:1:12: error: environmental program " + std::string(HIRSUTE_MISBEHAVING) +
+                         " answered a line that is not an answer record: 'the answer is blowing in the wind'"),
+            std::string::npos)
+      << message;
 }
 
 TEST_F(ExternalProgramTest, LibcommAnswersEachPartOfASplitBatch) {
