@@ -93,6 +93,14 @@ TEST_F(EnvironmentModelsTest, ChibaDimsTheBallInTheShadow) {
   EXPECT_EQ(run.out, "[?E(0.5)@o(2)][@M(0,3,0)?E(1)@o(2)][@M(6,0,0)?E(1)@o(2)]\n");
 }
 
+TEST_F(EnvironmentModelsTest, DensityAnswersTheFieldAndItsGradient) {
+  // The source of strength 4 three units away: 4/(1+3) = 1; the gradient -4/(3·(1+3)²)·3 =
+  // -0.25 along x, which is 180 degrees and 0.25 long. The source itself gets no answer.
+  const Run run = derive(shipped("density-field"), "density-field");
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_EQ(run.out, ";(1)?E(4)@o(0.5)[@M(3,0,0)?E(1,180,0.25)+(180)F(1)F]\n");
+}
+
 TEST_F(EnvironmentModelsTest, BrokenCommunicationFilesEndWithAnErrorInThem) {
   const fs::path model = copyOf("tip-collision");
   std::ofstream(model / "broken.e")
