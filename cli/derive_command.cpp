@@ -5,6 +5,8 @@
 #include <optional>
 
 #include "command.h"
+#include "hirsute/environment/environment.h"
+#include "model_pipeline.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -25,6 +27,9 @@ struct DeriveOptions {
   bool eachStep = false;
   std::string output;
   std::string format = "cpfg";
+  std::string environmentFile;
+  bool externalEnvironment = false;
+  int environmentTimeout = 60;
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
 };
@@ -50,9 +55,17 @@ int runDerive(const DeriveOptions& o) {
     // resources outlive the derivation whose query pass reads them.
     ModelResources resources;
     Derivation derivation(model.program, evaluator, diagnostics, options);
-    if (model.program.usesQueries) {
+    // cpfg -e: an environmental program answers the ?E modules in the same pass.
+    std::unique_ptr<Environment> environment;
+    if (!o.environmentFile.empty()) {
+      EnvironmentOptions environmentOptions;
+      environmentOptions.forceExternal = o.externalEnvironment;
+      environmentOptions.timeoutSeconds = o.environmentTimeout;
+      environment = openEnvironment(o.environmentFile, diagnostics, environmentOptions);
+    }
+    if (model.program.usesQueries || environment) {
       resources = loadModelResources(view, {}, diagnostics);
-      installQueryPass(derivation, resources, diagnostics);
+      installQueryPass(derivation, resources, diagnostics, environment.get());
     }
 
     // No file, or "-": standard output. Otherwise the shared rule for output files.
@@ -134,6 +147,8 @@ void registerDeriveCommand(CLI::App& app, Action& action) {
   derive->add_option("-o,--output", options->output, "Write to FILE instead of standard output");
   derive->add_option("--format", options->format, "cpfg (cpfg's -str text) or compact (one line)")
       ->check(CLI::IsMember({"cpfg", "compact"}));
+  addEnvironmentOptions(*derive, options->environmentFile, options->externalEnvironment,
+                        options->environmentTimeout);
   derive->add_option("--max-modules", options->maxModules,
                      "A longer string is an error (default 100000000)");
   derive->add_option("--max-loop-iterations", options->maxLoopIterations,

@@ -10,6 +10,7 @@
 #include "hirsute/hairs/fur/fur_stage.h"
 #include "hirsute/hairs/plant/plant_hairs.h"
 
+#include "hirsute/environment/environment.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
@@ -35,6 +36,7 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
       ->check(CLI::Range(0, 1000000000));
   command.add_option("-m,--colormap", o.colormaps, "Colour map (.map); N:FILE for bank N (cpfg -mN)");
   command.add_option("-M,--materials", o.materials, "Materials (.mat); N:FILE for bank N (cpfg -MN)");
+  addEnvironmentOptions(command, o.environmentFile, o.externalEnvironment, o.environmentTimeout);
   command.add_option("--max-modules", o.maxModules, "A longer string is an error (default 100000000)");
   command.add_option("--max-loop-iterations", o.maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
@@ -56,6 +58,16 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
       ->check(CLI::Range(0.0, 1.0));
   command.add_option("--droplet-seed", o.dropletSeed, "Seed of the random droplets (default 1)");
   command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");
+}
+
+void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external, int& timeout) {
+  command.add_option("-e,--environment", file, "The .e file of an open L-system's environment (cpfg -e)")
+      ->check(CLI::ExistingFile);
+  command.add_flag("--external-environment", external,
+                   "Run the .e file's executable as a process even when Hirsute has it built in");
+  command.add_option("--environment-timeout", timeout,
+                     "Seconds an external environmental program may take to answer (default 60)")
+      ->check(CLI::Range(1, 86400));
 }
 
 ColorFiles colorFilesFor(const ModelOptions& o, Diagnostics& diagnostics) {
@@ -108,7 +120,15 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     return std::chrono::duration<double>(Clock::now() - since).count();
   };
   auto started = Clock::now();
-  installQueryPass(derivation, built.resources, diagnostics);
+  // cpfg -e: the environment answers the ?E modules in the query pass before every step.
+  std::unique_ptr<Environment> environment;
+  if (!o.environmentFile.empty()) {
+    EnvironmentOptions environmentOptions;
+    environmentOptions.forceExternal = o.externalEnvironment;
+    environmentOptions.timeoutSeconds = o.environmentTimeout;
+    environment = openEnvironment(o.environmentFile, diagnostics, environmentOptions);
+  }
+  installQueryPass(derivation, built.resources, diagnostics, environment.get());
   derivation.start();
   if (o.progress) o.progress(1, 0, derivation.totalSteps());
   while ((!o.stopAfter || derivation.stepsDone() < *o.stopAfter) && derivation.step()) {

@@ -23,6 +23,9 @@ struct ModelOptions {
   std::optional<int> steps;
   std::vector<std::string> colormaps;  // -m FILE or -m N:FILE (bank N)
   std::vector<std::string> materials;  // -M FILE or -M N:FILE
+  std::string environmentFile;           // -e FILE.e: an open L-system's environment
+  bool externalEnvironment = false;      // run the .e's executable even when it is built in
+  int environmentTimeout = 60;           // seconds an external program may take per batch
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
   std::size_t maxVertices = kDefaultMaxVertices;
@@ -51,6 +54,8 @@ struct ModelOptions {
 
 // Adds the model arguments and options shared by render and export to `command`.
 void addModelOptions(CLI::App& command, ModelOptions& options);
+// Adds -e, --external-environment and --environment-timeout (derive has them too).
+void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external, int& timeout);
 
 struct BuiltScene {
   Model model;

@@ -10,6 +10,7 @@
 
 #include "command.h"
 #include "drawing_commands.h"
+#include "hirsute/environment/environment_program.h"
 #include "hirsute/viewer/interaction/define_editor.h"
 #include "hirsute/viewer/interaction/view_script.h"
 #include "hirsute/viewer/window/viewer_window.h"
@@ -108,6 +109,18 @@ int runView(const ViewOptions& o) {
                                            entry.find_first_not_of("0123456789") == colon
                                        ? entry.substr(colon + 1)
                                        : entry);
+    }
+  }
+  // cpfg -e: the .e file and the program's specification file are watched too; every rebuild
+  // starts the environment afresh, as cpfg restarts it when it regenerates from the axiom.
+  if (!o.model.environmentFile.empty()) {
+    options.extraFiles.push_back(o.model.environmentFile);
+    try {
+      Diagnostics quiet;
+      const ProgramCommand command = parseProgramCommand(readCommunicationFile(o.model.environmentFile, quiet));
+      if (command.specification) options.extraFiles.push_back(*command.specification);
+    } catch (const DiagnosticError&) {
+      // The build reports what is wrong with the .e file.
     }
   }
   std::size_t x = o.size.find('x');

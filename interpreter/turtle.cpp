@@ -164,7 +164,7 @@ void Turtle::dispatch(char symbol, const float* p, std::size_t count) {
       closeSegment();
       drawSurface(symbol, p, count);
     } else {
-      query(symbol, count);
+      query(symbol, p, count);
     }
     return;
   }
@@ -485,7 +485,7 @@ void Turtle::atModule(char first, char second, const float* p, std::size_t count
   }
 }
 
-void Turtle::query(char which, std::size_t count) {
+void Turtle::query(char which, const float* parameters, std::size_t count) {
   glm::dvec3 value(0.0);
   switch (which) {
     case 'P':
@@ -501,6 +501,8 @@ void Turtle::query(char which, std::size_t count) {
       value = state_.up;
       break;
     case 'E':
+      environmentQuery(parameters, count);
+      return;
     case 'Q':
       return;  // environment programs (cpfg -e) answer these; the turtle has nothing to say
     default:
@@ -514,6 +516,33 @@ void Turtle::query(char which, std::size_t count) {
     sourceString_->setParameter(source_, i,
                                 static_cast<float>(value[static_cast<glm::length_t>(i)]));
   }
+}
+
+void Turtle::environmentQuery(const float* parameters, std::size_t count) {
+  if (scene_ != nullptr || environment_ == nullptr) return;
+  EnvironmentQuery q;
+  float following[kMaxModuleParameters];
+  q.turtle = &state_;
+  q.parameters = parameters;
+  q.count = count;
+  if (fromSourceString_) {
+    // cpfg sends the module after the ?E in the string; `~` and `@` with the next character.
+    q.position = source_;
+    const ModuleString& s = *sourceString_;
+    std::size_t next = s.next(source_);
+    if (next < s.end()) {
+      ModuleRef m = s.at(next);
+      q.followingSymbols = std::string(1, m.symbol());
+      if ((m.symbol() == '~' || m.symbol() == '@') && !m.hasParameters() && s.next(next) < s.end()) {
+        m = s.at(s.next(next));
+        q.followingSymbols += m.symbol();
+      }
+      q.followingCount = m.parameterCount();
+      for (std::size_t i = 0; i < q.followingCount; ++i) following[i] = m.parameter(i);
+      q.followingParameters = following;
+    }
+  }
+  environment_->query(q);
 }
 
 void Turtle::move(double distance, bool draws, bool addsVertex) {
@@ -799,15 +828,18 @@ void interpret(Derivation& derivation, const ModelResources& resources, Scene& s
 }
 
 void installQueryPass(Derivation& derivation, const ModelResources& resources,
-                      Diagnostics& diagnostics) {
+                      Diagnostics& diagnostics, EnvironmentQueries* environment) {
   // cpfg (manual §6.9): with query modules in the L-system, the string is interpreted before
   // every step, and the queries take the turtle's values. `resources` and `diagnostics` must
   // outlive the derivation.
-  derivation.setQueryPass([&resources, &diagnostics](Derivation& d) {
+  derivation.setQueryPass([&resources, &diagnostics, environment](Derivation& d) {
     Turtle turtle(resources, nullptr, diagnostics);
     turtle.setSourceString(&d.mutableString());
+    turtle.setEnvironment(environment);
+    if (environment) environment->beginPass(d.mutableString(), d.stepsDone());
     d.emit(turtle, true);
     turtle.finish();
+    if (environment) environment->endPass();
   });
 }
 

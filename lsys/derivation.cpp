@@ -173,15 +173,15 @@ bool Derivation::step() {
   start();
   if (stopped_ || stepsDone_ >= totalSteps_) return false;
   const Lsystem& main = program_.lsystems.front();
+  // cpfg (generate.c): query modules (?P ?H ?L ?U) and the environment's ?E are served by an
+  // interpretation of the string before the step counter advances and StartEach runs.
+  if (queryPass_ && (program_.usesQueries || program_.usesEnvironment)) queryPass_(*this);
   evaluator_.shared()[static_cast<std::size_t>(program_.stepSlot)] = stepsDone_ + 1;
   evaluator_.run(main.startEach, nullptr);
-  // cpfg: query modules (?P ?H ?L ?U) are filled by an interpretation of the string before
-  // it is rewritten.
   if (options_.progress) {
     if (stepsDone_ == 0) options_.progress->begin("deriving", Progress::Unit::Steps, totalSteps_);
     options_.progress->update(stepsDone_ + 1);  // the step under way
   }
-  if (queryPass_ && program_.usesQueries) queryPass_(*this);
   rewriteStep();
   if (stream_) {
     stream_->modules(next_, next_.begin(), next_.end());

@@ -3,9 +3,14 @@
 // the homomorphism), newlines removed. Prints one line per model and a final count; exits 1 when
 // a model that must match does not, 77 (skip) when the folder is absent.
 //
-// Every model with environment=no must match, except the understood differences named below.
+// Every model must match, except the understood differences named below. Open L-systems
+// (environment=yes) run against their environmental program: a built-in one, or the model's
+// own, built with its makefile against Hirsute's communication library.
+#include <unistd.h>
+
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -13,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/environment/environment.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -74,8 +80,53 @@ std::vector<std::string> modules(const std::string& text) {
   return out;
 }
 
+// The model's .e file (cpfg -e), the only one in its folder.
+std::optional<fs::path> communicationFile(const fs::path& folder) {
+  std::optional<fs::path> found;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.path().extension() != ".e") continue;
+    if (found) return std::nullopt;
+    found = entry.path();
+  }
+  return found;
+}
+
+// A model whose environmental program is its own (`executable: ./NAME`, built by NAME.mak)
+// runs in a scratch folder beside links to the model's files: the program is built there with
+// the model's own makefile against Hirsute's communication library. Returns the scratch
+// folder's .e file, or nullopt with `why` set.
+std::vector<fs::path> scratchFolders;  // removed when the runner ends
+
+std::optional<fs::path> buildModelProgram(const fs::path& folder, const fs::path& efile, std::string& why) {
+  Diagnostics quiet;
+  CommunicationFile e = readCommunicationFile(efile, quiet);
+  const ProgramCommand command = parseProgramCommand(e);
+  const std::string name = fs::path(command.program).filename().string();
+  if (command.program.rfind("./", 0) != 0 || !fs::exists(folder / (name + ".mak"))) {
+    why = "its environmental program " + command.program + " is neither built in nor built by the model";
+    return std::nullopt;
+  }
+  fs::path scratch = fs::temp_directory_path() / ("hirsute-conformance-" + std::to_string(::getpid()) + "-" + name);
+  fs::remove_all(scratch);
+  fs::create_directories(scratch);
+  scratchFolders.push_back(scratch);
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.path().extension() == ".a") continue;  // a prebuilt library of another platform
+    fs::create_symlink(fs::absolute(entry.path()), scratch / entry.path().filename());
+  }
+  const std::string make = "cd '" + scratch.string() + "' && make -s -f " + name + ".mak LOCAL='" +
+                           HIRSUTE_COMM_LIBRARY_DIR + "' >make.log 2>&1";
+  if (std::system(make.c_str()) != 0) {
+    why = "building " + name + " with " + name + ".mak failed (see " + (scratch / "make.log").string() + ")";
+    return std::nullopt;
+  }
+  return scratch / efile.filename();
+}
+
 // The derived string (after the homomorphism when asked), in cpfg's format without newlines.
-std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bool batchMode) {
+// `environment` is the model's .e file for an open L-system.
+std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bool batchMode,
+                   const std::optional<fs::path>& environmentFile = std::nullopt) {
   Diagnostics diagnostics;  // warnings are not printed here
   std::optional<fs::path> view;
   if (row.vfile != "-") view = folder / row.vfile;
@@ -87,11 +138,14 @@ std::string derive(const fs::path& folder, const Row& row, bool homomorphism, bo
   DerivationOptions options;
   options.steps = row.steps;
   Derivation derivation(model.program, evaluator, diagnostics, options);
-  // Query modules (?P ?H ?L ?U) are filled by the turtle before each step.
+  // Query modules (?P ?H ?L ?U) are filled by the turtle before each step, and the
+  // environment answers ?E in the same pass.
+  std::unique_ptr<Environment> environment;
+  if (environmentFile) environment = openEnvironment(*environmentFile, diagnostics);
   std::optional<ModelResources> resources;
-  if (model.program.usesQueries) {
+  if (model.program.usesQueries || environment) {
     resources = loadModelResources(view, ColorFiles{}, diagnostics);
-    installQueryPass(derivation, *resources, diagnostics);
+    installQueryPass(derivation, *resources, diagnostics, environment.get());
   }
   derivation.run();
   char* buffer = nullptr;
@@ -147,10 +201,24 @@ int main(int argc, char** argv) {
   int passed = 0, failed = 0, excused = 0, skipped = 0;
   for (const Row& row : readIndex(root / "index.tsv")) {
     fs::path folder = root / row.id;
+    std::optional<fs::path> environmentFile;
     if (row.environment == "yes") {
-      std::cout << row.id << ": skipped (needs cpfg's environment programs, -e)\n";
-      ++skipped;
-      continue;
+      // An open L-system runs against its environment when its program is built in.
+      // A program of the model's own is built with its makefile first.
+      environmentFile = communicationFile(folder);
+      std::string why;
+      if (!environmentFile) {
+        why = "no single .e file in its folder";
+      } else {
+        Diagnostics quiet;
+        CommunicationFile e = readCommunicationFile(*environmentFile, quiet);
+        if (!makeBuiltinProgram(e, quiet)) environmentFile = buildModelProgram(folder, *environmentFile, why);
+      }
+      if (!why.empty()) {
+        std::cout << row.id << ": skipped (" << why << ")\n";
+        ++skipped;
+        continue;
+      }
     }
     for (bool homomorphism : {false, true}) {
       fs::path expectedFile = folder / (homomorphism ? "expected.homo.str" : "expected.str");
@@ -162,7 +230,7 @@ int main(int argc, char** argv) {
       if (batchMode) label += " [as cpfg -g: function-set names undefined]";
       std::string result;
       try {
-        result = compare(derive(folder, row, homomorphism, batchMode),
+        result = compare(derive(folder, row, homomorphism, batchMode, environmentFile),
                          withoutNewlines(readFile(expectedFile)));
       } catch (const DiagnosticError& e) {
         result = "error: " + e.diagnostic().text();
@@ -185,6 +253,7 @@ int main(int argc, char** argv) {
       }
     }
   }
+  for (const fs::path& scratch : scratchFolders) fs::remove_all(scratch);
   std::cout << passed << " passed, " << failed << " failed";
   if (excused) std::cout << " (" << excused << " known differences explained above)";
   if (skipped) std::cout << ", " << skipped << " skipped";

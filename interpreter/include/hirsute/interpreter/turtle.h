@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "hirsute/interpreter/environment_queries.h"
 #include "hirsute/interpreter/generalized_cylinder.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
@@ -47,6 +48,9 @@ class Turtle : public ModuleSink {
   // The program's string table (Program::strings): @L's first parameter is an id in it
   // (takesStringArgument). Without a table a label is its parameters printed as %g.
   void setStrings(const std::vector<std::string>* strings) { strings_ = strings; }
+
+  // In query mode, every ?E goes to `environment` (null: ?E does nothing).
+  void setEnvironment(EnvironmentQueries* environment) { environment_ = environment; }
 
   // More vertices in the scene than this ends interpretation with GeometryLimitError.
   void setMaxVertices(std::size_t vertices);
@@ -92,7 +96,8 @@ class Turtle : public ModuleSink {
   // `@` organ letter: the module of the organ at `organ` in organModuleTables().
   void organModule(int organ, char letter, const float* parameters, std::size_t count);
   // ?P ?H ?L ?U with `count` parameters (the values are the turtle's, not the module's).
-  void query(char which, std::size_t count);
+  void query(char which, const float* parameters, std::size_t count);
+  void environmentQuery(const float* parameters, std::size_t count);
   void move(double distance, bool draws, bool addsVertex);
   void closeSegment();
   void drawSegment(const TurtleState& start, const TurtleState& end);
@@ -118,6 +123,7 @@ class Turtle : public ModuleSink {
   bool fromSourceString_ = false;  // the module being handled came unchanged from sourceString_
   ModuleString* sourceString_ = nullptr;
   const std::vector<std::string>* strings_ = nullptr;
+  EnvironmentQueries* environment_ = nullptr;
   std::set<std::string> warned_;
   Counts counts_;
   // Modules handled so far, and per organ the attribute record its last module made at which
@@ -152,7 +158,8 @@ void interpret(Derivation& derivation, const ModelResources& resources, Scene& s
 
 // Installs the query pass: before each rewriting, the turtle walks the string and fills the
 // parameters of ?P ?H ?L ?U with its position, heading, left and up vectors.
+// With `environment`, the same pass also hands every ?E to it (cpfg -e).
 void installQueryPass(Derivation& derivation, const ModelResources& resources,
-                      Diagnostics& diagnostics);
+                      Diagnostics& diagnostics, EnvironmentQueries* environment = nullptr);
 
 }  // namespace hirsute

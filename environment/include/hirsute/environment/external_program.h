@@ -1,0 +1,20 @@
+// An environmental program that is not built in, run as its own process and spoken to over
+// cpfg's protocol (the transport the .e file names), so that programs written against vlab's
+// communication library work unchanged.
+#pragma once
+
+#include <memory>
+
+#include "hirsute/environment/communication_file.h"
+#include "hirsute/environment/environment_program.h"
+
+namespace hirsute {
+
+// Starts the executable of `file` in the folder of the .e file. A program that cannot be
+// started, dies, takes more than `timeoutSeconds` for a batch or answers garbage is an error
+// naming it.
+std::unique_ptr<EnvironmentProgram> startExternalProgram(const CommunicationFile& file,
+                                                         int timeoutSeconds,
+                                                         Diagnostics& diagnostics);
+
+}  // namespace hirsute

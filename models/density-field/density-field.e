@@ -1,0 +1,3 @@
+executable: density field.spec
+communication type: pipes
+turtle position:P:%g %g %g

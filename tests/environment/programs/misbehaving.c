@@ -1,0 +1,37 @@
+/* An environmental program that goes wrong in the way its argument names: `die` exits at the
+   first query, `hang` never answers, `garbage` answers lines that are no answer records. */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "comm_lib.h"
+
+static const char* mode = "";
+
+void Message(const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  vfprintf(stderr, format, args);
+  va_end(args);
+}
+
+static int AnswerQuery(Cmodule_type* two_modules, CTURTLE* turtle) {
+  (void)two_modules;
+  (void)turtle;
+  if (strcmp(mode, "die") == 0) exit(3);
+  if (strcmp(mode, "hang") == 0) {
+    for (;;) pause();
+  }
+  CSSendString(0, "the answer is blowing in the wind\n");
+  return 0;
+}
+
+int main(int argc, char** argv) {
+  CSInitialize(&argc, &argv);
+  if (argc == 2) mode = argv[1];
+  CSMainLoop(AnswerQuery);
+  CTerminate();
+  return 0;
+}
