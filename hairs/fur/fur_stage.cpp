@@ -8,6 +8,7 @@
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_texture.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
+#include "hirsute/hairs/placement/patch_unfolding.h"
 
 namespace hirsute {
 namespace {
@@ -101,6 +102,22 @@ bool rightHanded(const FurSurface& s, const std::vector<float>& axisDistance) {
   return sum >= 0;
 }
 
+// What every fur surface gets once its triangles and (u, v) are known: strands at rest under the
+// view's force, its layers and strand radius, a dry wetness mask and its fur texture.
+void completeSurface(FurSurface&& s, const FurAttributes& fur, const ViewSettings& view, float tile,
+                     int textureIndex, Scene& scene) {
+  s.tips.resize(s.positions.size());
+  for (std::size_t i = 0; i < s.positions.size(); ++i) {
+    const fur::StrandRoot strand{s.positions[i], s.normals[i], fur.length};
+    s.tips[i] = fur::restingTip(strand, fur.stiffness, fur.mass, view.furForce);
+  }
+  s.layers = view.furLayers;
+  s.strandRadius = 0.5f * tile / static_cast<float>(view.furTextureSize);
+  fur::clearWetness(s, view.wetnessMaskSize);
+  s.furTexture = textureIndex;
+  scene.furSurfaces.push_back(std::move(s));
+}
+
 void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const ViewSettings& view,
                    int textureIndex, Scene& scene) {
   FurSurface& s = b.surface;
@@ -120,16 +137,72 @@ void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const ViewSettin
     s.uv[i].y = (b.axisDistance[i] - start) / span;
     s.texcoords.emplace_back(s.uv[i].x * around, (b.axisDistance[i] - start) / tile);
   }
-  s.tips.resize(s.positions.size());
-  for (std::size_t i = 0; i < s.positions.size(); ++i) {
-    const fur::StrandRoot strand{s.positions[i], s.normals[i], fur.length};
-    s.tips[i] = fur::restingTip(strand, fur.stiffness, fur.mass, view.furForce);
+  completeSurface(std::move(s), fur, view, tile, textureIndex, scene);
+}
+
+// A `~` patch or a polygon with fur on (OrganSurface): (u, v) from its plane coordinates (the
+// placement engine's PatchUnfolding: lengths the surface's own on average), both divided by the
+// larger extent so that droplets stay round, the fur texture tiled over them in world units.
+void addOrganSurface(Scene& scene, const OrganSurface& organ, int record, const ViewSettings& view,
+                     int textureIndex) {
+  const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(organ.mesh)];
+  const PatchUnfolding unfolding(organ, mesh);
+  const FurAttributes& fur = scene.furAttributes[static_cast<std::size_t>(record)];
+  FurSurface s;
+  s.attributes = record;
+  s.material = mesh.material;
+  const std::size_t n = organ.uv.size();
+  glm::vec2 low(1e30f), high(-1e30f);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    low = glm::min(low, unfolding.plane(i));
+    high = glm::max(high, unfolding.plane(i));
   }
-  s.layers = view.furLayers;
-  s.strandRadius = 0.5f * tile / static_cast<float>(view.furTextureSize);
-  fur::clearWetness(s, view.wetnessMaskSize);
-  s.furTexture = textureIndex;
-  scene.furSurfaces.push_back(std::move(s));
+  const float extent = std::max(std::max(high.x - low.x, high.y - low.y), 1e-12f);
+  std::vector<glm::vec3> alongU(n, glm::vec3(0.0f));
+  for (std::size_t t = 0; t < unfolding.triangles(); ++t) {
+    std::array<std::uint32_t, 3> c{unfolding.corner(t, 0), unfolding.corner(t, 1), unfolding.corner(t, 2)};
+    const glm::vec3 p0 = unfolding.position(c[0]);
+    const glm::vec3 e1 = unfolding.position(c[1]) - p0, e2 = unfolding.position(c[2]) - p0;
+    const glm::vec3 face = glm::cross(e1, e2);
+    const float area = 0.5f * glm::length(face);
+    if (!(area > 0)) continue;
+    const glm::vec3 normal = unfolding.normal(c[0]) + unfolding.normal(c[1]) + unfolding.normal(c[2]);
+    if (glm::dot(face, normal) < 0) std::swap(c[1], c[2]);
+    // World motion per unit of the plane's U over the triangle.
+    const glm::vec2 d1 = unfolding.plane(c[1]) - unfolding.plane(c[0]);
+    const glm::vec2 d2 = unfolding.plane(c[2]) - unfolding.plane(c[0]);
+    const float det = d1.x * d2.y - d1.y * d2.x;
+    if (std::abs(det) > 1e-20f) {
+      const glm::vec3 q1 = unfolding.position(c[1]) - unfolding.position(c[0]);
+      const glm::vec3 q2 = unfolding.position(c[2]) - unfolding.position(c[0]);
+      const glm::vec3 perU = (q1 * d2.y - q2 * d1.y) / det;
+      for (std::uint32_t k : c) alongU[k] += area * perU;
+    }
+    s.indices.insert(s.indices.end(), c.begin(), c.end());
+    s.area += area;
+  }
+  if (s.indices.empty()) return;
+  std::vector<float> v(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    glm::vec3 normal = unfolding.normal(i);
+    normal = glm::length(normal) > 0 ? glm::normalize(normal) : glm::vec3(0, 0, 1);
+    glm::vec3 u = alongU[i] - glm::dot(alongU[i], normal) * normal;
+    if (glm::length(u) < 1e-20f) u = glm::cross(normal, std::abs(normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+    s.positions.push_back(unfolding.position(i));
+    s.normals.push_back(normal);
+    s.tangents.push_back(glm::normalize(u));
+    const glm::vec2 uv = (unfolding.plane(i) - low) / extent;
+    s.uv.push_back(uv);
+    v[i] = uv.y;
+  }
+  if (!rightHanded(s, v)) {
+    for (glm::vec2& uv : s.uv) uv.x = 1 - uv.x;
+    for (glm::vec3& t : s.tangents) t = -t;
+  }
+  const float tile = static_cast<float>(view.furTextureSize) * fur.length / view.furTexelsPerLength;
+  s.texcoordsPerUv = glm::vec2(extent / tile);
+  for (const glm::vec2& uv : s.uv) s.texcoords.push_back(uv * s.texcoordsPerUv);
+  completeSurface(std::move(s), fur, view, tile, textureIndex, scene);
 }
 
 }  // namespace
@@ -186,6 +259,16 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
     appendSegment(scene, segment, builder);
   }
   close();
+  // Bicubic patches and polygons, each a fur surface of its own.
+  for (const OrganSurface& organ : scene.organSurfaces) {
+    const int record = organ.organs.fur;
+    if (record < 0 || organ.mesh < 0) continue;
+    const FurAttributes& fur = scene.furAttributes[static_cast<std::size_t>(record)];
+    if (!fur.enabled() || fur.length <= 0) continue;
+    if (scene.furSurfaces.size() >= options.maxSurfaces)
+      throw DiagnosticError(SourceLocation{}, "more than " + std::to_string(options.maxSurfaces) + " fur surfaces");
+    addOrganSurface(scene, organ, record, view, textureFor(fur.density));
+  }
 
   for (const Droplet& d : view.droplets) {
     if (d.surface > static_cast<int>(scene.furSurfaces.size())) {
