@@ -17,6 +17,9 @@ render fur-square square.l word.v word 520x440
 render fur-curls curls.l curls.v curls 1000x380
 render pussy-willow pussy-willow.l pussy-willow.v pussy-willow 560x560
 render pussy-willow pussy-willow.l wet.v pussy-willow-wet 560x560
+render fur-lambs-ear lambs-ear.l lambs-ear.v lambs-ear 560x470
+(cd models/fur-lambs-ear && "$hirsute" render lambs-ear.l lambs-ear.v --droplets 60 \
+  --droplet-radius 0.14 -o "$out/lambs-ear-wet.png" --size 560x470)
 if command -v povray >/dev/null; then
   work="$(mktemp -d)"
   trap 'rm -rf "$work"' EXIT
