@@ -128,6 +128,27 @@ TEST(FeatherCoatSimulation, TwoStemsDrivenIntoEachOtherAtHighSpeedNeverCross) {
   EXPECT_GT(sim.counters().contacts, 0u);  // they did meet
 }
 
+TEST(FeatherCoatSimulation, AStepThatCannotBeResolvedIsRetriedThenRefusedNeverAccepted) {
+  SimulationParameters parameters;
+  parameters.gravity = Vector3d::Zero();
+  parameters.maxHalvings = 4;
+  FeatherCoatSimulation sim({straightStem({0, 0, 0}, Vector3d::UnitX(), 3, 0.1, parameters.stem),
+                             straightStem({0, 0.1, 0}, Vector3d::UnitZ(), 3, 0.1, parameters.stem)},
+                            {}, parameters);
+  // The second anchor is dragged straight through the first one's: the two roots meet whatever
+  // the free nodes do.
+  std::vector<StemFrame> anchors = sim.anchors();
+  anchors[1].origin += Vector3d(0, -0.2, 0);
+  const std::vector<FeatherStem> before = sim.stems();
+  EXPECT_THROW(sim.step(0.01, anchors), StepFailure);
+  EXPECT_GE(sim.counters().retries, 4u);
+  EXPECT_EQ(sim.time(), 0);
+  for (std::size_t s = 0; s < before.size(); ++s)
+    for (std::size_t i = 0; i < before[s].nodeCount(); ++i)
+      EXPECT_EQ(sim.stems()[s].positions[i], before[s].positions[i]);
+  EXPECT_EQ(sim.anchors()[1].origin, before[1].positions[0]);
+}
+
 // Three stems over the ground in gusty wind, `steps` steps: every node's position.
 std::vector<Vector3d> gustyCoat(int seed, int steps) {
   SimulationParameters parameters;
