@@ -1,0 +1,126 @@
+// A feather coat in motion (DESIGN.md, "Feather-coat dynamics"; docs/dynamics.md, "The
+// simulator"): stems of particles (feather_stem.h) anchored to moving frames, under gravity, drag
+// and gusty wind, colliding continuously with each other and with a body mesh, and never left
+// in a state with an intersection.
+//
+// One step of length h (the study's Sec. 3.3.3, after Bridson, Fedkiw & Anderson 2002):
+//   1. frames rebuilt from the positions (Sec. 3.2); half a step of velocity with the gold springs
+//      implicit and gravity, drag and wind explicit: v^{n+1/2};
+//   2. candidate positions x^{n+1} = x^n + h v^{n+1/2}, the anchors at their new frames;
+//   3. strain limiting from the anchor to the tip, its corrections added to v^{n+1/2};
+//   4. repulsion: pairs closer than the thickness at x^n stop approaching (impulses kept apart
+//      from the internal forces);
+//   5. continuous collisions over x^n -> x^{n+1}: candidates from swept boxes in a hashed grid,
+//      the CCD of continuous_collision.h on each, inelastic impulses in time-of-impact order,
+//      repeated a few passes; then rigid impact zones (Provot 1997) until no contact is left;
+//   6. the exact check of the final state (static_intersection.h); a state that fails it, or a
+//      step whose collisions cannot be resolved, is thrown away and the step is retried as two
+//      halves, counted in `retries`;
+//   7. the other half step of velocity at x^{n+1}: v^{n+1}.
+//
+// Stems are thin: the vane is not a collision object yet. Each stem is its rachis polyline, kept
+// at `thickness` from other stems and from the body by repulsion and never closer than
+// `minimumSeparation` by the collisions; the vane's width is not taken into account.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "hirsute/hairs/dynamics/feather_stem.h"
+#include "hirsute/hairs/dynamics/wind_field.h"
+#include "hirsute/interpreter/scene.h"
+
+namespace hirsute::dynamics {
+
+// The body the feathers collide with: triangles over shared vertices. It does not move (yet).
+struct BodyMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+// Every triangle mesh of a Scene as one body.
+BodyMesh bodyMeshOf(const Scene& scene);
+
+struct SimulationParameters {
+  StemParameters stem;
+  int segmentsPerFeather = 8;            // for stems built from a Scene's feathers
+  Eigen::Vector3d gravity{0, 0, -9.81};  // acceleration
+  double dragCoefficient = 0.05;         // force per unit length per unit speed
+  WindParameters wind;                   // the air the drag is relative to
+  double thickness = 0.01;               // repulsion keeps stems this far apart
+  double minimumSeparation = 0.002;      // eta of the CCD: never closer than this
+  double repulsionRate = 0.25;           // the part of a too-near gap closed a step
+  int impulsePasses = 4;                 // CCD and impulse passes before zones
+  int zoneIterations = 64;               // rigid impact zone passes before a retry
+  int maxHalvings = 8;                   // a step is halved at most this many times
+};
+
+// What the simulation did, summed over all steps since it was built.
+struct SimulationCounters {
+  std::uint64_t steps = 0;         // calls of step()
+  std::uint64_t substeps = 0;      // steps accepted, halves of retried steps included
+  std::uint64_t candidates = 0;    // pairs whose swept boxes overlapped
+  std::uint64_t contacts = 0;      // candidates the CCD found in contact
+  std::uint64_t impulses = 0;      // inelastic impulses applied
+  std::uint64_t repulsions = 0;    // repulsion impulses applied
+  std::uint64_t impactZones = 0;   // rigid impact zones formed
+  std::uint64_t retries = 0;       // steps thrown away and retried as two halves
+  std::uint64_t penetrations = 0;  // intersections found by the final check (then retried)
+};
+
+// A step that could not be resolved even at the smallest time step: the state is left as it
+// was before the step.
+struct StepFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Which primitives of a state intersect: stem segments through body triangles (exact), and stem
+// segments that meet or come nearer than `minimumDistance` to each other (segments of one stem
+// that share a node excepted). A stem's first segment, whose root lies on the body, is not
+// tested against the body.
+std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
+                              double minimumDistance);
+
+class FeatherCoatSimulation {
+ public:
+  FeatherCoatSimulation(std::vector<FeatherStem> stems, BodyMesh body,
+                        const SimulationParameters& parameters);
+  // Every feather of the Scene as a stem, the Scene's meshes as the body.
+  static FeatherCoatSimulation fromScene(const Scene& scene,
+                                         const SimulationParameters& parameters);
+
+  // Advances by `dt` seconds, the anchors (one per stem) moving linearly from their frames at
+  // the start of the step to `anchors`. Throws StepFailure when the step cannot be resolved.
+  void step(double dt, const std::vector<StemFrame>& anchors);
+  // The same with the anchors where they are.
+  void step(double dt);
+
+  const std::vector<FeatherStem>& stems() const { return stems_; }
+  // For setting up a state (displacing or launching a stem); the next step starts from it.
+  FeatherStem& stem(std::size_t i) { return stems_[i]; }
+  const std::vector<StemFrame>& anchors() const { return anchors_; }
+  const BodyMesh& body() const { return body_; }
+  const SimulationCounters& counters() const { return counters_; }
+  const SimulationParameters& parameters() const { return parameters_; }
+  double time() const { return time_; }
+
+ private:
+  bool advance(double h, const std::vector<StemFrame>& from, const std::vector<StemFrame>& to);
+  void advanceOrHalve(double h, const std::vector<StemFrame>& from,
+                      const std::vector<StemFrame>& to, int depth);
+  std::vector<Eigen::Vector3d> externalForces(const FeatherStem& stem) const;
+
+  std::vector<FeatherStem> stems_;
+  BodyMesh body_;
+  std::vector<std::array<int, 2>> bodyEdges_;
+  SimulationParameters parameters_;
+  WindField wind_;
+  std::vector<StemFrame> anchors_;
+  SimulationCounters counters_;
+  double time_ = 0;
+};
+
+}  // namespace hirsute::dynamics

@@ -1,0 +1,85 @@
+// A feather as a stem of particles along its rachis (Fido Film 2008 study, Sec. 3.2 and 3.3.1;
+// DESIGN.md, "Feather-coat dynamics"; docs/dynamics.md, "Stems"). Node 0 is the calamus base,
+// bound to the body (kinematic); nodes 1..n follow the rachis to its tip. Every node i >= 1 has a
+// gold (rest) position in the frame of its parent node i - 1, held by an implicit damped linear
+// spring, and every segment is kept within a strain limit of its rest length.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "hirsute/interpreter/scene.h"
+
+namespace hirsute::dynamics {
+
+// An orthonormal frame: `axes` holds, as columns, the binormal (the feather's front, the turtle's
+// U), the left vane's side (L) and the tangent along the stem (H); `origin` is where it sits.
+struct StemFrame {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+};
+
+// The physical parameters of a stem (docs/dynamics.md, "Parameters").
+struct StemParameters {
+  double linearDensity = 1.0;  // mass per unit length of rachis
+  double goldStiffness = 200;  // k of the gold springs, force per unit length of displacement
+  double goldDamping = 2;      // b of the gold springs, force per unit relative velocity
+  double strainLimit = 0.01;   // every segment stays within this fraction of its rest length
+};
+
+struct FeatherStem {
+  std::vector<Eigen::Vector3d> positions;  // node 0 the anchor, then to the rachis tip
+  std::vector<Eigen::Vector3d> velocities;
+  std::vector<double> masses;                  // masses[0] is unused: the anchor is kinematic
+  std::vector<double> restLengths;             // restLengths[i]: segment from node i to i + 1
+  std::vector<Eigen::Vector3d> goldPositions;  // goldPositions[i]: node i in its parent's frame
+  std::vector<StemFrame> frames;               // frames[i]: the frame at node i (0: the anchor's)
+  StemParameters parameters;
+
+  std::size_t nodeCount() const { return positions.size(); }
+};
+
+// The anchor frame of a Scene feather: origin at the calamus base, axes (up, left, heading).
+StemFrame anchorFrameOf(const Feather& feather);
+
+// The stem of a Scene feather with `segments` segments (at least 1): node 0 at the calamus base,
+// then points of the rachis (the cubic Bézier of feather_geometry.h, calamus included as its
+// first segment) at equal parameter steps, in world space by the feather's frame and size, the
+// type blended and grown as it is drawn. Gold positions are this rest shape; velocities zero.
+FeatherStem buildFeatherStem(const Scene& scene, const Feather& feather, int segments,
+                             const StemParameters& parameters = {});
+
+// A stem from points given in world space (the first the anchor) and the anchor's frame.
+FeatherStem buildStemFromPoints(const std::vector<Eigen::Vector3d>& points, const StemFrame& anchor,
+                                const StemParameters& parameters = {});
+
+// Sec. 3.2: the frames rebuilt from the current positions, anchor first. The tangent of node i is
+// along p_i - p_{i-1}; the binormal is the parent's, made perpendicular to it (the paper's
+// t = n x bn_{i-1}, bn = t x n, normalised), so a stem never twists about itself.
+void rebuildFrames(FeatherStem& stem, const StemFrame& anchor);
+
+// Node i's gold position in world space, from the current frame of its parent.
+Eigen::Vector3d worldGoldPosition(const FeatherStem& stem, std::size_t node);
+
+// Sec. 3.3.1 (after Selle, Lentine & Fedkiw 2008): the velocities after `h` of the gold springs,
+// implicit in the velocity, plus `forces` (per node, explicit): solves
+//   (M + (h^2 k + h b) L) v' = M v + h (F_gold(x) + forces),
+// L the chain's Laplacian with the anchor's velocity `anchorVelocity` known. The spring of node i
+// pulls p_i towards p_{i-1} + R_{i-1} g_i (its gold position) and its parent the other way, so the
+// springs keep momentum. `velocities` is replaced; positions are unchanged.
+void advanceGoldSprings(FeatherStem& stem, double h, const std::vector<Eigen::Vector3d>& forces,
+                        const Eigen::Vector3d& anchorVelocity);
+
+// Strain limiting (Provot 1995; Bridson, Fedkiw & Anderson 2002), from the anchor to the tip:
+// every segment longer or shorter than its rest length by more than the strain limit is brought
+// back to the limit, moving both ends by their inverse masses (equal and opposite corrections, so
+// linear momentum is kept; the anchor does not move), sweeping until all are within the limit; a
+// last sweep that moves only the outer end makes the limit hold for certain. Each correction of
+// a position is added to the velocity divided by `h` (Sec. 3.3.3). Returns the sweeps made.
+int limitStrain(FeatherStem& stem, double h);
+
+// The largest |length / rest length - 1| over the stem's segments.
+double largestStrain(const FeatherStem& stem);
+
+}  // namespace hirsute::dynamics

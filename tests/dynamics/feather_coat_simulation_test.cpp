@@ -1,0 +1,214 @@
+// The feather-coat step: a feather comes to rest on a surface without passing through it, two
+// stems driven into each other at high speed never cross, the same seed gives the same frames,
+// and the final check finds planted intersections.
+#include "hirsute/hairs/dynamics/feather_coat_simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "hirsute/hairs/dynamics/exact_predicates.h"
+
+namespace hirsute::dynamics {
+namespace {
+
+using Eigen::Vector3d;
+
+FeatherStem straightStem(const Vector3d& root, const Vector3d& direction, int segments,
+                         double length, const StemParameters& parameters) {
+  std::vector<Vector3d> points;
+  for (int i = 0; i <= segments; ++i) points.push_back(root + i * length * direction);
+  StemFrame anchor;
+  anchor.origin = root;
+  anchor.axes.col(2) = direction;
+  anchor.axes.col(0) = direction.unitOrthogonal();
+  anchor.axes.col(1) = direction.cross(anchor.axes.col(0));
+  return buildStemFromPoints(points, anchor, parameters);
+}
+
+// The square [-1, 1]^2 at height z, two triangles.
+BodyMesh ground(double z) {
+  BodyMesh body;
+  body.vertices = {{-1, -1, z}, {1, -1, z}, {1, 1, z}, {-1, 1, z}};
+  body.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return body;
+}
+
+TEST(FeatherCoatSimulation, AFeatherFallsOntoASurfaceAndRestsOnItWithoutPassingThrough) {
+  SimulationParameters parameters;
+  parameters.stem.goldStiffness = 2;
+  parameters.stem.goldDamping = 2;
+  parameters.dragCoefficient = 1;
+  const BodyMesh body = ground(0);
+  FeatherCoatSimulation sim(
+      {straightStem({-0.3, 0, 0.12}, Vector3d::UnitX(), 6, 0.1, parameters.stem)}, body,
+      parameters);
+  for (int step = 0; step < 360; ++step) {
+    sim.step(1.0 / 120);
+    for (const Vector3d& p : sim.stems()[0].positions) ASSERT_GT(p.z(), 0) << "step " << step;
+    ASSERT_EQ(countPenetrations(sim.stems(), body, 0), 0u) << "step " << step;
+  }
+  // It came down onto the surface (the tip started 0.12 above it) and lies still there.
+  const std::vector<Vector3d> settled = sim.stems()[0].positions;
+  EXPECT_LT(settled.back().z(), 2 * parameters.thickness);
+  for (int step = 0; step < 12; ++step) sim.step(1.0 / 120);
+  double moved = 0;
+  for (std::size_t i = 0; i < settled.size(); ++i)
+    moved = std::max(moved, (sim.stems()[0].positions[i] - settled[i]).norm());
+  EXPECT_LT(moved, 2e-3);
+  EXPECT_GT(sim.counters().repulsions + sim.counters().impulses, 0u);
+}
+
+// For pairs of segments (one of each stem) whose shadows on the xy plane cross: which passes over
+// the other there, as the sign of the volume they span. A pair whose shadows cross before and
+// after a step changes sides only by passing through the other.
+std::map<std::pair<int, int>, int> sidesWhereShadowsCross(const std::vector<Vector3d>& a,
+                                                          const std::vector<Vector3d>& b) {
+  std::map<std::pair<int, int>, int> sides;
+  for (int i = 0; i + 1 < static_cast<int>(a.size()); ++i)
+    for (int j = 0; j + 1 < static_cast<int>(b.size()); ++j) {
+      const Eigen::Vector2d p = a[i].head<2>(), r = a[i + 1].head<2>() - p;
+      const Eigen::Vector2d q = b[j].head<2>(), s = b[j + 1].head<2>() - q;
+      const double d = r.x() * s.y() - r.y() * s.x();
+      if (std::abs(d) < 1e-12) continue;
+      const Eigen::Vector2d qp = q - p;
+      const double t = (qp.x() * s.y() - qp.y() * s.x()) / d;
+      const double u = (qp.x() * r.y() - qp.y() * r.x()) / d;
+      if (t < 0 || t > 1 || u < 0 || u > 1) continue;
+      sides[{i, j}] = orient3d(a[i], a[i + 1], b[j], b[j + 1]);
+    }
+  return sides;
+}
+
+// Pairs whose shadows cross before and after a step and that swapped sides.
+int sideChanges(const std::map<std::pair<int, int>, int>& before,
+                const std::map<std::pair<int, int>, int>& after) {
+  int changes = 0;
+  for (const auto& [pair, side] : after) {
+    const auto it = before.find(pair);
+    if (it != before.end() && it->second != side) ++changes;
+  }
+  return changes;
+}
+
+TEST(FeatherCoatSimulation, TwoStemsDrivenIntoEachOtherAtHighSpeedNeverCross) {
+  SimulationParameters parameters;
+  parameters.gravity = Vector3d::Zero();
+  parameters.stem.goldStiffness = 1;
+  parameters.stem.goldDamping = 0.1;
+  FeatherCoatSimulation sim(
+      {straightStem({-0.66, 0, 0.05}, Vector3d::UnitX(), 8, 0.12, parameters.stem),
+       straightStem({0, -0.66, -0.05}, Vector3d::UnitY(), 8, 0.12, parameters.stem)},
+      {}, parameters);
+  // Both swing about their anchors towards each other, the tips at 60 units a second: at 100
+  // steps a second the points where they cross close 0.7 a step, seventy times the thickness.
+  const double spin = 60 / 0.96, h = 0.01;
+  for (int s = 0; s < 2; ++s) {
+    FeatherStem& stem = sim.stem(s);
+    for (std::size_t i = 1; i < stem.nodeCount(); ++i) {
+      const double r = (stem.positions[i] - stem.positions[0]).norm();
+      stem.velocities[i] = Vector3d(0, 0, s == 0 ? -spin * r : spin * r);
+    }
+  }
+  auto sides = [&](const std::vector<FeatherStem>& stems) {
+    return sidesWhereShadowsCross(stems[0].positions, stems[1].positions);
+  };
+  // Unchecked, one step of free flight would carry them through each other.
+  std::vector<FeatherStem> free = sim.stems();
+  for (FeatherStem& stem : free)
+    for (std::size_t i = 0; i < stem.nodeCount(); ++i) stem.positions[i] += h * stem.velocities[i];
+  ASSERT_GT(sideChanges(sides(sim.stems()), sides(free)), 0);
+
+  for (int step = 0; step < 40; ++step) {
+    const auto before = sides(sim.stems());
+    sim.step(h);
+    ASSERT_EQ(sideChanges(before, sides(sim.stems())), 0) << "the stems crossed at step " << step;
+    ASSERT_EQ(countPenetrations(sim.stems(), {}, 0), 0u) << "step " << step;
+  }
+  EXPECT_GT(sim.counters().contacts, 0u);  // they did meet
+}
+
+TEST(FeatherCoatSimulation, AStepThatCannotBeResolvedIsRetriedThenRefusedNeverAccepted) {
+  SimulationParameters parameters;
+  parameters.gravity = Vector3d::Zero();
+  parameters.maxHalvings = 4;
+  FeatherCoatSimulation sim({straightStem({0, 0, 0}, Vector3d::UnitX(), 3, 0.1, parameters.stem),
+                             straightStem({0, 0.1, 0}, Vector3d::UnitZ(), 3, 0.1, parameters.stem)},
+                            {}, parameters);
+  // The second anchor is dragged straight through the first one's: the two roots meet whatever
+  // the free nodes do.
+  std::vector<StemFrame> anchors = sim.anchors();
+  anchors[1].origin += Vector3d(0, -0.2, 0);
+  const std::vector<FeatherStem> before = sim.stems();
+  EXPECT_THROW(sim.step(0.01, anchors), StepFailure);
+  EXPECT_GE(sim.counters().retries, 4u);
+  EXPECT_EQ(sim.time(), 0);
+  for (std::size_t s = 0; s < before.size(); ++s)
+    for (std::size_t i = 0; i < before[s].nodeCount(); ++i)
+      EXPECT_EQ(sim.stems()[s].positions[i], before[s].positions[i]);
+  EXPECT_EQ(sim.anchors()[1].origin, before[1].positions[0]);
+}
+
+// Three stems over the ground in gusty wind, `steps` steps: every node's position.
+std::vector<Vector3d> gustyCoat(int seed, int steps) {
+  SimulationParameters parameters;
+  parameters.stem.goldStiffness = 20;
+  parameters.dragCoefficient = 0.5;
+  parameters.wind.velocity = Vector3d(1, 0, 0);
+  parameters.wind.gustStrength = 3;
+  parameters.wind.gustScale = 0.5;
+  parameters.wind.seed = seed;
+  std::vector<FeatherStem> stems;
+  for (int s = 0; s < 3; ++s)
+    stems.push_back(straightStem({-0.3, 0.03 * s, 0.02 + 0.02 * s},
+                                 Vector3d(1, 0, 0.2).normalized(), 6, 0.08, parameters.stem));
+  FeatherCoatSimulation sim(std::move(stems), ground(0), parameters);
+  for (int step = 0; step < steps; ++step) sim.step(1.0 / 60);
+  std::vector<Vector3d> out;
+  for (const FeatherStem& stem : sim.stems())
+    for (const Vector3d& p : stem.positions) out.push_back(p);
+  return out;
+}
+
+TEST(FeatherCoatSimulation, TheSameSeedGivesTheSameFramesBitForBit) {
+  const auto first = gustyCoat(7, 30), second = gustyCoat(7, 30);
+  ASSERT_EQ(first.size(), second.size());
+  for (std::size_t i = 0; i < first.size(); ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(first[i][k], second[i][k]);
+  // The seed matters: another gives other frames.
+  const auto other = gustyCoat(8, 30);
+  double difference = 0;
+  for (std::size_t i = 0; i < first.size(); ++i)
+    difference = std::max(difference, (first[i] - other[i]).norm());
+  EXPECT_GT(difference, 1e-3);
+}
+
+TEST(FeatherCoatSimulation, TheFinalCheckFindsPlantedIntersections) {
+  StemParameters parameters;
+  const BodyMesh body = ground(0);
+  // A stem standing on the ground: its first segment touches it at the root, as anchored stems do.
+  const FeatherStem standing = straightStem({0, 0, 0}, Vector3d::UnitZ(), 3, 0.1, parameters);
+  EXPECT_EQ(countPenetrations({standing}, body, 0.001), 0u);
+  // A stem through the ground.
+  FeatherStem through = straightStem({0.3, 0.1, 0.15}, Vector3d(0, 0, -1), 3, 0.1, parameters);
+  EXPECT_EQ(countPenetrations({through}, body, 0.001), 1u);
+  // One touching it exactly at its tip counts too.
+  FeatherStem touching = straightStem({0.3, 0.1, 0.3}, Vector3d(0, 0, -1), 3, 0.1, parameters);
+  EXPECT_EQ(countPenetrations({touching}, body, 0.001), 1u);
+  // Two stems crossing, then the same 0.0005 apart (nearer than the minimum), then 0.01 apart.
+  const FeatherStem a = straightStem({-0.5, 0, 0.5}, Vector3d::UnitX(), 5, 0.2, parameters);
+  for (const auto& [offset, expected] :
+       {std::pair{0.0, 1u}, std::pair{0.0005, 1u}, std::pair{0.01, 0u}}) {
+    const FeatherStem b =
+        straightStem({0, -0.5, 0.5 + offset}, Vector3d::UnitY(), 5, 0.2, parameters);
+    EXPECT_EQ(countPenetrations({a, b}, {}, 0.001), expected) << "offset " << offset;
+  }
+  // A stem folded back onto itself crosses its own segments.
+  FeatherStem folded = straightStem({0, 0, 1}, Vector3d::UnitX(), 4, 0.1, parameters);
+  folded.positions = {{0, 0, 1}, {0.1, 0, 1}, {0.2, 0, 1}, {0.2, 0.1, 1}, {0.05, -0.1, 1}};
+  folded.restLengths.assign(4, 0.1);
+  EXPECT_GE(countPenetrations({folded}, {}, 0.001), 1u);
+}
+
+}  // namespace
+}  // namespace hirsute::dynamics
