@@ -223,10 +223,10 @@ struct CommandRun {
   std::string standardError;
 };
 
-// Runs the hirsute binary with `arguments`, standard output and error into files in `folder`
-// named after `name`.
-CommandRun runHirsute(const std::vector<std::string>& arguments, const fs::path& folder,
-                      const std::string& name) {
+// Runs the hirsute binary once with `arguments`, standard output and error into files in
+// `folder` named after `name`.
+CommandRun runHirsuteOnce(const std::vector<std::string>& arguments, const fs::path& folder,
+                          const std::string& name) {
   CommandRun run;
   std::vector<std::string> argvText = {HIRSUTE_BINARY};
   argvText.insert(argvText.end(), arguments.begin(), arguments.end());
@@ -254,6 +254,24 @@ CommandRun runHirsute(const std::vector<std::string>& arguments, const fs::path&
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   run.standardError = readText(err);
+  return run;
+}
+
+// LeakSanitizer stops every thread at exit to scan memory; when one of Mesa's threads is ending
+// at that moment, its tracer can crash. That is the sanitizer failing, not a leak (a leak reads
+// "detected memory leaks"), so such a run is repeated once, and said so.
+bool leakCheckerCrashed(const CommandRun& run) {
+  return run.exitCode != 0 &&
+         run.standardError.find("LeakSanitizer has encountered a fatal error") != std::string::npos;
+}
+
+CommandRun runHirsute(const std::vector<std::string>& arguments, const fs::path& folder,
+                      const std::string& name) {
+  CommandRun run = runHirsuteOnce(arguments, folder, name);
+  if (leakCheckerCrashed(run)) {
+    std::printf("     (%s: LeakSanitizer's own tracer crashed at exit; run again)\n", name.c_str());
+    run = runHirsuteOnce(arguments, folder, name);
+  }
   return run;
 }
 
