@@ -20,5 +20,6 @@ void registerRenderCommand(CLI::App& app, Action& action);
 void registerExportCommand(CLI::App& app, Action& action);
 void registerViewCommand(CLI::App& app, Action& action);
 void registerBenchCommand(CLI::App& app, Action& action);
+void registerSimulateCommand(CLI::App& app, Action& action);
 
 }  // namespace hirsute::cli

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   hirsute::cli::registerRenderCommand(app, action);
   hirsute::cli::registerExportCommand(app, action);
   hirsute::cli::registerViewCommand(app, action);
+  hirsute::cli::registerSimulateCommand(app, action);
   hirsute::cli::registerBenchCommand(app, action);
   try {
     app.parse(argc, argv);

@@ -75,6 +75,7 @@ void Scene::clear() {
   featherTypes.clear();
   featherAttributes.clear();
   feathers.clear();
+  featherPoses.clear();
   featherBounds = Bounds{};
   furAttributes.clear();
   furSurfaces.clear();

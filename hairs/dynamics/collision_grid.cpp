@@ -34,14 +34,28 @@ Box boxOf(std::initializer_list<Eigen::Vector3d> points, double margin) {
 
 std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
                                                   const std::function<bool(int, int)>& wanted) {
-  std::vector<std::pair<int, int>> pairs;
-  if (boxes.size() < 2) return pairs;
-  std::vector<double> extents;
-  for (const Box& box : boxes) extents.push_back((box.max - box.min).maxCoeff());
-  std::nth_element(extents.begin(), extents.begin() + extents.size() / 2, extents.end());
-  const double cell = std::max(2 * extents[extents.size() / 2], 1e-9);
+  return overlappingPairs(boxes, std::vector<char>(boxes.size(), 1), wanted);
+}
 
-  std::unordered_map<std::uint64_t, std::vector<int>> cells;
+std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
+                                                  const std::vector<char>& moving,
+                                                  const std::function<bool(int, int)>& wanted) {
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<double> extents;
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    if (moving[i]) extents.push_back((boxes[i].max - boxes[i].min).maxCoeff());
+  if (extents.empty() || boxes.size() < 2) return pairs;
+  // Twice the upper quartile: moving points (a stem's nodes, whose boxes are their motion over a
+  // step) must not shrink the cells below the segments that move with them.
+  const auto quartile = extents.begin() + (3 * extents.size()) / 4;
+  std::nth_element(extents.begin(), quartile, extents.end());
+  const double cell = std::max(2 * *quartile, 1e-9);
+
+  // Each cell's moving boxes and still ones.
+  struct Cell {
+    std::vector<int> moving, still;
+  };
+  std::unordered_map<std::uint64_t, Cell> cells;
   std::vector<int> huge;
   for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
     const Eigen::Array3d lo = (boxes[i].min.array() / cell).floor();
@@ -53,17 +67,22 @@ std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
     }
     for (auto x = static_cast<std::int64_t>(lo.x()); x <= hi.x(); ++x)
       for (auto y = static_cast<std::int64_t>(lo.y()); y <= hi.y(); ++y)
-        for (auto z = static_cast<std::int64_t>(lo.z()); z <= hi.z(); ++z)
-          cells[cellKey(x, y, z)].push_back(i);
+        for (auto z = static_cast<std::int64_t>(lo.z()); z <= hi.z(); ++z) {
+          Cell& c = cells[cellKey(x, y, z)];
+          (moving[i] ? c.moving : c.still).push_back(i);
+        }
   }
   auto consider = [&](int a, int b) {
-    if (a == b) return;
+    if (a == b || (!moving[a] && !moving[b])) return;
     if (a > b) std::swap(a, b);
     if (boxes[a].overlaps(boxes[b]) && wanted(a, b)) pairs.emplace_back(a, b);
   };
-  for (const auto& [key, members] : cells)
-    for (std::size_t m = 0; m < members.size(); ++m)
-      for (std::size_t n = m + 1; n < members.size(); ++n) consider(members[m], members[n]);
+  for (const auto& [key, c] : cells) {
+    for (std::size_t m = 0; m < c.moving.size(); ++m) {
+      for (std::size_t n = m + 1; n < c.moving.size(); ++n) consider(c.moving[m], c.moving[n]);
+      for (int other : c.still) consider(c.moving[m], other);
+    }
+  }
   for (int i : huge)
     for (int j = 0; j < static_cast<int>(boxes.size()); ++j) consider(i, j);
   // The map's order is not the same from run to run; the sorted list is.

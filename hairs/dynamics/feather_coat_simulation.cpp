@@ -10,6 +10,7 @@
 #include <numeric>
 #include <set>
 
+#include "hirsute/hairs/dynamics/closest_points.h"
 #include "hirsute/hairs/dynamics/collision_grid.h"
 #include "hirsute/hairs/dynamics/continuous_collision.h"
 #include "hirsute/hairs/dynamics/static_intersection.h"
@@ -18,63 +19,6 @@ namespace hirsute::dynamics {
 namespace {
 
 using Eigen::Vector3d;
-
-// Closest points of segments p0p1 and q0q1: p0 + s (p1 - p0) and q0 + u (q1 - q0), s, u in [0, 1]
-// (the usual clamped solution of the 2x2 normal equations, degenerate segments included).
-std::pair<double, double> closestOnSegments(const Vector3d& p0, const Vector3d& p1,
-                                            const Vector3d& q0, const Vector3d& q1) {
-  const Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  constexpr double kTiny = 1e-300;
-  if (a <= kTiny && e <= kTiny) return {0, 0};
-  if (a <= kTiny) return {0, std::clamp(f / e, 0.0, 1.0)};
-  const double c = d1.dot(r);
-  if (e <= kTiny) return {std::clamp(-c / a, 0.0, 1.0), 0};
-  const double b = d1.dot(d2), denominator = a * e - b * b;
-  double s = denominator > 0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
-  double u = (b * s + f) / e;
-  if (u < 0) {
-    u = 0;
-    s = std::clamp(-c / a, 0.0, 1.0);
-  } else if (u > 1) {
-    u = 1;
-    s = std::clamp((b - c) / a, 0.0, 1.0);
-  }
-  return {s, u};
-}
-
-// Barycentric weights of the point of triangle abc closest to p (Voronoi regions of the corners,
-// edges and face).
-std::array<double, 3> closestOnTriangle(const Vector3d& p, const Vector3d& a, const Vector3d& b,
-                                        const Vector3d& c) {
-  const Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
-  const Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    return {1 - v, v, 0};
-  }
-  const Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double w = d2 / (d2 - d6);
-    return {1 - w, 0, w};
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0, 1 - w, w};
-  }
-  const double sum = va + vb + vc;
-  if (!(sum > 0)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};  // a degenerate triangle
-  return {va / sum, vb / sum, vc / sum};
-}
 
 // The kinds of collision primitives, in the order their boxes are listed.
 enum class Kind : std::uint8_t { StemEdge, BodyEdge, StemNode, BodyTriangle };
@@ -125,6 +69,15 @@ struct Primitives {
     for (const auto& t : body.triangles)
       list.push_back(
           {Kind::BodyTriangle, {bodyOffset + t[0], bodyOffset + t[1], bodyOffset + t[2]}, -1, -1});
+  }
+
+  // Which primitives move (the stems'); pairs of two body primitives are never tested.
+  std::vector<char> moving() const {
+    std::vector<char> out;
+    out.reserve(list.size());
+    for (const Primitive& p : list)
+      out.push_back(p.kind == Kind::StemEdge || p.kind == Kind::StemNode);
+    return out;
   }
 
   // Whether the pair (a < b in list order) is tested: segments of different stems or of one stem
@@ -229,44 +182,53 @@ int findRoot(std::vector<int>& parent, int v) {
   return v;
 }
 
+// The least-squares motion x0 -> x0 + shift + spin x (x0 - centre) of `vertices` over the step,
+// each weighted by `weight(v)`: the centre's displacement and the spin that fits the rest.
+struct ZoneMotion {
+  Vector3d centre = Vector3d::Zero(), shift = Vector3d::Zero(), spin = Vector3d::Zero();
+};
+
+template <class Weight>
+ZoneMotion fittedMotion(const std::vector<int>& vertices, const StepState& state, Weight weight) {
+  ZoneMotion m;
+  double total = 0;
+  for (int v : vertices) {
+    total += weight(v);
+    m.centre += weight(v) * state.start[v];
+    m.shift += weight(v) * (state.end[v] - state.start[v]);
+  }
+  m.centre /= total;
+  m.shift /= total;
+  Vector3d angular = Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  for (int v : vertices) {
+    const Vector3d r = state.start[v] - m.centre;
+    angular += weight(v) * r.cross(state.end[v] - state.start[v] - m.shift);
+    inertia += weight(v) * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+  }
+  // Collinear vertices have a singular inertia about their line: no spin about it.
+  m.spin = inertia.completeOrthogonalDecomposition().solve(angular);
+  return m;
+}
+
 // Provot 1997: the zone moves as one rigid body with the zone's momentum and angular momentum.
 // Its motion over the step is x0 + (v_cm + w x (x0 - x_cm)) h, an affine map I + h [w]x of the
 // relative positions that never shortens a distance (|r + h w x r|^2 = |r|^2 + h^2 |w x r|^2), so
 // no two of its primitives come closer than at the start. A zone holding kinematic vertices
-// follows them when they all move alike; otherwise it cannot be made rigid (returns false).
-bool moveRigidly(const std::vector<int>& members, StepState& state) {
+// (anchors, the body) cannot push them: its free vertices follow the motion of the same form
+// fitted to the kinematic ones, exact when those move alike (a translation) and close to it over
+// a short step of a body that turns or bends; the CCD that follows checks what that leaves.
+void moveRigidly(const std::vector<int>& members, StepState& state) {
   std::vector<int> kinematic;
   for (int v : members)
     if (state.inverseMass[v] == 0) kinematic.push_back(v);
-  if (!kinematic.empty()) {
-    const Vector3d shift = state.end[kinematic[0]] - state.start[kinematic[0]];
-    for (int v : kinematic)
-      if (state.end[v] - state.start[v] != shift) return false;
-    for (int v : members) state.end[v] = state.start[v] + shift;
-    return true;
-  }
-  double mass = 0;
-  Vector3d centre = Vector3d::Zero(), momentum = Vector3d::Zero();
-  for (int v : members) {
-    const double m = 1 / state.inverseMass[v];
-    mass += m;
-    centre += m * state.start[v];
-    momentum += m * (state.end[v] - state.start[v]);
-  }
-  centre /= mass;
-  const Vector3d shift = momentum / mass;  // the centre's displacement over the step
-  Vector3d angular = Vector3d::Zero();
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-  for (int v : members) {
-    const double m = 1 / state.inverseMass[v];
-    const Vector3d r = state.start[v] - centre;
-    angular += m * r.cross(state.end[v] - state.start[v] - shift);
-    inertia += m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
-  }
-  // Collinear zones have a singular inertia about their line: no spin about it.
-  const Vector3d spin = inertia.completeOrthogonalDecomposition().solve(angular);
-  for (int v : members) state.end[v] = state.start[v] + shift + spin.cross(state.start[v] - centre);
-  return true;
+  const ZoneMotion m =
+      kinematic.empty()
+          ? fittedMotion(members, state, [&](int v) { return 1 / state.inverseMass[v]; })
+          : fittedMotion(kinematic, state, [](int) { return 1.0; });
+  for (int v : members)
+    if (state.inverseMass[v] > 0)
+      state.end[v] = state.start[v] + m.shift + m.spin.cross(state.start[v] - m.centre);
 }
 
 }  // namespace
@@ -304,7 +266,9 @@ std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyM
     boxes.push_back(
         boxOf({body.vertices[tri[0]], body.vertices[tri[1]], body.vertices[tri[2]]}, 0));
   }
-  const auto pairs = overlappingPairs(boxes, [&](int a, int b) {
+  std::vector<char> moving;
+  for (const Item& item : items) moving.push_back(item.triangle < 0);
+  const auto pairs = overlappingPairs(boxes, moving, [&](int a, int b) {
     const Item &p = items[a], &q = items[b];
     if (p.triangle >= 0) return false;  // triangles come last: a triangle pairs only as q
     if (q.triangle >= 0) return p.segment > 0;
@@ -365,28 +329,36 @@ std::vector<Vector3d> FeatherCoatSimulation::externalForces(const FeatherStem& s
 }
 
 void FeatherCoatSimulation::step(double dt) {
-  step(dt, anchors_);
+  step(dt, anchors_, body_.vertices);
 }
 
 void FeatherCoatSimulation::step(double dt, const std::vector<StemFrame>& anchors) {
+  step(dt, anchors, body_.vertices);
+}
+
+void FeatherCoatSimulation::step(double dt, const std::vector<StemFrame>& anchors,
+                                 const std::vector<Vector3d>& bodyVertices) {
   if (anchors.size() != stems_.size())
     throw std::invalid_argument("a step needs one anchor frame per stem");
+  if (bodyVertices.size() != body_.vertices.size())
+    throw std::invalid_argument("a step needs one position per body vertex");
   if (!(dt > 0)) throw std::invalid_argument("a time step must be positive");
   const std::vector<FeatherStem> before = stems_;
   const double timeBefore = time_;
   ++counters_.steps;
   try {
-    advanceOrHalve(dt, anchors_, anchors, 0);
+    advanceOrHalve(dt, Kinematics{anchors_, body_.vertices}, Kinematics{anchors, bodyVertices}, 0);
   } catch (const StepFailure&) {
     stems_ = before;
     time_ = timeBefore;
     throw;
   }
   anchors_ = anchors;
+  body_.vertices = bodyVertices;
 }
 
-void FeatherCoatSimulation::advanceOrHalve(double h, const std::vector<StemFrame>& from,
-                                           const std::vector<StemFrame>& to, int depth) {
+void FeatherCoatSimulation::advanceOrHalve(double h, const Kinematics& from, const Kinematics& to,
+                                           int depth) {
   const std::vector<FeatherStem> saved = stems_;
   if (advance(h, from, to)) {
     time_ += h;
@@ -397,21 +369,28 @@ void FeatherCoatSimulation::advanceOrHalve(double h, const std::vector<StemFrame
   if (depth >= parameters_.maxHalvings)
     throw StepFailure("the step's collisions could not be resolved at the smallest time step");
   ++counters_.retries;
-  std::vector<StemFrame> middle(from.size());
-  for (std::size_t s = 0; s < from.size(); ++s) {
-    middle[s].origin = 0.5 * (from[s].origin + to[s].origin);
-    middle[s].axes = Eigen::Quaterniond(from[s].axes)
-                         .slerp(0.5, Eigen::Quaterniond(to[s].axes))
-                         .normalized()
-                         .toRotationMatrix();
+  Kinematics middle;
+  middle.anchors.resize(from.anchors.size());
+  for (std::size_t s = 0; s < from.anchors.size(); ++s) {
+    middle.anchors[s].origin = 0.5 * (from.anchors[s].origin + to.anchors[s].origin);
+    middle.anchors[s].axes = Eigen::Quaterniond(from.anchors[s].axes)
+                                 .slerp(0.5, Eigen::Quaterniond(to.anchors[s].axes))
+                                 .normalized()
+                                 .toRotationMatrix();
   }
+  middle.body.resize(from.body.size());
+  for (std::size_t v = 0; v < from.body.size(); ++v)
+    middle.body[v] = 0.5 * (from.body[v] + to.body[v]);
   advanceOrHalve(h / 2, from, middle, depth + 1);
   advanceOrHalve(h / 2, middle, to, depth + 1);
 }
 
-bool FeatherCoatSimulation::advance(double h, const std::vector<StemFrame>& from,
-                                    const std::vector<StemFrame>& to) {
+bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
+                                    const Kinematics& toState) {
+  const std::vector<StemFrame>& from = fromState.anchors;
+  const std::vector<StemFrame>& to = toState.anchors;
   const Primitives primitives(stems_, body_, bodyEdges_);
+  const std::vector<char> moving = primitives.moving();
   StepState state;
   // 1-3: half a step of velocity, candidate positions, strain limiting (Sec. 3.3.3).
   for (std::size_t s = 0; s < stems_.size(); ++s) {
@@ -431,9 +410,9 @@ bool FeatherCoatSimulation::advance(double h, const std::vector<StemFrame>& from
       state.inverseMass.push_back(i == 0 ? 0.0 : 1 / stem.masses[i]);
     }
   }
-  for (const Vector3d& v : body_.vertices) {
-    state.start.push_back(v);
-    state.end.push_back(v);
+  for (std::size_t v = 0; v < body_.vertices.size(); ++v) {
+    state.start.push_back(fromState.body[v]);
+    state.end.push_back(toState.body[v]);
     state.inverseMass.push_back(0);
   }
 
@@ -442,7 +421,7 @@ bool FeatherCoatSimulation::advance(double h, const std::vector<StemFrame>& from
   const double thickness = parameters_.thickness;
   {
     const StepState still{state.start, state.start, state.inverseMass};
-    const auto pairs = overlappingPairs(primitives.boxes(still, thickness / 2),
+    const auto pairs = overlappingPairs(primitives.boxes(still, thickness / 2), moving,
                                         [&](int a, int b) { return primitives.wanted(a, b); });
     for (const auto& [a, b] : pairs) {
       const Contact c = primitives.contactAt(a, b, still, 0);
@@ -460,7 +439,7 @@ bool FeatherCoatSimulation::advance(double h, const std::vector<StemFrame>& from
   ccd.minimumSeparation = parameters_.minimumSeparation;
   auto findContacts = [&]() {
     std::vector<Contact> contacts;
-    const auto pairs = overlappingPairs(primitives.boxes(state, ccd.minimumSeparation),
+    const auto pairs = overlappingPairs(primitives.boxes(state, ccd.minimumSeparation), moving,
                                         [&](int a, int b) { return primitives.wanted(a, b); });
     counters_.candidates += pairs.size();
     for (const auto& [a, b] : pairs) {
@@ -499,8 +478,7 @@ bool FeatherCoatSimulation::advance(double h, const std::vector<StemFrame>& from
       const int root = findRoot(parent, v);
       if (touched.count(root)) zones[root].push_back(v);
     }
-    for (const auto& [root, members] : zones)
-      if (!moveRigidly(members, state)) return false;
+    for (const auto& [root, members] : zones) moveRigidly(members, state);
     contacts = findContacts();
   }
   std::set<int> zoneRoots;
@@ -518,8 +496,9 @@ bool FeatherCoatSimulation::advance(double h, const std::vector<StemFrame>& from
     }
   }
   // 6: the exact check of the final state.
+  const BodyMesh bodyAtEnd{toState.body, body_.triangles};
   const std::size_t penetrations =
-      countPenetrations(stems_, body_, 0.5 * parameters_.minimumSeparation);
+      countPenetrations(stems_, bodyAtEnd, 0.5 * parameters_.minimumSeparation);
   if (penetrations > 0) {
     counters_.penetrations += penetrations;
     return false;

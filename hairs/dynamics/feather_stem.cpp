@@ -67,7 +67,9 @@ FeatherStem buildFeatherStem(const Scene& scene, const Feather& feather, int seg
   const glm::mat4 toWorld = featherToWorld(feather);
   std::vector<Vector3d> points;
   for (const glm::vec3& p : local) points.push_back(toEigen(glm::vec3(toWorld * glm::vec4(p, 1))));
-  return buildStemFromPoints(points, anchorFrameOf(feather), parameters);
+  FeatherStem stem = buildStemFromPoints(points, anchorFrameOf(feather), parameters);
+  for (const glm::vec3& p : local) stem.heights.push_back(p.z);
+  return stem;
 }
 
 FeatherStem buildStemFromPoints(const std::vector<Vector3d>& points, const StemFrame& anchor,

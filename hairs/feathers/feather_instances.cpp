@@ -1,8 +1,10 @@
 #include "hirsute/hairs/feathers/feather_instances.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "hirsute/hairs/feathers/feather_blend.h"
 
@@ -45,6 +47,57 @@ glm::mat4 featherToWorld(const Feather& feather) {
   const glm::vec3 z = feather.heading * feather.size;
   return glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0),
                    glm::vec4(feather.position, 1));
+}
+
+FeatherMap::FeatherMap(const glm::mat4& rigid)
+    : rigid_(rigid), rigidNormals_(glm::transpose(glm::inverse(glm::mat3(rigid)))) {}
+
+FeatherMap::FeatherMap(const FeatherPose& pose) : pose_(&pose) {
+  if (pose.heights.empty() || pose.heights.size() != pose.toWorld.size())
+    throw std::invalid_argument("a feather pose needs one map per node");
+}
+
+FeatherMap FeatherMap::of(const Scene& scene, std::size_t feather) {
+  if (feather < scene.featherPoses.size() && !scene.featherPoses[feather].heights.empty())
+    return FeatherMap(scene.featherPoses[feather]);
+  return FeatherMap(featherToWorld(scene.feathers[feather]));
+}
+
+FeatherMap::Blend FeatherMap::blendAt(const glm::vec3& local) const {
+  const std::vector<float>& z = pose_->heights;
+  const std::vector<glm::mat4>& maps = pose_->toWorld;
+  if (local.z <= z.front()) return {&maps.front(), &maps.front(), 0};
+  if (local.z >= z.back()) return {&maps.back(), &maps.back(), 0};
+  const auto above = std::upper_bound(z.begin(), z.end(), local.z);
+  const std::size_t i = static_cast<std::size_t>(above - z.begin()) - 1;
+  const float span = z[i + 1] - z[i];
+  return {&maps[i], &maps[i + 1], span > 0 ? (local.z - z[i]) / span : 0.0f};
+}
+
+glm::vec3 FeatherMap::point(const glm::vec3& local) const {
+  if (!pose_) return glm::vec3(rigid_ * glm::vec4(local, 1));
+  const Blend b = blendAt(local);
+  const glm::vec4 p(local, 1);
+  return glm::vec3((1 - b.t) * (*b.lower * p) + b.t * (*b.upper * p));
+}
+
+glm::vec3 FeatherMap::direction(const glm::vec3& local, const glm::vec3& v) const {
+  if (!pose_) return glm::mat3(rigid_) * v;
+  const Blend b = blendAt(local);
+  return (1 - b.t) * (glm::mat3(*b.lower) * v) + b.t * (glm::mat3(*b.upper) * v);
+}
+
+glm::vec3 FeatherMap::normal(const glm::vec3& local, const glm::vec3& n) const {
+  glm::vec3 m;
+  if (!pose_) {
+    m = rigidNormals_ * n;
+  } else {
+    const Blend b = blendAt(local);
+    const glm::mat3 linear = (1 - b.t) * glm::mat3(*b.lower) + b.t * glm::mat3(*b.upper);
+    m = glm::transpose(glm::inverse(linear)) * n;
+  }
+  const float length = glm::length(m);
+  return length > 0 ? m / length : glm::vec3(1, 0, 0);
 }
 
 FeatherGeometry featherGeometryOf(const Scene& scene, const Feather& feather,

@@ -94,7 +94,7 @@ void PovWriter::vector(const glm::vec3& v, NumberFormat format) {
 
 void PovWriter::beginScene(const Scene& scene) {
   scene_ = &scene;
-  Bounds bounds = scene.bounds();
+  Bounds bounds = options_.fitBounds ? *options_.fitBounds : scene.bounds();
   position_.decimals = positionDecimals(bounds);
   camera_ = fitCamera(options_.view, bounds, glm::ivec2(options_.width, options_.height));
   float pixels = static_cast<float>(camera_.viewport.y);

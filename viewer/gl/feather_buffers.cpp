@@ -36,25 +36,22 @@ const std::vector<glm::vec2>& texcoordsOf(const FeatherGeometry& part) {
   return part.vertices.barbUv;
 }
 
-void appendPart(const Scene& scene, const FeatherGeometry& part, const glm::mat4& toWorld,
+void appendPart(const Scene& scene, const FeatherGeometry& part, const FeatherMap& toWorld,
                 FeatherBuffers& out) {
-  const glm::mat3 linear(toWorld);
-  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(linear));
   const glm::vec3 colour = colourOf(scene, part.appearance);
 
   const auto shaftBase = static_cast<std::uint32_t>(out.shaftPositions.size());
   for (std::size_t i = 0; i < part.shaft.positions.size(); ++i) {
-    out.shaftPositions.emplace_back(toWorld * glm::vec4(part.shaft.positions[i], 1));
-    glm::vec3 n = normalMatrix * part.shaft.normals[i];
-    const float length = glm::length(n);
-    out.shaftNormals.push_back(length > 0 ? n / length : glm::vec3(1, 0, 0));
+    const glm::vec3& p = part.shaft.positions[i];
+    out.shaftPositions.push_back(toWorld.point(p));
+    out.shaftNormals.push_back(toWorld.normal(p, part.shaft.normals[i]));
     out.shaftColors.push_back(colour);
   }
   for (std::uint32_t index : part.shaft.indices) out.shaftIndices.push_back(shaftBase + index);
 
   FeatherBuffers::Part placed;
-  placed.position = glm::vec3(toWorld * glm::vec4(0, 0, 0, 1));
-  placed.left = glm::normalize(linear * glm::vec3(0, 1, 0));
+  placed.position = toWorld.point(glm::vec3(0.0f));
+  placed.left = glm::normalize(toWorld.direction(glm::vec3(0.0f), glm::vec3(0, 1, 0)));
   const bool strips = part.appearance.drawing == BarbStyle::Strips &&
                       part.vertices.stripSides.size() == part.vertices.positions.size();
   const std::vector<glm::vec2>& uv = texcoordsOf(part);
@@ -75,14 +72,14 @@ void appendPart(const Scene& scene, const FeatherGeometry& part, const glm::mat4
         const glm::vec3 p = part.vertices.positions[i];
         const float alpha = tipFade(part.vertices.s[i]);
         const glm::vec2 t = i < uv.size() ? uv[i] : glm::vec2(0.0f);
-        out.barbPositions.emplace_back(toWorld * glm::vec4(p, 1));
+        out.barbPositions.push_back(toWorld.point(p));
         out.barbColors.emplace_back(colour, alpha);
         out.barbTexcoords.push_back(t);
         if (strips) {
           // Sec. 4.3.1: two strips either side of the barb, fading away from it.
           const glm::vec3 side = part.appearance.stripWidth * part.vertices.stripSides[i];
           for (float sign : {1.0f, -1.0f}) {
-            out.barbPositions.emplace_back(toWorld * glm::vec4(p + sign * side, 1));
+            out.barbPositions.push_back(toWorld.point(p + sign * side));
             out.barbColors.emplace_back(colour, 0.0f);
             out.barbTexcoords.push_back(t);
           }
@@ -151,7 +148,7 @@ FeatherBuffers buildFeatherBuffers(const Scene& scene, const std::vector<std::ui
     const FeatherDetail detail =
         featherDetailForProjectedLength(kLevelZeroPixels * std::exp2(static_cast<float>(level)));
     const FeatherGeometry geometry = featherGeometryOf(scene, feather, detail);
-    const glm::mat4 toWorld = featherToWorld(feather);
+    const FeatherMap toWorld = FeatherMap::of(scene, i);
     forEachFeatherPart(geometry, [&](const FeatherGeometry& part, bool) {
       appendPart(scene, part, toWorld, out);
     });

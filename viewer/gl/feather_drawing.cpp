@@ -104,6 +104,7 @@ void FeatherDrawing::upload(const Scene& scene, const std::vector<GLuint>& textu
   scene_ = Scene{};
   scene_.featherTypes = scene.featherTypes;
   scene_.feathers = scene.feathers;
+  scene_.featherPoses = scene.featherPoses;
   scene_.materials = scene.materials;
   textures_ = textures;
   buffers_ = FeatherBuffers{};

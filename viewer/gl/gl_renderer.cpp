@@ -420,6 +420,11 @@ void GlRenderer::upload(const Scene& scene, const ViewSettings& view, bool mater
   checkErrors(gl_, "upload");
 }
 
+void GlRenderer::updateFeathers(const Scene& scene) {
+  resources_->feathers->upload(scene, resources_->textures);
+  feathers_ = resources_->feathers->featherCount();
+}
+
 void GlRenderer::updateFur(const Scene& scene) {
   resources_->fur->update(scene);
   checkErrors(gl_, "fur update");

@@ -32,6 +32,7 @@ const std::map<std::string, Signature>& signatures() {
       {"feathers", {Kind::Feathers, "w"}},
       {"fur", {Kind::Fur, "w"}},
       {"droplets", {Kind::Droplets, "n"}},
+      {"dynamics", {Kind::Dynamics, "w"}},
       {"wireframe", {Kind::Wireframe, "w"}},
       {"define", {Kind::Define, "ww"}},
       {"help", {Kind::Help, "w"}},
@@ -126,6 +127,7 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
       }
     }
     if ((command.kind == Kind::Hairs || command.kind == Kind::Feathers || command.kind == Kind::Fur ||
+         command.kind == Kind::Dynamics ||
          command.kind == Kind::Wireframe || command.kind == Kind::Help ||
          command.kind == Kind::Panel) &&
         command.words[0] != "on" && command.words[0] != "off") {

@@ -15,6 +15,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "hirsute/hairs/dynamics/coat_motion.h"
 #include "hirsute/hairs/fur/fur_motion.h"
 #include "hirsute/hairs/fur/fur_stage.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
@@ -82,6 +83,7 @@ const std::vector<std::pair<std::string, std::string>>& viewerKeyMap() {
       {"J", "spray 20 droplets at random on the fur"},
       {"Y", "let the fur dry (wetness fades over 10 s: curls return, clumps open) / stop"},
       {"G", "a gust of wind through the fur"},
+      {"D", "start / pause the feathers' dynamics (wind, gravity, collisions; docs/dynamics.md)"},
       {"W", "wireframe on / off"},
       {"S", "save a PNG screenshot (MODEL-N.png in the current folder)"},
       {"C", "show / hide the constants panel"},
@@ -169,6 +171,12 @@ class Viewer {
   bool stepFur();
   void dropletAtCursor();
 
+  // Feather dynamics (docs/dynamics.md): the model's feathers simulated while shown, their roots
+  // carried by the body as the animation moves it.
+  void toggleDynamics();
+  bool stepDynamics();
+  void stopDynamics(const std::string& why);
+
   const ViewerOptions& options_;
   ModelBuilder builder_;
   GLFWwindow* window_ = nullptr;
@@ -198,6 +206,14 @@ class Viewer {
   float gustLeft_ = 0;  // seconds
   std::uint32_t spraySeed_ = 1;
   Clock::time_point lastFurStep_ = Clock::now();
+
+  // Feather dynamics: the simulation, the feathers it bends (drawn over the model's), whether it
+  // runs, whether a new build moved the body, and the rate it keeps.
+  std::optional<dynamics::CoatMotion> coat_;
+  Scene coatScene_;
+  bool simulating_ = false, bodyMoved_ = false;
+  Clock::time_point lastCoatStep_ = Clock::now();
+  double simulatedFps_ = 0;
 
   // Animation (cpfg-manual §1.3.3, §8.2)
   AnimationSettings animation_;
@@ -349,6 +365,12 @@ void Viewer::applyBuild(ModelBuild build) {
   }
   renderer_->upload(model_->scene, model_->view, model_->materialMode);
   takeFur();
+  if (coat_) {
+    bodyMoved_ = true;
+    coatScene_.featherTypes = model_->scene.featherTypes;
+    coatScene_.materials = model_->scene.materials;
+    renderer_->updateFeathers(coatScene_);
+  }
   bool newLength = derivationLength_ != model_->derivationLength;
   derivationLength_ = model_->derivationLength;
   if (newLength || frames_.empty()) frames_ = animationFrames(animation_, derivationLength_);
@@ -379,6 +401,9 @@ void Viewer::readConstants() {
 }
 
 void Viewer::reloadFiles() {
+  // Edited files may bring other feathers: the dynamics starts again from the new model.
+  coat_.reset();
+  simulating_ = false;
   readAnimation();
   readConstants();
   reloadSerial_ = worker_->request(wanted_);
@@ -467,6 +492,66 @@ void Viewer::advanceAnimation() {
   }
   lastFrameStart_ = Clock::now();
   goTo(frames_[frameIndex_++].step);
+}
+
+// ---- feather dynamics ----
+
+void Viewer::toggleDynamics() {
+  if (simulating_) {
+    simulating_ = false;
+    return;
+  }
+  if (!model_ || model_->scene.feathers.empty()) return;
+  if (!coat_) {
+    try {
+      coat_.emplace(model_->scene, dynamics::simulationParametersOf(model_->view.dynamics));
+    } catch (const std::exception& e) {
+      stopDynamics(std::string("cannot simulate the feathers: ") + e.what());
+      return;
+    }
+    if (coat_->penetrations() > 0) {
+      stopDynamics("the feathers' stems already meet before the first step (docs/dynamics.md)");
+      return;
+    }
+    coatScene_ = Scene{};
+    coatScene_.featherTypes = model_->scene.featherTypes;
+    coatScene_.materials = model_->scene.materials;
+    bodyMoved_ = false;
+  }
+  simulating_ = true;
+  lastCoatStep_ = Clock::now();
+}
+
+void Viewer::stopDynamics(const std::string& why) {
+  simulating_ = false;
+  coat_.reset();
+  error_ = "hirsute: " + why;
+  std::cerr << error_ << '\n';
+  if (model_) renderer_->updateFeathers(model_->scene);
+}
+
+bool Viewer::stepDynamics() {
+  if (!simulating_ || !coat_ || !model_) return false;
+  const auto now = Clock::now();
+  // Real time, but no more than a 30th of a second a frame: a slow frame slows the motion down
+  // rather than taking a step the collisions would have to halve.
+  const double seconds =
+      std::min(std::chrono::duration<double>(now - lastCoatStep_).count(), 1.0 / 30);
+  lastCoatStep_ = now;
+  if (!(seconds > 0)) return false;
+  try {
+    coat_->advance(seconds, model_->view.dynamics.substeps,
+                   bodyMoved_ ? &model_->scene : nullptr);
+  } catch (const std::exception& e) {
+    stopDynamics(std::string("the feathers' dynamics stopped: ") + e.what());
+    return true;
+  }
+  bodyMoved_ = false;
+  coat_->pose(coatScene_);
+  renderer_->updateFeathers(coatScene_);
+  const double took = secondsSince(now);
+  simulatedFps_ = took > 0 ? 1 / took : 0;
+  return true;
 }
 
 // ---- fur ----
@@ -596,6 +681,12 @@ void Viewer::drawUi() {
     }
     if (model_ && renderer_->featherCount() > 0) {
       ImGui::Text("feathers %zu%s", renderer_->featherCount(), feathers_ ? "" : " (hidden)");
+      if (coat_) {
+        ImGui::Text("dynamics %s: %.1f s simulated, %.0f frames/s, %llu steps retried",
+                    simulating_ ? "running" : "paused (D)", coat_->simulation().time(),
+                    simulatedFps_,
+                    static_cast<unsigned long long>(coat_->simulation().counters().retries));
+      }
     }
     if (model_ && !fur_.furSurfaces.empty()) {
       ImGui::Text("fur: %zu surfaces, %d layers%s%s%s", fur_.furSurfaces.size(),
@@ -826,6 +917,9 @@ void Viewer::runScript() {
                           spraySeed_++) > 0)
           renderer_->updateFur(fur_);
         break;
+      case Kind::Dynamics:
+        if ((c.words[0] == "on") != simulating_) toggleDynamics();
+        break;
       case Kind::Wireframe:
         wireframe_ = c.words[0] == "on";
         break;
@@ -927,6 +1021,9 @@ void Viewer::onKey(int key, int mods) {
       lastFurStep_ = Clock::now();
       break;
     }
+    case GLFW_KEY_D:
+      toggleDynamics();
+      break;
     case GLFW_KEY_W:
       wireframe_ = !wireframe_;
       break;
@@ -1041,6 +1138,7 @@ int Viewer::run() {
     if (watcher_ && watcher_->poll()) reloadFiles();
     advanceAnimation();
     if (stepFur()) dirty_ = true;
+    if (stepDynamics()) dirty_ = true;
     if (options_.script) runScript();
     if (glfwWindowShouldClose(window_)) break;
 

@@ -218,6 +218,17 @@ struct Feather {
   glm::vec3 left() const { return glm::cross(heading, up); }
 };
 
+// A feather bent by the feather-coat dynamics (hairs/dynamics/, `hirsute simulate`): the nodes
+// of its stem, each a map from the feather's local frame (x front, y left, z rachis, as
+// featherToWorld takes it) to the world, at the rest height of the node along the rachis. A
+// local point at height z between the nodes i and i + 1 is mapped by both and blended linearly
+// in z; below the first node and above the last, by that node alone. At rest every map is the
+// feather's own frame.
+struct FeatherPose {
+  std::vector<float> heights;      // the nodes' local z, increasing
+  std::vector<glm::mat4> toWorld;  // one per node: local to world
+};
+
 // A surface covered with shell fur (DESIGN.md, "Fur"; Silva et al. 2010): its triangles as the
 // fur stage (hairs/fur/) gathered them from a covered generalized cylinder, bicubic surface or
 // polygon, each vertex with its surface frame and two parametrizations: `uv` in [0, 1]² over the
@@ -312,6 +323,8 @@ class Scene {
   std::vector<FeatherType> featherTypes;
   std::vector<FeatherAttributes> featherAttributes;  // the coat records segments refer to
   std::vector<Feather> feathers;
+  // Empty, or one per feather: how the dynamics bent it (empty heights: drawn by its frame).
+  std::vector<FeatherPose> featherPoses;
   Bounds featherBounds;
   // Fur (hairs/fur/): the records surfaces refer to and the covered surfaces.
   std::vector<FurAttributes> furAttributes;

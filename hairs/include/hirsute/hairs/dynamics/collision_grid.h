@@ -29,4 +29,11 @@ Box boxOf(std::initializer_list<Eigen::Vector3d> points, double margin);
 std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
                                                   const std::function<bool(int, int)>& wanted);
 
+// The same where only pairs with at least one box of `moving` (one flag per box) can be wanted:
+// the feathers among a body's many triangles. The cell size is twice the upper quartile of the
+// moving boxes' largest extents, and pairs of two still boxes are never looked at.
+std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
+                                                  const std::vector<char>& moving,
+                                                  const std::function<bool(int, int)>& wanted);
+
 }  // namespace hirsute::dynamics

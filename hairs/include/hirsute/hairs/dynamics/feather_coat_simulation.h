@@ -35,7 +35,8 @@
 
 namespace hirsute::dynamics {
 
-// The body the feathers collide with: triangles over shared vertices. It does not move (yet).
+// The body the feathers collide with: triangles over shared vertices. Its vertices move with
+// each step (FeatherCoatSimulation::step); its triangles stay.
 struct BodyMesh {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<int, 3>> triangles;
@@ -95,7 +96,11 @@ class FeatherCoatSimulation {
   // Advances by `dt` seconds, the anchors (one per stem) moving linearly from their frames at
   // the start of the step to `anchors`. Throws StepFailure when the step cannot be resolved.
   void step(double dt, const std::vector<StemFrame>& anchors);
-  // The same with the anchors where they are.
+  // The same while the body's vertices move linearly from where they are to `bodyVertices` (one
+  // per vertex of body().vertices): the body is kinematic, what it hits gives way.
+  void step(double dt, const std::vector<StemFrame>& anchors,
+            const std::vector<Eigen::Vector3d>& bodyVertices);
+  // The same with the anchors and the body where they are.
   void step(double dt);
 
   const std::vector<FeatherStem>& stems() const { return stems_; }
@@ -108,9 +113,13 @@ class FeatherCoatSimulation {
   double time() const { return time_; }
 
  private:
-  bool advance(double h, const std::vector<StemFrame>& from, const std::vector<StemFrame>& to);
-  void advanceOrHalve(double h, const std::vector<StemFrame>& from,
-                      const std::vector<StemFrame>& to, int depth);
+  // Where the anchors and the body's vertices are at the start or the end of a (sub)step.
+  struct Kinematics {
+    std::vector<StemFrame> anchors;
+    std::vector<Eigen::Vector3d> body;
+  };
+  bool advance(double h, const Kinematics& from, const Kinematics& to);
+  void advanceOrHalve(double h, const Kinematics& from, const Kinematics& to, int depth);
   std::vector<Eigen::Vector3d> externalForces(const FeatherStem& stem) const;
 
   std::vector<FeatherStem> stems_;

@@ -35,6 +35,9 @@ struct FeatherStem {
   std::vector<double> restLengths;             // restLengths[i]: segment from node i to i + 1
   std::vector<Eigen::Vector3d> goldPositions;  // goldPositions[i]: node i in its parent's frame
   std::vector<StemFrame> frames;               // frames[i]: the frame at node i (0: the anchor's)
+  // Built from a Scene feather: each node's height z in the feather's local frame (its rest
+  // place along the rachis), increasing; empty for stems built from points.
+  std::vector<double> heights;
   StemParameters parameters;
 
   std::size_t nodeCount() const { return positions.size(); }

@@ -21,6 +21,35 @@ FeatherType featherTypeOf(const Scene& scene, const Feather& feather);
 // size, the origin at the calamus base.
 glm::mat4 featherToWorld(const Feather& feather);
 
+// The map of a feather's local geometry to the world: its frame (featherToWorld), or the pose the
+// dynamics bent it into (Scene::featherPoses, FeatherPose), node maps blended by height.
+class FeatherMap {
+ public:
+  explicit FeatherMap(const glm::mat4& rigid);
+  explicit FeatherMap(const FeatherPose& pose);
+  // The map of the i-th feather of `scene`: its pose when it has one, else its frame.
+  static FeatherMap of(const Scene& scene, std::size_t feather);
+
+  glm::vec3 point(const glm::vec3& local) const;
+  // A direction at `local` (its length scaled as the map scales it).
+  glm::vec3 direction(const glm::vec3& local, const glm::vec3& v) const;
+  // A unit normal at `local`.
+  glm::vec3 normal(const glm::vec3& local, const glm::vec3& n) const;
+
+ private:
+  // The node maps at `local` and the weight of the second.
+  struct Blend {
+    const glm::mat4* lower;
+    const glm::mat4* upper;
+    float t;
+  };
+  Blend blendAt(const glm::vec3& local) const;
+
+  glm::mat4 rigid_{1.0f};
+  glm::mat3 rigidNormals_{1.0f};  // the inverse transpose of the rigid map's linear part
+  const FeatherPose* pose_ = nullptr;
+};
+
 // The feather's geometry at `detail`, in its local frame.
 FeatherGeometry featherGeometryOf(const Scene& scene, const Feather& feather,
                                   const FeatherDetail& detail);

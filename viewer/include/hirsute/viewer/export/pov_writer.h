@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <glm/glm.hpp>
 #include <set>
 #include <string>
@@ -29,6 +30,9 @@ struct PovOptions {
   // The image the camera is fitted for (as the PNG of the same size) and the size of a pixel for
   // pixel-wide lines. Rendered at another aspect, the image shows at least the same window.
   int width = 800, height = 600;
+  // The box the camera is fitted to and the lights placed by; absent: the scene's. The frames of
+  // a simulation share the first frame's, so that the camera stays where it was.
+  std::optional<Bounds> fitBounds;
 };
 
 struct PovExportStats {

@@ -65,8 +65,10 @@ class GlRenderer {
 
   // Feathers (DESIGN.md, "Feathers"; docs/feathers.md): shafts lit, barbs blended in the order
   // the camera asks for, each feather at the level of detail of its size on the screen. The
-  // setting outlasts upload().
+  // setting outlasts upload(); updateFeathers() takes the feathers (and their poses, bent by the
+  // dynamics) of `scene` again, the rest of the model as it was uploaded.
   void setFeathersVisible(bool visible) { feathersVisible_ = visible; }
+  void updateFeathers(const Scene& scene);
   bool feathersVisible() const { return feathersVisible_; }
   std::size_t featherCount() const { return feathers_; }
 

@@ -45,6 +45,7 @@ struct ViewCommand {
     Feathers,
     Fur,       // fur on|off
     Droplets,  // droplets N: N droplets at random on the fur, as the J key sprays them
+    Dynamics,  // dynamics on|off: the feathers' dynamics runs or pauses, as the D key
     Wireframe,
     Help,
     Panel,

@@ -1,0 +1,294 @@
+// `hirsute simulate`: the model's feathers simulated over the frames of its animation (or with
+// the body still), one POV-Ray scene (and with --obj one OBJ) per frame, numbered so that the
+// frames can be rendered in any order and in parallel (docs/dynamics.md, "hirsute simulate").
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "command.h"
+#include "hirsute/hairs/dynamics/coat_motion.h"
+#include "hirsute/lsys/output_target.h"
+#include "hirsute/viewer/export/obj_writer.h"
+#include "hirsute/viewer/export/pov_writer.h"
+#include "hirsute/viewer/interaction/animation_file.h"
+#include "model_pipeline.h"
+
+namespace hirsute::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SimulateOptions {
+  ModelOptions model;
+  std::string animation;
+  std::string output;
+  std::optional<int> frames;
+  double fps = 24;
+  bool obj = false;
+  int width = 800, height = 600;
+  // Overrides of the view file's `dynamics …:` lines.
+  std::vector<double> gravity, wind;
+  std::optional<double> gusts, gustScale, gustPeriod, drag;
+  std::optional<unsigned> gustSeed;
+  std::optional<int> substeps, segments;
+};
+
+dynamics::SimulationParameters parametersFor(const FeatherDynamicsSettings& view,
+                                             const SimulateOptions& o) {
+  dynamics::SimulationParameters p = dynamics::simulationParametersOf(view);
+  if (o.gravity.size() == 3) p.gravity = {o.gravity[0], o.gravity[1], o.gravity[2]};
+  if (o.wind.size() == 3) p.wind.velocity = {o.wind[0], o.wind[1], o.wind[2]};
+  if (o.gusts) p.wind.gustStrength = *o.gusts;
+  if (o.gustScale) p.wind.gustScale = *o.gustScale;
+  if (o.gustPeriod) p.wind.gustPeriod = *o.gustPeriod;
+  if (o.gustSeed) p.wind.seed = static_cast<int>(*o.gustSeed);
+  if (o.drag) p.dragCoefficient = *o.drag;
+  if (o.segments) p.segmentsPerFeather = *o.segments;
+  return p;
+}
+
+// "frame-0007.pov": the frame's number, at least four digits, as many as the last frame needs.
+std::string frameName(int frame, int frames, const char* extension) {
+  const int digits = std::max(4, static_cast<int>(std::to_string(frames).size()));
+  return fmt::format("frame-{:0{}d}{}", frame, digits, extension);
+}
+
+int badInput(Progress& progress, const std::string& text) {
+  progress.clear();
+  std::cerr << text << '\n';
+  return kExitBadInput;
+}
+
+int runSimulate(SimulateOptions o) {
+  using Clock = std::chrono::steady_clock;
+  const auto started = Clock::now();
+  Progress progress = Progress::onTerminal(stderr);
+  o.model.terminalProgress = &progress;
+  // cpfg's order is .l .v .a; a lone .a after the .l is the animation file.
+  if (o.animation.empty() && fs::path(o.model.viewFile).extension() == ".a")
+    std::swap(o.animation, o.model.viewFile);
+  Diagnostics diagnostics(&std::cerr);
+
+  // The frames of the animation: derivation steps; without one, the derived model, still.
+  std::vector<AnimationFrame> animation;
+  BuiltScene first;
+  try {
+    if (!o.animation.empty()) {
+      const AnimationSettings settings = readAnimationFile(o.animation, diagnostics);
+      ModelOptions axiom = o.model;
+      axiom.stopAfter = 0;
+      axiom.terminalProgress = nullptr;
+      const BuiltScene start = buildScene(axiom, diagnostics);
+      const int length = o.model.steps.value_or(start.model.program.lsystems.front().derivationLength);
+      animation = animationFrames(settings, length);
+      if (animation.empty())
+        return badInput(progress, o.animation + ": error: the animation has no frames");
+      ModelOptions frame = o.model;
+      frame.stopAfter = animation.front().step;
+      first = buildScene(frame, diagnostics);
+    } else {
+      first = buildScene(o.model, diagnostics);
+    }
+  } catch (const DiagnosticError& e) {
+    return badInput(progress, e.diagnostic().text());
+  }
+  if (first.scene.feathers.empty()) {
+    return badInput(progress, o.model.lsystemFile +
+                                  ": error: the model has no feathers to simulate (@Fe, @Fi or "
+                                  "a feather coat; docs/dynamics.md)");
+  }
+  const int frames = o.frames.value_or(animation.empty() ? 48 : static_cast<int>(animation.size()));
+  const FeatherDynamicsSettings& view = first.resources.view.dynamics;
+  const dynamics::SimulationParameters parameters = parametersFor(view, o);
+  const int substeps = o.substeps.value_or(view.substeps);
+
+  std::error_code ec;
+  fs::create_directories(o.output, ec);
+  if (!fs::is_directory(o.output)) {
+    progress.clear();
+    std::cerr << o.output << ": error: cannot make the output folder"
+              << (ec ? ": " + ec.message() : std::string()) << '\n';
+    return kExitIoError;
+  }
+
+  PovOptions pov;
+  pov.view = first.resources.view;
+  pov.materialMode = first.resources.materialMode;
+  pov.width = o.width;
+  pov.height = o.height;
+  // The camera is fitted once for all frames: to the first frame, and for an animation to its
+  // middle and last frames too, so that a body that moves stays in view.
+  Bounds fit = first.scene.bounds();
+  if (animation.size() > 1) {
+    const std::size_t used = std::min(animation.size(), static_cast<std::size_t>(frames));
+    for (const std::size_t at : {used / 2, used - 1}) {
+      ModelOptions frame = o.model;
+      frame.stopAfter = animation[at].step;
+      frame.terminalProgress = nullptr;
+      try {
+        fit.add(buildScene(frame, diagnostics).scene.bounds());
+      } catch (const DiagnosticError& e) {
+        return badInput(progress, e.diagnostic().text());
+      }
+    }
+  }
+  pov.fitBounds = fit;
+
+  std::optional<dynamics::CoatMotion> motion;
+  try {
+    motion.emplace(first.scene, parameters);
+  } catch (const std::invalid_argument& e) {
+    return badInput(progress, o.model.lsystemFile + ": error: cannot simulate: " + e.what());
+  }
+  if (const std::size_t crossing = motion->penetrations(); crossing > 0) {
+    return badInput(progress,
+                    o.model.lsystemFile + ": error: the feathers' stems already meet or come " +
+                        "nearer than the minimum separation in " + std::to_string(crossing) +
+                        " places before the first step; space them out or lower `dynamics "
+                        "thickness:` (docs/dynamics.md)");
+  }
+
+  // What each frame's steps did, committed with the last frame.
+  std::string table =
+      "frame,time,steps,substeps,retries,candidates,contacts,impulses,repulsions,"
+      "impact_zones,penetrations,seconds\n";
+  const double frameTime = 1.0 / o.fps;
+  dynamics::SimulationCounters before;
+  double simulating = 0;  // seconds in the steps, apart from deriving and writing
+  Scene drawn = first.scene;
+  progress.begin("simulating", Progress::Unit::Steps, frames);
+  for (int frame = 1; frame <= frames; ++frame) {
+    progress.update(frame);
+    const auto frameStarted = Clock::now();
+    const Scene* body = nullptr;
+    BuiltScene moved;
+    // Frame 1 is the model as derived; each later frame is a frame time after it.
+    if (frame > 1) {
+      const std::size_t at = static_cast<std::size_t>(frame - 1);
+      if (at < animation.size()) {
+        ModelOptions next = o.model;
+        next.stopAfter = animation[at].step;
+        next.terminalProgress = nullptr;
+        try {
+          moved = buildScene(next, diagnostics);
+        } catch (const DiagnosticError& e) {
+          return badInput(progress, e.diagnostic().text());
+        }
+        body = &moved.scene;
+      }
+      try {
+        const auto stepping = Clock::now();
+        motion->advance(frameTime, substeps, body);
+        simulating += std::chrono::duration<double>(Clock::now() - stepping).count();
+      } catch (const dynamics::FrameMismatch& e) {
+        return badInput(progress, fmt::format("{}: error: frame {} (step {}): {}", o.animation,
+                                              frame, animation[frame - 1].step, e.what()));
+      } catch (const dynamics::StepFailure& e) {
+        progress.clear();
+        std::cerr << o.model.lsystemFile << ": error: frame " << frame << ": " << e.what()
+                  << "; the frames before it are written\n";
+        return kExitBadInput;
+      }
+    }
+    if (body) drawn = std::move(moved.scene);
+    motion->pose(drawn);
+    const fs::path folder(o.output);
+    try {
+      writePov(drawn, pov, folder / frameName(frame, frames, ".pov"));
+      if (o.obj) writeObj(drawn, folder / frameName(frame, frames, ".obj"));
+    } catch (const std::invalid_argument& e) {
+      return badInput(progress, o.model.lsystemFile + ": error: cannot export: " + e.what());
+    } catch (const std::runtime_error& e) {
+      progress.clear();
+      std::cerr << e.what() << '\n';
+      return kExitIoError;
+    }
+    const dynamics::SimulationCounters& c = motion->simulation().counters();
+    table += fmt::format(
+        "{},{:.6g},{},{},{},{},{},{},{},{},{},{:.4f}\n", frame, motion->simulation().time(),
+        c.steps - before.steps, c.substeps - before.substeps, c.retries - before.retries,
+        c.candidates - before.candidates, c.contacts - before.contacts,
+        c.impulses - before.impulses, c.repulsions - before.repulsions,
+        c.impactZones - before.impactZones, c.penetrations - before.penetrations,
+        std::chrono::duration<double>(Clock::now() - frameStarted).count());
+    before = c;
+  }
+  try {
+    OutputTarget csv(fs::path(o.output) / "simulation.csv");
+    std::fputs(table.c_str(), csv.stream());
+    csv.commit();
+  } catch (const std::runtime_error& e) {
+    progress.clear();
+    std::cerr << e.what() << '\n';
+    return kExitIoError;
+  }
+  progress.clear();
+  const dynamics::SimulationCounters& c = motion->simulation().counters();
+  const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+  std::cout << fmt::format(
+      "{} frames of {} feathers ({} rooted on the body) in {:.2f} s, {:.3f} s of it simulating "
+      "({:.1f} frames/s): {} steps, {} retried; {} candidates, {} contacts, {} impact zones; "
+      "{} intersections found and undone, {} left\n",
+      frames, motion->simulation().stems().size(), motion->boundRoots(), seconds, simulating,
+      frames > 1 ? (frames - 1) / std::max(simulating, 1e-9) : 0.0, c.substeps, c.retries,
+      c.candidates, c.contacts, c.impactZones, c.penetrations, motion->penetrations());
+  return kExitOk;
+}
+
+}  // namespace
+
+void registerSimulateCommand(CLI::App& app, Action& action) {
+  auto options = std::make_shared<SimulateOptions>();
+  CLI::App* command = app.add_subcommand(
+      "simulate",
+      "Simulate the model's feathers (wind, gravity, collisions) over its animation and write a "
+      "POV-Ray scene per frame");
+  addModelOptions(*command, options->model);
+  command->add_option("animation", options->animation,
+                      "The .a animation file: the body moves through its frames")
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--output", options->output, "The folder the frames are written to")
+      ->required();
+  command->add_option("--frames", options->frames,
+                      "Frames to write (default: the animation's, or 48)")
+      ->check(CLI::Range(1, 1'000'000));
+  command->add_option("--fps", options->fps, "Frames per second of simulated time (default 24)")
+      ->check(CLI::Range(0.01, 10000.0));
+  command->add_option("--substeps", options->substeps,
+                      "Time steps per frame (default: the view file's, or 4)")
+      ->check(CLI::Range(1, 1000));
+  command->add_option("--segments", options->segments,
+                      "Segments of each feather's stem (default: the view file's, or 8)")
+      ->check(CLI::Range(1, 64));
+  command->add_option("--gravity", options->gravity, "Gravity X Y Z (default 0 -9.81 0)")
+      ->expected(3);
+  command->add_option("--wind", options->wind, "The steady wind X Y Z (default none)")
+      ->expected(3);
+  command->add_option("--gusts", options->gusts, "Gusts: about the largest speed they add")
+      ->check(CLI::Range(0.0, 1e6));
+  command->add_option("--gust-scale", options->gustScale, "The size of a gust (model units)")
+      ->check(CLI::Range(1e-6, 1e6));
+  command->add_option("--gust-period", options->gustPeriod,
+                      "Seconds over which the gusts change")
+      ->check(CLI::Range(1e-6, 1e6));
+  command->add_option("--gust-seed", options->gustSeed, "The gusts' seed");
+  command->add_option("--drag", options->drag, "Drag per unit length per unit speed")
+      ->check(CLI::Range(0.0, 1e6));
+  command->add_flag("--obj", options->obj, "Write a Wavefront OBJ of every frame too");
+  command->add_option("--width", options->width, "The frames' width in pixels (default 800)")
+      ->check(CLI::Range(1, 16384));
+  command->add_option("--height", options->height, "The frames' height in pixels (default 600)")
+      ->check(CLI::Range(1, 16384));
+  command->callback([options, &action] { action = [options] { return runSimulate(*options); }; });
+}
+
+}  // namespace hirsute::cli

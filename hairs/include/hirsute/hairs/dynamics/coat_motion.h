@@ -1,0 +1,57 @@
+// A model's feathers simulated frame by frame (docs/dynamics.md, "hirsute simulate"): what the
+// `simulate` command and the viewer drive. The first frame's Scene gives the stems (one per
+// feather) and the body (its triangle meshes); each root is bound to the body triangle it grows
+// on by barycentric coordinates, so that when a later frame's Scene moves the body (a frame of
+// the model's animation), the roots follow it; a root on no triangle follows its feather's own
+// frame in the later Scene. The feathers are the first frame's throughout (a coat the later
+// frames place anew on the moved body is not used); every frame the drawn Scene gets them, bent.
+#pragma once
+#include <cstddef>
+#include <stdexcept>
+#include <vector>
+
+#include "hirsute/hairs/dynamics/feather_coat_simulation.h"
+#include "hirsute/hairs/dynamics/feather_poses.h"
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/interpreter/view_settings.h"
+
+namespace hirsute::dynamics {
+
+// The parameters a view file's `dynamics …:` lines give (docs/dynamics.md); the rest default.
+SimulationParameters simulationParametersOf(const FeatherDynamicsSettings& view);
+
+// A later frame that cannot carry on the simulation: other feathers, or a body of other
+// triangles.
+struct FrameMismatch : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class CoatMotion {
+ public:
+  CoatMotion(const Scene& first, const SimulationParameters& parameters);
+
+  // Simulates `seconds` in `steps` equal steps while the body and the roots move linearly from
+  // where they are to where `next` has them (null: they stay). `next` must have a body of the
+  // same triangles and, when some roots are on no triangle, the first frame's feathers (as
+  // many), else FrameMismatch. A step that
+  // cannot be resolved throws StepFailure, the state left at the last step that could.
+  void advance(double seconds, int steps, const Scene* next = nullptr);
+
+  // Gives `scene` (the frame drawn) the first frame's feathers, each bent as its stem is now
+  // (Scene::featherPoses).
+  void pose(Scene& scene) const;
+
+  const FeatherCoatSimulation& simulation() const { return simulation_; }
+  // Roots bound to a body triangle.
+  std::size_t boundRoots() const;
+  // Intersections in the current state, by the exact check (0 after every accepted step).
+  std::size_t penetrations() const;
+
+ private:
+  FeatherCoatSimulation simulation_;
+  std::vector<BodyAnchor> bound_;
+  std::vector<Feather> feathers_;  // the first frame's
+  Bounds featherBounds_;
+};
+
+}  // namespace hirsute::dynamics
