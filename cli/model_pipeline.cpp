@@ -11,6 +11,7 @@
 #include "hirsute/hairs/plant/plant_hairs.h"
 
 #include "hirsute/environment/environment.h"
+#include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
@@ -100,6 +101,8 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   if (!o.viewFile.empty()) view = o.viewFile;
   built.resources = loadModelResources(view, colorFilesFor(o, diagnostics), diagnostics);
   built.model = loadModel(o.lsystemFile, view, diagnostics);
+  // `@Ul(-1)` is an error at its place in the file, not a warning after the derivation.
+  checkConstantOrganModules(built.model.program);
   EvaluationLimits limits;
   limits.maxLoopIterations = o.maxLoopIterations;
   Evaluator evaluator(built.model.program, diagnostics, &built.model.functions, built.model.folder, std::cerr,

@@ -1,9 +1,12 @@
 // The @U modules of shell fur (Silva et al. 2010; DESIGN.md, "Fur"): the switch and the strand,
 // curl, shading and clump parameters of the following surfaces, one row each, read by the turtle
 // through organ_modules.h.
+#include <array>
 #include <cmath>
 #include <cstdio>
-#include <array>
+#include <optional>
+#include <span>
+#include <string>
 #include <string_view>
 
 #include "cpfg_numbers.h"
@@ -29,6 +32,15 @@ std::string shown(float v) {
   return text;
 }
 
+// What is wrong with `v` as parameter `p` ("length -1 must be at least 0"), or nothing.
+std::optional<std::string> rangeProblem(const FurParameter& p, float v) {
+  const std::string value = std::string(p.name) + " " + shown(v);
+  if (!std::isfinite(v)) return value + " is not a finite number";
+  if (v >= p.min && v <= p.max) return std::nullopt;
+  if (p.max >= kHuge) return value + " must be at least " + shown(p.min);
+  return value + " is outside [" + shown(p.min) + ", " + shown(p.max) + "]";
+}
+
 // A module's parameters, in order: every one must be given and in range, else the module is
 // ignored with a warning and the record stays as it was.
 template <const auto& kParameters>
@@ -43,11 +55,9 @@ bool readNumbers(FurAttributes& record, const OrganModuleCall& call, const std::
     call.warnOnce(name + " many", name + " takes (" + form + "); the rest are ignored");
   for (std::size_t i = 0; i < kParameters.size(); ++i) {
     const FurParameter& p = kParameters[i];
-    const float v = call.parameters[i];
-    if (!std::isfinite(v) || v < p.min || v > p.max) {
+    if (const auto problem = rangeProblem(p, call.parameters[i])) {
       call.warnOnce(name + " range " + std::string(p.name),
-                    name + ": " + std::string(p.name) + " " + shown(v) + " is outside [" +
-                        shown(p.min) + ", " + shown(p.max) + "]; module ignored");
+                    name + ": " + *problem + "; module ignored");
       return false;
     }
   }
@@ -56,12 +66,26 @@ bool readNumbers(FurAttributes& record, const OrganModuleCall& call, const std::
   return true;
 }
 
+// The same ranges for the parameters the .l file gives as constants (OrganModuleTable::
+// checkConstants); a missing parameter is left to the turtle's warning.
+template <const auto& kParameters>
+std::optional<ParameterProblem> checkNumbers(std::span<const std::optional<float>> parameters,
+                                             const std::string& name) {
+  for (std::size_t i = 0; i < kParameters.size() && i < parameters.size(); ++i) {
+    if (!parameters[i]) continue;
+    if (const auto problem = rangeProblem(kParameters[i], *parameters[i]))
+      return ParameterProblem{i, name + ": " + *problem};
+  }
+  return std::nullopt;
+}
+
 template <const auto& kParameters>
 FurRow numbers(char letter) {
   FurRow row;
   row.letter = letter;
   row.form = ParameterForm::Custom;
   row.custom = &readNumbers<kParameters>;
+  row.checkConstants = &checkNumbers<kParameters>;
   return row;
 }
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "cpfg_numbers.h"
 
@@ -26,6 +28,51 @@ int organModuleTableIndex(char organ) {
     if (tables[i]->organ() == organ) return static_cast<int>(i);
   }
   return -1;
+}
+
+namespace {
+
+// The organ modules of one axiom or successor: `@`, the organ's letter (both without
+// parameters) and the module's letter with its parameters, as the turtle reads them
+// (turtle.cpp: `@Ul(1)` is `@`, `U`, `l(1)` in the string).
+void checkModules(std::span<const SuccessorModule> modules,
+                  std::span<const ModuleArgument> arguments) {
+  std::vector<std::size_t> firstArgument(modules.size() + 1, 0);
+  for (std::size_t i = 0; i < modules.size(); ++i)
+    firstArgument[i + 1] = firstArgument[i] + modules[i].parameterCount;
+  if (firstArgument.back() != arguments.size()) return;  // not from the compiler: nothing known
+  for (std::size_t i = 0; i + 2 < modules.size(); ++i) {
+    if (modules[i].symbol != '@' || modules[i].parameterCount != 0) continue;
+    const int organ = organModuleTableIndex(modules[i + 1].symbol);
+    if (organ < 0 || modules[i + 1].parameterCount != 0) continue;
+    const SuccessorModule& module = modules[i + 2];
+    const std::span<const ModuleArgument> given =
+        arguments.subspan(firstArgument[i + 2], module.parameterCount);
+    std::vector<std::optional<float>> values;
+    for (const ModuleArgument& argument : given) {
+      // cpfg: parameters are stored as float32, as the module string will hold them.
+      values.push_back(argument.constant
+                           ? std::optional<float>(static_cast<float>(*argument.constant))
+                           : std::nullopt);
+    }
+    const auto problem =
+        organModuleTables()[static_cast<std::size_t>(organ)]->checkConstants(module.symbol, values);
+    if (problem) throw DiagnosticError(given[problem->index].where, problem->message);
+    i += 2;
+  }
+}
+
+}  // namespace
+
+void checkConstantOrganModules(const Program& program) {
+  for (const Lsystem& lsystem : program.lsystems) {
+    checkModules(lsystem.axiom, lsystem.axiomArguments);
+    for (const RuleSet* rules :
+         {&lsystem.productions, &lsystem.decomposition, &lsystem.homomorphism}) {
+      for (const Production& production : rules->productions)
+        checkModules(production.successor, production.successorArguments);
+    }
+  }
 }
 
 namespace organ_parameters {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
@@ -128,6 +129,8 @@ class Compiler {
   }
 
   double constantValue(const ast::Expr& e, const std::string& what);
+  // The value of a constant expression; `what` names it in the error when it is not one.
+  std::optional<double> foldConstant(const ast::Expr& e, const std::string* what);
   void compileExpr(const ast::Expr& e, const Scope& scope, Builder& b);
   void compileCall(const ast::Expr& e, const Scope& scope, Builder& b);
   void compileLoad(const std::string& name, const SourceLocation& where, const Scope& scope, Builder& b);
@@ -152,7 +155,8 @@ class Compiler {
 
   void compileLsystem(const ast::Lsystem& in, Lsystem& out, NameMap& shared, NameMap& arrays);
   void compileModules(const ast::ModuleList& modules, const Scope& scope,
-                      std::vector<SuccessorModule>& out, Code& values);
+                      std::vector<SuccessorModule>& out, Code& values,
+                      std::vector<ModuleArgument>& arguments);
   void compileRuleSet(const std::vector<ast::Production>& in, RuleSet& out, const NameMap& shared,
                       const NameMap& arrays);
   Production compileProduction(const ast::Production& in, const NameMap& shared, const NameMap& arrays);
@@ -167,19 +171,34 @@ class Compiler {
 };
 
 double Compiler::constantValue(const ast::Expr& e, const std::string& what) {
+  return *foldConstant(e, &what);
+}
+
+// With `what` null, an expression that is not constant, or whose value cannot be computed
+// (division by zero), gives no value instead of an error: the derivation meets it as usual.
+std::optional<double> Compiler::foldConstant(const ast::Expr& e, const std::string* what) {
   using K = ast::Expr::Kind;
+  // The error "PROBLEM in WHAT" when a value is required; else no value.
+  const auto bad = [&](const SourceLocation& where, const std::string& problem) {
+    if (what) fail(where, problem + " in " + *what);
+    return std::optional<double>();
+  };
   switch (e.kind) {
     case K::Number:
       return e.number;
     case K::Unary: {
-      double v = constantValue(*e.operands[0], what);
-      if (e.unaryOp == ast::UnaryOp::Negate) return -v;
-      if (e.unaryOp == ast::UnaryOp::Not) return v == 0 ? 1 : 0;
+      const std::optional<double> v = foldConstant(*e.operands[0], what);
+      if (!v) return v;
+      if (e.unaryOp == ast::UnaryOp::Negate) return -*v;
+      if (e.unaryOp == ast::UnaryOp::Not) return *v == 0 ? 1 : 0;
       break;
     }
     case K::Binary: {
-      double a = constantValue(*e.operands[0], what);
-      double c = constantValue(*e.operands[1], what);
+      const std::optional<double> left = foldConstant(*e.operands[0], what);
+      if (!left) return left;
+      const std::optional<double> right = foldConstant(*e.operands[1], what);
+      if (!right) return right;
+      const double a = *left, c = *right;
       switch (e.binaryOp) {
         case ast::BinaryOp::Or: return (a != 0 || c != 0) ? 1 : 0;
         case ast::BinaryOp::And: return (a != 0 && c != 0) ? 1 : 0;
@@ -193,29 +212,35 @@ double Compiler::constantValue(const ast::Expr& e, const std::string& what) {
         case ast::BinaryOp::Subtract: return a - c;
         case ast::BinaryOp::Multiply: return a * c;
         case ast::BinaryOp::Divide:
-          if (c == 0) fail(e.where, "division by zero in " + what);
+          if (c == 0) return bad(e.where, "division by zero");
           return a / c;
         case ast::BinaryOp::Modulo: {
           if (!std::isfinite(a) || !std::isfinite(c) || std::fabs(a) > 9e18 || std::fabs(c) > 9e18) {
-            fail(e.where, "modulo of a value out of the integer range in " + what);
+            return bad(e.where, "modulo of a value out of the integer range");
           }
           long long ia = static_cast<long long>(a), ic = static_cast<long long>(c);
-          if (ic == 0) fail(e.where, "modulo by zero in " + what);
+          if (ic == 0) return bad(e.where, "modulo by zero");
           return static_cast<double>(ia % ic);
         }
         case ast::BinaryOp::Power: return std::pow(a, c);
       }
       break;
     }
-    case K::Conditional:
-      return constantValue(*e.operands[0], what) != 0 ? constantValue(*e.operands[1], what)
-                                                      : constantValue(*e.operands[2], what);
+    case K::Conditional: {
+      const std::optional<double> condition = foldConstant(*e.operands[0], what);
+      if (!condition) return condition;
+      return foldConstant(*e.operands[*condition != 0 ? 1 : 2], what);
+    }
     case K::Call: {
       const BuiltinInfo* info = findBuiltin(e.name);
       if (info && isMathBuiltin(info->id) && static_cast<int>(e.operands.size()) >= info->minArguments &&
           static_cast<int>(e.operands.size()) <= info->maxArguments) {
         double args[2];
-        for (std::size_t i = 0; i < e.operands.size(); ++i) args[i] = constantValue(*e.operands[i], what);
+        for (std::size_t i = 0; i < e.operands.size(); ++i) {
+          const std::optional<double> arg = foldConstant(*e.operands[i], what);
+          if (!arg) return arg;
+          args[i] = *arg;
+        }
         return applyMathBuiltin(info->id, args, static_cast<int>(e.operands.size()));
       }
       break;
@@ -223,7 +248,9 @@ double Compiler::constantValue(const ast::Expr& e, const std::string& what) {
     default:
       break;
   }
-  fail(e.where, what + " must be a constant expression (numbers, operators and math functions)");
+  if (what)
+    fail(e.where, *what + " must be a constant expression (numbers, operators and math functions)");
+  return std::nullopt;
 }
 
 int Compiler::arrayId(const std::string& name, const SourceLocation& where, const Scope& scope,
@@ -489,7 +516,8 @@ int Compiler::internString(const std::string& text, const SourceLocation& where)
 }
 
 void Compiler::compileModules(const ast::ModuleList& modules, const Scope& scope,
-                              std::vector<SuccessorModule>& out, Code& values) {
+                              std::vector<SuccessorModule>& out, Code& values,
+                              std::vector<ModuleArgument>& arguments) {
   Builder b;
   for (const ast::Module& m : modules) {
     if (m.arguments.size() > kMaxModuleParameters) {
@@ -501,11 +529,14 @@ void Compiler::compileModules(const ast::ModuleList& modules, const Scope& scope
                              before->symbol == '@' && !before->hasParentheses;
     for (std::size_t i = 0; i < m.arguments.size(); ++i) {
       const ast::Expr& arg = *m.arguments[i];
+      ModuleArgument argument{m.argumentsWhere[i], std::nullopt};
       if (i == 0 && stringFirst && arg.kind == ast::Expr::Kind::String) {
         b.constant(internString(arg.name, arg.where), location(arg.where));
       } else {
         compileExpr(arg, scope, b);
+        argument.constant = foldConstant(arg, nullptr);
       }
+      arguments.push_back(std::move(argument));
     }
     out.push_back(SuccessorModule{m.symbol, static_cast<std::uint8_t>(m.arguments.size())});
   }
@@ -564,7 +595,7 @@ Production Compiler::compileProduction(const ast::Production& in, const NameMap&
   out.before = compileCode(in.before, scope);
   out.condition = compileValue(in.condition.get(), scope);
   out.after = compileCode(in.after, scope);
-  compileModules(in.successor, scope, out.successor, out.successorValues);
+  compileModules(in.successor, scope, out.successor, out.successorValues, out.successorArguments);
   for (const SuccessorModule& m : out.successor) out.callsSubLsystem |= m.symbol == '?' && m.parameterCount > 0;
   ModuleString encoded;
   for (const SuccessorModule& m : out.successor) {
@@ -694,7 +725,7 @@ void Compiler::compileLsystem(const ast::Lsystem& in, Lsystem& out, NameMap& sha
   out.end = compileCode(in.end, scope);
   if (!in.hasAxiom) fail(in.where, "L-system '" + in.label + "' has no 'Axiom:' line");
   out.axiomWhere = in.axiomWhere;
-  compileModules(in.axiom, scope, out.axiom, out.axiomValues);
+  compileModules(in.axiom, scope, out.axiom, out.axiomValues, out.axiomArguments);
 
   compileRuleSet(in.productions, out.productions, shared, arrays);
   compileRuleSet(in.decomposition.productions, out.decomposition, shared, arrays);

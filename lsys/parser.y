@@ -112,6 +112,7 @@ ast::RuleSet* ruleSetOf(detail::LexerContext& ctx) {
 %type <ast::ArrayDeclaration> array_decl
 %type <ast::ModuleList> patterns modules successor left_context right_context
 %type <ast::Module> pattern module
+%type <ast::ModuleArguments> module_args module_arg_list
 %type <std::vector<ast::Formal>> formals
 %type <ast::Production> production predecessor condition_part
 %type <ast::ExprPtr> condition probability
@@ -297,7 +298,21 @@ modules
 
 module
   : SYMBOL                    { $$.symbol = $1; $$.where = @1; }
-  | SYMBOL LPAREN args RPAREN { $$.symbol = $1; $$.where = @1; $$.hasParentheses = true; $$.arguments = std::move($3); }
+  | SYMBOL LPAREN module_args RPAREN {
+      $$.symbol = $1; $$.where = @1; $$.hasParentheses = true;
+      $$.arguments = std::move($3.values); $$.argumentsWhere = std::move($3.where);
+    }
+  ;
+
+module_args
+  : %empty          { }
+  | module_arg_list { $$ = std::move($1); }
+  ;
+
+/* An expression's location is its operator's; @ of the whole expression is its first token. */
+module_arg_list
+  : expr                       { $$.values.push_back(std::move($1)); $$.where.push_back(@1); }
+  | module_arg_list COMMA expr { $$ = std::move($1); $$.values.push_back(std::move($3)); $$.where.push_back(@3); }
   ;
 
 args

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds Hirsute in Release (without the tests) and prints the derivation benchmark's figures
 # (in process, then the whole `hirsute derive` process timed with GNU time), then the
-# interpretation benchmark's (string to Scene: modules and triangles per second), and with
-# HAIRS=1 the hair benchmarks'.
+# interpretation benchmark's (string to Scene: modules and triangles per second), with
+# HAIRS=1 the hair benchmarks' and with FUR=1 the fur strand export's.
 # Arguments go to the derivation benchmark: --model NAME, --repeat N, --models DIR;
 # INTERPRET_ARGS to the interpretation benchmark (e.g. "--model tubes --repeat 10").
 #   scripts/bench.sh --repeat 5
@@ -101,4 +101,13 @@ if [[ "${HAIRS:-0}" == 1 ]]; then
   "$build/bench/hirsute_hair_render_bench"
   echo
   "$build/bench/hirsute_hair_export_bench" --runs 1
+fi
+
+# FUR=1 adds the fur strand export: the furry torus scaled to about a million strands, written
+# to POV-Ray (strands per second) and rendered by POV-Ray at 640×480 (parse and trace times,
+# peak memory; several minutes on two cores).
+if [[ "${FUR:-0}" == 1 ]]; then
+  cmake --build "$build" --target hirsute_fur_export_bench -j "${JOBS:-$(nproc)}"
+  echo
+  "$build/bench/hirsute_fur_export_bench"
 fi

@@ -37,11 +37,14 @@ std::string problemsIn(const std::string& output) {
   return problems;
 }
 
-double parseSecondsIn(const std::string& output) {
-  std::size_t at = output.find("Parse Time:");
+// The seconds POV-Ray's statistics give for `what`, in the parentheses of the line
+// "  Parse Time:       0 hours  0 minutes  1 seconds (1.234 seconds)"; -1 when it printed none.
+double statisticSeconds(const std::string& output, const std::string& what) {
+  std::size_t at = output.find(what);
   if (at == std::string::npos) return -1;
   std::size_t open = output.find('(', at);
-  if (open == std::string::npos) return -1;
+  std::size_t end = output.find('\n', at);
+  if (open == std::string::npos || open > end) return -1;
   return std::strtod(output.c_str() + open + 1, nullptr);
 }
 
@@ -124,7 +127,9 @@ PovrayRun runPovray(const std::filesystem::path& scene, const std::filesystem::p
   run.exitStatus = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   run.messages = problemsIn(output);
   if (run.exitStatus != 0 && run.messages.empty()) run.messages = output;  // failed before parsing
-  run.parseSeconds = parseSecondsIn(output);
+  run.parseSeconds = statisticSeconds(output, "Parse Time:");
+  run.boundingSeconds = statisticSeconds(output, "Bounding Time:");
+  run.traceSeconds = statisticSeconds(output, "Trace Time:");
   return run;
 }
 

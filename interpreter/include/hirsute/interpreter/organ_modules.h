@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -21,6 +22,7 @@
 #include "hirsute/interpreter/organ_attributes.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/turtle_state.h"
+#include "hirsute/lsys/program.h"
 
 namespace hirsute {
 
@@ -50,6 +52,13 @@ struct OrganModuleCall {
   std::size_t modulesSeen = 0;
 };
 
+// A parameter of an organ module that is out of its range: which one (0-based) and what is wrong
+// with it ("@Ul: length -1 must be at least 0").
+struct ParameterProblem {
+  std::size_t index = 0;
+  std::string message;
+};
+
 // What every organ's table offers the turtle.
 class OrganModuleTable {
  public:
@@ -58,12 +67,25 @@ class OrganModuleTable {
   virtual char organ() const = 0;
   // Interprets `@` organ() `letter` (letter 0: the organ's letter alone, with parameters).
   virtual void interpret(char letter, OrganModuleCall& call) const = 0;
+  // Checks `@` organ() `letter` as the .l file writes it, before the derivation: `parameters`
+  // has a value for each parameter that is a constant expression and none for those the
+  // derivation computes. The first known value out of its range, if any; a module the table
+  // cannot judge without the derivation (or the view file) passes.
+  virtual std::optional<ParameterProblem> checkConstants(
+      char letter, std::span<const std::optional<float>> parameters) const = 0;
 };
 
 // Every organ's table, in the order of the list in organ_modules.cpp.
 std::span<const OrganModuleTable* const> organModuleTables();
 // The position in organModuleTables() of the organ with letter `organ`, or -1.
 int organModuleTableIndex(char organ);
+
+// Checks the organ modules of every axiom and successor (productions, decomposition and
+// homomorphism) of `program` whose parameters are constant expressions against their tables:
+// a value out of its range (`@Ul(-1)`) throws DiagnosticError at that parameter in the .l file,
+// before anything is derived. Values the derivation computes are the turtle's to check: it
+// ignores such a module with a warning.
+void checkConstantOrganModules(const Program& program);
 
 // The shared readers of the parameter forms (organ_modules.cpp). `name` is the module as the
 // user writes it ("@Hd"); each warns once and returns false when the module is to be ignored.
@@ -103,6 +125,10 @@ struct OrganModuleRow {
   std::string_view choiceNoun;
   // Custom: reads the parameters into the record; false leaves the record as it was.
   bool (*custom)(Record&, const OrganModuleCall&, const std::string& name) = nullptr;
+  // Optional, any form: the check of the parameters known before the derivation
+  // (OrganModuleTable::checkConstants).
+  std::optional<ParameterProblem> (*checkConstants)(std::span<const std::optional<float>>,
+                                                    const std::string& name) = nullptr;
   // Action: acts at the turtle (call.scene is not null).
   void (*action)(const OrganModuleCall&, const std::string& name) = nullptr;
 };
@@ -145,6 +171,13 @@ class AttributeModuleTable : public OrganModuleTable {
 
   char organ() const override { return organ_; }
   const std::vector<Row>& rows() const { return rows_; }
+
+  std::optional<ParameterProblem> checkConstants(
+      char letter, std::span<const std::optional<float>> parameters) const override {
+    const Row* row = find(letter);
+    if (row == nullptr || row->checkConstants == nullptr) return std::nullopt;
+    return row->checkConstants(parameters, std::string{'@', organ_, letter});
+  }
 
   void interpret(char letter, OrganModuleCall& call) const override {
     if (call.scene == nullptr) return;  // the query pass records nothing

@@ -72,6 +72,13 @@ struct Module {
   bool hasParentheses = false;
   std::vector<Formal> formals;       // predecessor and contexts
   std::vector<ExprPtr> arguments;    // axiom and successor
+  std::vector<SourceLocation> argumentsWhere;  // where each argument begins (its first token)
+};
+
+// The parameter expressions of an axiom or successor module, each with where it begins.
+struct ModuleArguments {
+  std::vector<ExprPtr> values;
+  std::vector<SourceLocation> where;
 };
 using ModuleList = std::vector<Module>;
 

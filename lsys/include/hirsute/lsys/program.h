@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,14 @@ struct SuccessorModule {
   std::uint8_t parameterCount = 0;
 };
 
+// A parameter of an axiom or successor module as the file writes it: where it begins and, when
+// it is a constant expression (numbers, operators and math functions), its value, known before
+// the derivation (the organ tables check such values: interpreter/organ_modules.h).
+struct ModuleArgument {
+  SourceLocation where;
+  std::optional<double> constant;
+};
+
 struct Production {
   SourceLocation where;
   std::vector<ModulePattern> left;   // in string order
@@ -38,6 +47,7 @@ struct Production {
   Code after;                        // post-condition statements
   std::vector<SuccessorModule> successor;
   Code successorValues;              // pushes every successor parameter, left to right
+  std::vector<ModuleArgument> successorArguments;  // every successor parameter, left to right
   // The successor already encoded as module-string bytes, with the byte offset of each
   // parameter's float: emitting it is one copy and a float store per parameter.
   std::vector<std::uint8_t> successorBytes;
@@ -74,6 +84,7 @@ struct Lsystem {
   Code start, startEach, endEach, end;
   std::vector<SuccessorModule> axiom;
   Code axiomValues;
+  std::vector<ModuleArgument> axiomArguments;  // every axiom parameter, left to right
   SourceLocation axiomWhere;
   RuleSet productions, decomposition, homomorphism;
 };

@@ -12,7 +12,11 @@ struct PovrayRun {
   // The warnings and errors POV-Ray printed while parsing and rendering, as it printed them
   // (its banner, options and statistics left out); empty for a clean run.
   std::string messages;
-  double parseSeconds = -1;  // "Parse Time" from its statistics; -1 when it printed none
+  // From its statistics, wall seconds; -1 when it printed none: "Parse Time", "Bounding Time"
+  // (the bounding hierarchy built after parsing) and "Trace Time" (the render itself).
+  double parseSeconds = -1;
+  double boundingSeconds = -1;
+  double traceSeconds = -1;
 
   bool clean() const { return exitStatus == 0 && messages.empty(); }
 };
