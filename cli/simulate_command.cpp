@@ -34,6 +34,7 @@ struct SimulateOptions {
   std::optional<int> frames;
   double fps = 24;
   bool obj = false;
+  bool noFrames = false;  // only the table: for measuring the simulation alone
   int width = 800, height = 600;
   // Overrides of the view file's `dynamics …:` lines.
   std::vector<double> gravity, wind;
@@ -200,17 +201,19 @@ int runSimulate(SimulateOptions o) {
       }
     }
     if (body) drawn = std::move(moved.scene);
-    motion->pose(drawn);
     const fs::path folder(o.output);
-    try {
-      writePov(drawn, pov, folder / frameName(frame, frames, ".pov"));
-      if (o.obj) writeObj(drawn, folder / frameName(frame, frames, ".obj"));
-    } catch (const std::invalid_argument& e) {
-      return badInput(progress, o.model.lsystemFile + ": error: cannot export: " + e.what());
-    } catch (const std::runtime_error& e) {
-      progress.clear();
-      std::cerr << e.what() << '\n';
-      return kExitIoError;
+    if (!o.noFrames) {
+      try {
+        motion->pose(drawn);
+        writePov(drawn, pov, folder / frameName(frame, frames, ".pov"));
+        if (o.obj) writeObj(drawn, folder / frameName(frame, frames, ".obj"));
+      } catch (const std::invalid_argument& e) {
+        return badInput(progress, o.model.lsystemFile + ": error: cannot export: " + e.what());
+      } catch (const std::runtime_error& e) {
+        progress.clear();
+        std::cerr << e.what() << '\n';
+        return kExitIoError;
+      }
     }
     const dynamics::SimulationCounters& c = motion->simulation().counters();
     table += fmt::format(
@@ -284,6 +287,8 @@ void registerSimulateCommand(CLI::App& app, Action& action) {
   command->add_option("--drag", options->drag, "Drag per unit length per unit speed")
       ->check(CLI::Range(0.0, 1e6));
   command->add_flag("--obj", options->obj, "Write a Wavefront OBJ of every frame too");
+  command->add_flag("--no-frames", options->noFrames,
+                    "Write no scenes, only simulation.csv (to measure the simulation alone)");
   command->add_option("--width", options->width, "The frames' width in pixels (default 800)")
       ->check(CLI::Range(1, 16384));
   command->add_option("--height", options->height, "The frames' height in pixels (default 600)")

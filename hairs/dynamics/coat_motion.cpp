@@ -2,6 +2,8 @@
 #include "hirsute/hairs/dynamics/coat_motion.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "hirsute/hairs/dynamics/feather_stem.h"
@@ -105,6 +107,9 @@ void CoatMotion::advance(double seconds, int steps, const Scene* next) {
       toAnchors[s] = bound_[s].triangle >= 0 ? anchorOnBody(body, normals, bound_[s])
                                              : anchorFrameOf(next->feathers[s]);
   }
+  const double stable = simulation_.stableTimeStep();
+  if (seconds / steps > stable)
+    steps = static_cast<int>(std::min(std::ceil(seconds / stable), 1e6));
   std::vector<StemFrame> anchors(fromAnchors.size());
   std::vector<Vector3d> vertices(fromBody.size());
   for (int k = 1; k <= steps; ++k) {

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -326,6 +327,16 @@ std::vector<Vector3d> FeatherCoatSimulation::externalForces(const FeatherStem& s
                 parameters_.dragCoefficient * length * (stem.velocities[i] - air);
   }
   return forces;
+}
+
+double FeatherCoatSimulation::stableTimeStep() const {
+  double step = std::numeric_limits<double>::infinity();
+  for (const FeatherStem& stem : stems_) {
+    if (!(stem.parameters.goldStiffness > 0)) continue;
+    for (std::size_t i = 1; i < stem.nodeCount(); ++i)
+      step = std::min(step, std::sqrt(stem.masses[i] / stem.parameters.goldStiffness));
+  }
+  return step;
 }
 
 void FeatherCoatSimulation::step(double dt) {

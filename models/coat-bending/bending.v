@@ -18,7 +18,7 @@ feather: ../feather-coat/blue.fea
 
 /* The dynamics (docs/dynamics.md), in the model's units and seconds: stiff feathers that gravity bends a little, pressed together where the body bends. */
 dynamics gravity: 0 -9.81 0
-dynamics springs: 200000 400
+dynamics springs: 20000 100
 dynamics drag: 0.2
 dynamics thickness: 0.01 0.002
 dynamics substeps: 4

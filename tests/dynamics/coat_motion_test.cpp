@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <map>
 #include <glm/matrix.hpp>
 
 #include "hirsute/hairs/dynamics/coat_motion.h"
@@ -78,6 +79,85 @@ TEST(MovingBody, ARisingBodyLiftsAStemLyingOnItWithoutPassingThroughIt) {
     ASSERT_EQ(countPenetrations(sim.stems(), body, 0), 0u) << "step " << k;
     for (const Vector3d& p : sim.stems()[0].positions) ASSERT_GT(p.z(), lift) << "step " << k;
   }
+}
+
+// For each pair of segments (i of a, j of b) whose shadows on the xy plane cross: whether a's
+// lies above b's there. Where the shadows of two segments cross before and after a step, their
+// order changes only if one passed through the other.
+std::map<std::pair<std::size_t, std::size_t>, bool> aboveWhereShadowsCross(
+    const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {
+  std::map<std::pair<std::size_t, std::size_t>, bool> out;
+  for (std::size_t i = 0; i + 1 < a.size(); ++i)
+    for (std::size_t j = 0; j + 1 < b.size(); ++j) {
+      const Eigen::Vector2d p = a[i].head<2>(), r = a[i + 1].head<2>() - p;
+      const Eigen::Vector2d q = b[j].head<2>(), d = b[j + 1].head<2>() - q;
+      const double cross = r.x() * d.y() - r.y() * d.x();
+      if (std::abs(cross) < 1e-12) continue;
+      const Eigen::Vector2d qp = q - p;
+      const double t = (qp.x() * d.y() - qp.y() * d.x()) / cross;
+      const double u = (qp.x() * r.y() - qp.y() * r.x()) / cross;
+      if (t < 0 || t > 1 || u < 0 || u > 1) continue;
+      out[{i, j}] = a[i].z() + t * (a[i + 1].z() - a[i].z()) >
+                    b[j].z() + u * (b[j + 1].z() - b[j].z());
+    }
+  return out;
+}
+
+TEST(MovingBody, AStackOfStemsPressedTogetherStaysInOrder) {
+  SimulationParameters parameters;
+  parameters.gravity = {0, 0, -9.81};
+  parameters.stem.goldStiffness = 2000;
+  parameters.stem.goldDamping = 20;
+  // Five stems fanned 10 degrees apart over the origin, stacked 0.05 apart there, each anchored
+  // at its left end, like the feathers of a coat; a plate over them comes down from 0.4 to 0.07
+  // in a second, pressing them onto one another and onto the ground.
+  std::vector<FeatherStem> stems;
+  for (int s = 0; s < 5; ++s) {
+    const double angle = (-20.0 + 10.0 * s) * M_PI / 180;
+    const Vector3d along(std::cos(angle), std::sin(angle), 0);
+    const Vector3d over(0, 0, 0.05 + 0.05 * s);
+    std::vector<Vector3d> points;
+    for (int i = 0; i <= 10; ++i) points.push_back(over + (-0.6 + 0.1 * i) * along);
+    stems.push_back(buildStemFromPoints(points, frameAt(points.front(), along), parameters.stem));
+  }
+  BodyMesh body;
+  body.vertices = {{-1, -1, 0},      {1, -1, 0},     {1, 1, 0},     {-1, 1, 0},
+                   {-0.25, -1, 0.4}, {1, -1, 0.4},   {1, 1, 0.4},   {-0.25, 1, 0.4}};
+  body.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 6, 5}, {4, 7, 6}};
+  FeatherCoatSimulation sim(stems, body, parameters);
+  const std::vector<StemFrame> anchors = sim.anchors();
+  // Every pair crosses over the origin, the higher-numbered stem on top.
+  auto sides = [&](int a, int b) {
+    return aboveWhereShadowsCross(sim.stems()[a].positions, sim.stems()[b].positions);
+  };
+  for (int a = 0; a < 5; ++a)
+    for (int b = a + 1; b < 5; ++b) {
+      const auto start = sides(a, b);
+      ASSERT_FALSE(start.empty()) << a << " " << b;
+      for (const auto& [segments, above] : start) EXPECT_FALSE(above);
+    }
+  const int steps = 240;
+  std::size_t kept = 0;
+  for (int k = 1; k <= steps; ++k) {
+    std::map<std::pair<int, int>, std::map<std::pair<std::size_t, std::size_t>, bool>> before;
+    for (int a = 0; a < 5; ++a)
+      for (int b = a + 1; b < 5; ++b) before[{a, b}] = sides(a, b);
+    BodyMesh now = body;
+    for (int v = 4; v < 8; ++v) now.vertices[v].z() = 0.4 - 0.33 * k / steps;
+    sim.step(1.0 / steps, anchors, now.vertices);
+    ASSERT_EQ(countPenetrations(sim.stems(), now, 0), 0u) << "step " << k;
+    for (auto& [pair, was] : before)
+      for (const auto& [segments, above] : sides(pair.first, pair.second)) {
+        const auto found = was.find(segments);
+        if (found == was.end()) continue;
+        ASSERT_EQ(above, found->second)
+            << "stems " << pair.first << " and " << pair.second << " changed sides at step " << k;
+        ++kept;
+      }
+  }
+  EXPECT_GT(kept, 1000u);
+  // Pressed under the plate.
+  for (const FeatherStem& stem : sim.stems()) EXPECT_LT(stem.positions.back().z(), 0.07);
 }
 
 // A one-feather scene: type 1 of a straight rachis, calamus 0.2, rachis 0.8.

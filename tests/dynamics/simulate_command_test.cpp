@@ -90,7 +90,9 @@ TEST_F(SimulateCommand, TheBendingBodyCarriesItsCoatAndNothingIntersects) {
   ASSERT_EQ(rows.size(), 5u);
   EXPECT_EQ(rows[0][10], "penetrations");
   for (std::size_t r = 2; r < rows.size(); ++r) {
-    EXPECT_EQ(rows[r][2], "4") << "frame " << r;       // four steps a frame, none halved
+    // At least the view file's four steps a frame (more for the stiff springs), none halved.
+    EXPECT_GE(std::stoi(rows[r][2]), 4) << "frame " << r;
+    EXPECT_EQ(rows[r][2], rows[r][3]) << "frame " << r;
     EXPECT_NE(rows[r][5], "0") << "frame " << r;       // candidates: the coat is dense
   }
   // The body bends from frame to frame, and so the scenes differ.

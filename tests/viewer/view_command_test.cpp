@@ -274,6 +274,19 @@ TEST_F(ViewCommandTest, FeathersCanBeHidden) {
   EXPECT_GT(differentPixels(shot("feathers.png"), shot("bare.png")), kPixels / 200);
 }
 
+// The D key's simulation, from a script: the awns of feather grass in the wind move, and pausing
+// it leaves them where they are.
+TEST_F(ViewCommandTest, TheFeathersMoveWhileTheDynamicsRuns) {
+  fs::path model = shipped("feather-grass");
+  ASSERT_EQ(view((model / "feather-grass.l").string() + " " + (model / "wind.v").string(),
+                 "screenshot still.png; dynamics on; sleep 1.5; dynamics off; "
+                 "screenshot moved.png; sleep 0.5; screenshot paused.png; quit"),
+            0)
+      << stderr_;
+  EXPECT_GT(differentPixels(shot("still.png"), shot("moved.png")), kPixels / 500);
+  EXPECT_EQ(differentPixels(shot("moved.png"), shot("paused.png")), 0);
+}
+
 // Every shipped model (bench aside) opens, draws something, and steps back and forth: the model
 // named after its folder, and every .l with a .v of the same name.
 TEST_F(ViewCommandTest, EveryShippedModelOpens) {

@@ -30,7 +30,8 @@ class CoatMotion {
  public:
   CoatMotion(const Scene& first, const SimulationParameters& parameters);
 
-  // Simulates `seconds` in `steps` equal steps while the body and the roots move linearly from
+  // Simulates `seconds` in `steps` equal steps (more when a step would be longer than the stable
+  // one, FeatherCoatSimulation::stableTimeStep) while the body and the roots move linearly from
   // where they are to where `next` has them (null: they stay). `next` must have a body of the
   // same triangles and, when some roots are on no triangle, the first frame's feathers (as
   // many), else FrameMismatch. A step that

@@ -109,6 +109,10 @@ class FeatherCoatSimulation {
   const std::vector<StemFrame>& anchors() const { return anchors_; }
   const BodyMesh& body() const { return body_; }
   const SimulationCounters& counters() const { return counters_; }
+  // The longest step the gold springs stay stable at: sqrt(m / k) of the lightest node. The
+  // springs are implicit along their frames, but the frames are rebuilt once a step, so a turn
+  // of the stem is followed explicitly; a longer step lets a stiff stem fold up.
+  double stableTimeStep() const;
   const SimulationParameters& parameters() const { return parameters_; }
   double time() const { return time_; }
 

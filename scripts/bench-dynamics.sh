@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The feather-coat dynamics benchmark (docs/dynamics.md, "Benchmarks"): coats of about 64, 500
+# and 2 000 feathers on the bending body of models/coat-bending, in gusty wind, FRAMES frames at
+# 24 frames a second while the body bends once, simulated with `hirsute simulate --no-frames`
+# (the scenes are not written: the figures are the simulation's and the re-derived body's). Per
+# coat: feathers and particles, the whole process's wall and CPU time and peak memory
+# (/usr/bin/time -v), simulated frames a second, and per frame the steps, collision candidates,
+# contacts and impact zones; then the steps retried, the intersections the final check found
+# (in states thrown away) and those left in accepted states (must be 0).
+#   HIRSUTE=path/to/hirsute FRAMES=240 scripts/bench-dynamics.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+hirsute="$(realpath "${HIRSUTE:-build/release/cli/hirsute}")"
+frames="${FRAMES:-240}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+ln -s "$(pwd)/models/feather-coat" "$work/feather-coat"
+printf '%-8s %9s %9s %8s %8s %9s %10s %8s %11s %9s %7s %8s %11s %5s\n' density feathers \
+  particles wall_s cpu_s peak_MiB frames/s steps/f candidates/f contacts/f zones/f retried \
+  intersections left
+for density in 4.9 38 152; do
+  model="$work/coat-$density"
+  mkdir -p "$model"
+  sed -e "s/^#define DENSITY .*/#define DENSITY $density/" \
+      -e "s/^#define FRAMES .*/#define FRAMES $frames/" models/coat-bending/bending.l >"$model/bending.l"
+  cp models/coat-bending/bending.v models/coat-bending/bending.a models/coat-bending/*.map "$model/"
+  (cd "$model" && /usr/bin/time -v "$hirsute" simulate bending.l bending.v bending.a -o out \
+    --frames "$frames" --no-frames --wind 0.5 0 0 --gusts 1 --gust-scale 2 >summary.txt \
+    2>time.txt)
+  summary="$(cat "$model/summary.txt")"
+  feathers="$(sed -E 's/^[0-9]+ frames of ([0-9]+) feathers.*/\1/' <<<"$summary")"
+  left="$(sed -E 's/.* ([0-9]+) left$/\1/' <<<"$summary")"
+  wall="$(awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s}' "$model/time.txt")"
+  cpu="$(awk -F': ' '/User time/ {u = $2} /System time/ {s = $2} END {print u + s}' "$model/time.txt")"
+  peak="$(awk -F': ' '/Maximum resident/ {printf "%.0f", $2 / 1024}' "$model/time.txt")"
+  awk -F, -v d="$density" -v f="$feathers" -v wall="$wall" -v cpu="$cpu" -v peak="$peak" \
+      -v left="$left" -v segments=9 '
+    NR > 2 {n++; steps += $4; candidates += $6; contacts += $7; zones += $10; retried += $5;
+            found += $11; seconds += $12}
+    END {printf "%-8s %9d %9d %8.1f %8.1f %9s %10.1f %8.1f %11.0f %9.1f %7.2f %8d %11d %5s\n",
+         d, f, f * segments, wall, cpu, peak, n / seconds, steps / n, candidates / n,
+         contacts / n, zones / n, retried, found, left}' "$model/out/simulation.csv"
+done
