@@ -6,6 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <cstdio>
+#include <fstream>
+#include <regex>
+#include <sstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -20,6 +23,7 @@
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/interaction/animation_file.h"
+#include "hirsute/viewer/interaction/define_editor.h"
 #include "model_pipeline.h"
 
 namespace hirsute::cli {
@@ -41,6 +45,82 @@ struct SimulateOptions {
   std::optional<double> gusts, gustScale, gustPeriod, drag;
   std::optional<unsigned> gustSeed;
   std::optional<int> substeps, segments;
+  std::string animate;  // NAME=FROM:TO: a #define of the .l moved over the frames
+};
+
+// `--animate NAME=FROM:TO`, read.
+struct AnimatedDefine {
+  std::string name;
+  double from = 0, to = 0;
+  bool integer = false;  // the .l writes it as an integer: frames round it
+};
+
+// The model of each frame: the animation's derivation step, and the animated #define's value
+// at that frame, written into a hidden copy beside the .l (its includes and files stay where
+// they were; messages name the user's file).
+class FrameModels {
+ public:
+  FrameModels(const ModelOptions& model, std::vector<AnimationFrame> animation,
+              std::optional<AnimatedDefine> define, int frames)
+      : model_(model), animation_(std::move(animation)), define_(std::move(define)),
+        frames_(frames) {}
+
+  // Whether frame k (from 1) has a body of its own, else the one before stays.
+  bool moves(int k) const {
+    return k == 1 || static_cast<std::size_t>(k) <= animation_.size() || define_.has_value();
+  }
+
+  BuiltScene build(int k, Diagnostics& diagnostics) const {
+    ModelOptions options = model_;
+    if (k > 1) options.terminalProgress = nullptr;
+    if (!animation_.empty())
+      options.stopAfter =
+          animation_[std::min(static_cast<std::size_t>(k), animation_.size()) - 1].step;
+    if (!define_) return buildScene(options, diagnostics);
+    const double t = frames_ > 1 ? static_cast<double>(k - 1) / (frames_ - 1) : 0.0;
+    const double value = define_->from + t * (define_->to - define_->from);
+    const fs::path original = model_.lsystemFile;
+    const fs::path copy =
+        original.parent_path() / ("." + original.filename().string() + ".hirsute-simulate.l");
+    {
+      OutputTarget out(copy);
+      const std::string text = replaceDefineValues(
+          readText(original),
+          {{define_->name, formatDefineValue(define_->integer ? std::round(value) : value,
+                                             define_->integer)}});
+      std::fputs(text.c_str(), out.stream());
+      out.commit();
+    }
+    struct Remove {
+      fs::path file;
+      ~Remove() {
+        std::error_code ec;
+        fs::remove(file, ec);
+      }
+    } remove{copy};
+    options.lsystemFile = copy.string();
+    try {
+      return buildScene(options, diagnostics);
+    } catch (const DiagnosticError& e) {
+      Diagnostic named = e.diagnostic();
+      if (named.where.fileName() == copy.string())
+        named.where.file = std::make_shared<const std::string>(original.string());
+      throw DiagnosticError(named);
+    }
+  }
+
+ private:
+  static std::string readText(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  ModelOptions model_;
+  std::vector<AnimationFrame> animation_;
+  std::optional<AnimatedDefine> define_;
+  int frames_;
 };
 
 dynamics::SimulationParameters parametersFor(const FeatherDynamicsSettings& view,
@@ -69,6 +149,35 @@ int badInput(Progress& progress, const std::string& text) {
   return kExitBadInput;
 }
 
+// NAME=FROM:TO, NAME one of the .l's #define constants; nothing when it is not that.
+std::optional<AnimatedDefine> animatedDefine(const std::string& text, const fs::path& lsystem) {
+  static const std::regex kForm(R"(^([A-Za-z_][A-Za-z0-9_]*)=([^:]+):(.+)$)");
+  std::smatch m;
+  if (!std::regex_match(text, m, kForm)) return std::nullopt;
+  AnimatedDefine d;
+  d.name = m[1];
+  try {
+    const std::string from = m[2], to = m[3];
+    std::size_t used = 0;
+    d.from = std::stod(from, &used);
+    if (used != from.size()) return std::nullopt;
+    d.to = std::stod(to, &used);
+    if (used != to.size()) return std::nullopt;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (!std::isfinite(d.from) || !std::isfinite(d.to)) return std::nullopt;
+  std::ifstream in(lsystem, std::ios::binary);
+  std::ostringstream source;
+  source << in.rdbuf();
+  for (const DefineConstant& c : findDefineConstants(source.str()))
+    if (c.name == d.name) {
+      d.integer = c.integer;
+      return d;
+    }
+  return std::nullopt;
+}
+
 int runSimulate(SimulateOptions o) {
   using Clock = std::chrono::steady_clock;
   const auto started = Clock::now();
@@ -81,33 +190,45 @@ int runSimulate(SimulateOptions o) {
 
   // The frames of the animation: derivation steps; without one, the derived model, still.
   std::vector<AnimationFrame> animation;
+  std::optional<AnimatedDefine> define;
   BuiltScene first;
+  std::optional<FrameModels> models;
+  int frames = 0;
   try {
+    if (!o.animate.empty()) {
+      define = animatedDefine(o.animate, o.model.lsystemFile);
+      if (!define) {
+        return badInput(progress, "hirsute: error: --animate takes NAME=FROM:TO, a #define "
+                                  "constant of the .l and two numbers, found '" + o.animate + "'");
+      }
+    }
     if (!o.animation.empty()) {
       const AnimationSettings settings = readAnimationFile(o.animation, diagnostics);
       ModelOptions axiom = o.model;
       axiom.stopAfter = 0;
       axiom.terminalProgress = nullptr;
       const BuiltScene start = buildScene(axiom, diagnostics);
-      const int length = o.model.steps.value_or(start.model.program.lsystems.front().derivationLength);
+      const int length =
+          o.model.steps.value_or(start.model.program.lsystems.front().derivationLength);
       animation = animationFrames(settings, length);
       if (animation.empty())
         return badInput(progress, o.animation + ": error: the animation has no frames");
-      ModelOptions frame = o.model;
-      frame.stopAfter = animation.front().step;
-      first = buildScene(frame, diagnostics);
-    } else {
-      first = buildScene(o.model, diagnostics);
     }
+    frames = o.frames.value_or(animation.empty() ? 48 : static_cast<int>(animation.size()));
+    models.emplace(o.model, animation, define, frames);
+    first = models->build(1, diagnostics);
   } catch (const DiagnosticError& e) {
     return badInput(progress, e.diagnostic().text());
+  } catch (const std::runtime_error& e) {
+    progress.clear();
+    std::cerr << e.what() << '\n';
+    return kExitIoError;
   }
   if (first.scene.feathers.empty()) {
     return badInput(progress, o.model.lsystemFile +
                                   ": error: the model has no feathers to simulate (@Fe, @Fi or "
                                   "a feather coat; docs/dynamics.md)");
   }
-  const int frames = o.frames.value_or(animation.empty() ? 48 : static_cast<int>(animation.size()));
   const FeatherDynamicsSettings& view = first.resources.view.dynamics;
   const dynamics::SimulationParameters parameters = parametersFor(view, o);
   const int substeps = o.substeps.value_or(view.substeps);
@@ -129,14 +250,11 @@ int runSimulate(SimulateOptions o) {
   // The camera is fitted once for all frames: to the first frame, and for an animation to its
   // middle and last frames too, so that a body that moves stays in view.
   Bounds fit = first.scene.bounds();
-  if (animation.size() > 1) {
-    const std::size_t used = std::min(animation.size(), static_cast<std::size_t>(frames));
-    for (const std::size_t at : {used / 2, used - 1}) {
-      ModelOptions frame = o.model;
-      frame.stopAfter = animation[at].step;
-      frame.terminalProgress = nullptr;
+  if (frames > 1 && models->moves(2)) {
+    const int used = define ? frames : std::min(static_cast<int>(animation.size()), frames);
+    for (const int k : {(used + 1) / 2, used}) {
       try {
-        fit.add(buildScene(frame, diagnostics).scene.bounds());
+        fit.add(models->build(k, diagnostics).scene.bounds());
       } catch (const DiagnosticError& e) {
         return badInput(progress, e.diagnostic().text());
       }
@@ -174,13 +292,9 @@ int runSimulate(SimulateOptions o) {
     BuiltScene moved;
     // Frame 1 is the model as derived; each later frame is a frame time after it.
     if (frame > 1) {
-      const std::size_t at = static_cast<std::size_t>(frame - 1);
-      if (at < animation.size()) {
-        ModelOptions next = o.model;
-        next.stopAfter = animation[at].step;
-        next.terminalProgress = nullptr;
+      if (models->moves(frame)) {
         try {
-          moved = buildScene(next, diagnostics);
+          moved = models->build(frame, diagnostics);
         } catch (const DiagnosticError& e) {
           return badInput(progress, e.diagnostic().text());
         }
@@ -191,8 +305,10 @@ int runSimulate(SimulateOptions o) {
         motion->advance(frameTime, substeps, body);
         simulating += std::chrono::duration<double>(Clock::now() - stepping).count();
       } catch (const dynamics::FrameMismatch& e) {
-        return badInput(progress, fmt::format("{}: error: frame {} (step {}): {}", o.animation,
-                                              frame, animation[frame - 1].step, e.what()));
+        return badInput(progress, fmt::format("{}: error: frame {}: {}",
+                                              o.animation.empty() ? o.model.lsystemFile
+                                                                  : o.animation,
+                                              frame, e.what()));
       } catch (const dynamics::StepFailure& e) {
         progress.clear();
         std::cerr << o.model.lsystemFile << ": error: frame " << frame << ": " << e.what()
@@ -261,6 +377,9 @@ void registerSimulateCommand(CLI::App& app, Action& action) {
       ->check(CLI::ExistingFile);
   command->add_option("-o,--output", options->output, "The folder the frames are written to")
       ->required();
+  command->add_option("--animate", options->animate,
+                      "NAME=FROM:TO: move the .l's #define NAME from FROM to TO over the frames "
+                      "(the body moves with it)");
   command->add_option("--frames", options->frames,
                       "Frames to write (default: the animation's, or 48)")
       ->check(CLI::Range(1, 1'000'000));

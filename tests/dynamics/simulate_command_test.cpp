@@ -115,6 +115,20 @@ TEST_F(SimulateCommand, WindMovesTheAwnsAndTheSameRunGivesTheSameFrames) {
   EXPECT_NE(frame3, readText(folder_ / "other" / "frame-0003.pov"));
 }
 
+TEST_F(SimulateCommand, AnAnimatedDefineMovesTheBody) {
+  const Output out = simulate("coat-bending", "bending.l bending.v",
+                              "--animate BEND=0:9 --frames 3", folder_);
+  ASSERT_EQ(out.status, 0) << out.text;
+  EXPECT_NE(readText(folder_ / "frame-0001.pov"), readText(folder_ / "frame-0003.pov"));
+  // The hidden copy that held the frame's value is gone.
+  for (const auto& entry : fs::directory_iterator(kModels / "coat-bending"))
+    EXPECT_EQ(entry.path().filename().string().find(".hirsute-simulate"), std::string::npos);
+  const Output wrong =
+      simulate("coat-bending", "bending.l bending.v", "--animate BENDS=0:9 --frames 2", folder_);
+  EXPECT_EQ(wrong.status, 2);
+  EXPECT_NE(wrong.text.find("--animate takes NAME=FROM:TO"), std::string::npos) << wrong.text;
+}
+
 TEST_F(SimulateCommand, AModelWithoutFeathersIsAnError) {
   const Output out = simulate("herb", "herb.l herb.v", "--frames 2", folder_);
   EXPECT_EQ(out.status, 2) << out.text;
