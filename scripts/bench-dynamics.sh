@@ -7,7 +7,7 @@
 # (/usr/bin/time -v), simulated frames a second, and per frame the steps, collision candidates,
 # contacts and impact zones; then the steps retried, the intersections the final check found
 # (in states thrown away) and those left in accepted states (must be 0).
-#   HIRSUTE=path/to/hirsute FRAMES=240 scripts/bench-dynamics.sh
+#   HIRSUTE=path/to/hirsute FRAMES=240 DENSITIES="4.9 38 152" scripts/bench-dynamics.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 hirsute="$(realpath "${HIRSUTE:-build/release/cli/hirsute}")"
@@ -18,7 +18,7 @@ ln -s "$(pwd)/models/feather-coat" "$work/feather-coat"
 printf '%-8s %9s %9s %8s %8s %9s %10s %8s %11s %9s %7s %8s %11s %5s\n' density feathers \
   particles wall_s cpu_s peak_MiB frames/s steps/f candidates/f contacts/f zones/f retried \
   intersections left
-for density in 4.9 38 152; do
+for density in ${DENSITIES:-4.9 38 152}; do
   model="$work/coat-$density"
   mkdir -p "$model"
   sed -e "s/^#define DENSITY .*/#define DENSITY $density/" \
