@@ -81,13 +81,15 @@ struct Primitives {
     return out;
   }
 
-  // Whether the pair (a < b in list order) is tested: segments of different stems or of one stem
-  // that share no node; stem segments against body edges and stem nodes against body triangles,
-  // except a stem's first segment, whose root lies on the body.
+  // Whether the pair (a < b in list order) is tested: segments of different stems (but not two
+  // first segments, whose roots the body moves) or of one stem that share no node; stem segments
+  // against body edges and stem nodes against body triangles, except a stem's first segment,
+  // whose root lies on the body.
   bool wanted(int a, int b) const {
     const Primitive &p = list[a], &q = list[b];
     if (p.kind == Kind::StemEdge && q.kind == Kind::StemEdge)
-      return p.stem != q.stem || std::abs(p.segment - q.segment) > 1;
+      return (p.stem != q.stem && (p.segment > 0 || q.segment > 0)) ||
+             (p.stem == q.stem && std::abs(p.segment - q.segment) > 1);
     if (p.kind == Kind::StemEdge && q.kind == Kind::BodyEdge) return p.segment > 0;
     return p.kind == Kind::StemNode && q.kind == Kind::BodyTriangle;
   }
@@ -273,7 +275,8 @@ std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyM
     const Item &p = items[a], &q = items[b];
     if (p.triangle >= 0) return false;  // triangles come last: a triangle pairs only as q
     if (q.triangle >= 0) return p.segment > 0;
-    return p.stem != q.stem || std::abs(p.segment - q.segment) > 1;
+    return (p.stem != q.stem && (p.segment > 0 || q.segment > 0)) ||
+           (p.stem == q.stem && std::abs(p.segment - q.segment) > 1);
   });
   for (const auto& [a, b] : pairs) {
     const Item &p = items[a], &q = items[b];

@@ -132,21 +132,40 @@ TEST(FeatherCoatSimulation, AStepThatCannotBeResolvedIsRetriedThenRefusedNeverAc
   SimulationParameters parameters;
   parameters.gravity = Vector3d::Zero();
   parameters.maxHalvings = 4;
-  FeatherCoatSimulation sim({straightStem({0, 0, 0}, Vector3d::UnitX(), 3, 0.1, parameters.stem),
-                             straightStem({0, 0.1, 0}, Vector3d::UnitZ(), 3, 0.1, parameters.stem)},
-                            {}, parameters);
-  // The second anchor is dragged straight through the first one's: the two roots meet whatever
-  // the free nodes do.
-  std::vector<StemFrame> anchors = sim.anchors();
-  anchors[1].origin += Vector3d(0, -0.2, 0);
+  // A stem lies between the ground and a plate above it, and the plate is driven down through
+  // the ground in one step: the stem's free nodes, caught between the two, can go nowhere.
+  BodyMesh body = ground(0);
+  const BodyMesh plate = ground(0.1);
+  for (const Vector3d& v : plate.vertices) body.vertices.push_back(v);
+  for (const auto& t : plate.triangles) body.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
+  FeatherCoatSimulation sim({straightStem({-1.5, 0, 0.05}, Vector3d::UnitX(), 3, 0.5,
+                                          parameters.stem)},
+                            body, parameters);
+  std::vector<Vector3d> moved = body.vertices;
+  for (int v = 4; v < 8; ++v) moved[v].z() = -0.1;
   const std::vector<FeatherStem> before = sim.stems();
-  EXPECT_THROW(sim.step(0.01, anchors), StepFailure);
+  EXPECT_THROW(sim.step(0.01, sim.anchors(), moved), StepFailure);
   EXPECT_GE(sim.counters().retries, 4u);
   EXPECT_EQ(sim.time(), 0);
   for (std::size_t s = 0; s < before.size(); ++s)
     for (std::size_t i = 0; i < before[s].nodeCount(); ++i)
       EXPECT_EQ(sim.stems()[s].positions[i], before[s].positions[i]);
-  EXPECT_EQ(sim.anchors()[1].origin, before[1].positions[0]);
+  EXPECT_EQ(sim.body().vertices[4].z(), 0.1);
+}
+
+// Two roots the body drives through each other: their first segments are the body's to place,
+// and the step goes on.
+TEST(FeatherCoatSimulation, RootsTheBodyBringsTogetherDoNotStopTheStep) {
+  SimulationParameters parameters;
+  parameters.gravity = Vector3d::Zero();
+  FeatherCoatSimulation sim({straightStem({0, 0, 0}, Vector3d::UnitX(), 3, 0.1, parameters.stem),
+                             straightStem({0, 0.1, 0}, Vector3d::UnitZ(), 3, 0.1, parameters.stem)},
+                            {}, parameters);
+  std::vector<StemFrame> anchors = sim.anchors();
+  anchors[1].origin += Vector3d(0, -0.2, 0);
+  sim.step(0.01, anchors);
+  EXPECT_EQ(sim.anchors()[1].origin, anchors[1].origin);
+  EXPECT_EQ(countPenetrations(sim.stems(), {}, 0.5 * parameters.minimumSeparation), 0u);
 }
 
 // Three stems over the ground in gusty wind, `steps` steps: every node's position.

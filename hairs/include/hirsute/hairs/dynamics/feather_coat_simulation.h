@@ -81,7 +81,8 @@ struct StepFailure : std::runtime_error {
 // Which primitives of a state intersect: stem segments through body triangles (exact), and stem
 // segments that meet or come nearer than `minimumDistance` to each other (segments of one stem
 // that share a node excepted). A stem's first segment, whose root lies on the body, is not
-// tested against the body.
+// tested against the body, nor against another stem's first segment: the body places the roots,
+// and where it brings two of them together the simulation cannot keep their calami apart.
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
                               double minimumDistance);
 
