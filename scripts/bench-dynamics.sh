@@ -7,11 +7,13 @@
 # (/usr/bin/time -v), simulated frames a second, and per frame the steps, collision candidates,
 # contacts and impact zones; then the steps retried, the intersections the final check found
 # (in states thrown away) and those left in accepted states (must be 0).
+# SIMULATED (default FRAMES) frames of them are simulated: fewer measure the start of the bend.
 #   HIRSUTE=path/to/hirsute FRAMES=240 DENSITIES="4.9 38 152" scripts/bench-dynamics.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 hirsute="$(realpath "${HIRSUTE:-build/release/cli/hirsute}")"
 frames="${FRAMES:-240}"
+simulated="${SIMULATED:-$frames}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 ln -s "$(pwd)/models/feather-coat" "$work/feather-coat"
@@ -25,7 +27,7 @@ for density in ${DENSITIES:-4.9 38 152}; do
       -e "s/^#define FRAMES .*/#define FRAMES $frames/" models/coat-bending/bending.l >"$model/bending.l"
   cp models/coat-bending/bending.v models/coat-bending/bending.a models/coat-bending/*.map "$model/"
   (cd "$model" && /usr/bin/time -v "$hirsute" simulate bending.l bending.v bending.a -o out \
-    --frames "$frames" --no-frames --wind 0.5 0 0 --gusts 1 --gust-scale 2 >summary.txt \
+    --frames "$simulated" --no-frames --wind 0.5 0 0 --gusts 1 --gust-scale 2 >summary.txt \
     2>time.txt)
   summary="$(cat "$model/summary.txt")"
   feathers="$(sed -E 's/^[0-9]+ frames of ([0-9]+) feathers.*/\1/' <<<"$summary")"
