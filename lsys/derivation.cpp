@@ -126,6 +126,87 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
       }
     }
   }
+  fusedScan_ = program_.lsystems.size() == 1 && !main.stochastic;
+  plainSuccessor_.fill(-1);
+  for (std::size_t c = 0; fusedScan_ && c < 128; ++c) {
+    if (c == '%' || c == '?' || c == '$') continue;
+    for (std::uint32_t id : main.productions.bySymbol[c]) {
+      const Production& p = main.productions.productions[id];
+      // choose() passes over a production whose one module wants parameters.
+      if (p.strict.size() == 1 && p.strict[0].parameterCount != 0) continue;
+      if (p.strict.size() == 1 && !p.hasContext() && p.before.empty() && p.condition.empty() &&
+          p.after.empty() && p.successorValues.empty() && !p.callsSubLsystem) {
+        plainSuccessor_[c] = static_cast<int>(id);
+      }
+      break;
+    }
+  }
+}
+
+// The copying part of the rewriting loop: from `pos`, modules no production can rewrite (and
+// those whose left neighbour refuses every production) join the run [runFrom, pos), and a
+// module with a plain successor is replaced on the spot; it stops at the first module choose()
+// must decide, or at the end.
+void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t& position,
+                         std::size_t& runStart, std::size_t& runModules) {
+  const std::uint8_t* const bytes = s.bytes();
+  const std::size_t end = s.end();
+  const std::array<bool, 128>& copied = isCopiedAsIs_.front();
+  const bool tracking = leftNeighbours_.enabled;
+  if (tracking) leftNeighbours_.before(s, l, position);  // over the modules a production consumed
+  // Locals, which the compiler keeps in registers: the loop stores nothing through references.
+  std::size_t pos = position, runFrom = runStart, runCount = runModules;
+  std::size_t last = leftNeighbours_.last;
+  std::vector<std::size_t>& open = leftNeighbours_.open;
+  // The modules the run may still take before the string passes the limit.
+  const auto room = [&] {
+    const std::size_t used = next_.moduleCount() + streamed_;
+    return options_.maxModules > used ? options_.maxModules - used : 0;
+  };
+  std::size_t left = room();
+  while (pos < end) {
+    const std::uint8_t b = bytes[pos];
+    const auto c = static_cast<unsigned char>(b & 0x7f);
+    if (!copied[c]) {
+      if (!(b & 0x80) && plainSuccessor_[c] >= 0) {
+        if (runCount) {
+          next_.appendRange(s, runFrom, pos, runCount);
+          runCount = 0;
+        }
+        const Production& p =
+            l.productions.productions[static_cast<std::size_t>(plainSuccessor_[c])];
+        std::uint8_t* at = next_.appendEncoded(p.successorBytes.size(), p.successor.size());
+        if (!p.successorBytes.empty())
+          std::memcpy(at, p.successorBytes.data(), p.successorBytes.size());
+        checkSize(next_, p.where);
+        streamIfFull();
+        left = room();
+      } else {
+        if (!tracking || !needsLeft_[c]) break;
+        if (last != BranchIndex::kNone && leftLast_[c].test(bytes[last] & 0x7f)) break;
+        if (runCount == 0) runFrom = pos;
+        ++runCount;
+      }
+    } else {
+      if (runCount == 0) runFrom = pos;
+      ++runCount;
+    }
+    if (tracking) LeftNeighbours::pass(pos, static_cast<char>(c), l, last, open);
+    pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
+    // The string's length is checked as each module goes out, as if it were appended.
+    if (runCount > left) {
+      next_.appendRange(s, runFrom, pos, runCount);
+      runCount = 0;
+      checkSize(next_, l.axiomWhere);
+    }
+  }
+  position = pos;
+  runStart = runFrom;
+  runModules = runCount;
+  if (tracking) {
+    leftNeighbours_.last = last;
+    leftNeighbours_.trackedTo = pos;
+  }
 }
 
 // Whether choose() would refuse the module at `at` on its left neighbour alone, as it does before
@@ -343,26 +424,11 @@ void Derivation::LeftNeighbours::reset(const Program& program) {
 // would find it (ignored modules passed over, a complete branch to the left skipped, a `[`
 // stepped out of), found by carrying that search's answer forward through the string.
 inline std::size_t Derivation::LeftNeighbours::before(const ModuleString& s, const Lsystem& l,
-                                               std::size_t at) {
+                                                      std::size_t at) {
   const std::uint8_t* const bytes = s.bytes();
   for (std::size_t q = trackedTo; q < at;) {
     const std::uint8_t b = bytes[q];
-    const char c = static_cast<char>(b & 0x7f);
-    if (!l.ignored[static_cast<unsigned char>(c)]) {
-      if (c == '[') {
-        open.push_back(last);  // inside the branch the parent's module is to the left
-      } else if (c == ']') {
-        // Past the branch, the module before its `[` is; an unpaired `]` stops every search.
-        if (open.empty()) {
-          last = BranchIndex::kNone;
-        } else {
-          last = open.back();
-          open.pop_back();
-        }
-      } else {
-        last = q;
-      }
-    }
+    pass(q, static_cast<char>(b & 0x7f), l, last, open);
     q += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[q + 1]) : 1;
   }
   if (at > trackedTo) trackedTo = at;
@@ -514,8 +580,8 @@ std::size_t Derivation::skipCut(const ModuleString& s, std::size_t at) const {
 
 namespace {
 // Out of line, so that the check before it stays small enough to inline into the loops.
-[[noreturn, gnu::noinline]] void throwStringTooLong(const SourceLocation& where,
-                                                    std::size_t limit, int step) {
+[[noreturn, gnu::noinline]] void throwStringTooLong(const SourceLocation& where, std::size_t limit,
+                                                    int step) {
   throw DiagnosticError(where, "the string grew past " + std::to_string(limit) +
                                    " modules in step " + std::to_string(step) +
                                    " (the limit is set with --max-modules)");
@@ -642,7 +708,10 @@ void Derivation::rewriteStep() {
       if (progress) progress->tick(stepUnderWay);
       int lsystem = subLsystems_.back();
       const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
-      if (!l.stochastic) {
+      if (fusedScan_) {
+        scanRun(s, l, pos, runFrom, runCount);
+        if (pos >= s.end()) break;
+      } else if (!l.stochastic) {
         // A run of modules that no production can rewrite is copied in one piece; in the main
         // L-system, so are modules whose left neighbour no production's context ends with.
         std::size_t from = pos, count = 0;

@@ -26,10 +26,10 @@
 namespace hirsute {
 
 struct DerivationOptions {
-  std::optional<int> steps;                  // overrides `derivation length:`
-  std::size_t maxModules = 100'000'000;      // a longer string is an error
-  std::size_t maxStringBytes = 0;            // 0: a share of the machine's memory
-  Progress* progress = nullptr;              // shows `deriving: step k/n` (null: nothing)
+  std::optional<int> steps;              // overrides `derivation length:`
+  std::size_t maxModules = 100'000'000;  // a longer string is an error
+  std::size_t maxStringBytes = 0;        // 0: a share of the machine's memory
+  Progress* progress = nullptr;          // shows `deriving: step k/n` (null: nothing)
 };
 
 class Derivation {
@@ -97,8 +97,8 @@ class Derivation {
   std::size_t afterBranch(const ModuleString& s, std::size_t at) const;
   // The `[` that opens the `]` at `at`, or BranchIndex::kNone.
   std::size_t branchOpening(const ModuleString& s, std::size_t at) const;
-  bool matchRight(const std::vector<ModulePattern>& patterns, const Lsystem& l, const ModuleString& s,
-                  std::size_t from, double* frame) const;
+  bool matchRight(const std::vector<ModulePattern>& patterns, const Lsystem& l,
+                  const ModuleString& s, std::size_t from, double* frame) const;
   // `neighbour`: where the last pattern's module is, when the caller knows (LeftNeighbours);
   // kUnknownNeighbour makes the search find it.
   static constexpr std::size_t kUnknownNeighbour = BranchIndex::kNone - 1;
@@ -115,8 +115,9 @@ class Derivation {
   void rewriteStep();
   void appendValues(const Production& p, const double* values, ModuleString& out);
   ModuleString& levelBuffer(int level);
-  bool ruleContextsMatch(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
-                         std::size_t end, bool inMainString, std::size_t anchor, double* frame) const;
+  bool ruleContextsMatch(const Production& p, const Lsystem& l, const ModuleString& s,
+                         std::size_t at, std::size_t end, bool inMainString, std::size_t anchor,
+                         double* frame) const;
   // Whether `p` would rewrite here (for the maximum-depth warning).
   bool wouldApply(const Production& p, const Lsystem& l, const ModuleString& s, std::size_t at,
                   std::size_t end, bool inMainString, std::size_t anchor, double* frame);
@@ -126,7 +127,8 @@ class Derivation {
   bool applyAt(int set, int lsystem, const ModuleString& s, std::size_t at, bool inMainString,
                std::size_t anchor, int level, std::size_t& end, ModuleSink& out);
   void decompose(const ModuleString& from, ModuleString& into);
-  void trackSubLsystems(const ModuleString& s, std::size_t from, std::size_t to, std::vector<int>& stack) const;
+  void trackSubLsystems(const ModuleString& s, std::size_t from, std::size_t to,
+                        std::vector<int>& stack) const;
   void checkSize(const ModuleString& s, const SourceLocation& where);
   std::size_t skipCut(const ModuleString& s, std::size_t at) const;
 
@@ -148,16 +150,16 @@ class Derivation {
   bool hasDecomposition_ = false;
   std::function<void(Derivation&)> queryPass_;
   std::vector<std::array<bool, 128>> isCopiedAsIs_;  // per L-system: symbols without productions
-  const ModuleString* contextString_ = &current_;  // where rules find their contexts
-  std::vector<int> subLsystems_;  // the L-system stack while scanning the string
+  const ModuleString* contextString_ = &current_;    // where rules find their contexts
+  std::vector<int> subLsystems_;                     // the L-system stack while scanning the string
   std::vector<Match> candidates_;
-  std::vector<double> weights_;  // the candidates' weights, beside candidates_
+  std::vector<double> weights_;            // the candidates' weights, beside candidates_
   std::deque<ModuleString> levelBuffers_;  // successors by recursion level (stable references)
   // The last step's sink while it streams (runStreamingLastStep), and the modules it has had.
   ModuleSink* stream_ = nullptr;
   std::size_t streamed_ = 0;
   void streamIfFull();
-  mutable BranchIndex branches_;           // of current_; cleared whenever current_ changes
+  mutable BranchIndex branches_;  // of current_; cleared whenever current_ changes
   // The rewriting pass's left neighbours: for every position, the module a left context is
   // compared with, carried forward in one pass instead of searched backwards per module.
   struct LeftNeighbours {
@@ -167,6 +169,25 @@ class Derivation {
     std::vector<std::size_t> open;          // `last` at each enclosing `[`
     void reset(const Program& program);
     std::size_t before(const ModuleString& s, const Lsystem& l, std::size_t at);
+    // Accounts for the module at q, of symbol c, as the search passes it: `last` becomes the
+    // neighbour of the module after it. Static, so that a loop may keep `last` in a register.
+    static void pass(std::size_t q, char c, const Lsystem& l, std::size_t& last,
+                     std::vector<std::size_t>& open) {
+      if (l.ignored[static_cast<unsigned char>(c)]) return;
+      if (c == '[') {
+        open.push_back(last);  // inside the branch the parent's module is to the left
+      } else if (c == ']') {
+        // Past the branch, the module before its `[` is; an unpaired `]` stops every search.
+        if (open.empty()) {
+          last = BranchIndex::kNone;
+        } else {
+          last = open.back();
+          open.pop_back();
+        }
+      } else {
+        last = q;
+      }
+    }
   };
   LeftNeighbours leftNeighbours_;
   // Symbols of the main L-system whose every production needs a left context (and one strict
@@ -175,6 +196,17 @@ class Derivation {
   std::array<bool, 128> needsLeft_{};
   std::array<std::bitset<128>, 128> leftLast_{};
   bool leftRefuses(const ModuleString& s, const Lsystem& l, std::size_t at);
+  // The one L-system's rewriting in a single scan (no sub-L-systems, not stochastic): runs
+  // copied as they are, left neighbours carried along, and the modules below rewritten on the
+  // spot; the loop stops where choose() must decide.
+  bool fusedScan_ = false;
+  // Symbols whose first production that a module without parameters can meet applies to it
+  // unconditionally (one strict module without parameters, no context, no condition or block,
+  // a successor without computed values): such a module is replaced by that production's
+  // successor bytes without choose(). The index is into the production set, -1 for none.
+  std::array<int, 128> plainSuccessor_{};
+  void scanRun(const ModuleString& s, const Lsystem& l, std::size_t& pos, std::size_t& runFrom,
+               std::size_t& runCount);
   std::size_t ruleOutput_ = 0;  // modules decomposition or homomorphism produced in this pass
 };
 
