@@ -11,6 +11,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -79,17 +80,12 @@ class ExternalProgram : public EnvironmentProgram {
     }
     send(batch);
     waitSemaphore();
-    std::string answers;
-    if (file_.transport == Transport::Files) {
-      std::ifstream in(fromField_, std::ios::binary);
-      if (!in) fail("wrote no answer file " + fromField_.string());
-      std::ostringstream s;
-      s << in.rdbuf();
-      answers = s.str();
-    } else {
-      const char* block = memory_ + kToProgramBytes;
-      answers.assign(block, strnlen(block, kFromProgramBytes));
-    }
+    if (file_.transport == Transport::Memory) return readAnswersFromMemory();
+    std::ifstream in(fromField_, std::ios::binary);
+    if (!in) fail("wrote no answer file " + fromField_.string());
+    std::ostringstream s;
+    s << in.rdbuf();
+    std::string answers = s.str();
     if (answers.find("Control:") == std::string::npos) fail("answered without a Control: line");
     return answers;
   }
@@ -306,6 +302,30 @@ class ExternalProgram : public EnvironmentProgram {
     }
     pthread_sigmask(SIG_SETMASK, &old, nullptr);
     if (broken) fail(alive() ? "stopped reading its queries" : "died: it " + deathText());
+  }
+
+  // Answers over shared memory come in parts when they do not fit the block back: a part whose
+  // control line lacks the last-part bit (4) is taken, semaphore 0 asks for the next, and the
+  // parts' answers are joined under one end line, as if they had come at once.
+  std::string readAnswersFromMemory() {
+    std::string answers;
+    for (;;) {
+      const char* block = memory_ + kToProgramBytes;
+      const std::string part(block, strnlen(block, kFromProgramBytes));
+      const std::size_t control = part.rfind("Control:");
+      if (control == std::string::npos || (control > 0 && part[control - 1] != '\n'))
+        fail("answered without a Control: line");
+      const int flags = std::atoi(part.c_str() + control + 8);
+      if ((flags & 4) != 0) {
+        if (answers.empty()) return part;
+        return answers.append(part, 0, control).append(kAnswersEndLine);
+      }
+      answers.append(part, 0, control);
+      if (answers.size() > (std::size_t{1} << 30)) fail("answered more than 1 GiB");
+      sembuf raise{0, 1, 0};
+      if (::semop(semaphores_, &raise, 1) != 0) fail("cannot signal it");
+      waitSemaphore();
+    }
   }
 
   std::string readAnswersFromPipe() {

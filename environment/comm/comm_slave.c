@@ -357,6 +357,46 @@ int CSSendString(int index, char* item) {
   return 1;
 }
 
+/* Answers larger than the shared memory block back go in parts, cut at line ends: each part
+   but the last ends with a control line without the last-part bit (1 for the first part, 0 for
+   the others); the master takes it and raises semaphore 0 for the next. The last part ends with
+   `Control: 4`, or `Control: 5` when the answers fit at once. */
+static void send_answers_in_parts(void) {
+  enum { CONTROL_RESERVE = 16 };
+  const char* const end_line = "Control: 5\n";
+  const size_t end_length = strlen(end_line);
+  /* The answers without the end line, which each part writes for itself. */
+  const size_t body = comm.out_size - end_length;
+  size_t from = 0;
+  int first = 1;
+  for (;;) {
+    const size_t room = FROM_SLAVE_BYTES - CONTROL_RESERVE;
+    const int last = body - from <= room;
+    size_t to = body;
+    if (!last) {
+      to = from + room;
+      while (to > from && comm.out[to - 1] != '\n') --to;
+      if (to == from) {
+        Message("communication library: an answer line is longer than the shared memory block\n");
+        exit(1);
+      }
+    }
+    const char* control = last ? (first ? "Control: 5\n" : "Control: 4\n")
+                               : (first ? "Control: 1\n" : "Control: 0\n");
+    char* block = comm.memory + TO_SLAVE_BYTES;
+    memcpy(block, comm.out + from, to - from);
+    const size_t n = to - from + strlen(control);
+    memcpy(block + (to - from), control, strlen(control));
+    if (n < FROM_SLAVE_BYTES) block[n] = '\0';
+    semaphore(1, 1);
+    if (last) return;
+    /* The master has read the part: it raises semaphore 0 for the next. */
+    semaphore(0, -1);
+    from = to;
+    first = 0;
+  }
+}
+
 int CSEndTransmission(void) {
   if (comm.terminate) return 1;
   append("Control: 5\n", 11);
@@ -366,12 +406,8 @@ int CSEndTransmission(void) {
     return 1;
   }
   if (comm.transport == MEMORY) {
-    if (comm.out_size > FROM_SLAVE_BYTES) {
-      Message("communication library: the answers are larger than the shared memory block\n");
-      exit(1);
-    }
-    memcpy(comm.memory + TO_SLAVE_BYTES, comm.out, comm.out_size);
-    if (comm.out_size < FROM_SLAVE_BYTES) comm.memory[TO_SLAVE_BYTES + comm.out_size] = '\0';
+    send_answers_in_parts();
+    return 1;
   } else {
     FILE* f = fopen(comm.from_field, "wb");
     if (f == NULL || fwrite(comm.out, 1, comm.out_size, f) != comm.out_size || fclose(f) != 0) {

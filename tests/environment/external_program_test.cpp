@@ -124,9 +124,11 @@ TEST_F(ExternalProgramTest, AProgramThatHangsRunsIntoTheTimeout) {
 TEST_F(ExternalProgramTest, GarbageAnswersAreAnErrorNamingTheProgram) {
   auto environment = open(HIRSUTE_MISBEHAVING, "garbage", "pipes");
   const std::string message = errorOf([&] { twoPasses(*environment, 1); });
-  EXPECT_NE(message.find("model.e:1:12: error: environmental program " + std::string(HIRSUTE_MISBEHAVING) +
-                         " answered a line that is not an answer record: 'the answer is blowing in the wind'"),
-            std::string::npos)
+  EXPECT_NE(
+      message.find(
+          "model.e:1:12: error: environmental program " + std::string(HIRSUTE_MISBEHAVING) +
+          " answered a line that is not an answer record: 'the answer is blowing in the wind'"),
+      std::string::npos)
       << message;
 }
 
@@ -157,6 +159,31 @@ TEST_F(ExternalProgramTest, TheBuiltinProgramsRunAsAProcessOfTheirOwn) {
     EXPECT_EQ(program->exchange(batch), "0 E(0)\n8 E(1)\nControl: 5\n") << transport;
     EXPECT_EQ(makeBuiltinProgram(e, diagnostics_)->exchange(batch), "0 E(0)\n8 E(1)\nControl: 5\n");
   }
+}
+
+TEST_F(ExternalProgramTest, AnswersLargerThanTheSharedMemoryBlockComeInParts) {
+  // 2 000 tips in a row, each within the radius of the next: the answers (about 19 000 bytes)
+  // do not fit the 10 000-byte block back, so libcomm hands them over in parts and the whole
+  // answer arrives joined under one control line, the built-in's to the byte.
+  std::filesystem::create_symlink(HIRSUTE_ENVIRONMENT_SERVER, file("honda81"));
+  std::ofstream(file("density.spec")) << "radius: 1\n3d case: on\n";
+  std::ofstream(file("model.e")) << "executable: ./honda81 density.spec\ncommunication type: memory"
+                                 << "\nturtle position:P:%.4f %.4f %.4f\n";
+  std::string batch;
+  for (int i = 0; i < 2000; ++i) {
+    batch +=
+        std::to_string(i * 7) + " E(" + std::to_string(i) + ")\nP:" + std::to_string(i) + " 0 0\n";
+  }
+  batch += "Control: 5 0\n";
+  ASSERT_LT(batch.size(), 50000u);
+  CommunicationFile e = readCommunicationFile(file("model.e"), diagnostics_);
+  std::unique_ptr<EnvironmentProgram> program = startExternalProgram(e, 20, diagnostics_);
+  const std::string expected = makeBuiltinProgram(e, diagnostics_)->exchange(batch);
+  ASSERT_GT(expected.size(), 10000u);
+  EXPECT_EQ(program->exchange(batch), expected);
+  // The next batch starts afresh after the parts.
+  EXPECT_EQ(program->exchange("0 E(1)\nP:0 0 0\n8 E(2)\nP:0.5 0 0\nControl: 5 1\n"),
+            "0 E(0)\n8 E(1)\nControl: 5\n");
 }
 
 }  // namespace
