@@ -280,6 +280,18 @@ int runSimulate(SimulateOptions o) {
   std::string table =
       "frame,time,steps,substeps,retries,candidates,contacts,impulses,repulsions,"
       "impact_zones,penetrations,seconds\n";
+  const auto writeTable = [&]() -> int {
+    try {
+      OutputTarget csv(fs::path(o.output) / "simulation.csv");
+      std::fputs(table.c_str(), csv.stream());
+      csv.commit();
+    } catch (const std::runtime_error& e) {
+      progress.clear();
+      std::cerr << e.what() << '\n';
+      return kExitIoError;
+    }
+    return 0;
+  };
   const double frameTime = 1.0 / o.fps;
   dynamics::SimulationCounters before;
   double simulating = 0;  // seconds in the steps, apart from deriving and writing
@@ -310,9 +322,11 @@ int runSimulate(SimulateOptions o) {
                                                                   : o.animation,
                                               frame, e.what()));
       } catch (const dynamics::StepFailure& e) {
+        // The frames before it stay, and so do their rows of the table.
+        if (const int failed = writeTable(); failed != 0) return failed;
         progress.clear();
         std::cerr << o.model.lsystemFile << ": error: frame " << frame << ": " << e.what()
-                  << "; the frames before it are written\n";
+                  << "; the frames before it and their rows of simulation.csv are written\n";
         return kExitBadInput;
       }
     }
@@ -341,15 +355,7 @@ int runSimulate(SimulateOptions o) {
         std::chrono::duration<double>(Clock::now() - frameStarted).count());
     before = c;
   }
-  try {
-    OutputTarget csv(fs::path(o.output) / "simulation.csv");
-    std::fputs(table.c_str(), csv.stream());
-    csv.commit();
-  } catch (const std::runtime_error& e) {
-    progress.clear();
-    std::cerr << e.what() << '\n';
-    return kExitIoError;
-  }
+  if (const int failed = writeTable(); failed != 0) return failed;
   progress.clear();
   const dynamics::SimulationCounters& c = motion->simulation().counters();
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();

@@ -17,8 +17,8 @@ simulated="${SIMULATED:-$frames}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 ln -s "$(pwd)/models/feather-coat" "$work/feather-coat"
-printf '%-8s %9s %9s %8s %8s %9s %10s %8s %11s %9s %7s %8s %11s %5s\n' density feathers \
-  particles wall_s cpu_s peak_MiB frames/s steps/f candidates/f contacts/f zones/f retried \
+printf '%-8s %9s %9s %6s %8s %8s %9s %10s %8s %11s %9s %7s %8s %11s %6s\n' density feathers \
+  particles frames wall_s cpu_s peak_MiB frames/s steps/f candidates/f contacts/f zones/f retried \
   intersections left
 for density in ${DENSITIES:-4.9 38 152}; do
   model="$work/coat-$density"
@@ -26,12 +26,21 @@ for density in ${DENSITIES:-4.9 38 152}; do
   sed -e "s/^#define DENSITY .*/#define DENSITY $density/" \
       -e "s/^#define FRAMES .*/#define FRAMES $frames/" models/coat-bending/bending.l >"$model/bending.l"
   cp models/coat-bending/bending.v models/coat-bending/bending.a models/coat-bending/*.map "$model/"
+  status=0
   (cd "$model" && /usr/bin/time -v "$hirsute" simulate bending.l bending.v bending.a -o out \
     --frames "$simulated" --no-frames --wind 0.5 0 0 --gusts 1 --gust-scale 2 >summary.txt \
-    2>time.txt)
-  summary="$(cat "$model/summary.txt")"
-  feathers="$(sed -E 's/^[0-9]+ frames of ([0-9]+) feathers.*/\1/' <<<"$summary")"
-  left="$(sed -E 's/.* ([0-9]+) left$/\1/' <<<"$summary")"
+    2>time.txt) || status=$?
+  if [ "$status" -ne 0 ]; then
+    # A step that could not be resolved: the frames before it have their rows in the table.
+    grep -m1 'error:' "$model/time.txt" >&2 || cat "$model/time.txt" >&2
+    [ -f "$model/out/simulation.csv" ] || exit "$status"
+    feathers="-"
+    left="failed"
+  else
+    summary="$(cat "$model/summary.txt")"
+    feathers="$(sed -E 's/^[0-9]+ frames of ([0-9]+) feathers.*/\1/' <<<"$summary")"
+    left="$(sed -E 's/.* ([0-9]+) left$/\1/' <<<"$summary")"
+  fi
   wall="$(awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s}' "$model/time.txt")"
   cpu="$(awk -F': ' '/User time/ {u = $2} /System time/ {s = $2} END {print u + s}' "$model/time.txt")"
   peak="$(awk -F': ' '/Maximum resident/ {printf "%.0f", $2 / 1024}' "$model/time.txt")"
@@ -39,7 +48,7 @@ for density in ${DENSITIES:-4.9 38 152}; do
       -v left="$left" -v segments=9 '
     NR > 2 {n++; steps += $4; candidates += $6; contacts += $7; zones += $10; retried += $5;
             found += $11; seconds += $12}
-    END {printf "%-8s %9d %9d %8.1f %8.1f %9s %10.1f %8.1f %11.0f %9.1f %7.2f %8d %11d %5s\n",
-         d, f, f * segments, wall, cpu, peak, n / seconds, steps / n, candidates / n,
+    END {printf "%-8s %9s %9s %6d %8.1f %8.1f %9s %10.1f %8.1f %11.0f %9.1f %7.2f %8d %11d %6s\n",
+         d, f, f == "-" ? "-" : f * segments, n + 1, wall, cpu, peak, n / seconds, steps / n, candidates / n,
          contacts / n, zones / n, retried, found, left}' "$model/out/simulation.csv"
 done
