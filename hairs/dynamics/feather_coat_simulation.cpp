@@ -381,7 +381,8 @@ void FeatherCoatSimulation::advanceOrHalve(double h, const Kinematics& from, con
   }
   stems_ = saved;
   if (depth >= parameters_.maxHalvings)
-    throw StepFailure("the step's collisions could not be resolved at the smallest time step");
+    throw StepFailure("the step's collisions could not be resolved at the smallest time step (" +
+                      failure_ + ")");
   ++counters_.retries;
   Kinematics middle;
   middle.anchors.resize(from.anchors.size());
@@ -480,7 +481,11 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   std::vector<int> parent(state.start.size());
   std::iota(parent.begin(), parent.end(), 0);
   for (int iteration = 0; !contacts.empty(); ++iteration) {
-    if (iteration >= parameters_.zoneIterations) return false;
+    if (iteration >= parameters_.zoneIterations) {
+      failure_ = std::to_string(contacts.size()) + " contacts still closing after " +
+                 std::to_string(parameters_.zoneIterations) + " passes of rigid impact zones";
+      return false;
+    }
     for (const Contact& c : contacts)
       for (int k = 1; k < 4; ++k)
         parent[findRoot(parent, c.vertices[k])] = findRoot(parent, c.vertices[0]);
@@ -515,6 +520,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       countPenetrations(stems_, bodyAtEnd, 0.5 * parameters_.minimumSeparation);
   if (penetrations > 0) {
     counters_.penetrations += penetrations;
+    failure_ = "the final check found " + std::to_string(penetrations) + " intersections";
     return false;
   }
   // 7: the second half step of velocity at the new positions.

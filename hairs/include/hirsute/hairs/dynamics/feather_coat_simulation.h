@@ -27,6 +27,7 @@
 #include <array>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "hirsute/hairs/dynamics/feather_stem.h"
@@ -133,6 +134,7 @@ class FeatherCoatSimulation {
   SimulationParameters parameters_;
   WindField wind_;
   std::vector<StemFrame> anchors_;
+  std::string failure_;  // why the last advance() failed, for the error of a step
   SimulationCounters counters_;
   double time_ = 0;
 };
