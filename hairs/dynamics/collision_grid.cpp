@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 
 namespace hirsute::dynamics {
 namespace {
@@ -34,16 +33,35 @@ Box boxOf(std::initializer_list<Eigen::Vector3d> points, double margin) {
 
 std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
                                                   const std::function<bool(int, int)>& wanted) {
-  return overlappingPairs(boxes, std::vector<char>(boxes.size(), 1), wanted);
+  BoxGroups groups;
+  groups.of.assign(boxes.size(), 0);
+  groups.pairsWith[0] = 1;
+  groups.moving = 1;
+  return overlappingPairs(boxes, groups, wanted);
 }
 
 std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
                                                   const std::vector<char>& moving,
                                                   const std::function<bool(int, int)>& wanted) {
+  BoxGroups groups;
+  for (char m : moving) groups.of.push_back(m ? 0 : 1);
+  groups.pairsWith = {0b11, 0b01};
+  groups.moving = 1;
+  return overlappingPairs(boxes, groups, wanted);
+}
+
+std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
+                                                  const BoxGroups& groups,
+                                                  const std::function<bool(int, int)>& wanted) {
   std::vector<std::pair<int, int>> pairs;
+  const auto moves = [&](int i) { return (groups.moving >> groups.of[i]) & 1; };
+  const auto pairsWith = [&](int a, int b) {
+    return (groups.pairsWith[groups.of[a]] >> groups.of[b]) & 1;
+  };
   std::vector<double> extents;
-  for (std::size_t i = 0; i < boxes.size(); ++i)
-    if (moving[i]) extents.push_back((boxes[i].max - boxes[i].min).maxCoeff());
+  for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+    if (moves(i) && groups.pairsWith[groups.of[i]])
+      extents.push_back((boxes[i].max - boxes[i].min).maxCoeff());
   if (extents.empty() || boxes.size() < 2) return pairs;
   // The upper quartile: moving points (a stem's nodes, whose boxes are their motion over a step)
   // must not shrink the cells below the segments that move with them. (Twice that made the
@@ -51,44 +69,117 @@ std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
   const auto quartile = extents.begin() + (3 * extents.size()) / 4;
   std::nth_element(extents.begin(), quartile, extents.end());
   const double cell = std::max(*quartile, 1e-9);
-
-  // Each cell's moving boxes and still ones.
-  struct Cell {
-    std::vector<int> moving, still;
+  const auto cellOf = [cell](const Eigen::Vector3d& p) -> Eigen::Array3d {
+    return (p.array() / cell).floor();
   };
-  std::unordered_map<std::uint64_t, Cell> cells;
-  std::vector<int> huge;
+  // The cells a box covers, or none when it covers too many (also a non-finite box).
+  const auto coveredCells = [&](const Box& box, Eigen::Array3d& lo, Eigen::Array3d& hi) {
+    lo = cellOf(box.min);
+    hi = cellOf(box.max);
+    return (hi - lo + 1).prod() <= kMaxCellsPerBox;
+  };
+  const auto forEachCell = [](const Eigen::Array3d& lo, const Eigen::Array3d& hi, auto&& visit) {
+    for (auto x = static_cast<std::int64_t>(lo.x()); x <= hi.x(); ++x)
+      for (auto y = static_cast<std::int64_t>(lo.y()); y <= hi.y(); ++y)
+        for (auto z = static_cast<std::int64_t>(lo.z()); z <= hi.z(); ++z)
+          visit(cellKey(x, y, z));
+  };
+
+  // Only the moving boxes go into the grid: an open-addressing table from cell keys to runs of
+  // box numbers (counted in one pass, filled in a second, so each run is in box order).
+  struct Slot {
+    std::uint64_t key = 0;
+    std::uint32_t count = 0, first = 0;
+  };
+  std::vector<int> inserted, huge;
+  std::size_t cellVisits = 0;
   for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
-    const Eigen::Array3d lo = (boxes[i].min.array() / cell).floor();
-    const Eigen::Array3d hi = (boxes[i].max.array() / cell).floor();
-    const Eigen::Array3d span = hi - lo + 1;
-    if (!(span.prod() <= kMaxCellsPerBox)) {  // also catches non-finite boxes
+    if (!moves(i) || !groups.pairsWith[groups.of[i]]) continue;
+    Eigen::Array3d lo, hi;
+    if (!coveredCells(boxes[i], lo, hi)) {
       huge.push_back(i);
       continue;
     }
-    for (auto x = static_cast<std::int64_t>(lo.x()); x <= hi.x(); ++x)
-      for (auto y = static_cast<std::int64_t>(lo.y()); y <= hi.y(); ++y)
-        for (auto z = static_cast<std::int64_t>(lo.z()); z <= hi.z(); ++z) {
-          Cell& c = cells[cellKey(x, y, z)];
-          (moving[i] ? c.moving : c.still).push_back(i);
-        }
+    inserted.push_back(i);
+    cellVisits += static_cast<std::size_t>((hi - lo + 1).prod());
   }
-  auto consider = [&](int a, int b) {
-    if (a == b || (!moving[a] && !moving[b])) return;
-    if (a > b) std::swap(a, b);
-    if (boxes[a].overlaps(boxes[b]) && wanted(a, b)) pairs.emplace_back(a, b);
+  std::size_t capacity = 16;
+  while (capacity < 2 * cellVisits) capacity *= 2;
+  const std::size_t mask = capacity - 1;
+  std::vector<Slot> table(capacity);
+  const auto home = [&](std::uint64_t key) {
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
   };
-  for (const auto& [key, c] : cells) {
-    for (std::size_t m = 0; m < c.moving.size(); ++m) {
-      for (std::size_t n = m + 1; n < c.moving.size(); ++n) consider(c.moving[m], c.moving[n]);
-      for (int other : c.still) consider(c.moving[m], other);
-    }
+  // The slot of `key`, or the empty slot where it would go.
+  const auto slotOf = [&](std::uint64_t key) -> Slot& {
+    for (std::size_t h = home(key);; h = (h + 1) & mask)
+      if (table[h].count == 0 || table[h].key == key) return table[h];
+  };
+  for (int i : inserted) {
+    Eigen::Array3d lo, hi;
+    coveredCells(boxes[i], lo, hi);
+    forEachCell(lo, hi, [&](std::uint64_t key) {
+      Slot& slot = slotOf(key);
+      slot.key = key;
+      ++slot.count;
+    });
   }
+  std::uint32_t total = 0;
+  for (Slot& slot : table) {
+    slot.first = total;
+    total += slot.count;
+  }
+  std::vector<int> members(total);
+  std::vector<std::uint32_t> filled(capacity, 0);
+  for (int i : inserted) {
+    Eigen::Array3d lo, hi;
+    coveredCells(boxes[i], lo, hi);
+    forEachCell(lo, hi, [&](std::uint64_t key) {
+      Slot& slot = slotOf(key);
+      members[slot.first + filled[&slot - table.data()]++] = i;
+    });
+  }
+
+  // Two boxes share several cells; the pair is taken only in the cell of its overlap's lowest
+  // corner, which both cover, so that it comes out once.
+  const auto consider = [&](int a, int b, std::uint64_t key) {
+    if (!pairsWith(a, b) || !boxes[a].overlaps(boxes[b])) return;
+    const Eigen::Array3d corner = cellOf(boxes[a].min.cwiseMax(boxes[b].min));
+    if (cellKey(static_cast<std::int64_t>(corner.x()), static_cast<std::int64_t>(corner.y()),
+                static_cast<std::int64_t>(corner.z())) != key)
+      return;
+    if (a > b) std::swap(a, b);
+    if (wanted(a, b)) pairs.emplace_back(a, b);
+  };
+  for (const Slot& slot : table)
+    for (std::uint32_t m = slot.first; m < slot.first + slot.count; ++m)
+      for (std::uint32_t n = m + 1; n < slot.first + slot.count; ++n)
+        consider(members[m], members[n], slot.key);
+  // Still boxes look up the moving ones in their cells.
+  for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
+    if (moves(i) || !groups.pairsWith[groups.of[i]]) continue;
+    Eigen::Array3d lo, hi;
+    if (!coveredCells(boxes[i], lo, hi)) {
+      huge.push_back(i);
+      continue;
+    }
+    forEachCell(lo, hi, [&](std::uint64_t key) {
+      const Slot& slot = slotOf(key);
+      for (std::uint32_t m = slot.first; m < slot.first + slot.count; ++m)
+        consider(members[m], i, key);
+    });
+  }
+  // Huge boxes against every box they may pair with, each pair once.
+  std::sort(huge.begin(), huge.end());
   for (int i : huge)
-    for (int j = 0; j < static_cast<int>(boxes.size()); ++j) consider(i, j);
+    for (int j = 0; j < static_cast<int>(boxes.size()); ++j) {
+      if (j == i || (!moves(i) && !moves(j)) || !pairsWith(i, j)) continue;
+      if (j < i && std::binary_search(huge.begin(), huge.end(), j)) continue;
+      const int a = std::min(i, j), b = std::max(i, j);
+      if (boxes[a].overlaps(boxes[b]) && wanted(a, b)) pairs.emplace_back(a, b);
+    }
   // The map's order is not the same from run to run; the sorted list is.
   std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;
 }
 

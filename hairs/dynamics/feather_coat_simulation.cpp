@@ -6,10 +6,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numeric>
 #include <set>
+#include <string>
 
 #include "hirsute/hairs/dynamics/closest_points.h"
 #include "hirsute/hairs/dynamics/collision_grid.h"
@@ -37,6 +39,7 @@ struct Contact {
   std::array<int, 4> vertices;
   std::array<double, 4> coefficients;
   double timeOfImpact = 0;
+  bool vertexFace = false;  // a stem node and a body triangle, else two segments
 };
 
 // The state of a step as one set of vertices: every stem node, then every body vertex.
@@ -72,12 +75,18 @@ struct Primitives {
           {Kind::BodyTriangle, {bodyOffset + t[0], bodyOffset + t[1], bodyOffset + t[2]}, -1, -1});
   }
 
-  // Which primitives move (the stems'); pairs of two body primitives are never tested.
-  std::vector<char> moving() const {
-    std::vector<char> out;
-    out.reserve(list.size());
-    for (const Primitive& p : list)
-      out.push_back(p.kind == Kind::StemEdge || p.kind == Kind::StemNode);
+  // The primitives' kinds as groups of the broad phase: the stems' move; stem edges meet stem
+  // and body edges, stem nodes body triangles.
+  BoxGroups groups() const {
+    BoxGroups out;
+    out.of.reserve(list.size());
+    for (const Primitive& p : list) out.of.push_back(static_cast<std::uint8_t>(p.kind));
+    const auto bit = [](Kind k) { return static_cast<std::uint8_t>(1u << static_cast<int>(k)); };
+    out.pairsWith[static_cast<int>(Kind::StemEdge)] = bit(Kind::StemEdge) | bit(Kind::BodyEdge);
+    out.pairsWith[static_cast<int>(Kind::BodyEdge)] = bit(Kind::StemEdge);
+    out.pairsWith[static_cast<int>(Kind::StemNode)] = bit(Kind::BodyTriangle);
+    out.pairsWith[static_cast<int>(Kind::BodyTriangle)] = bit(Kind::StemNode);
+    out.moving = bit(Kind::StemEdge) | bit(Kind::StemNode);
     return out;
   }
 
@@ -124,6 +133,7 @@ struct Primitives {
                                        at(q.vertices[2]));
       c.vertices = {p.vertices[0], q.vertices[0], q.vertices[1], q.vertices[2]};
       c.coefficients = {1, -w[0], -w[1], -w[2]};
+      c.vertexFace = true;
     } else {
       const auto [s, u] = closestOnSegments(at(p.vertices[0]), at(p.vertices[1]), at(q.vertices[0]),
                                             at(q.vertices[1]));
@@ -131,6 +141,14 @@ struct Primitives {
       c.coefficients = {1 - s, s, -(1 - u), -u};
     }
     return c;
+  }
+
+  // A vertex as a user finds it: "feather 12's node 3" or "body vertex 40".
+  std::string vertexName(int v) const {
+    if (v >= bodyOffset) return "body vertex " + std::to_string(v - bodyOffset);
+    const auto s = std::upper_bound(stemOffset.begin(), stemOffset.end(), v) - 1;
+    return "feather " + std::to_string(s - stemOffset.begin()) + "'s node " +
+           std::to_string(v - *s);
   }
 
   MovingPrimitives motion(int a, int b, const StepState& state) const {
@@ -405,7 +423,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   const std::vector<StemFrame>& from = fromState.anchors;
   const std::vector<StemFrame>& to = toState.anchors;
   const Primitives primitives(stems_, body_, bodyEdges_);
-  const std::vector<char> moving = primitives.moving();
+  const BoxGroups groups = primitives.groups();
   StepState state;
   // 1-3: half a step of velocity, candidate positions, strain limiting (Sec. 3.3.3).
   for (std::size_t s = 0; s < stems_.size(); ++s) {
@@ -436,7 +454,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   const double thickness = parameters_.thickness;
   {
     const StepState still{state.start, state.start, state.inverseMass};
-    const auto pairs = overlappingPairs(primitives.boxes(still, thickness / 2), moving,
+    const auto pairs = overlappingPairs(primitives.boxes(still, thickness / 2), groups,
                                         [&](int a, int b) { return primitives.wanted(a, b); });
     for (const auto& [a, b] : pairs) {
       const Contact c = primitives.contactAt(a, b, still, 0);
@@ -454,7 +472,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   ccd.minimumSeparation = parameters_.minimumSeparation;
   auto findContacts = [&]() {
     std::vector<Contact> contacts;
-    const auto pairs = overlappingPairs(primitives.boxes(state, ccd.minimumSeparation), moving,
+    const auto pairs = overlappingPairs(primitives.boxes(state, ccd.minimumSeparation), groups,
                                         [&](int a, int b) { return primitives.wanted(a, b); });
     counters_.candidates += pairs.size();
     for (const auto& [a, b] : pairs) {
@@ -472,6 +490,20 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // Inelastic: the gap stops closing, and opens a tenth of the separation over the step, so that
   // the pair is not found again at once.
   const double opening = 0.1 * ccd.minimumSeparation;
+  // A contact in words, for the error of a step that cannot be resolved.
+  auto describe = [&](const Contact& c) {
+    const auto name = [&](int k) { return primitives.vertexName(c.vertices[k]); };
+    const std::string what =
+        c.vertexFace ? name(0) + " against the triangle of " + name(1) + ", " + name(2) + ", " +
+                           name(3)
+                     : "the segment " + name(0) + " to " + name(1) + " against the segment " +
+                           name(2) + " to " + name(3);
+    const Vector3d at = state.start[c.vertices[0]] +
+                        c.timeOfImpact * (state.end[c.vertices[0]] - state.start[c.vertices[0]]);
+    char where[96];
+    std::snprintf(where, sizeof where, " near (%.4g, %.4g, %.4g)", at.x(), at.y(), at.z());
+    return what + where;
+  };
   std::vector<Contact> contacts = findContacts();
   for (int pass = 0; pass < parameters_.impulsePasses && !contacts.empty(); ++pass) {
     for (const Contact& c : contacts)
@@ -483,7 +515,8 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   for (int iteration = 0; !contacts.empty(); ++iteration) {
     if (iteration >= parameters_.zoneIterations) {
       failure_ = std::to_string(contacts.size()) + " contacts still closing after " +
-                 std::to_string(parameters_.zoneIterations) + " passes of rigid impact zones";
+                 std::to_string(parameters_.zoneIterations) +
+                 " passes of rigid impact zones; the first: " + describe(contacts.front());
       return false;
     }
     for (const Contact& c : contacts)

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
 #include <functional>
 #include <initializer_list>
 #include <utility>
@@ -23,15 +25,31 @@ struct Box {
 Box boxOf(std::initializer_list<Eigen::Vector3d> points, double margin);
 
 // Pairs (i, j), i < j, of overlapping boxes for which `wanted(i, j)` holds, sorted, each once.
-// The cell size is twice the median of the boxes' largest extents, so that a typical box covers
+// The cell size is the upper quartile of the boxes' largest extents, so that a typical box covers
 // a few cells; a box over more cells than a limit is compared with every other box instead of
 // being inserted, so that a rare huge box does not flood the grid.
 std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
                                                   const std::function<bool(int, int)>& wanted);
 
-// The same where only pairs with at least one box of `moving` (one flag per box) can be wanted:
-// the feathers among a body's many triangles. The cell size is twice the upper quartile of the
-// moving boxes' largest extents, and pairs of two still boxes are never looked at.
+// Kinds of boxes, so that a search looks only at the pairs of kinds that can be wanted (a
+// feather's segments against each other and against the body's edges, its nodes against the
+// body's triangles): box i is of group `of[i]` (0 to 7); groups g and h are paired when bit h of
+// `pairsWith[g]` is set (set both ways); bit g of `moving` says group g moves. Only moving
+// boxes go into the grid, and two still boxes are never paired.
+struct BoxGroups {
+  std::vector<std::uint8_t> of;
+  std::array<std::uint8_t, 8> pairsWith{};
+  std::uint8_t moving = 0;
+};
+
+// The same over groups: the cell size is the upper quartile of the largest extents of the
+// moving boxes that pair with anything.
+std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
+                                                  const BoxGroups& groups,
+                                                  const std::function<bool(int, int)>& wanted);
+
+// Two groups: the boxes of `moving` (one flag per box) against each other and against the rest
+// (the feathers among a body's many triangles).
 std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
                                                   const std::vector<char>& moving,
                                                   const std::function<bool(int, int)>& wanted);
