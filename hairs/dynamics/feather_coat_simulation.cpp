@@ -40,6 +40,7 @@ struct Contact {
   std::array<double, 4> coefficients;
   double timeOfImpact = 0;
   bool vertexFace = false;  // a stem node and a body triangle, else two segments
+  std::array<int, 2> primitives{};  // the pair, as indices of the primitive list
 };
 
 // The state of a step as one set of vertices: every stem node, then every body vertex.
@@ -128,6 +129,7 @@ struct Primitives {
     };
     Contact c;
     c.timeOfImpact = t;
+    c.primitives = {a, b};
     if (q.kind == Kind::BodyTriangle) {
       const auto w = closestOnTriangle(at(p.vertices[0]), at(q.vertices[0]), at(q.vertices[1]),
                                        at(q.vertices[2]));
@@ -468,17 +470,25 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   }
 
   // 5: continuous collisions in time-of-impact order, then rigid impact zones (Provot 1997).
-  CcdOptions ccd;
+  // The impulses answer contacts within the minimum separation; the zones, the last resort,
+  // those within half of it, the distance the final check holds every state to. The CCD's
+  // separation is a box (|x| <= eta on every axis), so it also finds pairs up to sqrt(3) eta
+  // apart; a zone cannot open the gaps it holds (a rigid one keeps them as they were, one moved
+  // with a bending body nearly so), and pairs it holds between half the separation and the
+  // separation would keep it from ever ending.
+  CcdOptions ccd, zoneCcd;
   ccd.minimumSeparation = parameters_.minimumSeparation;
-  auto findContacts = [&]() {
+  zoneCcd.minimumSeparation = 0.5 * parameters_.minimumSeparation;
+  auto findContacts = [&](const CcdOptions& options) {
     std::vector<Contact> contacts;
-    const auto pairs = overlappingPairs(primitives.boxes(state, ccd.minimumSeparation), groups,
+    const auto pairs = overlappingPairs(primitives.boxes(state, options.minimumSeparation), groups,
                                         [&](int a, int b) { return primitives.wanted(a, b); });
     counters_.candidates += pairs.size();
     for (const auto& [a, b] : pairs) {
       const MovingPrimitives m = primitives.motion(a, b, state);
-      const CcdResult r = primitives.list[b].kind == Kind::BodyTriangle ? vertexFaceCcd(m, ccd)
-                                                                        : edgeEdgeCcd(m, ccd);
+      const CcdResult r = primitives.list[b].kind == Kind::BodyTriangle
+                              ? vertexFaceCcd(m, options)
+                              : edgeEdgeCcd(m, options);
       if (r.contact) contacts.push_back(primitives.contactAt(a, b, state, r.timeOfImpact));
     }
     counters_.contacts += contacts.size();
@@ -504,17 +514,25 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     std::snprintf(where, sizeof where, " near (%.4g, %.4g, %.4g)", at.x(), at.y(), at.z());
     return what + where;
   };
-  std::vector<Contact> contacts = findContacts();
+  std::vector<Contact> contacts = findContacts(ccd);
   for (int pass = 0; pass < parameters_.impulsePasses && !contacts.empty(); ++pass) {
     for (const Contact& c : contacts)
       counters_.impulses += applyImpulse(c, contactNormal(c, state), opening, state);
-    contacts = findContacts();
+    contacts = findContacts(ccd);
   }
+  // What the impulses leave within the separation but clear of half of it stays as it is.
+  std::erase_if(contacts, [&](const Contact& c) {
+    const MovingPrimitives m = primitives.motion(c.primitives[0], c.primitives[1], state);
+    const bool near = (c.vertexFace ? vertexFaceCcd(m, zoneCcd) : edgeEdgeCcd(m, zoneCcd)).contact;
+    counters_.keptNear += !near;
+    return !near;
+  });
   std::vector<int> parent(state.start.size());
   std::iota(parent.begin(), parent.end(), 0);
   for (int iteration = 0; !contacts.empty(); ++iteration) {
     if (iteration >= parameters_.zoneIterations) {
-      failure_ = std::to_string(contacts.size()) + " contacts still closing after " +
+      failure_ = std::to_string(contacts.size()) +
+                 " contacts still within half the minimum separation after " +
                  std::to_string(parameters_.zoneIterations) +
                  " passes of rigid impact zones; the first: " + describe(contacts.front());
       return false;
@@ -531,7 +549,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       if (touched.count(root)) zones[root].push_back(v);
     }
     for (const auto& [root, members] : zones) moveRigidly(members, state);
-    contacts = findContacts();
+    contacts = findContacts(zoneCcd);
   }
   std::set<int> zoneRoots;
   for (int v = 0; v < static_cast<int>(parent.size()); ++v)

@@ -153,6 +153,36 @@ TEST(FeatherCoatSimulation, AStepThatCannotBeResolvedIsRetriedThenRefusedNeverAc
   EXPECT_EQ(sim.body().vertices[4].z(), 0.1);
 }
 
+// The CCD's separation is a box: a stem lying a fifth farther than the separation from a body
+// triangle whose normal is the diagonal (1, 1, 1) is within it on every axis. No zone can open
+// that gap, and such a pair, clear of half the separation, is left to the impulses: the steps go
+// on, and the stem moves off the triangle.
+TEST(FeatherCoatSimulation, APairJustBeyondTheSeparationButInsideItsBoxDoesNotStopTheSteps) {
+  SimulationParameters parameters;
+  parameters.gravity = Vector3d::Zero();
+  parameters.thickness = parameters.minimumSeparation;  // no repulsion at that distance
+  const double eta = parameters.minimumSeparation;
+  BodyMesh body;
+  body.vertices = {{1, -1, 0}, {0, 1, -1}, {-1, 0, 1}};  // the plane x + y + z = 0
+  body.triangles = {{0, 1, 2}};
+  const Vector3d normal = Vector3d(1, 1, 1).normalized();
+  const Vector3d along = Vector3d(1, -1, 0).normalized();
+  const Vector3d root = 1.2 * eta * normal - 0.15 * along;
+  FeatherCoatSimulation sim({straightStem(root, along, 3, 0.1, parameters.stem)}, body,
+                            parameters);
+  auto height = [&](std::size_t node) { return normal.dot(sim.stems()[0].positions[node]); };
+  ASSERT_LT((height(1) * normal).cwiseAbs().maxCoeff(), eta);  // inside the box
+  for (int step = 0; step < 20; ++step) {
+    ASSERT_NO_THROW(sim.step(0.01)) << "step " << step;
+    for (std::size_t i = 1; i < sim.stems()[0].nodeCount(); ++i)
+      ASSERT_GT(height(i), 0.5 * eta) << "step " << step << ", node " << i;
+  }
+  EXPECT_GT(sim.counters().contacts, 0u);
+  EXPECT_GT(sim.counters().keptNear, 0u);
+  EXPECT_EQ(sim.counters().retries, 0u);
+  EXPECT_GT(height(2), 1.2 * eta);  // pushed off by the impulses
+}
+
 // Two roots the body drives through each other: their first segments are the body's to place,
 // and the step goes on.
 TEST(FeatherCoatSimulation, RootsTheBodyBringsTogetherDoNotStopTheStep) {

@@ -12,15 +12,17 @@
 //      from the internal forces);
 //   5. continuous collisions over x^n -> x^{n+1}: candidates from swept boxes in a hashed grid,
 //      the CCD of continuous_collision.h on each, inelastic impulses in time-of-impact order,
-//      repeated a few passes; then rigid impact zones (Provot 1997) until no contact is left;
+//      repeated a few passes; then rigid impact zones (Provot 1997) until no contact within
+//      half the minimum separation is left (the CCD's separation is a box, wider than a ball
+//      of it, and a zone cannot open a gap it holds);
 //   6. the exact check of the final state (static_intersection.h); a state that fails it, or a
 //      step whose collisions cannot be resolved, is thrown away and the step is retried as two
 //      halves, counted in `retries`;
 //   7. the other half step of velocity at x^{n+1}: v^{n+1}.
 //
 // Stems are thin: the vane is not a collision object yet. Each stem is its rachis polyline, kept
-// at `thickness` from other stems and from the body by repulsion and never closer than
-// `minimumSeparation` by the collisions; the vane's width is not taken into account.
+// at `thickness` from other stems and from the body by repulsion, aimed at `minimumSeparation`
+// by the impulses and never closer than half of it; the vane's width is not taken into account.
 #pragma once
 
 #include <Eigen/Core>
@@ -53,7 +55,7 @@ struct SimulationParameters {
   double dragCoefficient = 0.05;         // force per unit length per unit speed
   WindParameters wind;                   // the air the drag is relative to
   double thickness = 0.01;               // repulsion keeps stems this far apart
-  double minimumSeparation = 0.002;      // eta of the CCD: never closer than this
+  double minimumSeparation = 0.002;      // eta of the CCD: impulses keep this, zones half of it
   double repulsionRate = 0.25;           // the part of a too-near gap closed a step
   int impulsePasses = 4;                 // CCD and impulse passes before zones
   int zoneIterations = 64;               // rigid impact zone passes before a retry
@@ -71,6 +73,8 @@ struct SimulationCounters {
   std::uint64_t impactZones = 0;   // rigid impact zones formed
   std::uint64_t retries = 0;       // steps thrown away and retried as two halves
   std::uint64_t penetrations = 0;  // intersections found by the final check (then retried)
+  std::uint64_t keptNear = 0;      // pairs of a zone left nearer than the separation, but clear
+                                   // of half of it over the step
 };
 
 // A step that could not be resolved even at the smallest time step: the state is left as it
