@@ -6,6 +6,7 @@
 
 #include "hirsute/lsys/builtins.h"
 #include "hirsute/lsys/function_curve.h"
+#include "hirsute/lsys/power.h"
 #include "hirsute/lsys/printf_format.h"
 
 namespace hirsute {
@@ -161,7 +162,7 @@ divide:
   top[-1] /= *top;
   HIRSUTE_NEXT();
 modulo: --top; top[-1] = this->modulo(top[-1], *top, in->where); HIRSUTE_NEXT();
-power: --top; top[-1] = std::pow(top[-1], *top); HIRSUTE_NEXT();
+power: --top; top[-1] = power(top[-1], *top); HIRSUTE_NEXT();
 equal: --top; top[-1] = top[-1] == *top; HIRSUTE_NEXT();
 notEqual: --top; top[-1] = top[-1] != *top; HIRSUTE_NEXT();
 less: --top; top[-1] = top[-1] < *top; HIRSUTE_NEXT();
@@ -195,7 +196,7 @@ scan: top = this->scan(*in, top); HIRSUTE_NEXT();
   HIRSUTE_FUSED(addLocal, frame, a + b)
   HIRSUTE_FUSED(subtractLocal, frame, a - b)
   HIRSUTE_FUSED(multiplyLocal, frame, a * b)
-  HIRSUTE_FUSED(powerLocal, frame, std::pow(a, b))
+  HIRSUTE_FUSED(powerLocal, frame, power(a, b))
   HIRSUTE_FUSED(equalLocal, frame, a == b)
   HIRSUTE_FUSED(notEqualLocal, frame, a != b)
   HIRSUTE_FUSED(lessLocal, frame, a < b)
@@ -205,7 +206,7 @@ scan: top = this->scan(*in, top); HIRSUTE_NEXT();
   HIRSUTE_FUSED(addConstant, constants, a + b)
   HIRSUTE_FUSED(subtractConstant, constants, a - b)
   HIRSUTE_FUSED(multiplyConstant, constants, a * b)
-  HIRSUTE_FUSED(powerConstant, constants, std::pow(a, b))
+  HIRSUTE_FUSED(powerConstant, constants, power(a, b))
   HIRSUTE_FUSED(equalConstant, constants, a == b)
   HIRSUTE_FUSED(notEqualConstant, constants, a != b)
   HIRSUTE_FUSED(lessConstant, constants, a < b)

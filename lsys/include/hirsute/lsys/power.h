@@ -1,0 +1,71 @@
+// cpfg's power operator `^`: std::pow's value to the last bit, without the call for the squares
+// and cubes that blocks compute most.
+//
+// glibc's pow (the algorithm of its 2.28 and later) is within 0.54 ulp of the exact power. When
+// the exact power lies within 0.4 ulp of a double p, every other double is more than 0.6 ulp from
+// it, so pow returns p. For y = 2 and y = 3 the exact power is known to far better than an ulp
+// from products split into halves (Dekker's product, no fused multiply-add needed): the nearest
+// double p and its distance from the exact value. Where that distance is not clearly under
+// 0.4 ulp (about a fifth of the time), near a power of two, and outside a safe range of
+// magnitudes, std::pow answers instead. tests/lsys/power_test.cpp compares the two on millions
+// of arguments.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+namespace hirsute {
+
+namespace power_detail {
+
+// a = high + low exactly, each half with at most 26 significant bits (Veltkamp's split).
+inline void split(double a, double& high, double& low) {
+  const double c = 134217729.0 * a;  // 2^27 + 1
+  high = c - (c - a);
+  low = a - high;
+}
+
+// a b = product + error exactly (Dekker), for |a b| well inside the normal range.
+inline void exactProduct(double a, double b, double& product, double& error) {
+  product = a * b;
+  double ah, al, bh, bl;
+  split(a, ah, al);
+  split(b, bh, bl);
+  error = ((ah * bh - product) + ah * bl + al * bh) + al * bl;
+}
+
+// The unit in the last place of a positive normal double that is not a power of two; 0 where it
+// is one (or is not normal), which no distance is below.
+inline double ulpUnlessPowerOfTwo(double p) {
+  const auto bits = std::bit_cast<std::uint64_t>(std::fabs(p));
+  const std::uint64_t exponent = bits >> 52;
+  if ((bits & ((std::uint64_t{1} << 52) - 1)) == 0 || exponent <= 53 || exponent >= 0x7ff)
+    return 0;
+  return std::bit_cast<double>((exponent - 52) << 52);
+}
+
+}  // namespace power_detail
+
+// x^y, exactly as std::pow(x, y).
+inline double power(double x, double y) {
+  using namespace power_detail;
+  const double ax = std::fabs(x);
+  if (y == 2 && ax < 0x1p450 && ax > 0x1p-450) {
+    double p, e;
+    exactProduct(x, x, p, e);  // x^2 = p + e exactly
+    if (std::fabs(e) < 0.4 * ulpUnlessPowerOfTwo(p)) return p;
+  } else if (y == 3 && ax < 0x1p300 && ax > 0x1p-300) {
+    double p2, e2, t, et;
+    exactProduct(x, x, p2, e2);  // x^2 = p2 + e2
+    exactProduct(p2, x, t, et);  // p2 x = t + et
+    // x^3 = t + et + e2 x; s carries the last two to within 2^-104 |x^3|.
+    const double s = et + e2 * x;
+    const double q = t + s;
+    const double rest = s - (q - t);  // t + s - q, exactly (|s| is below an ulp of t)
+    if (std::fabs(rest) + 0x1p-100 * std::fabs(q) < 0.4 * ulpUnlessPowerOfTwo(q)) return q;
+  }
+  return std::pow(x, y);
+}
+
+}  // namespace hirsute
