@@ -340,14 +340,20 @@ FeatherCoatSimulation FeatherCoatSimulation::fromScene(const Scene& scene,
   return FeatherCoatSimulation(std::move(stems), bodyMeshOf(scene), parameters);
 }
 
-std::vector<Vector3d> FeatherCoatSimulation::externalForces(const FeatherStem& stem) const {
+std::vector<Vector3d> FeatherCoatSimulation::externalForces(std::size_t s) {
+  const FeatherStem& stem = stems_[s];
   std::vector<Vector3d> forces(stem.nodeCount(), Vector3d::Zero());
+  if (air_.size() != stems_.size()) air_.resize(stems_.size());
+  std::vector<AirSample>& samples = air_[s];
+  samples.resize(stem.nodeCount());
   for (std::size_t i = 1; i < stem.nodeCount(); ++i) {
     // Drag on the length of rachis a node carries, relative to the air.
     const double length = stem.masses[i] / stem.parameters.linearDensity;
-    const Vector3d air = wind_.velocityAt(stem.positions[i], time_);
+    AirSample& sample = samples[i];
+    if (sample.time != time_ || sample.position != stem.positions[i])
+      sample = {stem.positions[i], wind_.velocityAt(stem.positions[i], time_), time_};
     forces[i] = stem.masses[i] * parameters_.gravity -
-                parameters_.dragCoefficient * length * (stem.velocities[i] - air);
+                parameters_.dragCoefficient * length * (stem.velocities[i] - sample.air);
   }
   return forces;
 }
@@ -431,7 +437,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   for (std::size_t s = 0; s < stems_.size(); ++s) {
     FeatherStem& stem = stems_[s];
     rebuildFrames(stem, from[s]);
-    const std::vector<Vector3d> forces = externalForces(stem);
+    const std::vector<Vector3d> forces = externalForces(s);
     const Vector3d anchorVelocity = (to[s].origin - from[s].origin) / h;
     advanceGoldSprings(stem, h / 2, forces, anchorVelocity);
     for (std::size_t i = 0; i < stem.nodeCount(); ++i) {
@@ -580,7 +586,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   for (std::size_t s = 0; s < stems_.size(); ++s) {
     FeatherStem& stem = stems_[s];
     rebuildFrames(stem, to[s]);
-    const std::vector<Vector3d> forces = externalForces(stem);
+    const std::vector<Vector3d> forces = externalForces(s);
     advanceGoldSprings(stem, h / 2, forces, (to[s].origin - from[s].origin) / h);
   }
   time_ = later;

@@ -2,8 +2,8 @@
 // gold springs of Sec. 3.3.1 and strain limiting.
 #include "hirsute/hairs/dynamics/feather_stem.h"
 
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <glm/mat4x4.hpp>
@@ -128,14 +128,16 @@ void advanceGoldSprings(FeatherStem& stem, double h, const std::vector<Vector3d>
   const int n = static_cast<int>(stem.nodeCount()) - 1;  // the free nodes 1..n are rows 0..n-1
   const double k = stem.parameters.goldStiffness, b = stem.parameters.goldDamping;
   const double coupling = h * (h * k + b);
-  std::vector<Eigen::Triplet<double>> entries;
+  // A stem's system is small and tridiagonal: a dense factorization beats a sparse one's
+  // ordering and allocations.
+  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(n, n);
   Eigen::MatrixX3d rhs(n, 3);
   for (int row = 0; row < n; ++row) {
     const std::size_t node = row + 1;
     const bool hasChild = node + 1 < stem.nodeCount();
-    entries.emplace_back(row, row, stem.masses[node] + coupling * (hasChild ? 2 : 1));
-    if (row > 0) entries.emplace_back(row, row - 1, -coupling);
-    if (hasChild) entries.emplace_back(row, row + 1, -coupling);
+    system(row, row) = stem.masses[node] + coupling * (hasChild ? 2 : 1);
+    if (row > 0) system(row, row - 1) = -coupling;
+    if (hasChild) system(row, row + 1) = -coupling;
     rhs.row(row) = (stem.masses[node] * stem.velocities[node] + h * forces[node]).transpose();
   }
   // The elastic part at the current positions: spring i pulls node i to its gold position and
@@ -147,10 +149,7 @@ void advanceGoldSprings(FeatherStem& stem, double h, const std::vector<Vector3d>
   }
   // The anchor's velocity is known: its coupling with node 1 moves to the right-hand side.
   rhs.row(0) += coupling * anchorVelocity.transpose();
-  Eigen::SparseMatrix<double> system(n, n);
-  system.setFromTriplets(entries.begin(), entries.end());
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system);
-  const Eigen::MatrixX3d v = solver.solve(rhs);
+  const Eigen::MatrixX3d v = system.llt().solve(rhs);  // symmetric positive definite
   stem.velocities[0] = anchorVelocity;
   for (int row = 0; row < n; ++row) stem.velocities[row + 1] = v.row(row).transpose();
 }

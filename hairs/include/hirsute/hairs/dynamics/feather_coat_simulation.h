@@ -130,13 +130,20 @@ class FeatherCoatSimulation {
   };
   bool advance(double h, const Kinematics& from, const Kinematics& to);
   void advanceOrHalve(double h, const Kinematics& from, const Kinematics& to, int depth);
-  std::vector<Eigen::Vector3d> externalForces(const FeatherStem& stem) const;
+  std::vector<Eigen::Vector3d> externalForces(std::size_t stem);
 
   std::vector<FeatherStem> stems_;
   BodyMesh body_;
   std::vector<std::array<int, 2>> bodyEdges_;
   SimulationParameters parameters_;
   WindField wind_;
+  // The air last sampled at each node: a step's second half samples it where and when the next
+  // step's first half does, and the gust field costs more than the rest of the forces.
+  struct AirSample {
+    Eigen::Vector3d position, air;
+    double time = -1;
+  };
+  std::vector<std::vector<AirSample>> air_;
   std::vector<StemFrame> anchors_;
   std::string failure_;  // why the last advance() failed, for the error of a step
   SimulationCounters counters_;
