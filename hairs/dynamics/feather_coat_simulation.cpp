@@ -254,6 +254,57 @@ void moveRigidly(const std::vector<int>& members, StepState& state) {
       state.end[v] = state.start[v] + m.shift + m.spin.cross(state.start[v] - m.centre);
 }
 
+// A zone held by kinematic vertices that do not move alike (a bending body) cannot open a gap
+// between its free vertices and them by the fitted motion: the free vertices go on by one
+// translation more (which keeps their own distances, as the rigid motion does), the least that
+// opens each such contact by `opening` over the step along the gap it had at the start, at most
+// `margin` longer than the longest kinematic move of the zone. Contacts it cannot open (the zone
+// pinned between kinematic primitives on two sides) are left to the next round.
+void liftOffKinematic(const std::vector<int>& members, const std::vector<const Contact*>& contacts,
+                      double opening, double margin, StepState& state) {
+  double largest = margin;
+  for (int v : members)
+    if (state.inverseMass[v] == 0)
+      largest = std::max(largest, margin + (state.end[v] - state.start[v]).norm());
+  struct Need {
+    Vector3d effect;  // the gap's change along its normal per unit of translation
+    double missing;
+  };
+  std::vector<Need> needs;
+  Vector3d direction = Vector3d::Zero();
+  for (const Contact* c : contacts) {
+    Vector3d gap = Vector3d::Zero();
+    double freeShare = 0;
+    bool holdsKinematic = false;
+    for (int k = 0; k < 4; ++k) {
+      const int v = c->vertices[k];
+      gap += c->coefficients[k] * state.start[v];
+      if (state.inverseMass[v] == 0) holdsKinematic = true;
+      else freeShare += c->coefficients[k];
+    }
+    if (!holdsKinematic || !(gap.norm() > 0) || freeShare == 0) continue;
+    const Vector3d normal = gap.normalized();
+    double approach = 0;
+    for (int k = 0; k < 4; ++k)
+      approach += c->coefficients[k] *
+                  normal.dot(state.end[c->vertices[k]] - state.start[c->vertices[k]]);
+    if (approach >= opening) continue;
+    const Vector3d effect = freeShare * normal;
+    needs.push_back({effect, opening - approach});
+    direction += (opening - approach) * effect.normalized();
+  }
+  if (needs.empty() || !(direction.norm() > 0)) return;
+  direction.normalize();
+  double length = 0;
+  for (const Need& need : needs) {
+    const double along = need.effect.dot(direction);
+    if (along > 0) length = std::max(length, need.missing / along);
+  }
+  const Vector3d shift = std::min(length, largest) * direction;
+  for (int v : members)
+    if (state.inverseMass[v] > 0) state.end[v] += shift;
+}
+
 }  // namespace
 
 BodyMesh bodyMeshOf(const Scene& scene) {
@@ -554,8 +605,22 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       const int root = findRoot(parent, v);
       if (touched.count(root)) zones[root].push_back(v);
     }
-    for (const auto& [root, members] : zones) moveRigidly(members, state);
+    std::map<int, std::vector<const Contact*>> zoneContacts;
+    for (const Contact& c : contacts) zoneContacts[findRoot(parent, c.vertices[0])].push_back(&c);
+    for (const auto& [root, members] : zones) {
+      moveRigidly(members, state);
+      liftOffKinematic(members, zoneContacts[root], opening, thickness, state);
+    }
     contacts = findContacts(zoneCcd);
+    // A pair of four free vertices of one zone moved by the zone's one map, which shortens no
+    // distance: it stays as far apart as at the start of the step, when it was clear. The CCD's
+    // box still finds such a pair when the zone turns its gap towards a diagonal.
+    std::erase_if(contacts, [&](const Contact& c) {
+      const int root = findRoot(parent, c.vertices[0]);
+      for (int v : c.vertices)
+        if (state.inverseMass[v] == 0 || findRoot(parent, v) != root) return false;
+      return true;
+    });
   }
   std::set<int> zoneRoots;
   for (int v = 0; v < static_cast<int>(parent.size()); ++v)
