@@ -145,6 +145,18 @@ struct Primitives {
     return c;
   }
 
+  // The distance between a contact's two primitives at the start of the step.
+  double distanceAtStart(const Contact& c, const StepState& state) const {
+    const auto& x = state.start;
+    const auto& v = c.vertices;
+    if (c.vertexFace) {
+      const auto w = closestOnTriangle(x[v[0]], x[v[1]], x[v[2]], x[v[3]]);
+      return (x[v[0]] - (w[0] * x[v[1]] + w[1] * x[v[2]] + w[2] * x[v[3]])).norm();
+    }
+    const auto [s, u] = closestOnSegments(x[v[0]], x[v[1]], x[v[2]], x[v[3]]);
+    return ((x[v[0]] + s * (x[v[1]] - x[v[0]])) - (x[v[2]] + u * (x[v[3]] - x[v[2]]))).norm();
+  }
+
   // A vertex as a user finds it: "feather 12's node 3" or "body vertex 40".
   std::string vertexName(int v) const {
     if (v >= bodyOffset) return "body vertex " + std::to_string(v - bodyOffset);
@@ -241,7 +253,7 @@ ZoneMotion fittedMotion(const std::vector<int>& vertices, const StepState& state
 // (anchors, the body) cannot push them: its free vertices follow the motion of the same form
 // fitted to the kinematic ones, exact when those move alike (a translation) and close to it over
 // a short step of a body that turns or bends; the CCD that follows checks what that leaves.
-void moveRigidly(const std::vector<int>& members, StepState& state) {
+ZoneMotion moveRigidly(const std::vector<int>& members, StepState& state) {
   std::vector<int> kinematic;
   for (int v : members)
     if (state.inverseMass[v] == 0) kinematic.push_back(v);
@@ -252,6 +264,12 @@ void moveRigidly(const std::vector<int>& members, StepState& state) {
   for (int v : members)
     if (state.inverseMass[v] > 0)
       state.end[v] = state.start[v] + m.shift + m.spin.cross(state.start[v] - m.centre);
+  return m;
+}
+
+// Where the zone's map takes the start of `v`.
+Vector3d mapped(const ZoneMotion& m, const Vector3d& start) {
+  return start + m.shift + m.spin.cross(start - m.centre);
 }
 
 // A zone held by kinematic vertices that do not move alike (a bending body) cannot open a gap
@@ -260,8 +278,9 @@ void moveRigidly(const std::vector<int>& members, StepState& state) {
 // opens each such contact by `opening` over the step along the gap it had at the start, at most
 // `margin` longer than the longest kinematic move of the zone. Contacts it cannot open (the zone
 // pinned between kinematic primitives on two sides) are left to the next round.
-void liftOffKinematic(const std::vector<int>& members, const std::vector<const Contact*>& contacts,
-                      double opening, double margin, StepState& state) {
+Vector3d liftOffKinematic(const std::vector<int>& members,
+                          const std::vector<const Contact*>& contacts, double opening,
+                          double margin, StepState& state) {
   double largest = margin;
   for (int v : members)
     if (state.inverseMass[v] == 0)
@@ -293,7 +312,7 @@ void liftOffKinematic(const std::vector<int>& members, const std::vector<const C
     needs.push_back({effect, opening - approach});
     direction += (opening - approach) * effect.normalized();
   }
-  if (needs.empty() || !(direction.norm() > 0)) return;
+  if (needs.empty() || !(direction.norm() > 0)) return Vector3d::Zero();
   direction.normalize();
   double length = 0;
   for (const Need& need : needs) {
@@ -303,6 +322,7 @@ void liftOffKinematic(const std::vector<int>& members, const std::vector<const C
   const Vector3d shift = std::min(length, largest) * direction;
   for (int v : members)
     if (state.inverseMass[v] > 0) state.end[v] += shift;
+  return shift;
 }
 
 }  // namespace
@@ -586,6 +606,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   });
   std::vector<int> parent(state.start.size());
   std::iota(parent.begin(), parent.end(), 0);
+  std::map<int, ZoneMotion> zoneMaps;  // each zone's map, by its root
   for (int iteration = 0; !contacts.empty(); ++iteration) {
     if (iteration >= parameters_.zoneIterations) {
       failure_ = std::to_string(contacts.size()) +
@@ -608,18 +629,29 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     std::map<int, std::vector<const Contact*>> zoneContacts;
     for (const Contact& c : contacts) zoneContacts[findRoot(parent, c.vertices[0])].push_back(&c);
     for (const auto& [root, members] : zones) {
-      moveRigidly(members, state);
-      liftOffKinematic(members, zoneContacts[root], opening, thickness, state);
+      ZoneMotion& m = zoneMaps[root] = moveRigidly(members, state);
+      m.shift += liftOffKinematic(members, zoneContacts[root], opening, thickness, state);
     }
     contacts = findContacts(zoneCcd);
-    // A pair of four free vertices of one zone moved by the zone's one map, which shortens no
-    // distance: it stays as far apart as at the start of the step, when it was clear. The CCD's
-    // box still finds such a pair when the zone turns its gap towards a diagonal.
+    // The zone's map shortens no distance, so a pair within one zone is never nearer than at the
+    // start of the step (when it was clear) less how far its kinematic vertices stray from that
+    // map (each side's share of the gap at most its largest stray). A pair that stays clear so
+    // is passed over: the CCD's box still finds one when the zone turns its gap towards a
+    // diagonal.
     std::erase_if(contacts, [&](const Contact& c) {
       const int root = findRoot(parent, c.vertices[0]);
       for (int v : c.vertices)
-        if (state.inverseMass[v] == 0 || findRoot(parent, v) != root) return false;
-      return true;
+        if (findRoot(parent, v) != root) return false;
+      const ZoneMotion& m = zoneMaps.at(root);
+      double stray[2] = {0, 0};  // of the first primitive's vertices and of the second's
+      for (int k = 0; k < 4; ++k) {
+        const int v = c.vertices[k];
+        const int side = k == 0 || (k == 1 && !c.vertexFace) ? 0 : 1;
+        if (state.inverseMass[v] == 0)
+          stray[side] = std::max(stray[side], (state.end[v] - mapped(m, state.start[v])).norm());
+      }
+      const double nearest = primitives.distanceAtStart(c, state);
+      return nearest - stray[0] - stray[1] > (1 + 1e-9) * zoneCcd.minimumSeparation;
     });
   }
   std::set<int> zoneRoots;
