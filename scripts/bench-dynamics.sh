@@ -6,7 +6,7 @@
 # coat: feathers and particles, the whole process's wall and CPU time and peak memory
 # (/usr/bin/time -v), simulated frames a second, and per frame the steps, collision candidates,
 # contacts and impact zones; then the steps retried, the intersections the final check found
-# (in states thrown away), the pairs of impact zones left between half the separation and the
+# (in states thrown away), the pairs the impulses left between a quarter of the separation and the
 # separation, and the intersections left in accepted states (must be 0).
 # SIMULATED (default FRAMES) frames of them are simulated: fewer measure the start of the bend.
 #   HIRSUTE=path/to/hirsute FRAMES=240 DENSITIES="4.9 38 152" scripts/bench-dynamics.sh

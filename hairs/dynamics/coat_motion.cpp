@@ -75,7 +75,7 @@ std::size_t CoatMotion::boundRoots() const {
 
 std::size_t CoatMotion::penetrations() const {
   return countPenetrations(simulation_.stems(), simulation_.body(),
-                           0.5 * simulation_.parameters().minimumSeparation);
+                           simulation_.nearestAllowed());
 }
 
 void CoatMotion::advance(double seconds, int steps, const Scene* next) {

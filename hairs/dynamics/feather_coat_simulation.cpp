@@ -548,14 +548,14 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
 
   // 5: continuous collisions in time-of-impact order, then rigid impact zones (Provot 1997).
   // The impulses answer contacts within the minimum separation; the zones, the last resort,
-  // those within half of it, the distance the final check holds every state to. The CCD's
-  // separation is a box (|x| <= eta on every axis), so it also finds pairs up to sqrt(3) eta
-  // apart; a zone cannot open the gaps it holds (a rigid one keeps them as they were, one moved
-  // with a bending body nearly so), and pairs it holds between half the separation and the
-  // separation would keep it from ever ending.
+  // those within a quarter of it, the distance the final check holds every state to. The
+  // CCD's separation is a box (|x| <= eta on every axis), so it also finds pairs up to sqrt(3)
+  // eta apart; a zone cannot open the gaps it holds (a rigid one keeps them as they were, one
+  // moved with a bending body nearly so), and pairs it holds a little beyond its separation
+  // would keep it from ever ending.
   CcdOptions ccd, zoneCcd;
   ccd.minimumSeparation = parameters_.minimumSeparation;
-  zoneCcd.minimumSeparation = 0.5 * parameters_.minimumSeparation;
+  zoneCcd.minimumSeparation = nearestAllowed();
   auto findContacts = [&](const CcdOptions& options) {
     std::vector<Contact> contacts;
     const auto pairs = overlappingPairs(primitives.boxes(state, options.minimumSeparation), groups,
@@ -597,7 +597,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       counters_.impulses += applyImpulse(c, contactNormal(c, state), opening, state);
     contacts = findContacts(ccd);
   }
-  // What the impulses leave within the separation but clear of half of it stays as it is.
+  // What the impulses leave within the separation but clear of the zones' stays as it is.
   std::erase_if(contacts, [&](const Contact& c) {
     const MovingPrimitives m = primitives.motion(c.primitives[0], c.primitives[1], state);
     const bool near = (c.vertexFace ? vertexFaceCcd(m, zoneCcd) : edgeEdgeCcd(m, zoneCcd)).contact;
@@ -610,7 +610,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   for (int iteration = 0; !contacts.empty(); ++iteration) {
     if (iteration >= parameters_.zoneIterations) {
       failure_ = std::to_string(contacts.size()) +
-                 " contacts still within half the minimum separation after " +
+                 " contacts still within a quarter of the minimum separation after " +
                  std::to_string(parameters_.zoneIterations) +
                  " passes of rigid impact zones; the first: " + describe(contacts.front());
       return false;
@@ -635,9 +635,9 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     contacts = findContacts(zoneCcd);
     // The zone's map shortens no distance, so a pair within one zone is never nearer than at the
     // start of the step (when it was clear) less how far its kinematic vertices stray from that
-    // map (each side's share of the gap at most its largest stray). A pair that stays clear so
-    // is passed over: the CCD's box still finds one when the zone turns its gap towards a
-    // diagonal.
+    // map (each side's share of the gap at most its largest stray). A pair that stays clear so,
+    // and ends the step clear of the zones' box (so that the next step starts clear), is passed
+    // over: the CCD's box still finds one when the zone turns its gap towards a diagonal.
     std::erase_if(contacts, [&](const Contact& c) {
       const int root = findRoot(parent, c.vertices[0]);
       for (int v : c.vertices)
@@ -651,7 +651,10 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
           stray[side] = std::max(stray[side], (state.end[v] - mapped(m, state.start[v])).norm());
       }
       const double nearest = primitives.distanceAtStart(c, state);
-      return nearest - stray[0] - stray[1] > (1 + 1e-9) * zoneCcd.minimumSeparation;
+      if (!(nearest - stray[0] - stray[1] > (1 + 1e-9) * zoneCcd.minimumSeparation)) return false;
+      MovingPrimitives still = primitives.motion(c.primitives[0], c.primitives[1], state);
+      still.start = still.end;
+      return !(c.vertexFace ? vertexFaceCcd(still, zoneCcd) : edgeEdgeCcd(still, zoneCcd)).contact;
     });
   }
   std::set<int> zoneRoots;
@@ -671,7 +674,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // 6: the exact check of the final state.
   const BodyMesh bodyAtEnd{toState.body, body_.triangles};
   const std::size_t penetrations =
-      countPenetrations(stems_, bodyAtEnd, 0.5 * parameters_.minimumSeparation);
+      countPenetrations(stems_, bodyAtEnd, nearestAllowed());
   if (penetrations > 0) {
     counters_.penetrations += penetrations;
     failure_ = "the final check found " + std::to_string(penetrations) + " intersections";

@@ -155,7 +155,7 @@ TEST(FeatherCoatSimulation, AStepThatCannotBeResolvedIsRetriedThenRefusedNeverAc
 
 // The CCD's separation is a box: a stem lying a fifth farther than the separation from a body
 // triangle whose normal is the diagonal (1, 1, 1) is within it on every axis. No zone can open
-// that gap, and such a pair, clear of half the separation, is left to the impulses: the steps go
+// that gap, and such a pair, clear of the zones' separation, is left to the impulses: the steps go
 // on, and the stem moves off the triangle.
 TEST(FeatherCoatSimulation, APairJustBeyondTheSeparationButInsideItsBoxDoesNotStopTheSteps) {
   SimulationParameters parameters;
@@ -205,7 +205,7 @@ TEST(FeatherCoatSimulation, StemsPressedByAFoldingBodyRideUpWithItNeverThroughIt
       folded[v] = Vector3d(std::cos(step * degree), folded[v].y(), std::sin(step * degree));
     ASSERT_NO_THROW(sim.step(0.01, sim.anchors(), folded)) << "step " << step;
     const BodyMesh now{folded, body.triangles};
-    ASSERT_EQ(countPenetrations(sim.stems(), now, 0.5 * parameters.minimumSeparation), 0u)
+    ASSERT_EQ(countPenetrations(sim.stems(), now, sim.nearestAllowed()), 0u)
         << "step " << step;
     // Every node on the flap's side lies above it, the upper stem's above the lower one's.
     const Vector3d flapNormal(-std::sin(step * degree), 0, std::cos(step * degree));
@@ -264,7 +264,7 @@ TEST(FeatherCoatSimulation, RootsTheBodyBringsTogetherDoNotStopTheStep) {
   anchors[1].origin += Vector3d(0, -0.2, 0);
   sim.step(0.01, anchors);
   EXPECT_EQ(sim.anchors()[1].origin, anchors[1].origin);
-  EXPECT_EQ(countPenetrations(sim.stems(), {}, 0.5 * parameters.minimumSeparation), 0u);
+  EXPECT_EQ(countPenetrations(sim.stems(), {}, sim.nearestAllowed()), 0u);
 }
 
 // Three stems over the ground in gusty wind, `steps` steps: every node's position.

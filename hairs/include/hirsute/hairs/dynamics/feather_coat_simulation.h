@@ -12,9 +12,9 @@
 //      from the internal forces);
 //   5. continuous collisions over x^n -> x^{n+1}: candidates from swept boxes in a hashed grid,
 //      the CCD of continuous_collision.h on each, inelastic impulses in time-of-impact order,
-//      repeated a few passes; then rigid impact zones (Provot 1997) until no contact within
-//      half the minimum separation is left (the CCD's separation is a box, wider than a ball
-//      of it, and a zone cannot open a gap it holds);
+//      repeated a few passes; then rigid impact zones (Provot 1997) until no contact within a
+//      quarter of the minimum separation is left (the CCD's separation is a box, wider than a
+//      ball of it, and a zone cannot open a gap it holds);
 //   6. the exact check of the final state (static_intersection.h); a state that fails it, or a
 //      step whose collisions cannot be resolved, is thrown away and the step is retried as two
 //      halves, counted in `retries`;
@@ -22,7 +22,8 @@
 //
 // Stems are thin: the vane is not a collision object yet. Each stem is its rachis polyline, kept
 // at `thickness` from other stems and from the body by repulsion, aimed at `minimumSeparation`
-// by the impulses and never closer than half of it; the vane's width is not taken into account.
+// by the impulses and never closer than a quarter of it; the vane's width is not taken into
+// account.
 #pragma once
 
 #include <Eigen/Core>
@@ -55,7 +56,7 @@ struct SimulationParameters {
   double dragCoefficient = 0.05;         // force per unit length per unit speed
   WindParameters wind;                   // the air the drag is relative to
   double thickness = 0.01;               // repulsion keeps stems this far apart
-  double minimumSeparation = 0.002;      // eta of the CCD: impulses keep this, zones half of it
+  double minimumSeparation = 0.002;      // eta of the CCD: impulses keep this, zones a quarter
   double repulsionRate = 0.25;           // the part of a too-near gap closed a step
   int impulsePasses = 4;                 // CCD and impulse passes before zones
   int zoneIterations = 64;               // rigid impact zone passes before a retry
@@ -120,6 +121,9 @@ class FeatherCoatSimulation {
   // of the stem is followed explicitly; a longer step lets a stiff stem fold up.
   double stableTimeStep() const;
   const SimulationParameters& parameters() const { return parameters_; }
+  // The separation of the impact zones: no accepted state has two stems, or a stem and the
+  // body, nearer than this (a quarter of the minimum separation the impulses keep).
+  double nearestAllowed() const { return 0.25 * parameters_.minimumSeparation; }
   double time() const { return time_; }
 
  private:
