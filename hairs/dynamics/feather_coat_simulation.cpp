@@ -635,9 +635,10 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     contacts = findContacts(zoneCcd);
     // The zone's map shortens no distance, so a pair within one zone is never nearer than at the
     // start of the step (when it was clear) less how far its kinematic vertices stray from that
-    // map (each side's share of the gap at most its largest stray). A pair that stays clear so,
-    // and ends the step clear of the zones' box (so that the next step starts clear), is passed
-    // over: the CCD's box still finds one when the zone turns its gap towards a diagonal.
+    // map (each side's share of the gap at most its largest stray). A pair that stays clear so
+    // is passed over: the CCD's box still finds one when the zone turns its gap towards a
+    // diagonal, and the next step may find it inside the box from its start, which only this
+    // rule, once its vertices share a zone, can pass.
     std::erase_if(contacts, [&](const Contact& c) {
       const int root = findRoot(parent, c.vertices[0]);
       for (int v : c.vertices)
@@ -651,10 +652,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
           stray[side] = std::max(stray[side], (state.end[v] - mapped(m, state.start[v])).norm());
       }
       const double nearest = primitives.distanceAtStart(c, state);
-      if (!(nearest - stray[0] - stray[1] > (1 + 1e-9) * zoneCcd.minimumSeparation)) return false;
-      MovingPrimitives still = primitives.motion(c.primitives[0], c.primitives[1], state);
-      still.start = still.end;
-      return !(c.vertexFace ? vertexFaceCcd(still, zoneCcd) : edgeEdgeCcd(still, zoneCcd)).contact;
+      return nearest - stray[0] - stray[1] > (1 + 1e-9) * zoneCcd.minimumSeparation;
     });
   }
   std::set<int> zoneRoots;
