@@ -104,6 +104,15 @@ struct Primitives {
     return p.kind == Kind::StemNode && q.kind == Kind::BodyTriangle;
   }
 
+  // Whether the pair holds a stem's first segment, its calamus: the impulses keep calami off
+  // other stems, but the zones and the final check leave them out. Its root is fixed to the
+  // skin, and where the body's bend drives a calamus against a stem lying over it, a zone can
+  // move neither of them away.
+  bool holdsCalamus(int a, int b) const {
+    return (list[a].kind == Kind::StemEdge && list[a].segment == 0) ||
+           (list[b].kind == Kind::StemEdge && list[b].segment == 0);
+  }
+
   // The boxes of every primitive over the step (from `start` to `end`), grown by `margin`.
   std::vector<Box> boxes(const StepState& state, double margin) const {
     std::vector<Box> out;
@@ -366,8 +375,8 @@ std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyM
     const Item &p = items[a], &q = items[b];
     if (p.triangle >= 0) return false;  // triangles come last: a triangle pairs only as q
     if (q.triangle >= 0) return p.segment > 0;
-    return (p.stem != q.stem && (p.segment > 0 || q.segment > 0)) ||
-           (p.stem == q.stem && std::abs(p.segment - q.segment) > 1);
+    return p.segment > 0 && q.segment > 0 &&
+           (p.stem != q.stem || std::abs(p.segment - q.segment) > 1);
   });
   for (const auto& [a, b] : pairs) {
     const Item &p = items[a], &q = items[b];
@@ -556,10 +565,12 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   CcdOptions ccd, zoneCcd;
   ccd.minimumSeparation = parameters_.minimumSeparation;
   zoneCcd.minimumSeparation = nearestAllowed();
-  auto findContacts = [&](const CcdOptions& options) {
+  auto findContacts = [&](const CcdOptions& options, bool calami) {
     std::vector<Contact> contacts;
-    const auto pairs = overlappingPairs(primitives.boxes(state, options.minimumSeparation), groups,
-                                        [&](int a, int b) { return primitives.wanted(a, b); });
+    const auto pairs = overlappingPairs(
+        primitives.boxes(state, options.minimumSeparation), groups, [&](int a, int b) {
+          return primitives.wanted(a, b) && (calami || !primitives.holdsCalamus(a, b));
+        });
     counters_.candidates += pairs.size();
     for (const auto& [a, b] : pairs) {
       const MovingPrimitives m = primitives.motion(a, b, state);
@@ -591,14 +602,19 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     std::snprintf(where, sizeof where, " near (%.4g, %.4g, %.4g)", at.x(), at.y(), at.z());
     return what + where;
   };
-  std::vector<Contact> contacts = findContacts(ccd);
+  std::vector<Contact> contacts = findContacts(ccd, true);
   for (int pass = 0; pass < parameters_.impulsePasses && !contacts.empty(); ++pass) {
     for (const Contact& c : contacts)
       counters_.impulses += applyImpulse(c, contactNormal(c, state), opening, state);
-    contacts = findContacts(ccd);
+    contacts = findContacts(ccd, true);
   }
-  // What the impulses leave within the separation but clear of the zones' stays as it is.
+  // What the impulses leave within the separation but clear of the zones' stays as it is, and
+  // so does what they leave of a calamus.
   std::erase_if(contacts, [&](const Contact& c) {
+    if (primitives.holdsCalamus(c.primitives[0], c.primitives[1])) {
+      ++counters_.calamiLeft;
+      return true;
+    }
     const MovingPrimitives m = primitives.motion(c.primitives[0], c.primitives[1], state);
     const bool near = (c.vertexFace ? vertexFaceCcd(m, zoneCcd) : edgeEdgeCcd(m, zoneCcd)).contact;
     counters_.keptNear += !near;
@@ -632,7 +648,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       ZoneMotion& m = zoneMaps[root] = moveRigidly(members, state);
       m.shift += liftOffKinematic(members, zoneContacts[root], opening, thickness, state);
     }
-    contacts = findContacts(zoneCcd);
+    contacts = findContacts(zoneCcd, false);
     // The zone's map shortens no distance, so a pair within one zone is never nearer than at the
     // start of the step (when it was clear) less how far its kinematic vertices stray from that
     // map (each side's share of the gap at most its largest stray). A pair that stays clear so

@@ -1,6 +1,6 @@
 // The feather-coat step: a feather comes to rest on a surface without passing through it, two
 // stems driven into each other at high speed never cross, the same seed gives the same frames,
-// and the final check finds planted intersections.
+// and the final check finds planted intersections (a calamus left out).
 #include "hirsute/hairs/dynamics/feather_coat_simulation.h"
 
 #include <gtest/gtest.h>
@@ -320,6 +320,12 @@ TEST(FeatherCoatSimulation, TheFinalCheckFindsPlantedIntersections) {
     const FeatherStem b =
         straightStem({0, -0.5, 0.5 + offset}, Vector3d::UnitY(), 5, 0.2, parameters);
     EXPECT_EQ(countPenetrations({a, b}, {}, 0.001), expected) << "offset " << offset;
+  }
+  // A stem through another's calamus (its first segment, from x = -0.5 to -0.3) is left out;
+  // through the next segment it counts.
+  for (const auto& [x, expected] : {std::pair{-0.4, 0u}, std::pair{-0.2, 1u}}) {
+    const FeatherStem b = straightStem({x, -0.5, 0.5}, Vector3d::UnitY(), 5, 0.2, parameters);
+    EXPECT_EQ(countPenetrations({a, b}, {}, 0.001), expected) << "at x = " << x;
   }
   // A stem folded back onto itself crosses its own segments.
   FeatherStem folded = straightStem({0, 0, 1}, Vector3d::UnitX(), 4, 0.1, parameters);

@@ -74,8 +74,9 @@ struct SimulationCounters {
   std::uint64_t impactZones = 0;   // rigid impact zones formed
   std::uint64_t retries = 0;       // steps thrown away and retried as two halves
   std::uint64_t penetrations = 0;  // intersections found by the final check (then retried)
-  std::uint64_t keptNear = 0;      // pairs of a zone left nearer than the separation, but clear
-                                   // of half of it over the step
+  std::uint64_t keptNear = 0;      // pairs the impulses left within the separation, but clear
+                                   // of the zones' over the step
+  std::uint64_t calamiLeft = 0;    // pairs with a calamus the impulses left within the separation
 };
 
 // A step that could not be resolved even at the smallest time step: the state is left as it
@@ -86,9 +87,10 @@ struct StepFailure : std::runtime_error {
 
 // Which primitives of a state intersect: stem segments through body triangles (exact), and stem
 // segments that meet or come nearer than `minimumDistance` to each other (segments of one stem
-// that share a node excepted). A stem's first segment, whose root lies on the body, is not
-// tested against the body, nor against another stem's first segment: the body places the roots,
-// and where it brings two of them together the simulation cannot keep their calami apart.
+// that share a node excepted). A stem's first segment, its calamus, whose root lies on the body,
+// is not tested: the body places the roots, and where its bend drives a calamus against another
+// stem (or two roots together) the simulation cannot keep them apart; the impulses keep calami
+// off other stems where they can (`SimulationCounters::calamiLeft` counts where they did not).
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
                               double minimumDistance);
 
