@@ -98,16 +98,18 @@ class ViewCommandTest : public ::testing::Test {
   // keeps standard output and error.
   int view(const std::string& arguments, const std::string& script) {
     fs::path out = folder_ / "stdout.txt", err = folder_ / "stderr.txt";
-    std::string command = "cd " + (folder_ / "out").string() +
-                          " && xvfb-run -a -s '-screen 0 1024x768x24' " + HIRSUTE_BINARY +
-                          " view " + arguments + " --size " + std::to_string(kWidth) + "x" +
-                          std::to_string(kHeight) + " --commands '" + script + "' >" +
-                          out.string() + " 2>" + err.string();
+    std::string command = "cd " + (folder_ / "out").string() + " && xvfb-run -a -f " +
+                          (folder_ / "Xauthority").string() + " -s '-screen 0 1024x768x24' " +
+                          HIRSUTE_BINARY + " view " + arguments + " --size " +
+                          std::to_string(kWidth) + "x" + std::to_string(kHeight) + " --commands '" +
+                          script + "' >" + out.string() + " 2>" + err.string();
     int status = 0;
     // Another xvfb-run started at the same moment (another program's tests) may take the display
     // number this one chose; the server then fails to start, and trying again is safe. So is a
     // run whose LeakSanitizer tracer crashed while stopping Mesa's threads at exit (a failure of
-    // the sanitizer, not a leak, which reads "detected memory leaks").
+    // the sanitizer, not a leak, which reads "detected memory leaks"). The authority file is the
+    // test's own: without -f, xvfb-run keeps it in a temporary folder of its own, and when it
+    // cannot remove that folder after the run it exits with 5, losing the viewer's status.
     for (int attempt = 0; attempt < 3; ++attempt) {
       status = std::system(command.c_str());
       stdout_ = readText(out);
