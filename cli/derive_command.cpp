@@ -32,6 +32,7 @@ struct DeriveOptions {
   int environmentTimeout = 60;
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
+  int threads = 0;
 };
 
 int runDerive(const DeriveOptions& o) {
@@ -49,6 +50,7 @@ int runDerive(const DeriveOptions& o) {
     DerivationOptions options;
     options.steps = o.steps;
     options.maxModules = o.maxModules;
+    options.threads = o.threads;
     options.progress = &progress;
     // ?P ?H ?L ?U take the turtle's values before every step (cpfg manual §6.9), so a model
     // with queries needs its view file's turtle settings; colours play no part in them. The
@@ -153,6 +155,7 @@ void registerDeriveCommand(CLI::App& app, Action& action) {
                      "A longer string is an error (default 100000000)");
   derive->add_option("--max-loop-iterations", options->maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
+  addThreadsOption(*derive, options->threads);
   derive->callback([options, &action] { action = [options] { return runDerive(*options); }; });
 }
 

@@ -41,6 +41,7 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   command.add_option("--max-modules", o.maxModules, "A longer string is an error (default 100000000)");
   command.add_option("--max-loop-iterations", o.maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
+  addThreadsOption(command, o.threads);
   command.add_option("--max-vertices", o.maxVertices,
                      "More vertices in the geometry are an error (default 100000000)");
   command.add_flag("!--no-hairs", o.hairs, "Leave out the plant hairs (@H modules)");
@@ -69,6 +70,14 @@ void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external,
   command.add_option("--environment-timeout", timeout,
                      "Seconds an external environmental program may take to answer (default 60)")
       ->check(CLI::Range(1, 86400));
+}
+
+void addThreadsOption(CLI::App& command, int& threads) {
+  command
+      .add_option("--threads", threads,
+                  "Threads that rewrite the parts of a long derivation step when its productions "
+                  "allow it (default 0: one a processor core; 1: one thread)")
+      ->check(CLI::Range(0, 64));
 }
 
 ColorFiles colorFilesFor(const ModelOptions& o, Diagnostics& diagnostics) {
@@ -110,6 +119,7 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   DerivationOptions options;
   options.steps = o.steps;
   options.maxModules = o.maxModules;
+  options.threads = o.threads;
   options.progress = o.terminalProgress;
   diagnostics.setProgress(o.terminalProgress);
   Derivation derivation(built.model.program, evaluator, diagnostics, options);

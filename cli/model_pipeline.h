@@ -28,6 +28,7 @@ struct ModelOptions {
   int environmentTimeout = 60;           // seconds an external program may take per batch
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
+  int threads = 0;  // --threads: of the derivation (0: one a core)
   std::size_t maxVertices = kDefaultMaxVertices;
   bool hairs = true;                     // --no-hairs leaves them out
   std::uint64_t hairSeed = 0;            // 0: the view file's `hair texture:` seed
@@ -56,6 +57,8 @@ struct ModelOptions {
 void addModelOptions(CLI::App& command, ModelOptions& options);
 // Adds -e, --external-environment and --environment-timeout (derive has them too).
 void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external, int& timeout);
+// Adds --threads, the derivation's threads (derive has it too).
+void addThreadsOption(CLI::App& command, int& threads);
 
 struct BuiltScene {
   Model model;

@@ -3,9 +3,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <exception>
+#include <system_error>
+#include <thread>
 
+#include "hirsute/lsys/parallel_rewriting.h"
 #include "hirsute/lsys/string_writer.h"
 
 namespace hirsute {
@@ -141,16 +146,29 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
       break;
     }
   }
+  modulesIndependent_ = rewritesModulesIndependently(program_);
+  for (const Production& p : main.productions.productions) anyContext_ |= p.hasContext();
+  threads_ = options_.threads > 0 ? options_.threads
+                                  : static_cast<int>(std::thread::hardware_concurrency());
+  threads_ = std::clamp(threads_, 1, 64);
 }
+
+struct Derivation::Helper {
+  Diagnostics diagnostics;
+  std::unique_ptr<Evaluator> evaluator;
+  std::unique_ptr<Derivation> derivation;
+};
+
+Derivation::~Derivation() = default;
 
 // The copying part of the rewriting loop: from `pos`, modules no production can rewrite (and
 // those whose left neighbour refuses every production) join the run [runFrom, pos), and a
 // module with a plain successor is replaced on the spot; it stops at the first module choose()
 // must decide, or at the end.
-void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t& position,
-                         std::size_t& runStart, std::size_t& runModules) {
+void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to,
+                         std::size_t& position, std::size_t& runStart, std::size_t& runModules) {
   const std::uint8_t* const bytes = s.bytes();
-  const std::size_t end = s.end();
+  const std::size_t end = to;
   const std::array<bool, 128>& copied = isCopiedAsIs_.front();
   const bool tracking = leftNeighbours_.enabled;
   if (tracking) leftNeighbours_.before(s, l, position);  // over the modules a production consumed
@@ -342,8 +360,9 @@ const BranchIndex& Derivation::branchesOf(const ModuleString& s) const {
 }
 
 std::size_t Derivation::afterBranch(const ModuleString& s, std::size_t at) const {
-  if (&s == &current_ && branchesOf(s).usable()) {
-    const std::size_t close = branches_.partner(at);
+  const Derivation& owner = helped_ ? *helped_ : *this;
+  if (&s == &owner.current_ && owner.branchesOf(s).usable()) {
+    const std::size_t close = owner.branches_.partner(at);
     return close == BranchIndex::kNone ? s.end() : s.next(close);
   }
   const std::size_t close = branchEnd(s, s.next(at));
@@ -351,7 +370,8 @@ std::size_t Derivation::afterBranch(const ModuleString& s, std::size_t at) const
 }
 
 std::size_t Derivation::branchOpening(const ModuleString& s, std::size_t at) const {
-  if (&s == &current_ && branchesOf(s).usable()) return branches_.partner(at);
+  const Derivation& owner = helped_ ? *helped_ : *this;
+  if (&s == &owner.current_ && owner.branchesOf(s).usable()) return owner.branches_.partner(at);
   int depth = 0;
   for (std::size_t r = at;; r = s.previous(r)) {
     const char d = s.at(r).symbol();
@@ -684,15 +704,133 @@ bool Derivation::applyAt(int set, int lsystem, const ModuleString& s, std::size_
 }
 
 void Derivation::rewriteStep() {
+  streamed_ = 0;
+  const auto started = std::chrono::steady_clock::now();
+  const std::size_t modules = current_.moduleCount();
+  const std::size_t parts = rewriteInParts();
+  if (parts > 0) {
+    ++stepsInParts_;
+  } else {
+    rewriteRange(current_, 0, current_.end());
+  }
+  // A short string's step is mostly the step's own fixed costs: it tells nothing.
+  if (modules < std::max<std::size_t>(options_.parallelMinimumModules, 1)) return;
+  const double cost =
+      std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - started).count() /
+      static_cast<double>(modules);
+  if (parts == 0) {
+    sequentialCost_ = stepCost_ = cost;
+    remeasure_ = false;
+    return;
+  }
+  // What the step would have cost one thread, about: the next step is judged by it.
+  stepCost_ = cost * static_cast<double>(parts);
+  if (cost > 0.9 * sequentialCost_) {
+    // The parts took as long a module as one thread did (their memory grows page by page and
+    // they are copied together): the next step is measured on one thread, and after three such
+    // steps in a row the derivation stays on one.
+    remeasure_ = true;
+    if (++splitsUnpaid_ >= 3) splittingPays_ = false;
+  } else {
+    splitsUnpaid_ = 0;
+  }
+}
+
+std::size_t Derivation::rewriteInParts() {
+  if (!modulesIndependent_ || threads_ < 2 || stream_ != nullptr ||
+      current_.moduleCount() < std::max<std::size_t>(options_.parallelMinimumModules, 1)) {
+    return 0;
+  }
+  if (options_.parallelMinimumCost > 0 &&
+      (!splittingPays_ || remeasure_ || stepCost_ < options_.parallelMinimumCost)) {
+    return 0;
+  }
+  const std::size_t parts = std::min(static_cast<std::size_t>(threads_), current_.moduleCount());
+  // The parts' boundaries: module starts about equally far apart in bytes.
+  std::vector<std::size_t> bounds{0};
+  for (std::size_t k = 1, pos = 0; k < parts; ++k) {
+    const std::size_t target = current_.end() / parts * k;
+    while (pos < target) pos = current_.next(pos);
+    if (pos > bounds.back() && pos < current_.end()) bounds.push_back(pos);
+  }
+  bounds.push_back(current_.end());
+  const std::size_t used = bounds.size() - 1;
+  while (helpers_.size() < used) {
+    auto helper = std::make_unique<Helper>();
+    helper->evaluator = evaluator_.fork(helper->diagnostics);
+    DerivationOptions options = options_;
+    options.threads = 1;
+    options.progress = nullptr;
+    helper->derivation =
+        std::make_unique<Derivation>(program_, *helper->evaluator, helper->diagnostics, options);
+    helper->derivation->helped_ = this;
+    helpers_.push_back(std::move(helper));
+  }
+  // Contexts search the string's branches through its index: built here, read by every part.
+  if (anyContext_) branchesOf(current_);
+  std::vector<std::exception_ptr> errors(used);
+  std::vector<std::size_t> warningsBefore(used);
+  for (std::size_t k = 0; k < used; ++k) {
+    Helper& helper = *helpers_[k];
+    helper.evaluator->readVariablesOf(evaluator_);
+    helper.derivation->stepsDone_ = stepsDone_;
+    helper.derivation->next_.clear();
+    warningsBefore[k] = helper.diagnostics.warnings().size() + helper.diagnostics.suppressed();
+  }
+  const auto rewritePart = [&](std::size_t k) {
+    try {
+      helpers_[k]->derivation->rewriteRange(current_, bounds[k], bounds[k + 1]);
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  };
+  {
+    std::vector<std::jthread> threads;
+    for (std::size_t k = 1; k < used; ++k) {
+      try {
+        threads.emplace_back(rewritePart, k);
+      } catch (const std::system_error&) {
+        rewritePart(k);  // no thread to be had: this one does the part
+      }
+    }
+    rewritePart(0);
+  }
+  bool whole = true;
+  std::size_t modules = 0;
+  for (std::size_t k = 0; k < used; ++k) {
+    const Helper& helper = *helpers_[k];
+    whole =
+        whole && !errors[k] &&
+        helper.diagnostics.warnings().size() + helper.diagnostics.suppressed() == warningsBefore[k];
+    modules += helper.derivation->next_.moduleCount();
+  }
+  whole = whole && modules <= options_.maxModules;
+  next_.clear();
+  if (whole) {
+    try {
+      next_.swap(helpers_[0]->derivation->next_);
+      for (std::size_t k = 1; k < used; ++k) {
+        const ModuleString& part = helpers_[k]->derivation->next_;
+        next_.appendRange(part, part.begin(), part.end(), part.moduleCount());
+      }
+    } catch (const ModuleStringTooLarge&) {
+      whole = false;
+      next_.clear();
+    }
+  }
+  // The parts' strings go: the next step's may be of another size.
+  for (std::size_t k = 0; k < used; ++k) helpers_[k]->derivation->next_.release();
+  return whole ? used : 0;
+}
+
+void Derivation::rewriteRange(const ModuleString& s, std::size_t from, std::size_t to) {
   subLsystems_.assign(1, 0);
   leftNeighbours_.reset(program_);
-  streamed_ = 0;
   const bool nested = program_.lsystems.size() > 1;
-  const ModuleString& s = current_;
-  std::size_t pos = 0;
+  std::size_t pos = from;
   // Modules that stay as they are accumulate into one run [runFrom, pos), appended in one piece
   // when a production applies, a cut skips, or the string ends.
-  std::size_t runFrom = 0;
+  std::size_t runFrom = from;
   std::size_t runCount = 0;
   const auto appendRun = [&] {
     if (runCount == 0) return;
@@ -704,27 +842,27 @@ void Derivation::rewriteStep() {
   Progress* const progress = options_.progress;
   const double stepUnderWay = stepsDone_ + 1;
   try {
-    while (pos < s.end()) {
+    while (pos < to) {
       if (progress) progress->tick(stepUnderWay);
       int lsystem = subLsystems_.back();
       const Lsystem& l = program_.lsystems[static_cast<std::size_t>(lsystem)];
       if (fusedScan_) {
-        scanRun(s, l, pos, runFrom, runCount);
-        if (pos >= s.end()) break;
+        scanRun(s, l, to, pos, runFrom, runCount);
+        if (pos >= to) break;
       } else if (!l.stochastic) {
         // A run of modules that no production can rewrite is copied in one piece; in the main
         // L-system, so are modules whose left neighbour no production's context ends with.
-        std::size_t from = pos, count = 0;
+        std::size_t first = pos, count = 0;
         const std::array<bool, 128>& copied = isCopiedAsIs_[static_cast<std::size_t>(lsystem)];
         const bool refusals = leftNeighbours_.enabled;
-        while (pos < s.end() && (copied[static_cast<unsigned char>(s.at(pos).symbol())] ||
-                                 (refusals && leftRefuses(s, l, pos)))) {
+        while (pos < to && (copied[static_cast<unsigned char>(s.at(pos).symbol())] ||
+                            (refusals && leftRefuses(s, l, pos)))) {
           pos = s.next(pos);
           ++count;
         }
         if (count) {
           // The string's length is checked as each module goes out, as if it were appended.
-          if (runCount == 0) runFrom = from;
+          if (runCount == 0) runFrom = first;
           runCount += count;
           if (next_.moduleCount() + streamed_ + runCount > options_.maxModules) {
             appendRun();
@@ -732,7 +870,7 @@ void Derivation::rewriteStep() {
           }
           continue;
         }
-        if (pos >= s.end()) break;
+        if (pos >= to) break;
       }
       const std::size_t at = pos;
       ModuleRef m = s.at(at);

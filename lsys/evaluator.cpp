@@ -62,9 +62,25 @@ Evaluator::Evaluator(const Program& program, Diagnostics& diagnostics, const Vie
   for (const ArrayDefinition& def : program.arrays) {
     std::size_t cells = 1;
     for (int d : def.dimensions) cells *= static_cast<std::size_t>(d);
-    arrays_.emplace_back(cells, 0.0);
+    ownArrays_.emplace_back(cells, 0.0);
   }
 }
+
+std::unique_ptr<Evaluator> Evaluator::fork(Diagnostics& diagnostics) const {
+  // Not make_unique: the constructor that allocates no arrays is private.
+  return std::unique_ptr<Evaluator>(new Evaluator(*this, diagnostics));
+}
+
+Evaluator::Evaluator(const Evaluator& parent, Diagnostics& diagnostics)
+    : program_(parent.program_),
+      diagnostics_(diagnostics),
+      functions_(parent.functions_),
+      modelFolder_(parent.modelFolder_),
+      printOut_(parent.printOut_),
+      limits_(parent.limits_),
+      shared_(parent.shared_),
+      arrays_(parent.arrays_),
+      stack_(parent.stack_.size(), 0.0) {}
 
 Evaluator::~Evaluator() {
   for (std::FILE* f : files_) {
@@ -253,7 +269,7 @@ done:
 double* Evaluator::loadElement(const Instruction& in, double* top) {
   top -= in.count;
   std::size_t i = elementIndex(in.operand, top, in.count, in.where);
-  *top++ = arrays_[static_cast<std::size_t>(in.operand)][i];
+  *top++ = (*arrays_)[static_cast<std::size_t>(in.operand)][i];
   return top;
 }
 
@@ -261,7 +277,7 @@ double* Evaluator::storeElement(const Instruction& in, double* top) {
   double value = *--top;
   top -= in.count;
   std::size_t i = elementIndex(in.operand, top, in.count, in.where);
-  arrays_[static_cast<std::size_t>(in.operand)][i] = value;
+  (*arrays_)[static_cast<std::size_t>(in.operand)][i] = value;
   return top;
 }
 

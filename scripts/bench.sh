@@ -45,8 +45,8 @@ cpfg_reference() {
 runs="${RUNS:-5}"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
-printf '%-11s %8s %6s %9s %10s %13s %14s %8s %8s %5s\n' "model" "whole s" "cpu s" "peak MiB" \
-  "text bytes" "cpfg s (ref)" "cpfg MiB (ref)" "speed" "memory" "goal"
+printf '%-11s %8s %6s %10s %9s %10s %13s %14s %8s %8s %5s\n' "model" "whole s" "cpu s" \
+  "1 thread s" "peak MiB" "text bytes" "cpfg s (ref)" "cpfg MiB (ref)" "speed" "memory" "goal"
 for model in models/bench/*.l; do
   name="$(basename "$model" .l)"
   # The interpretation and feather benchmarks' models, not derivation kinds.
@@ -55,6 +55,7 @@ for model in models/bench/*.l; do
   [[ -f "${model%.l}.v" ]] && view=("${model%.l}.v")
   best=""
   cpu=""
+  single=""
   peak=0
   for ((run = 0; run < runs; ++run)); do
     /usr/bin/time -f '%e %U %S %M' -o "$out/time" "$program" derive "$model" "${view[@]}" \
@@ -68,6 +69,14 @@ for model in models/bench/*.l; do
       cpu="$used"
     fi
     ((kib > peak)) && peak="$kib"
+    # The same on one thread (--threads 1): what the parts of long steps win.
+    /usr/bin/time -f '%e %U %S %M' -o "$out/time" "$program" derive "$model" "${view[@]}" \
+      -o "$out/$name.str" --threads 1
+    read -r seconds user system kib <"$out/time"
+    if [[ -z "$single" ]] || awk -v a="$seconds" -v b="$single" 'BEGIN { exit !(a < b) }'; then
+      single="$seconds"
+    fi
+    ((kib > peak)) && peak="$kib"
   done
   mib="$(awk -v k="$peak" 'BEGIN { printf "%.1f", k / 1024 }')"
   read -r cpfg_s cpfg_mib <<<"$(cpfg_reference "$name")"
@@ -78,11 +87,12 @@ for model in models/bench/*.l; do
   else
     cpfg_s="-" cpfg_mib="-" speed="-" memory="-" goal="-"
   fi
-  printf '%-11s %8s %6s %9s %10s %13s %14s %8s %8s %5s\n' "$name" "$best" "$cpu" "$mib" \
+  printf '%-11s %8s %6s %10s %9s %10s %13s %14s %8s %8s %5s\n' "$name" "$best" "$cpu" "$single" "$mib" \
     "$(stat -c %s "$out/$name.str")" "$cpfg_s" "$cpfg_mib" "$speed" "$memory" "$goal"
   unset cpfg_s cpfg_mib
 done
-echo "(whole process, best of $runs: wall time, and the CPU time (user + system) of hirsute and its cpp;"
+echo "(whole process, best of $runs: wall time with a thread a core ($(nproc) here), and the CPU time"
+echo " (user + system) of hirsute and its cpp; the wall time with --threads 1 beside;"
 echo " peak resident size the largest of the runs, GNU time's %M,"
 echo " which counts the preprocessor cpp that hirsute runs as cpfg does; cpfg columns: issue 10's"
 echo " measurement of cpfg, not run here; speed = cpfg s / ours, memory = ours / cpfg's;"

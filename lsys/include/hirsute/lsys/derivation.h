@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <unordered_set>
 #include <vector>
@@ -30,12 +31,27 @@ struct DerivationOptions {
   std::size_t maxModules = 100'000'000;  // a longer string is an error
   std::size_t maxStringBytes = 0;        // 0: a share of the machine's memory
   Progress* progress = nullptr;          // shows `deriving: step k/n` (null: nothing)
+  // Threads that rewrite the parts of a long step at once, when the program's productions
+  // rewrite every module independently (parallel_rewriting.h); 0: one a processor core, 1: the
+  // step on the calling thread alone. The string, warnings and errors are those of one thread.
+  int threads = 0;
+  // A step is split when its string has at least parallelMinimumModules modules and the last
+  // step of such a string took at least parallelMinimumCost nanoseconds of one thread's time a
+  // module: a step that mostly copies modules gains nothing from threads and spends memory on the
+  // parts. Steps in parts that take as long a module as one thread did make the next step run
+  // alone, to measure it again, and after three in a row every step. Tests set both to 0 to split
+  // every step that may be.
+  std::size_t parallelMinimumModules = 16384;
+  double parallelMinimumCost = 150;
 };
 
 class Derivation {
  public:
   Derivation(const Program& program, Evaluator& evaluator, Diagnostics& diagnostics,
              DerivationOptions options = {});
+  ~Derivation();
+  Derivation(const Derivation&) = delete;
+  Derivation& operator=(const Derivation&) = delete;
 
   // Runs define:, Start: and builds the axiom. Called once before the first step.
   void start();
@@ -72,6 +88,8 @@ class Derivation {
 
   const Program& program() const { return program_; }
   int stepsDone() const { return stepsDone_; }
+  // Steps whose string was rewritten in parts on several threads (DerivationOptions::threads).
+  int stepsRewrittenInParts() const { return stepsInParts_; }
   int totalSteps() const { return totalSteps_; }
   const ModuleString& string() const { return current_; }
 
@@ -113,6 +131,29 @@ class Derivation {
   // Finds the production to apply at `at`, running pre-condition blocks and conditions.
   bool choose(int lsystem, int set, const ModuleString& s, std::size_t at, Match& match);
   void rewriteStep();
+  // Rewrites the modules of `s` from byte `from` up to byte `to` (module starts) into next_.
+  void rewriteRange(const ModuleString& s, std::size_t from, std::size_t to);
+  // Rewrites the step's string in parts on several threads, each part by a helper derivation
+  // of its own (its own evaluator, frames and output), and returns the number of parts; 0, with
+  // nothing changed, when the step is not to be split or a part met a warning or an error (the
+  // step is then rewritten on this thread, which warns and fails in order).
+  std::size_t rewriteInParts();
+  struct Helper;
+  std::vector<std::unique_ptr<Helper>> helpers_;
+  bool modulesIndependent_ = false;  // rewritesModulesIndependently(program_)
+  bool anyContext_ = false;          // a production has a left or right context
+  int threads_ = 1;
+  int stepsInParts_ = 0;
+  // Nanoseconds of rewriting a module: in the last step with a string of parallelMinimumModules
+  // at least (for a step in parts, its time times the parts), and in the last such step on one
+  // thread (-1: none yet).
+  double stepCost_ = -1;
+  double sequentialCost_ = -1;
+  bool remeasure_ = false;  // the last step in parts did not pay: the next is measured alone
+  int splitsUnpaid_ = 0;    // steps in parts in a row that did not pay
+  bool splittingPays_ = true;
+  // A helper searches the branches of the derivation it helps (its string and index).
+  const Derivation* helped_ = nullptr;
   void appendValues(const Production& p, const double* values, ModuleString& out);
   ModuleString& levelBuffer(int level);
   bool ruleContextsMatch(const Production& p, const Lsystem& l, const ModuleString& s,
@@ -205,8 +246,8 @@ class Derivation {
   // a successor without computed values): such a module is replaced by that production's
   // successor bytes without choose(). The index is into the production set, -1 for none.
   std::array<int, 128> plainSuccessor_{};
-  void scanRun(const ModuleString& s, const Lsystem& l, std::size_t& pos, std::size_t& runFrom,
-               std::size_t& runCount);
+  void scanRun(const ModuleString& s, const Lsystem& l, std::size_t to, std::size_t& pos,
+               std::size_t& runFrom, std::size_t& runCount);
   std::size_t ruleOutput_ = 0;  // modules decomposition or homomorphism produced in this pass
 };
 

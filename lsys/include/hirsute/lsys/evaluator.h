@@ -42,6 +42,18 @@ class Evaluator {
     return condition.empty() || run(condition, frame) != 0;
   }
 
+  // An evaluator of the same program, functions and limits for another thread, warning into
+  // `diagnostics`, reading the variables of readVariablesOf(). Only for code that writes no
+  // global variable or array and opens, prints and draws nothing (parallel_rewriting.h): it
+  // has no arrays of its own, and no files or random stream.
+  std::unique_ptr<Evaluator> fork(Diagnostics& diagnostics) const;
+  // Takes the global and L-system variables of `other` as they are now, and reads its arrays
+  // where they are, while `other` changes none of them.
+  void readVariablesOf(const Evaluator& other) {
+    shared_ = other.shared_;
+    arrays_ = other.arrays_;
+  }
+
   std::vector<double>& shared() { return shared_; }
   BlockRandom& random() { return *random_; }
   // Swaps in another random stream (the homomorphism's own, when it has a seed).
@@ -52,6 +64,7 @@ class Evaluator {
   const SourceLocation& location(std::uint32_t where) const { return program_.locations[where]; }
 
  private:
+  Evaluator(const Evaluator& parent, Diagnostics& diagnostics);  // fork()
   double call(Builtin id, const double* args, int count, std::uint32_t where);
   // Out of run()'s loop, so that its common cases keep their pointers in registers.
   [[gnu::noinline]] double* loadElement(const Instruction& in, double* top);
@@ -72,7 +85,8 @@ class Evaluator {
   std::ostream& printOut_;
   EvaluationLimits limits_;
   std::vector<double> shared_;
-  std::vector<std::vector<double>> arrays_;
+  std::vector<std::vector<double>> ownArrays_;
+  std::vector<std::vector<double>>* arrays_ = &ownArrays_;  // another's, in a fork
   std::vector<double> stack_;
   BlockRandom ownRandom_;
   BlockRandom* random_ = &ownRandom_;
