@@ -279,7 +279,7 @@ int runSimulate(SimulateOptions o) {
   // What each frame's steps did, committed with the last frame.
   std::string table =
       "frame,time,steps,substeps,retries,candidates,contacts,impulses,repulsions,"
-      "impact_zones,penetrations,kept_near,calami_left,seconds\n";
+      "impact_zones,penetrations,kept_near,calami_left,calami_crossed,seconds\n";
   const auto writeTable = [&]() -> int {
     try {
       OutputTarget csv(fs::path(o.output) / "simulation.csv");
@@ -346,13 +346,15 @@ int runSimulate(SimulateOptions o) {
       }
     }
     const dynamics::SimulationCounters& c = motion->simulation().counters();
-    table += fmt::format(
-        "{},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{:.4f}\n", frame, motion->simulation().time(),
-        c.steps - before.steps, c.substeps - before.substeps, c.retries - before.retries,
-        c.candidates - before.candidates, c.contacts - before.contacts,
-        c.impulses - before.impulses, c.repulsions - before.repulsions,
-        c.impactZones - before.impactZones, c.penetrations - before.penetrations,
-        c.keptNear - before.keptNear, c.calamiLeft - before.calamiLeft, std::chrono::duration<double>(Clock::now() - frameStarted).count());
+    table += fmt::format("{},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f}\n", frame,
+                         motion->simulation().time(), c.steps - before.steps,
+                         c.substeps - before.substeps, c.retries - before.retries,
+                         c.candidates - before.candidates, c.contacts - before.contacts,
+                         c.impulses - before.impulses, c.repulsions - before.repulsions,
+                         c.impactZones - before.impactZones, c.penetrations - before.penetrations,
+                         c.keptNear - before.keptNear, c.calamiLeft - before.calamiLeft,
+                         c.calamiCrossed - before.calamiCrossed,
+                         std::chrono::duration<double>(Clock::now() - frameStarted).count());
     before = c;
   }
   if (const int failed = writeTable(); failed != 0) return failed;

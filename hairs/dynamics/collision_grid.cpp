@@ -43,22 +43,35 @@ std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
 std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
                                                   const std::vector<char>& moving,
                                                   const std::function<bool(int, int)>& wanted) {
-  BoxGroups groups;
-  for (char m : moving) groups.of.push_back(m ? 0 : 1);
-  groups.pairsWith = {0b11, 0b01};
-  groups.moving = 1;
-  return overlappingPairs(boxes, groups, wanted);
+  return CollisionGrid().overlappingPairs(boxes, moving, wanted);
 }
 
 std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
                                                   const BoxGroups& groups,
                                                   const std::function<bool(int, int)>& wanted) {
+  return CollisionGrid().overlappingPairs(boxes, groups, wanted);
+}
+
+std::vector<std::pair<int, int>> CollisionGrid::overlappingPairs(
+    const std::vector<Box>& boxes, const std::vector<char>& moving,
+    const std::function<bool(int, int)>& wanted) {
+  twoGroups_.of.clear();
+  for (char m : moving) twoGroups_.of.push_back(m ? 0 : 1);
+  twoGroups_.pairsWith = {0b11, 0b01};
+  twoGroups_.moving = 1;
+  return overlappingPairs(boxes, twoGroups_, wanted);
+}
+
+std::vector<std::pair<int, int>> CollisionGrid::overlappingPairs(
+    const std::vector<Box>& boxes, const BoxGroups& groups,
+    const std::function<bool(int, int)>& wanted) {
   std::vector<std::pair<int, int>> pairs;
   const auto moves = [&](int i) { return (groups.moving >> groups.of[i]) & 1; };
   const auto pairsWith = [&](int a, int b) {
     return (groups.pairsWith[groups.of[a]] >> groups.of[b]) & 1;
   };
-  std::vector<double> extents;
+  std::vector<double>& extents = extents_;
+  extents.clear();
   for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
     if (moves(i) && groups.pairsWith[groups.of[i]])
       extents.push_back((boxes[i].max - boxes[i].min).maxCoeff());
@@ -87,11 +100,10 @@ std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
 
   // Only the moving boxes go into the grid: an open-addressing table from cell keys to runs of
   // box numbers (counted in one pass, filled in a second, so each run is in box order).
-  struct Slot {
-    std::uint64_t key = 0;
-    std::uint32_t count = 0, first = 0;
-  };
-  std::vector<int> inserted, huge;
+  std::vector<int>& inserted = inserted_;
+  std::vector<int>& huge = huge_;
+  inserted.clear();
+  huge.clear();
   std::size_t cellVisits = 0;
   for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
     if (!moves(i) || !groups.pairsWith[groups.of[i]]) continue;
@@ -106,7 +118,8 @@ std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
   std::size_t capacity = 16;
   while (capacity < 2 * cellVisits) capacity *= 2;
   const std::size_t mask = capacity - 1;
-  std::vector<Slot> table(capacity);
+  std::vector<Slot>& table = table_;
+  table.assign(capacity, Slot{});
   const auto home = [&](std::uint64_t key) {
     return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
   };
@@ -129,8 +142,10 @@ std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
     slot.first = total;
     total += slot.count;
   }
-  std::vector<int> members(total);
-  std::vector<std::uint32_t> filled(capacity, 0);
+  std::vector<int>& members = members_;
+  members.resize(total);
+  std::vector<std::uint32_t>& filled = filled_;
+  filled.assign(capacity, 0);
   for (int i : inserted) {
     Eigen::Array3d lo, hi;
     coveredCells(boxes[i], lo, hi);

@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -351,6 +352,12 @@ BodyMesh bodyMeshOf(const Scene& scene) {
 
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
                               double minimumDistance) {
+  CollisionGrid grid;
+  return countPenetrations(stems, body, minimumDistance, grid);
+}
+
+std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
+                              double minimumDistance, CollisionGrid& grid) {
   std::size_t found = 0;
   // Stem segments as (stem, segment) boxes, then body triangles.
   struct Item {
@@ -371,7 +378,7 @@ std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyM
   }
   std::vector<char> moving;
   for (const Item& item : items) moving.push_back(item.triangle < 0);
-  const auto pairs = overlappingPairs(boxes, moving, [&](int a, int b) {
+  const auto pairs = grid.overlappingPairs(boxes, moving, [&](int a, int b) {
     const Item &p = items[a], &q = items[b];
     if (p.triangle >= 0) return false;  // triangles come last: a triangle pairs only as q
     if (q.triangle >= 0) return p.segment > 0;
@@ -542,7 +549,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   const double thickness = parameters_.thickness;
   {
     const StepState still{state.start, state.start, state.inverseMass};
-    const auto pairs = overlappingPairs(primitives.boxes(still, thickness / 2), groups,
+    const auto pairs = grid_.overlappingPairs(primitives.boxes(still, thickness / 2), groups,
                                         [&](int a, int b) { return primitives.wanted(a, b); });
     for (const auto& [a, b] : pairs) {
       const Contact c = primitives.contactAt(a, b, still, 0);
@@ -567,7 +574,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   zoneCcd.minimumSeparation = nearestAllowed();
   auto findContacts = [&](const CcdOptions& options, bool calami) {
     std::vector<Contact> contacts;
-    const auto pairs = overlappingPairs(
+    const auto pairs = grid_.overlappingPairs(
         primitives.boxes(state, options.minimumSeparation), groups, [&](int a, int b) {
           return primitives.wanted(a, b) && (calami || !primitives.holdsCalamus(a, b));
         });
@@ -610,9 +617,18 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   }
   // What the impulses leave within the separation but clear of the zones' stays as it is, and
   // so does what they leave of a calamus.
+  // A calamus left within the separation may stay so, but not meet or pass through the stem it
+  // is near: such a step is tried again as two halves, as one with an intersection.
+  const CcdOptions touching;  // no separation: the pair meets (or passes through) in the step
+  std::optional<Contact> crossing;  // a copy: erase_if moves the contacts
   std::erase_if(contacts, [&](const Contact& c) {
     if (primitives.holdsCalamus(c.primitives[0], c.primitives[1])) {
       ++counters_.calamiLeft;
+      const MovingPrimitives m = primitives.motion(c.primitives[0], c.primitives[1], state);
+      if ((c.vertexFace ? vertexFaceCcd(m, touching) : edgeEdgeCcd(m, touching)).contact) {
+        ++counters_.calamiCrossed;
+        if (!crossing) crossing = c;
+      }
       return true;
     }
     const MovingPrimitives m = primitives.motion(c.primitives[0], c.primitives[1], state);
@@ -620,6 +636,10 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     counters_.keptNear += !near;
     return !near;
   });
+  if (crossing) {
+    failure_ = "a calamus meets another stem in the step: " + describe(*crossing);
+    return false;
+  }
   std::vector<int> parent(state.start.size());
   std::iota(parent.begin(), parent.end(), 0);
   std::map<int, ZoneMotion> zoneMaps;  // each zone's map, by its root
@@ -688,7 +708,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // 6: the exact check of the final state.
   const BodyMesh bodyAtEnd{toState.body, body_.triangles};
   const std::size_t penetrations =
-      countPenetrations(stems_, bodyAtEnd, nearestAllowed());
+      countPenetrations(stems_, bodyAtEnd, nearestAllowed(), grid_);
   if (penetrations > 0) {
     counters_.penetrations += penetrations;
     failure_ = "the final check found " + std::to_string(penetrations) + " intersections";

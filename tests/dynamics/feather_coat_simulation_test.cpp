@@ -128,6 +128,48 @@ TEST(FeatherCoatSimulation, TwoStemsDrivenIntoEachOtherAtHighSpeedNeverCross) {
   EXPECT_GT(sim.counters().contacts, 0u);  // they did meet
 }
 
+// A stem swung up through another's calamus (its first segment, x from 0 to 0.12) with no
+// impulse passes to stop it: the impact zones leave calami to the impulses, so the step in which
+// the calamus meets the stem is tried again in halves and at last refused, never accepted.
+TEST(FeatherCoatSimulation, AStepInWhichACalamusMeetsAStemIsRetriedThenRefusedNeverAccepted) {
+  SimulationParameters parameters;
+  parameters.gravity = Vector3d::Zero();
+  parameters.impulsePasses = 0;
+  parameters.maxHalvings = 3;
+  parameters.stem.goldStiffness = 1;
+  parameters.stem.goldDamping = 0.1;
+  FeatherCoatSimulation sim(
+      {straightStem({0, 0, 0.05}, Vector3d::UnitX(), 8, 0.12, parameters.stem),
+       straightStem({0.06, -0.66, -0.05}, Vector3d::UnitY(), 8, 0.12, parameters.stem)},
+      {}, parameters);
+  FeatherStem& swung = sim.stem(1);
+  for (std::size_t i = 1; i < swung.nodeCount(); ++i)
+    swung.velocities[i] = Vector3d(0, 0, 60 * (swung.positions[i] - swung.positions[0]).norm());
+  // Which side of the calamus the swung stem passes where their shadows cross (0: nowhere).
+  auto side = [&] {
+    for (const auto& [pair, over] :
+         sidesWhereShadowsCross(sim.stems()[0].positions, sim.stems()[1].positions))
+      if (pair.first == 0) return over;
+    return 0;
+  };
+  const int below = side();
+  ASSERT_NE(below, 0);
+  bool refused = false;
+  for (int step = 0; step < 10 && !refused; ++step) {
+    try {
+      sim.step(0.01);
+    } catch (const StepFailure& e) {
+      refused = true;
+      EXPECT_NE(std::string(e.what()).find("a calamus meets another stem"), std::string::npos)
+          << e.what();
+    }
+    ASSERT_NE(side(), -below) << "the stem passed through the calamus at step " << step;
+  }
+  EXPECT_TRUE(refused);
+  EXPECT_GE(sim.counters().retries, 3u);
+  EXPECT_GT(sim.counters().calamiCrossed, 0u);
+}
+
 TEST(FeatherCoatSimulation, AStepThatCannotBeResolvedIsRetriedThenRefusedNeverAccepted) {
   SimulationParameters parameters;
   parameters.gravity = Vector3d::Zero();
@@ -138,9 +180,9 @@ TEST(FeatherCoatSimulation, AStepThatCannotBeResolvedIsRetriedThenRefusedNeverAc
   const BodyMesh plate = ground(0.1);
   for (const Vector3d& v : plate.vertices) body.vertices.push_back(v);
   for (const auto& t : plate.triangles) body.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
-  FeatherCoatSimulation sim({straightStem({-1.5, 0, 0.05}, Vector3d::UnitX(), 3, 0.5,
-                                          parameters.stem)},
-                            body, parameters);
+  FeatherCoatSimulation sim(
+      {straightStem({-1.5, 0, 0.05}, Vector3d::UnitX(), 3, 0.5, parameters.stem)}, body,
+      parameters);
   std::vector<Vector3d> moved = body.vertices;
   for (int v = 4; v < 8; ++v) moved[v].z() = -0.1;
   const std::vector<FeatherStem> before = sim.stems();
@@ -168,8 +210,7 @@ TEST(FeatherCoatSimulation, APairJustBeyondTheSeparationButInsideItsBoxDoesNotSt
   const Vector3d normal = Vector3d(1, 1, 1).normalized();
   const Vector3d along = Vector3d(1, -1, 0).normalized();
   const Vector3d root = 1.2 * eta * normal - 0.15 * along;
-  FeatherCoatSimulation sim({straightStem(root, along, 3, 0.1, parameters.stem)}, body,
-                            parameters);
+  FeatherCoatSimulation sim({straightStem(root, along, 3, 0.1, parameters.stem)}, body, parameters);
   auto height = [&](std::size_t node) { return normal.dot(sim.stems()[0].positions[node]); };
   ASSERT_LT((height(1) * normal).cwiseAbs().maxCoeff(), eta);  // inside the box
   for (int step = 0; step < 20; ++step) {
@@ -189,7 +230,7 @@ TEST(FeatherCoatSimulation, APairJustBeyondTheSeparationButInsideItsBoxDoesNotSt
 TEST(FeatherCoatSimulation, StemsPressedByAFoldingBodyRideUpWithItNeverThroughIt) {
   SimulationParameters parameters;
   parameters.gravity = Vector3d::Zero();
-  parameters.impulsePasses = 0;  // the zones answer every contact,
+  parameters.impulsePasses = 0;                         // the zones answer every contact,
   parameters.thickness = parameters.minimumSeparation;  // and no repulsion keeps them off
   BodyMesh body;
   body.vertices = {{-1, -1, 0}, {-1, 1, 0}, {0, -1, 0}, {0, 1, 0}, {1, -1, 0}, {1, 1, 0}};
@@ -205,8 +246,7 @@ TEST(FeatherCoatSimulation, StemsPressedByAFoldingBodyRideUpWithItNeverThroughIt
       folded[v] = Vector3d(std::cos(step * degree), folded[v].y(), std::sin(step * degree));
     ASSERT_NO_THROW(sim.step(0.01, sim.anchors(), folded)) << "step " << step;
     const BodyMesh now{folded, body.triangles};
-    ASSERT_EQ(countPenetrations(sim.stems(), now, sim.nearestAllowed()), 0u)
-        << "step " << step;
+    ASSERT_EQ(countPenetrations(sim.stems(), now, sim.nearestAllowed()), 0u) << "step " << step;
     // Every node on the flap's side lies above it, the upper stem's above the lower one's.
     const Vector3d flapNormal(-std::sin(step * degree), 0, std::cos(step * degree));
     for (const FeatherStem& stem : sim.stems())

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/hairs/dynamics/collision_grid.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
 #include "hirsute/hairs/dynamics/wind_field.h"
 #include "hirsute/interpreter/scene.h"
@@ -77,6 +78,7 @@ struct SimulationCounters {
   std::uint64_t keptNear = 0;      // pairs the impulses left within the separation, but clear
                                    // of the zones' over the step
   std::uint64_t calamiLeft = 0;    // pairs with a calamus the impulses left within the separation
+  std::uint64_t calamiCrossed = 0;  // of those, pairs that meet or pass through each other
 };
 
 // A step that could not be resolved even at the smallest time step: the state is left as it
@@ -93,6 +95,9 @@ struct StepFailure : std::runtime_error {
 // off other stems where they can (`SimulationCounters::calamiLeft` counts where they did not).
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
                               double minimumDistance);
+// The same searching in `grid`, whose memory it keeps for the next search.
+std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
+                              double minimumDistance, CollisionGrid& grid);
 
 class FeatherCoatSimulation {
  public:
@@ -152,6 +157,7 @@ class FeatherCoatSimulation {
   std::vector<std::vector<AirSample>> air_;
   std::vector<StemFrame> anchors_;
   std::string failure_;  // why the last advance() failed, for the error of a step
+  CollisionGrid grid_;   // the broad phase's working memory, kept from step to step
   SimulationCounters counters_;
   double time_ = 0;
 };
