@@ -784,17 +784,16 @@ std::size_t Derivation::rewriteInParts() {
       errors[k] = std::current_exception();
     }
   };
-  {
-    std::vector<std::jthread> threads;
-    for (std::size_t k = 1; k < used; ++k) {
-      try {
-        threads.emplace_back(rewritePart, k);
-      } catch (const std::system_error&) {
-        rewritePart(k);  // no thread to be had: this one does the part
-      }
+  std::vector<std::thread> threads;
+  for (std::size_t k = 1; k < used; ++k) {
+    try {
+      threads.emplace_back(rewritePart, k);
+    } catch (const std::system_error&) {
+      rewritePart(k);  // no thread to be had: this one does the part
     }
-    rewritePart(0);
   }
+  rewritePart(0);
+  for (std::thread& thread : threads) thread.join();
   bool whole = true;
   std::size_t modules = 0;
   for (std::size_t k = 0; k < used; ++k) {
