@@ -1,21 +1,21 @@
 // `hirsute simulate`: the model's feathers simulated over the frames of its animation (or with
 // the body still), one POV-Ray scene (and with --obj one OBJ) per frame, numbered so that the
 // frames can be rendered in any order and in parallel (docs/dynamics.md, "hirsute simulate").
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
-#include <regex>
-#include <sstream>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "command.h"
 #include "hirsute/hairs/dynamics/coat_motion.h"
@@ -62,7 +62,9 @@ class FrameModels {
  public:
   FrameModels(const ModelOptions& model, std::vector<AnimationFrame> animation,
               std::optional<AnimatedDefine> define, int frames)
-      : model_(model), animation_(std::move(animation)), define_(std::move(define)),
+      : model_(model),
+        animation_(std::move(animation)),
+        define_(std::move(define)),
         frames_(frames) {}
 
   // Whether frame k (from 1) has a body of its own, else the one before stays.
@@ -86,8 +88,8 @@ class FrameModels {
       OutputTarget out(copy);
       const std::string text = replaceDefineValues(
           readText(original),
-          {{define_->name, formatDefineValue(define_->integer ? std::round(value) : value,
-                                             define_->integer)}});
+          {{define_->name,
+            formatDefineValue(define_->integer ? std::round(value) : value, define_->integer)}});
       std::fputs(text.c_str(), out.stream());
       out.commit();
     }
@@ -198,8 +200,10 @@ int runSimulate(SimulateOptions o) {
     if (!o.animate.empty()) {
       define = animatedDefine(o.animate, o.model.lsystemFile);
       if (!define) {
-        return badInput(progress, "hirsute: error: --animate takes NAME=FROM:TO, a #define "
-                                  "constant of the .l and two numbers, found '" + o.animate + "'");
+        return badInput(progress,
+                        "hirsute: error: --animate takes NAME=FROM:TO, a #define "
+                        "constant of the .l and two numbers, found '" +
+                            o.animate + "'");
       }
     }
     if (!o.animation.empty()) {
@@ -279,7 +283,8 @@ int runSimulate(SimulateOptions o) {
   // What each frame's steps did, committed with the last frame.
   std::string table =
       "frame,time,steps,substeps,retries,candidates,contacts,impulses,repulsions,"
-      "impact_zones,penetrations,kept_near,calami_left,calami_crossed,seconds\n";
+      "impact_zones,penetrations,kept_near,calami_left,calami_crossed,calami_crossed_left,"
+      "seconds\n";
   const auto writeTable = [&]() -> int {
     try {
       OutputTarget csv(fs::path(o.output) / "simulation.csv");
@@ -317,10 +322,10 @@ int runSimulate(SimulateOptions o) {
         motion->advance(frameTime, substeps, body);
         simulating += std::chrono::duration<double>(Clock::now() - stepping).count();
       } catch (const dynamics::FrameMismatch& e) {
-        return badInput(progress, fmt::format("{}: error: frame {}: {}",
-                                              o.animation.empty() ? o.model.lsystemFile
-                                                                  : o.animation,
-                                              frame, e.what()));
+        return badInput(
+            progress,
+            fmt::format("{}: error: frame {}: {}",
+                        o.animation.empty() ? o.model.lsystemFile : o.animation, frame, e.what()));
       } catch (const dynamics::StepFailure& e) {
         // The frames before it stay, and so do their rows of the table.
         if (const int failed = writeTable(); failed != 0) return failed;
@@ -346,15 +351,15 @@ int runSimulate(SimulateOptions o) {
       }
     }
     const dynamics::SimulationCounters& c = motion->simulation().counters();
-    table += fmt::format("{},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f}\n", frame,
-                         motion->simulation().time(), c.steps - before.steps,
-                         c.substeps - before.substeps, c.retries - before.retries,
-                         c.candidates - before.candidates, c.contacts - before.contacts,
-                         c.impulses - before.impulses, c.repulsions - before.repulsions,
-                         c.impactZones - before.impactZones, c.penetrations - before.penetrations,
-                         c.keptNear - before.keptNear, c.calamiLeft - before.calamiLeft,
-                         c.calamiCrossed - before.calamiCrossed,
-                         std::chrono::duration<double>(Clock::now() - frameStarted).count());
+    table += fmt::format(
+        "{},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f}\n", frame,
+        motion->simulation().time(), c.steps - before.steps, c.substeps - before.substeps,
+        c.retries - before.retries, c.candidates - before.candidates, c.contacts - before.contacts,
+        c.impulses - before.impulses, c.repulsions - before.repulsions,
+        c.impactZones - before.impactZones, c.penetrations - before.penetrations,
+        c.keptNear - before.keptNear, c.calamiLeft - before.calamiLeft,
+        c.calamiCrossed - before.calamiCrossed, c.calamiCrossedLeft - before.calamiCrossedLeft,
+        std::chrono::duration<double>(Clock::now() - frameStarted).count());
     before = c;
   }
   if (const int failed = writeTable(); failed != 0) return failed;
@@ -364,10 +369,12 @@ int runSimulate(SimulateOptions o) {
   std::cout << fmt::format(
       "{} frames of {} feathers ({} rooted on the body) in {:.2f} s, {:.3f} s of it simulating "
       "({:.1f} frames/s): {} steps, {} retried; {} candidates, {} contacts, {} impact zones; "
-      "{} intersections found and undone, {} left\n",
+      "{} intersections found and undone, {} calamus crossings kept at the smallest step, {} "
+      "left\n",
       frames, motion->simulation().stems().size(), motion->boundRoots(), seconds, simulating,
       frames > 1 ? (frames - 1) / std::max(simulating, 1e-9) : 0.0, c.substeps, c.retries,
-      c.candidates, c.contacts, c.impactZones, c.penetrations, motion->penetrations());
+      c.candidates, c.contacts, c.impactZones, c.penetrations, c.calamiCrossedLeft,
+      motion->penetrations());
   return kExitOk;
 }
 
@@ -380,35 +387,36 @@ void registerSimulateCommand(CLI::App& app, Action& action) {
       "Simulate the model's feathers (wind, gravity, collisions) over its animation and write a "
       "POV-Ray scene per frame");
   addModelOptions(*command, options->model);
-  command->add_option("animation", options->animation,
-                      "The .a animation file: the body moves through its frames")
+  command
+      ->add_option("animation", options->animation,
+                   "The .a animation file: the body moves through its frames")
       ->check(CLI::ExistingFile);
   command->add_option("-o,--output", options->output, "The folder the frames are written to")
       ->required();
   command->add_option("--animate", options->animate,
                       "NAME=FROM:TO: move the .l's #define NAME from FROM to TO over the frames "
                       "(the body moves with it)");
-  command->add_option("--frames", options->frames,
-                      "Frames to write (default: the animation's, or 48)")
+  command
+      ->add_option("--frames", options->frames, "Frames to write (default: the animation's, or 48)")
       ->check(CLI::Range(1, 1'000'000));
   command->add_option("--fps", options->fps, "Frames per second of simulated time (default 24)")
       ->check(CLI::Range(0.01, 10000.0));
-  command->add_option("--substeps", options->substeps,
-                      "Time steps per frame (default: the view file's, or 4)")
+  command
+      ->add_option("--substeps", options->substeps,
+                   "Time steps per frame (default: the view file's, or 4)")
       ->check(CLI::Range(1, 1000));
-  command->add_option("--segments", options->segments,
-                      "Segments of each feather's stem (default: the view file's, or 8)")
+  command
+      ->add_option("--segments", options->segments,
+                   "Segments of each feather's stem (default: the view file's, or 8)")
       ->check(CLI::Range(1, 64));
   command->add_option("--gravity", options->gravity, "Gravity X Y Z (default 0 -9.81 0)")
       ->expected(3);
-  command->add_option("--wind", options->wind, "The steady wind X Y Z (default none)")
-      ->expected(3);
+  command->add_option("--wind", options->wind, "The steady wind X Y Z (default none)")->expected(3);
   command->add_option("--gusts", options->gusts, "Gusts: about the largest speed they add")
       ->check(CLI::Range(0.0, 1e6));
   command->add_option("--gust-scale", options->gustScale, "The size of a gust (model units)")
       ->check(CLI::Range(1e-6, 1e6));
-  command->add_option("--gust-period", options->gustPeriod,
-                      "Seconds over which the gusts change")
+  command->add_option("--gust-period", options->gustPeriod, "Seconds over which the gusts change")
       ->check(CLI::Range(1e-6, 1e6));
   command->add_option("--gust-seed", options->gustSeed, "The gusts' seed");
   command->add_option("--drag", options->drag, "Drag per unit length per unit speed")

@@ -40,7 +40,7 @@ struct Contact {
   std::array<int, 4> vertices;
   std::array<double, 4> coefficients;
   double timeOfImpact = 0;
-  bool vertexFace = false;  // a stem node and a body triangle, else two segments
+  bool vertexFace = false;          // a stem node and a body triangle, else two segments
   std::array<int, 2> primitives{};  // the pair, as indices of the primitive list
 };
 
@@ -308,15 +308,17 @@ Vector3d liftOffKinematic(const std::vector<int>& members,
     for (int k = 0; k < 4; ++k) {
       const int v = c->vertices[k];
       gap += c->coefficients[k] * state.start[v];
-      if (state.inverseMass[v] == 0) holdsKinematic = true;
-      else freeShare += c->coefficients[k];
+      if (state.inverseMass[v] == 0)
+        holdsKinematic = true;
+      else
+        freeShare += c->coefficients[k];
     }
     if (!holdsKinematic || !(gap.norm() > 0) || freeShare == 0) continue;
     const Vector3d normal = gap.normalized();
     double approach = 0;
     for (int k = 0; k < 4; ++k)
-      approach += c->coefficients[k] *
-                  normal.dot(state.end[c->vertices[k]] - state.start[c->vertices[k]]);
+      approach +=
+          c->coefficients[k] * normal.dot(state.end[c->vertices[k]] - state.start[c->vertices[k]]);
     if (approach >= opening) continue;
     const Vector3d effect = freeShare * normal;
     needs.push_back({effect, opening - approach});
@@ -487,7 +489,7 @@ void FeatherCoatSimulation::step(double dt, const std::vector<StemFrame>& anchor
 void FeatherCoatSimulation::advanceOrHalve(double h, const Kinematics& from, const Kinematics& to,
                                            int depth) {
   const std::vector<FeatherStem> saved = stems_;
-  if (advance(h, from, to)) {
+  if (advance(h, from, to, depth >= parameters_.maxHalvings)) {
     time_ += h;
     ++counters_.substeps;
     return;
@@ -514,7 +516,7 @@ void FeatherCoatSimulation::advanceOrHalve(double h, const Kinematics& from, con
 }
 
 bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
-                                    const Kinematics& toState) {
+                                    const Kinematics& toState, bool smallest) {
   const std::vector<StemFrame>& from = fromState.anchors;
   const std::vector<StemFrame>& to = toState.anchors;
   const Primitives primitives(stems_, body_, bodyEdges_);
@@ -549,8 +551,9 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   const double thickness = parameters_.thickness;
   {
     const StepState still{state.start, state.start, state.inverseMass};
-    const auto pairs = grid_.overlappingPairs(primitives.boxes(still, thickness / 2), groups,
-                                        [&](int a, int b) { return primitives.wanted(a, b); });
+    const auto pairs =
+        grid_.overlappingPairs(primitives.boxes(still, thickness / 2), groups,
+                               [&](int a, int b) { return primitives.wanted(a, b); });
     for (const auto& [a, b] : pairs) {
       const Contact c = primitives.contactAt(a, b, still, 0);
       Vector3d gap = Vector3d::Zero();
@@ -581,9 +584,8 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     counters_.candidates += pairs.size();
     for (const auto& [a, b] : pairs) {
       const MovingPrimitives m = primitives.motion(a, b, state);
-      const CcdResult r = primitives.list[b].kind == Kind::BodyTriangle
-                              ? vertexFaceCcd(m, options)
-                              : edgeEdgeCcd(m, options);
+      const CcdResult r = primitives.list[b].kind == Kind::BodyTriangle ? vertexFaceCcd(m, options)
+                                                                        : edgeEdgeCcd(m, options);
       if (r.contact) contacts.push_back(primitives.contactAt(a, b, state, r.timeOfImpact));
     }
     counters_.contacts += contacts.size();
@@ -599,10 +601,10 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   auto describe = [&](const Contact& c) {
     const auto name = [&](int k) { return primitives.vertexName(c.vertices[k]); };
     const std::string what =
-        c.vertexFace ? name(0) + " against the triangle of " + name(1) + ", " + name(2) + ", " +
-                           name(3)
-                     : "the segment " + name(0) + " to " + name(1) + " against the segment " +
-                           name(2) + " to " + name(3);
+        c.vertexFace
+            ? name(0) + " against the triangle of " + name(1) + ", " + name(2) + ", " + name(3)
+            : "the segment " + name(0) + " to " + name(1) + " against the segment " + name(2) +
+                  " to " + name(3);
     const Vector3d at = state.start[c.vertices[0]] +
                         c.timeOfImpact * (state.end[c.vertices[0]] - state.start[c.vertices[0]]);
     char where[96];
@@ -617,18 +619,13 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   }
   // What the impulses leave within the separation but clear of the zones' stays as it is, and
   // so does what they leave of a calamus.
-  // A calamus left within the separation may stay so, but not meet or pass through the stem it
-  // is near: such a step is tried again as two halves, as one with an intersection.
-  const CcdOptions touching;  // no separation: the pair meets (or passes through) in the step
-  std::optional<Contact> crossing;  // a copy: erase_if moves the contacts
+  // A calamus left within the separation may stay so, but should not meet or pass through the
+  // stem it is near (checked once the zones have moved what they move, below).
+  bool calami = false;
   std::erase_if(contacts, [&](const Contact& c) {
     if (primitives.holdsCalamus(c.primitives[0], c.primitives[1])) {
       ++counters_.calamiLeft;
-      const MovingPrimitives m = primitives.motion(c.primitives[0], c.primitives[1], state);
-      if ((c.vertexFace ? vertexFaceCcd(m, touching) : edgeEdgeCcd(m, touching)).contact) {
-        ++counters_.calamiCrossed;
-        if (!crossing) crossing = c;
-      }
+      calami = true;
       return true;
     }
     const MovingPrimitives m = primitives.motion(c.primitives[0], c.primitives[1], state);
@@ -636,10 +633,6 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     counters_.keptNear += !near;
     return !near;
   });
-  if (crossing) {
-    failure_ = "a calamus meets another stem in the step: " + describe(*crossing);
-    return false;
-  }
   std::vector<int> parent(state.start.size());
   std::iota(parent.begin(), parent.end(), 0);
   std::map<int, ZoneMotion> zoneMaps;  // each zone's map, by its root
@@ -696,6 +689,35 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     if (findRoot(parent, v) != v) zoneRoots.insert(findRoot(parent, v));
   counters_.impactZones += zoneRoots.size();
 
+  // A calamus that meets or passes through another stem over the step as it now is (the
+  // impulses' pairs, or any pair once zones have moved stems): the step is tried again as two
+  // halves, as one with an intersection. At the smallest step it is accepted and counted
+  // (calamiCrossedLeft): the zones cannot move a root the body holds, and where the bend drives
+  // a calamus against a stack of stems no smaller step separates them.
+  if (calami || !zoneRoots.empty()) {
+    CcdOptions touching;  // no separation: the pair meets (or passes through)
+    touching.minimumSeparation = 0;
+    const auto pairs = grid_.overlappingPairs(
+        primitives.boxes(state, 0), groups,
+        [&](int a, int b) { return primitives.wanted(a, b) && primitives.holdsCalamus(a, b); });
+    std::optional<Contact> crossing;
+    std::uint64_t crossings = 0;
+    for (const auto& [a, b] : pairs) {
+      const MovingPrimitives m = primitives.motion(a, b, state);
+      const CcdResult r = primitives.list[b].kind == Kind::BodyTriangle ? vertexFaceCcd(m, touching)
+                                                                        : edgeEdgeCcd(m, touching);
+      if (!r.contact) continue;
+      ++crossings;
+      if (!crossing) crossing = primitives.contactAt(a, b, state, r.timeOfImpact);
+    }
+    counters_.calamiCrossed += crossings;
+    if (crossing && !smallest) {
+      failure_ = "a calamus meets another stem in the step: " + describe(*crossing);
+      return false;
+    }
+    counters_.calamiCrossedLeft += crossings;
+  }
+
   // The positions and velocities the collisions leave.
   for (std::size_t s = 0; s < stems_.size(); ++s) {
     FeatherStem& stem = stems_[s];
@@ -707,8 +729,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   }
   // 6: the exact check of the final state.
   const BodyMesh bodyAtEnd{toState.body, body_.triangles};
-  const std::size_t penetrations =
-      countPenetrations(stems_, bodyAtEnd, nearestAllowed(), grid_);
+  const std::size_t penetrations = countPenetrations(stems_, bodyAtEnd, nearestAllowed(), grid_);
   if (penetrations > 0) {
     counters_.penetrations += penetrations;
     failure_ = "the final check found " + std::to_string(penetrations) + " intersections";

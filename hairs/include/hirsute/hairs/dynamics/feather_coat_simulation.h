@@ -78,7 +78,9 @@ struct SimulationCounters {
   std::uint64_t keptNear = 0;      // pairs the impulses left within the separation, but clear
                                    // of the zones' over the step
   std::uint64_t calamiLeft = 0;    // pairs with a calamus the impulses left within the separation
-  std::uint64_t calamiCrossed = 0;  // of those, pairs that meet or pass through each other
+  std::uint64_t calamiCrossed = 0;  // pairs with a calamus that met or passed through each other
+                                    // in a step tried (then retried as halves)
+  std::uint64_t calamiCrossedLeft = 0;  // of those, in steps accepted at the smallest step
 };
 
 // A step that could not be resolved even at the smallest time step: the state is left as it
@@ -139,7 +141,9 @@ class FeatherCoatSimulation {
     std::vector<StemFrame> anchors;
     std::vector<Eigen::Vector3d> body;
   };
-  bool advance(double h, const Kinematics& from, const Kinematics& to);
+  // One step of h; false, with failure_ saying why, when it must be done again as two halves.
+  // `smallest`: the step cannot be halved again (a calamus crossing is then accepted, counted).
+  bool advance(double h, const Kinematics& from, const Kinematics& to, bool smallest);
   void advanceOrHalve(double h, const Kinematics& from, const Kinematics& to, int depth);
   std::vector<Eigen::Vector3d> externalForces(std::size_t stem);
 
