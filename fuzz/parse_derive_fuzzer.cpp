@@ -3,8 +3,11 @@
 //
 // A DiagnosticError is the expected answer to broken input. Anything else is a bug: another
 // exception (libFuzzer reports it as a crash), a crash, a sanitizer report, a leak, a hang or
-// memory beyond libFuzzer's limits. The C preprocessor is skipped (it is an external program);
-// the input may still carry cpp's `# line "file"` markers, which the lexer reads.
+// memory beyond libFuzzer's limits. A program whose steps may be rewritten in parts on several
+// threads (parallel_rewriting.h) is derived again so, every step split in three, and a string,
+// error or warning that differs is a bug too (an abort). The C preprocessor is skipped (it is an
+// external program); the input may still carry cpp's `# line "file"` markers, which the lexer
+// reads.
 #include <signal.h>
 #include <sys/resource.h>
 
@@ -21,6 +24,7 @@
 #include "hirsute/lsys/diagnostic.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/module_sink.h"
+#include "hirsute/lsys/parallel_rewriting.h"
 #include "hirsute/lsys/parser.h"
 #include "hirsute/lsys/program.h"
 
@@ -34,16 +38,17 @@ constexpr std::uint64_t kMaxLoopIterations = 100'000;
 // Files a model writes with fopen/fprintf may not grow past this (writes beyond it fail).
 constexpr rlim_t kMaxFileBytes = 4 << 20;
 
-// Reads every module of the derived string as an interpreter would, without keeping it.
+// Reads every module of the derived string as an interpreter would, keeping its bytes.
 class ReadingSink : public hirsute::ModuleSink {
  public:
   void module(char symbol, const float* parameters, std::size_t count) override {
-    sum_ += symbol;
-    for (std::size_t i = 0; i < count; ++i) sum_ += parameters[i];
+    text_ += symbol;
+    text_.append(reinterpret_cast<const char*>(parameters), count * sizeof(float));
   }
+  const std::string& text() const { return text_; }
 
  private:
-  double sum_ = 0;
+  std::string text_;
 };
 
 // The model's folder for fopen: private to this process, holding one data file for fscanf.
@@ -78,6 +83,39 @@ ModelFolder& modelFolder() {
   return folder;
 }
 
+// What a derivation gave: the string's bytes (after the homomorphism), the error, the warnings.
+struct Outcome {
+  std::string text, error, warnings;
+  bool operator==(const Outcome&) const = default;
+};
+
+Outcome derive(const hirsute::Program& program, int threads) {
+  Outcome outcome;
+  hirsute::Diagnostics diagnostics;  // warnings are collected, not printed
+  std::ostream printed(nullptr);     // printf output goes nowhere
+  hirsute::EvaluationLimits limits;
+  limits.maxLoopIterations = kMaxLoopIterations;
+  hirsute::Evaluator evaluator(program, diagnostics, nullptr, modelFolder().path(), printed,
+                               limits);
+  hirsute::DerivationOptions options;
+  options.steps = kSteps;
+  options.maxModules = kMaxModules;
+  options.threads = threads;
+  options.parallelMinimumModules = 0;  // every step split when it may be
+  options.parallelMinimumCost = 0;
+  try {
+    hirsute::Derivation derivation(program, evaluator, diagnostics, options);
+    derivation.run();
+    ReadingSink sink;
+    derivation.emit(sink, true);
+    outcome.text = sink.text();
+  } catch (const hirsute::DiagnosticError& e) {
+    outcome.error = e.diagnostic().text();  // the expected answer to broken input
+  }
+  for (const hirsute::Diagnostic& w : diagnostics.warnings()) outcome.warnings += w.text() + "\n";
+  return outcome;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -91,23 +129,18 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  hirsute::Diagnostics diagnostics;  // warnings are collected, not printed
-  std::ostream printed(nullptr);     // printf output goes nowhere
+  hirsute::Diagnostics diagnostics;
+  hirsute::Program program;
   try {
     hirsute::ast::File file = hirsute::parseLsystemText(text, "fuzz.l");
-    hirsute::Program program = hirsute::compileProgram(file, diagnostics);
-    hirsute::EvaluationLimits limits;
-    limits.maxLoopIterations = kMaxLoopIterations;
-    hirsute::Evaluator evaluator(program, diagnostics, nullptr, modelFolder().path(), printed, limits);
-    hirsute::DerivationOptions options;
-    options.steps = kSteps;
-    options.maxModules = kMaxModules;
-    hirsute::Derivation derivation(program, evaluator, diagnostics, options);
-    derivation.run();
-    ReadingSink sink;
-    derivation.emit(sink, true);
+    program = hirsute::compileProgram(file, diagnostics);
   } catch (const hirsute::DiagnosticError&) {
-    // The expected answer to broken input.
+    return 0;  // the expected answer to broken input
+  }
+  const Outcome one = derive(program, 1);
+  modelFolder().reset();
+  if (hirsute::rewritesModulesIndependently(program) && !(derive(program, 3) == one)) {
+    std::abort();  // the parts gave another string, error or warnings than one thread
   }
   modelFolder().reset();
   return 0;
