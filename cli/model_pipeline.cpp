@@ -104,17 +104,35 @@ ColorFiles colorFilesFor(const ModelOptions& o, Diagnostics& diagnostics) {
   return files;
 }
 
-BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
-  BuiltScene built;
+ModelResources loadResources(const ModelOptions& o, Diagnostics& diagnostics) {
   std::optional<std::filesystem::path> view;
   if (!o.viewFile.empty()) view = o.viewFile;
-  built.resources = loadModelResources(view, colorFilesFor(o, diagnostics), diagnostics);
-  built.model = loadModel(o.lsystemFile, view, diagnostics);
+  return loadModelResources(view, colorFilesFor(o, diagnostics), diagnostics);
+}
+
+Model loadLsystem(const ModelOptions& o, Diagnostics& diagnostics) {
+  std::optional<std::filesystem::path> view;
+  if (!o.viewFile.empty()) view = o.viewFile;
+  Model model = loadModel(o.lsystemFile, view, diagnostics);
   // `@Ul(-1)` is an error at its place in the file, not a warning after the derivation.
-  checkConstantOrganModules(built.model.program);
+  checkConstantOrganModules(model.program);
+  return model;
+}
+
+BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
+  BuiltScene built;
+  built.resources = loadResources(o, diagnostics);
+  built.model = loadLsystem(o, diagnostics);
+  built.scene = growScene(o, built.model, built.resources, diagnostics);
+  return built;
+}
+
+Scene growScene(const ModelOptions& o, const Model& model, const ModelResources& resources,
+                Diagnostics& diagnostics) {
+  Scene scene;
   EvaluationLimits limits;
   limits.maxLoopIterations = o.maxLoopIterations;
-  Evaluator evaluator(built.model.program, diagnostics, &built.model.functions, built.model.folder, std::cerr,
+  Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr,
                       limits);
   DerivationOptions options;
   options.steps = o.steps;
@@ -122,7 +140,7 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   options.threads = o.threads;
   options.progress = o.terminalProgress;
   diagnostics.setProgress(o.terminalProgress);
-  Derivation derivation(built.model.program, evaluator, diagnostics, options);
+  Derivation derivation(model.program, evaluator, diagnostics, options);
   // -v's lines go to the terminal the progress line is on: it is cleared first.
   const auto say = [&o](const std::string& text) {
     if (o.terminalProgress) o.terminalProgress->clear();
@@ -141,7 +159,7 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     environmentOptions.timeoutSeconds = o.environmentTimeout;
     environment = openEnvironment(o.environmentFile, diagnostics, environmentOptions);
   }
-  installQueryPass(derivation, built.resources, diagnostics, environment.get());
+  installQueryPass(derivation, resources, diagnostics, environment.get());
   derivation.start();
   if (o.progress) o.progress(1, 0, derivation.totalSteps());
   while ((!o.stopAfter || derivation.stepsDone() < *o.stopAfter) && derivation.step()) {
@@ -153,17 +171,16 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   }
   started = Clock::now();
   try {
-    interpret(derivation, built.resources, built.scene, diagnostics, o.maxVertices,
-              o.terminalProgress);
+    interpret(derivation, resources, scene, diagnostics, o.maxVertices, o.terminalProgress);
   } catch (const GeometryLimitError& e) {
     throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(o.lsystemFile), 0, 0}, e.what());
   }
   if (o.verbose) {
     say(fmt::format("interpreted: {} triangles, {} lines, {} cylinder segments in {:.3f} s\n",
-                             built.scene.triangleCount(), built.scene.lines.size(),
-                             built.scene.cylinderSegments.size(), seconds(started)));
+                    scene.triangleCount(), scene.lines.size(), scene.cylinderSegments.size(),
+                    seconds(started)));
   }
-  if (o.hairs && hasHairs(built.scene)) {
+  if (o.hairs && hasHairs(scene)) {
     started = Clock::now();
     if (o.progress) o.progress(3, 0, 0);
     PlantHairOptions hairOptions;
@@ -172,14 +189,14 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     hairOptions.lsystemFile = o.lsystemFile;
     hairOptions.progress = o.terminalProgress;
     const HairPlacementReport report =
-        growPlantHairs(built.scene, built.resources, built.model.functions, hairOptions, diagnostics);
+        growPlantHairs(scene, resources, model.functions, hairOptions, diagnostics);
     if (o.verbose) {
       say(fmt::format("placed {} hairs on {} segments and {} surfaces ({} templates) in {:.3f} s\n",
-                      report.hairs, report.segments, report.surfaces,
-                      built.scene.hairTemplates.size(), seconds(started)));
+                      report.hairs, report.segments, report.surfaces, scene.hairTemplates.size(),
+                      seconds(started)));
     }
   }
-  if (o.feathers && hasFeathers(built.scene, built.resources)) {
+  if (o.feathers && hasFeathers(scene, resources)) {
     started = Clock::now();
     if (o.progress) o.progress(4, 0, 0);
     FeatherStageOptions featherOptions;
@@ -188,29 +205,29 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
     featherOptions.maxFeathers = o.maxFeathers;
     featherOptions.progress = o.terminalProgress;
     const FeatherStageReport report =
-        growFeathers(built.scene, built.resources, built.model.functions, featherOptions, diagnostics);
+        growFeathers(scene, resources, model.functions, featherOptions, diagnostics);
     if (o.verbose) {
       say(fmt::format("feathers: {} ({} in coats) of {} types in {:.3f} s\n",
                                report.feathers, report.coat, report.types, seconds(started)));
     }
   } else {
-    built.scene.feathers.clear();
+    scene.feathers.clear();
   }
-  if (o.fur && hasFur(built.scene)) {
+  if (o.fur && hasFur(scene)) {
     started = Clock::now();
     FurStageOptions furOptions;
     furOptions.droplets = o.droplets;
     furOptions.dropletRadius = o.dropletRadius;
     furOptions.dropletWetness = o.dropletWetness;
     furOptions.dropletSeed = o.dropletSeed;
-    const FurStageReport report = growFur(built.scene, built.resources, furOptions, diagnostics);
+    const FurStageReport report = growFur(scene, resources, furOptions, diagnostics);
     if (o.verbose) {
       say(fmt::format("fur: {} surfaces, {} triangles, {:.4g} units², {} droplets in {:.3f} s\n",
                       report.surfaces, report.triangles, report.area, report.droplets,
                       seconds(started)));
     }
   }
-  return built;
+  return scene;
 }
 
 }  // namespace hirsute::cli

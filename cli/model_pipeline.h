@@ -66,9 +66,18 @@ struct BuiltScene {
   Scene scene;
 };
 
-// Derives, interprets and places the hairs. Throws DiagnosticError on bad input (including a
-// broken template hair, and more hairs than --max-hairs).
+// Loads the model (loadResources, loadLsystem) and grows its Scene (growScene). Throws
+// DiagnosticError on bad input (including a broken template hair, and more hairs than
+// --max-hairs).
 BuiltScene buildScene(const ModelOptions& options, Diagnostics& diagnostics);
+// The view file's resources (colours, contours, surfaces, functions, feather types, …).
+ModelResources loadResources(const ModelOptions& options, Diagnostics& diagnostics);
+// The .l through the preprocessor, compiled; constant organ parameters checked.
+Model loadLsystem(const ModelOptions& options, Diagnostics& diagnostics);
+// Derives `model` (to options.stopAfter steps when set), interprets it and covers it with its
+// hairs, feathers and fur: a model loaded once grows the Scene of each of its animation's frames.
+Scene growScene(const ModelOptions& options, const Model& model, const ModelResources& resources,
+                Diagnostics& diagnostics);
 
 // The colour files: those given, or else the single .map or .mat in the model's folder.
 ColorFiles colorFilesFor(const ModelOptions& options, Diagnostics& diagnostics);

@@ -57,12 +57,16 @@ struct AnimatedDefine {
 
 // The model of each frame: the animation's derivation step, and the animated #define's value
 // at that frame, written into a hidden copy beside the .l (its includes and files stay where
-// they were; messages name the user's file).
+// they were; messages name the user's file). The files are read once (the .l once a frame when a
+// #define moves): a frame derives and builds its Scene from them.
 class FrameModels {
  public:
-  FrameModels(const ModelOptions& model, std::vector<AnimationFrame> animation,
-              std::optional<AnimatedDefine> define, int frames)
+  FrameModels(const ModelOptions& model, const BuiltScene& first,
+              std::vector<AnimationFrame> animation, std::optional<AnimatedDefine> define,
+              int frames)
       : model_(model),
+        resources_(first.resources),
+        lsystem_(first.model),
         animation_(std::move(animation)),
         define_(std::move(define)),
         frames_(frames) {}
@@ -72,13 +76,13 @@ class FrameModels {
     return k == 1 || static_cast<std::size_t>(k) <= animation_.size() || define_.has_value();
   }
 
-  BuiltScene build(int k, Diagnostics& diagnostics) const {
+  Scene build(int k, Diagnostics& diagnostics) const {
     ModelOptions options = model_;
     if (k > 1) options.terminalProgress = nullptr;
     if (!animation_.empty())
       options.stopAfter =
           animation_[std::min(static_cast<std::size_t>(k), animation_.size()) - 1].step;
-    if (!define_) return buildScene(options, diagnostics);
+    if (!define_) return growScene(options, lsystem_, resources_, diagnostics);
     const double t = frames_ > 1 ? static_cast<double>(k - 1) / (frames_ - 1) : 0.0;
     const double value = define_->from + t * (define_->to - define_->from);
     const fs::path original = model_.lsystemFile;
@@ -102,7 +106,7 @@ class FrameModels {
     } remove{copy};
     options.lsystemFile = copy.string();
     try {
-      return buildScene(options, diagnostics);
+      return growScene(options, loadLsystem(options, diagnostics), resources_, diagnostics);
     } catch (const DiagnosticError& e) {
       Diagnostic named = e.diagnostic();
       if (named.where.fileName() == copy.string())
@@ -120,6 +124,8 @@ class FrameModels {
   }
 
   ModelOptions model_;
+  ModelResources resources_;
+  Model lsystem_;
   std::vector<AnimationFrame> animation_;
   std::optional<AnimatedDefine> define_;
   int frames_;
@@ -206,21 +212,19 @@ int runSimulate(SimulateOptions o) {
                             o.animate + "'");
       }
     }
+    first.resources = loadResources(o.model, diagnostics);
+    first.model = loadLsystem(o.model, diagnostics);
     if (!o.animation.empty()) {
       const AnimationSettings settings = readAnimationFile(o.animation, diagnostics);
-      ModelOptions axiom = o.model;
-      axiom.stopAfter = 0;
-      axiom.terminalProgress = nullptr;
-      const BuiltScene start = buildScene(axiom, diagnostics);
       const int length =
-          o.model.steps.value_or(start.model.program.lsystems.front().derivationLength);
+          o.model.steps.value_or(first.model.program.lsystems.front().derivationLength);
       animation = animationFrames(settings, length);
       if (animation.empty())
         return badInput(progress, o.animation + ": error: the animation has no frames");
     }
     frames = o.frames.value_or(animation.empty() ? 48 : static_cast<int>(animation.size()));
-    models.emplace(o.model, animation, define, frames);
-    first = models->build(1, diagnostics);
+    models.emplace(o.model, first, animation, define, frames);
+    first.scene = models->build(1, diagnostics);
   } catch (const DiagnosticError& e) {
     return badInput(progress, e.diagnostic().text());
   } catch (const std::runtime_error& e) {
@@ -258,7 +262,7 @@ int runSimulate(SimulateOptions o) {
     const int used = define ? frames : std::min(static_cast<int>(animation.size()), frames);
     for (const int k : {(used + 1) / 2, used}) {
       try {
-        fit.add(models->build(k, diagnostics).scene.bounds());
+        fit.add(models->build(k, diagnostics).bounds());
       } catch (const DiagnosticError& e) {
         return badInput(progress, e.diagnostic().text());
       }
@@ -306,7 +310,7 @@ int runSimulate(SimulateOptions o) {
     progress.update(frame);
     const auto frameStarted = Clock::now();
     const Scene* body = nullptr;
-    BuiltScene moved;
+    Scene moved;
     // Frame 1 is the model as derived; each later frame is a frame time after it.
     if (frame > 1) {
       if (models->moves(frame)) {
@@ -315,7 +319,7 @@ int runSimulate(SimulateOptions o) {
         } catch (const DiagnosticError& e) {
           return badInput(progress, e.diagnostic().text());
         }
-        body = &moved.scene;
+        body = &moved;
       }
       try {
         const auto stepping = Clock::now();
@@ -335,7 +339,7 @@ int runSimulate(SimulateOptions o) {
         return kExitBadInput;
       }
     }
-    if (body) drawn = std::move(moved.scene);
+    if (body) drawn = std::move(moved);
     const fs::path folder(o.output);
     if (!o.noFrames) {
       try {
