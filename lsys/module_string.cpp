@@ -95,6 +95,8 @@ void ModuleString::appendRounded(char symbol, std::span<const double> parameters
 void ModuleString::appendRange(const ModuleString& source, std::size_t from, std::size_t to,
                                std::size_t count) {
   std::size_t n = to - from;
+  // An empty range may come from an empty string, whose null buffer memcpy may not be given.
+  if (n == 0) return;
   reserveMore(n);
   std::memcpy(data_ + size_, source.data_ + from, n);
   size_ += n;
