@@ -257,10 +257,9 @@ CommandRun runHirsuteOnce(const std::vector<std::string>& arguments, const fs::p
   return run;
 }
 
-// LeakSanitizer stops every thread at exit to scan memory; when one of Mesa's threads is ending
-// at that moment, its tracer can crash. That is the sanitizer failing, not a leak (a leak reads
-// "detected memory leaks"), so such a run is repeated, twice at most, and said so.
-// (scripts/test-sanitized.sh also keeps Mesa from starting threads of its own.)
+// LeakSanitizer's tracer can crash at exit (a failure of the sanitizer, not a leak, which reads
+// "detected memory leaks"): such a run is repeated, twice at most, and said so.
+// scripts/test-sanitized.sh sets the options that kept it from crashing.
 bool leakCheckerCrashed(const CommandRun& run) {
   return run.exitCode != 0 &&
          run.standardError.find("LeakSanitizer has encountered a fatal error") != std::string::npos;
