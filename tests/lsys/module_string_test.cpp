@@ -84,6 +84,16 @@ TEST(ModuleString, CopiesRangesAndModulesVerbatim) {
   EXPECT_EQ(b.at(b.previous(b.end())).parameter(0), 4.25f);
 }
 
+// An empty string has no buffer: its (empty) range appends nothing, and the sanitizer build
+// fails here if the copy is handed the null pointer (a thread's empty part of a split step).
+TEST(ModuleString, AnEmptyStringsRangeAppendsNothing) {
+  ModuleString empty, b;
+  b.append('X');
+  b.appendRange(empty, empty.begin(), empty.end(), 0);
+  EXPECT_EQ(b.moduleCount(), 1u);
+  EXPECT_EQ(b.end(), 1u);
+}
+
 TEST(FormatParameter, PrintsLikePrintfPercentG) {
   EXPECT_EQ(formatParameter(1.0f), "1");
   EXPECT_EQ(formatParameter(0.1f), "0.1");
