@@ -75,7 +75,8 @@ void requireKnownLsystems(const Program& program, const ModuleString& s, std::si
 
 // A weight written as a number (`: 3`) is read as it is, without a run of the evaluator.
 bool isConstant(const Code& code) {
-  return code.instructions.size() == 1 && code.instructions[0].op == Op::Constant;
+  return code.instructions.size() == 2 && code.instructions[0].op == Op::Constant &&
+         code.instructions[1].op == Op::End;
 }
 
 void bind(const ModulePattern& pattern, ModuleRef m, double* frame) {

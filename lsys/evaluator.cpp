@@ -114,14 +114,21 @@ std::size_t Evaluator::elementIndex(std::int32_t array, const double* subscripts
 const double* Evaluator::values(const Code& code, double* frame, std::size_t count) {
   run(code, frame);
   (void)count;
-  return stack_.data();
+  return stack_.data() + 1;  // run() leaves the values from stack_[1] on
 }
 
 // The hot loop: the cases that run for every module stay small so that the stack, frame and
 // code pointers live in registers; arrays, modulo, fscanf and every error leave through
 // out-of-line helpers. Dispatch is threaded (GCC's labels as values): each case jumps straight
-// to the next instruction's case, so the branch predictor sees one indirect jump per case.
+// to the next instruction's case, so the branch predictor sees one indirect jump per case; the
+// end is an instruction of its own (Op::End), so no case tests for it.
+//
+// The top value is kept in a register (`top value`, tv); the values under it are in memory:
+// with d values on the stack, v[0] … v[d-1], base[k] holds v[k-1] for k = 1 … d-1 and
+// top = base + d. base[0] is a slot below the bottom value that a push onto an empty stack
+// writes (the register's stale value) and nothing reads.
 double Evaluator::run(const Code& code, double* frame) {
+  if (code.instructions.empty()) return 0.0;
   // clang-format off
   static constexpr void* kCases[] = {
       &&constant, &&loadLocal, &&storeLocal, &&loadShared, &&storeShared, &&loadElement,
@@ -133,80 +140,107 @@ double Evaluator::run(const Code& code, double* frame) {
       &&addConstant, &&subtractConstant, &&multiplyConstant, &&divideConstant, &&powerConstant,
       &&equalConstant, &&notEqualConstant, &&lessConstant, &&lessEqualConstant,
       &&greaterConstant, &&greaterEqualConstant,
-      &&callSin, &&callCos, &&callSqrt, &&callFabs, &&callExp, &&callLog};
+      &&callSin, &&callCos, &&callSqrt, &&callFabs, &&callExp, &&callLog, &&done,
+      &&localAddLocal, &&localSubtractLocal, &&localMultiplyLocal, &&localDivideLocal,
+      &&localPowerLocal, &&localAddConstant, &&localSubtractConstant, &&localMultiplyConstant,
+      &&localDivideConstant, &&localPowerConstant,
+      &&unlessEqualLocal, &&unlessNotEqualLocal, &&unlessLessLocal, &&unlessLessEqualLocal,
+      &&unlessGreaterLocal, &&unlessGreaterEqualLocal,
+      &&unlessEqualConstant, &&unlessNotEqualConstant, &&unlessLessConstant,
+      &&unlessLessEqualConstant, &&unlessGreaterConstant, &&unlessGreaterEqualConstant};
   // clang-format on
-  static_assert(std::size(kCases) == static_cast<std::size_t>(Op::CallLog) + 1, "one case per Op");
-  double* const stack = stack_.data();
-  double* top = stack;  // one past the top value
+  static_assert(std::size(kCases) == static_cast<std::size_t>(Op::UnlessGreaterEqualConstant) + 1,
+                "one case per Op");
+  double* const base = stack_.data();
+  double* top = base;
+  double tv = 0;
   double* const shared = shared_.data();
   const double* const constants = code.constants.data();
   const Instruction* const first = code.instructions.data();
-  const Instruction* const last = first + code.instructions.size();
   const Instruction* in = first;
   std::uint64_t iterations = 0;
   const std::uint64_t maxIterations = limits_.maxLoopIterations;
-#define HIRSUTE_NEXT()                                   \
-  do {                                                   \
-    if (++in == last) goto done;                         \
-    goto* kCases[static_cast<std::size_t>(in->op)];      \
-  } while (0)
+#define HIRSUTE_NEXT() goto* kCases[static_cast<std::size_t>((++in)->op)]
 #define HIRSUTE_GO_TO(target)                            \
   do {                                                   \
     in = first + (target);                               \
-    if (in == last) goto done;                           \
     goto* kCases[static_cast<std::size_t>(in->op)];      \
   } while (0)
-  if (in == last) goto done;
+#define HIRSUTE_PUSH(value) \
+  do {                      \
+    *top++ = tv;            \
+    tv = (value);           \
+  } while (0)
+  // The whole stack in memory from base[1] on (for the helpers that take a stack pointer, one
+  // past the top value), and back.
+#define HIRSUTE_SPILL() (*top = tv, top + 1)
+#define HIRSUTE_RELOAD(end) \
+  do {                      \
+    top = (end) - 1;        \
+    tv = *top;              \
+  } while (0)
   goto* kCases[static_cast<std::size_t>(in->op)];
-constant: *top++ = constants[in->operand]; HIRSUTE_NEXT();
-loadLocal: *top++ = frame[in->operand]; HIRSUTE_NEXT();
-storeLocal: frame[in->operand] = *--top; HIRSUTE_NEXT();
-loadShared: *top++ = shared[in->operand]; HIRSUTE_NEXT();
-storeShared: shared[in->operand] = *--top; HIRSUTE_NEXT();
-loadElement: top = this->loadElement(*in, top); HIRSUTE_NEXT();
-storeElement: top = this->storeElement(*in, top); HIRSUTE_NEXT();
-pop: --top; HIRSUTE_NEXT();
-negate: top[-1] = -top[-1]; HIRSUTE_NEXT();
-logicalNot: top[-1] = top[-1] == 0 ? 1.0 : 0.0; HIRSUTE_NEXT();
-truth: top[-1] = top[-1] != 0 ? 1.0 : 0.0; HIRSUTE_NEXT();
-add: --top; top[-1] += *top; HIRSUTE_NEXT();
-subtract: --top; top[-1] -= *top; HIRSUTE_NEXT();
-multiply: --top; top[-1] *= *top; HIRSUTE_NEXT();
+constant: HIRSUTE_PUSH(constants[in->operand]); HIRSUTE_NEXT();
+loadLocal: HIRSUTE_PUSH(frame[in->operand]); HIRSUTE_NEXT();
+storeLocal: frame[in->operand] = tv; tv = *--top; HIRSUTE_NEXT();
+loadShared: HIRSUTE_PUSH(shared[in->operand]); HIRSUTE_NEXT();
+storeShared: shared[in->operand] = tv; tv = *--top; HIRSUTE_NEXT();
+loadElement: HIRSUTE_RELOAD(this->loadElement(*in, HIRSUTE_SPILL())); HIRSUTE_NEXT();
+storeElement: HIRSUTE_RELOAD(this->storeElement(*in, HIRSUTE_SPILL())); HIRSUTE_NEXT();
+pop: tv = *--top; HIRSUTE_NEXT();
+negate: tv = -tv; HIRSUTE_NEXT();
+logicalNot: tv = tv == 0 ? 1.0 : 0.0; HIRSUTE_NEXT();
+truth: tv = tv != 0 ? 1.0 : 0.0; HIRSUTE_NEXT();
+  // Binary operators: the left operand is under the top value, the right one is the top value.
+#define HIRSUTE_BINARY(name, expression) \
+  name : {                               \
+    const double a = *--top;             \
+    const double b = tv;                 \
+    tv = (expression);                   \
+    HIRSUTE_NEXT();                      \
+  }
+  HIRSUTE_BINARY(add, a + b)
+  HIRSUTE_BINARY(subtract, a - b)
+  HIRSUTE_BINARY(multiply, a * b)
+  HIRSUTE_BINARY(power, power(a, b))
+  HIRSUTE_BINARY(equal, a == b)
+  HIRSUTE_BINARY(notEqual, a != b)
+  HIRSUTE_BINARY(less, a < b)
+  HIRSUTE_BINARY(lessEqual, a <= b)
+  HIRSUTE_BINARY(greater, a > b)
+  HIRSUTE_BINARY(greaterEqual, a >= b)
+#undef HIRSUTE_BINARY
 divide:
-  --top;
-  if (*top == 0) fail(in->where, "division by zero");
-  top[-1] /= *top;
+  if (tv == 0) fail(in->where, "division by zero");
+  tv = *--top / tv;
   HIRSUTE_NEXT();
-modulo: --top; top[-1] = this->modulo(top[-1], *top, in->where); HIRSUTE_NEXT();
-power: --top; top[-1] = power(top[-1], *top); HIRSUTE_NEXT();
-equal: --top; top[-1] = top[-1] == *top; HIRSUTE_NEXT();
-notEqual: --top; top[-1] = top[-1] != *top; HIRSUTE_NEXT();
-less: --top; top[-1] = top[-1] < *top; HIRSUTE_NEXT();
-lessEqual: --top; top[-1] = top[-1] <= *top; HIRSUTE_NEXT();
-greater: --top; top[-1] = top[-1] > *top; HIRSUTE_NEXT();
-greaterEqual: --top; top[-1] = top[-1] >= *top; HIRSUTE_NEXT();
+modulo: tv = this->modulo(*--top, tv, in->where); HIRSUTE_NEXT();
 jump: HIRSUTE_GO_TO(in->operand);
-jumpIfFalse:
-  if (*--top == 0) HIRSUTE_GO_TO(in->operand);
+jumpIfFalse: {
+  const bool no = tv == 0;
+  tv = *--top;
+  if (no) HIRSUTE_GO_TO(in->operand);
   HIRSUTE_NEXT();
+}
 loopBack:
   if (++iterations > maxIterations) failLoop(in->where);
   HIRSUTE_GO_TO(in->operand);
 call: {
-  top -= in->count;
+  double* const arguments = HIRSUTE_SPILL() - in->count;
   Builtin id = static_cast<Builtin>(in->operand);
   // The math built-ins go straight to libm; the rest need the evaluator's state.
-  double result = isMathBuiltin(id) ? applyMathBuiltin(id, top, in->count) : this->call(id, top, in->count, in->where);
-  *top++ = result;
+  tv = isMathBuiltin(id) ? applyMathBuiltin(id, arguments, in->count)
+                         : this->call(id, arguments, in->count, in->where);
+  top = arguments;
   HIRSUTE_NEXT();
 }
-scan: top = this->scan(*in, top); HIRSUTE_NEXT();
+scan: HIRSUTE_RELOAD(this->scan(*in, HIRSUTE_SPILL())); HIRSUTE_NEXT();
   // The fused forms: the same operators with the right operand read in place.
 #define HIRSUTE_FUSED(name, source, expression) \
   name : {                                      \
     const double b = source[in->operand];       \
-    double& a = top[-1];                        \
-    a = (expression);                           \
+    const double a = tv;                        \
+    tv = (expression);                          \
     HIRSUTE_NEXT();                             \
   }
   HIRSUTE_FUSED(addLocal, frame, a + b)
@@ -233,37 +267,81 @@ scan: top = this->scan(*in, top); HIRSUTE_NEXT();
 divideLocal : {
   const double b = frame[in->operand];
   if (b == 0) fail(in->where, "division by zero");
-  top[-1] /= b;
+  tv /= b;
   HIRSUTE_NEXT();
 }
 divideConstant : {
   const double b = constants[in->operand];
   if (b == 0) fail(in->where, "division by zero");
-  top[-1] /= b;
+  tv /= b;
   HIRSUTE_NEXT();
 }
-callSin:
-  top[-1] = std::sin(top[-1] * kDegree);
+callSin: tv = std::sin(tv * kDegree); HIRSUTE_NEXT();
+callCos: tv = std::cos(tv * kDegree); HIRSUTE_NEXT();
+callSqrt: tv = std::sqrt(tv); HIRSUTE_NEXT();
+callFabs: tv = std::fabs(tv); HIRSUTE_NEXT();
+callExp: tv = std::exp(tv); HIRSUTE_NEXT();
+callLog: tv = std::log(tv); HIRSUTE_NEXT();
+  // A local and a local or a constant, pushed as the result of their operator.
+#define HIRSUTE_PUSHED(name, source, expression) \
+  name : {                                       \
+    const double a = frame[in->operand];         \
+    const double b = source[in->operand2];       \
+    HIRSUTE_PUSH(expression);                    \
+    HIRSUTE_NEXT();                              \
+  }
+  HIRSUTE_PUSHED(localAddLocal, frame, a + b)
+  HIRSUTE_PUSHED(localSubtractLocal, frame, a - b)
+  HIRSUTE_PUSHED(localMultiplyLocal, frame, a * b)
+  HIRSUTE_PUSHED(localPowerLocal, frame, power(a, b))
+  HIRSUTE_PUSHED(localAddConstant, constants, a + b)
+  HIRSUTE_PUSHED(localSubtractConstant, constants, a - b)
+  HIRSUTE_PUSHED(localMultiplyConstant, constants, a * b)
+  HIRSUTE_PUSHED(localPowerConstant, constants, power(a, b))
+#undef HIRSUTE_PUSHED
+localDivideLocal: {
+  const double b = frame[in->operand2];
+  if (b == 0) fail(in->where, "division by zero");
+  HIRSUTE_PUSH(frame[in->operand] / b);
   HIRSUTE_NEXT();
-callCos:
-  top[-1] = std::cos(top[-1] * kDegree);
+}
+localDivideConstant: {
+  const double b = constants[in->operand2];
+  if (b == 0) fail(in->where, "division by zero");
+  HIRSUTE_PUSH(frame[in->operand] / b);
   HIRSUTE_NEXT();
-callSqrt:
-  top[-1] = std::sqrt(top[-1]);
-  HIRSUTE_NEXT();
-callFabs:
-  top[-1] = std::fabs(top[-1]);
-  HIRSUTE_NEXT();
-callExp:
-  top[-1] = std::exp(top[-1]);
-  HIRSUTE_NEXT();
-callLog:
-  top[-1] = std::log(top[-1]);
-  HIRSUTE_NEXT();
+}
+  // A comparison of the top value, popped, and a jump to operand2 when it is false.
+#define HIRSUTE_UNLESS(name, source, expression) \
+  name : {                                       \
+    const double a = tv;                         \
+    const double b = source[in->operand];        \
+    tv = *--top;                                 \
+    if (!(expression)) HIRSUTE_GO_TO(in->operand2); \
+    HIRSUTE_NEXT();                              \
+  }
+  HIRSUTE_UNLESS(unlessEqualLocal, frame, a == b)
+  HIRSUTE_UNLESS(unlessNotEqualLocal, frame, a != b)
+  HIRSUTE_UNLESS(unlessLessLocal, frame, a < b)
+  HIRSUTE_UNLESS(unlessLessEqualLocal, frame, a <= b)
+  HIRSUTE_UNLESS(unlessGreaterLocal, frame, a > b)
+  HIRSUTE_UNLESS(unlessGreaterEqualLocal, frame, a >= b)
+  HIRSUTE_UNLESS(unlessEqualConstant, constants, a == b)
+  HIRSUTE_UNLESS(unlessNotEqualConstant, constants, a != b)
+  HIRSUTE_UNLESS(unlessLessConstant, constants, a < b)
+  HIRSUTE_UNLESS(unlessLessEqualConstant, constants, a <= b)
+  HIRSUTE_UNLESS(unlessGreaterConstant, constants, a > b)
+  HIRSUTE_UNLESS(unlessGreaterEqualConstant, constants, a >= b)
+#undef HIRSUTE_UNLESS
 #undef HIRSUTE_NEXT
 #undef HIRSUTE_GO_TO
+#undef HIRSUTE_PUSH
+#undef HIRSUTE_SPILL
+#undef HIRSUTE_RELOAD
 done:
-  return top > stack ? top[-1] : 0.0;
+  // The values in memory from base[1] on, for values().
+  *top = tv;
+  return top > base ? tv : 0.0;
 }
 
 double* Evaluator::loadElement(const Instruction& in, double* top) {

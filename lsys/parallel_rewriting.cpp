@@ -8,27 +8,6 @@
 namespace hirsute {
 namespace {
 
-// The frame slot an instruction reads, or -1.
-int slotRead(const Instruction& in) {
-  switch (in.op) {
-    case Op::LoadLocal:
-    case Op::AddLocal:
-    case Op::SubtractLocal:
-    case Op::MultiplyLocal:
-    case Op::DivideLocal:
-    case Op::PowerLocal:
-    case Op::EqualLocal:
-    case Op::NotEqualLocal:
-    case Op::LessLocal:
-    case Op::LessEqualLocal:
-    case Op::GreaterLocal:
-    case Op::GreaterEqualLocal:
-      return in.operand;
-    default:
-      return -1;
-  }
-}
-
 // Built-ins whose result depends on their arguments alone and that touch nothing else. `func`
 // warns about an unknown function id: a warning makes the parallel step give way to the
 // sequential one, which warns in order.
@@ -114,27 +93,18 @@ bool readsOnlyWrittenSlots(const Code& code, std::vector<char>& written) {
     if (pc == n) continue;
     std::vector<char> state = *in[pc];
     const Instruction& instruction = code.instructions[pc];
-    const int read = slotRead(instruction);
-    if (read >= 0 && (static_cast<std::size_t>(read) >= state.size() || !state[read])) return false;
+    const SlotsRead reads = slotsRead(instruction);
+    for (const std::int32_t read : {reads.first, reads.second}) {
+      if (read >= 0 && (static_cast<std::size_t>(read) >= state.size() || !state[read])) return false;
+    }
     if (instruction.op == Op::StoreLocal) {
       const auto slot = static_cast<std::size_t>(instruction.operand);
       if (slot >= state.size()) state.resize(slot + 1, 0);
       state[slot] = 1;
     }
-    const auto target = static_cast<std::size_t>(instruction.operand);
-    switch (instruction.op) {
-      case Op::Jump:
-      case Op::LoopBack:
-        flow(target, state);
-        break;
-      case Op::JumpIfFalse:
-        flow(target, state);
-        flow(pc + 1, state);
-        break;
-      default:
-        flow(pc + 1, state);
-        break;
-    }
+    const std::int32_t target = jumpTarget(instruction);
+    if (target >= 0) flow(static_cast<std::size_t>(target), state);
+    if (fallsThrough(instruction.op)) flow(pc + 1, state);
   }
   // Code whose end no path reaches (it cannot end without an error) writes every slot.
   if (in[n]) written = *in[n];
