@@ -287,7 +287,7 @@ int runSimulate(SimulateOptions o) {
   // What each frame's steps did, committed with the last frame.
   std::string table =
       "frame,time,steps,substeps,retries,candidates,contacts,impulses,repulsions,"
-      "impact_zones,penetrations,kept_near,calami_left,calami_crossed,calami_crossed_left,"
+      "impact_zones,penetrations,kept_near,calami_left,calami_crossed,calami_zoned,"
       "seconds\n";
   const auto writeTable = [&]() -> int {
     try {
@@ -362,7 +362,7 @@ int runSimulate(SimulateOptions o) {
         c.impulses - before.impulses, c.repulsions - before.repulsions,
         c.impactZones - before.impactZones, c.penetrations - before.penetrations,
         c.keptNear - before.keptNear, c.calamiLeft - before.calamiLeft,
-        c.calamiCrossed - before.calamiCrossed, c.calamiCrossedLeft - before.calamiCrossedLeft,
+        c.calamiCrossed - before.calamiCrossed, c.calamiZoned - before.calamiZoned,
         std::chrono::duration<double>(Clock::now() - frameStarted).count());
     before = c;
   }
@@ -373,11 +373,11 @@ int runSimulate(SimulateOptions o) {
   std::cout << fmt::format(
       "{} frames of {} feathers ({} rooted on the body) in {:.2f} s, {:.3f} s of it simulating "
       "({:.1f} frames/s): {} steps, {} retried; {} candidates, {} contacts, {} impact zones; "
-      "{} intersections found and undone, {} calamus crossings kept at the smallest step, {} "
-      "left\n",
+      "{} intersections found and undone, {} calamus crossings put into zones at the smallest "
+      "step, {} left\n",
       frames, motion->simulation().stems().size(), motion->boundRoots(), seconds, simulating,
       frames > 1 ? (frames - 1) / std::max(simulating, 1e-9) : 0.0, c.substeps, c.retries,
-      c.candidates, c.contacts, c.impactZones, c.penetrations, c.calamiCrossedLeft,
+      c.candidates, c.contacts, c.impactZones, c.penetrations, c.calamiZoned,
       motion->penetrations());
   return kExitOk;
 }

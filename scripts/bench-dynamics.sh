@@ -9,8 +9,8 @@
 # (in states thrown away), the pairs the impulses left between a quarter of the separation and the
 # separation, the pairs with a calamus they left within the separation (calami are not
 # guaranteed) and the pairs with a calamus found meeting their stem in a step tried (then
-# retried as halves) and of those the ones kept at the smallest step, and the intersections left
-# in accepted states (must be 0).
+# retried as halves) and of those the ones put into impact zones at the smallest step, and the
+# intersections left in accepted states (must be 0).
 # SIMULATED (default FRAMES) frames of them are simulated: fewer measure the start of the bend.
 #   HIRSUTE=path/to/hirsute FRAMES=240 DENSITIES="4.9 38 152" scripts/bench-dynamics.sh
 set -euo pipefail
@@ -23,7 +23,7 @@ trap 'rm -rf "$work"' EXIT
 ln -s "$(pwd)/models/feather-coat" "$work/feather-coat"
 printf '%-8s %9s %9s %6s %8s %8s %9s %10s %8s %11s %9s %7s %8s %11s %9s %11s %14s %11s %6s\n' \
   density feathers particles frames wall_s cpu_s peak_MiB frames/s steps/f candidates/f \
-  contacts/f zones/f retried intersections kept_near calami_left calami_crossed calami_kept left
+  contacts/f zones/f retried intersections kept_near calami_left calami_crossed calami_zoned left
 for density in ${DENSITIES:-4.9 38 152}; do
   model="$work/coat-$density"
   mkdir -p "$model"
@@ -51,8 +51,8 @@ for density in ${DENSITIES:-4.9 38 152}; do
   awk -F, -v d="$density" -v f="$feathers" -v wall="$wall" -v cpu="$cpu" -v peak="$peak" \
       -v left="$left" -v segments=9 '
     NR > 2 {n++; steps += $4; candidates += $6; contacts += $7; zones += $10; retried += $5;
-            found += $11; near += $12; calami += $13; crossed += $14; kept += $15; seconds += $16}
+            found += $11; near += $12; calami += $13; crossed += $14; zoned += $15; seconds += $16}
     END {printf "%-8s %9s %9s %6d %8.1f %8.1f %9s %10.1f %8.1f %11.0f %9.1f %7.2f %8d %11d %9d %11d %14d %11d %6s\n",
          d, f, f == "-" ? "-" : f * segments, n + 1, wall, cpu, peak, n / seconds, steps / n, candidates / n,
-         contacts / n, zones / n, retried, found, near, calami, crossed, kept, left}' "$model/out/simulation.csv"
+         contacts / n, zones / n, retried, found, near, calami, crossed, zoned, left}' "$model/out/simulation.csv"
 done

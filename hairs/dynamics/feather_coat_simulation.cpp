@@ -636,87 +636,110 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   std::vector<int> parent(state.start.size());
   std::iota(parent.begin(), parent.end(), 0);
   std::map<int, ZoneMotion> zoneMaps;  // each zone's map, by its root
-  for (int iteration = 0; !contacts.empty(); ++iteration) {
-    if (iteration >= parameters_.zoneIterations) {
-      failure_ = std::to_string(contacts.size()) +
-                 " contacts still within a quarter of the minimum separation after " +
-                 std::to_string(parameters_.zoneIterations) +
-                 " passes of rigid impact zones; the first: " + describe(contacts.front());
-      return false;
-    }
-    for (const Contact& c : contacts)
-      for (int k = 1; k < 4; ++k)
-        parent[findRoot(parent, c.vertices[k])] = findRoot(parent, c.vertices[0]);
-    std::map<int, std::vector<int>> zones;
-    std::set<int> touched;
-    for (const Contact& c : contacts)
-      for (int v : c.vertices) touched.insert(findRoot(parent, v));
-    for (int v = 0; v < static_cast<int>(parent.size()); ++v) {
-      const int root = findRoot(parent, v);
-      if (touched.count(root)) zones[root].push_back(v);
-    }
-    std::map<int, std::vector<const Contact*>> zoneContacts;
-    for (const Contact& c : contacts) zoneContacts[findRoot(parent, c.vertices[0])].push_back(&c);
-    for (const auto& [root, members] : zones) {
-      ZoneMotion& m = zoneMaps[root] = moveRigidly(members, state);
-      m.shift += liftOffKinematic(members, zoneContacts[root], opening, thickness, state);
-    }
-    contacts = findContacts(zoneCcd, false);
-    // The zone's map shortens no distance, so a pair within one zone is never nearer than at the
-    // start of the step (when it was clear) less how far its kinematic vertices stray from that
-    // map (each side's share of the gap at most its largest stray). A pair that stays clear so
-    // is passed over: the CCD's box still finds one when the zone turns its gap towards a
-    // diagonal, and the next step may find it inside the box from its start, which only this
-    // rule, once its vertices share a zone, can pass.
-    std::erase_if(contacts, [&](const Contact& c) {
-      const int root = findRoot(parent, c.vertices[0]);
-      for (int v : c.vertices)
-        if (findRoot(parent, v) != root) return false;
-      const ZoneMotion& m = zoneMaps.at(root);
-      double stray[2] = {0, 0};  // of the first primitive's vertices and of the second's
-      for (int k = 0; k < 4; ++k) {
-        const int v = c.vertices[k];
-        const int side = k == 0 || (k == 1 && !c.vertexFace) ? 0 : 1;
-        if (state.inverseMass[v] == 0)
-          stray[side] = std::max(stray[side], (state.end[v] - mapped(m, state.start[v])).norm());
+  // Rigid impact zones (Provot 1997) for `pending`, then for what the CCD finds within the
+  // zones' separation after each round, until it finds nothing; false (failure_ set) when
+  // contacts remain after zoneIterations rounds. Zones grow over the rounds and the calls.
+  const auto resolveInZones = [&](std::vector<Contact> pending) {
+    for (int iteration = 0; !pending.empty(); ++iteration) {
+      if (iteration >= parameters_.zoneIterations) {
+        failure_ = std::to_string(pending.size()) +
+                   " contacts still within a quarter of the minimum separation after " +
+                   std::to_string(parameters_.zoneIterations) +
+                   " passes of rigid impact zones; the first: " + describe(pending.front());
+        return false;
       }
-      const double nearest = primitives.distanceAtStart(c, state);
-      return nearest - stray[0] - stray[1] > (1 + 1e-9) * zoneCcd.minimumSeparation;
-    });
-  }
-  std::set<int> zoneRoots;
-  for (int v = 0; v < static_cast<int>(parent.size()); ++v)
-    if (findRoot(parent, v) != v) zoneRoots.insert(findRoot(parent, v));
-  counters_.impactZones += zoneRoots.size();
+      for (const Contact& c : pending)
+        for (int k = 1; k < 4; ++k)
+          parent[findRoot(parent, c.vertices[k])] = findRoot(parent, c.vertices[0]);
+      std::map<int, std::vector<int>> zones;
+      std::set<int> touched;
+      for (const Contact& c : pending)
+        for (int v : c.vertices) touched.insert(findRoot(parent, v));
+      for (int v = 0; v < static_cast<int>(parent.size()); ++v) {
+        const int root = findRoot(parent, v);
+        if (touched.count(root)) zones[root].push_back(v);
+      }
+      std::map<int, std::vector<const Contact*>> zoneContacts;
+      for (const Contact& c : pending) zoneContacts[findRoot(parent, c.vertices[0])].push_back(&c);
+      for (const auto& [root, members] : zones) {
+        ZoneMotion& m = zoneMaps[root] = moveRigidly(members, state);
+        m.shift += liftOffKinematic(members, zoneContacts[root], opening, thickness, state);
+      }
+      pending = findContacts(zoneCcd, false);
+      // The zone's map shortens no distance, so a pair within one zone is never nearer than at the
+      // start of the step (when it was clear) less how far its kinematic vertices stray from that
+      // map (each side's share of the gap at most its largest stray). A pair that stays clear so
+      // is passed over: the CCD's box still finds one when the zone turns its gap towards a
+      // diagonal, and the next step may find it inside the box from its start, which only this
+      // rule, once its vertices share a zone, can pass.
+      std::erase_if(pending, [&](const Contact& c) {
+        const int root = findRoot(parent, c.vertices[0]);
+        for (int v : c.vertices)
+          if (findRoot(parent, v) != root) return false;
+        const ZoneMotion& m = zoneMaps.at(root);
+        double stray[2] = {0, 0};  // of the first primitive's vertices and of the second's
+        for (int k = 0; k < 4; ++k) {
+          const int v = c.vertices[k];
+          const int side = k == 0 || (k == 1 && !c.vertexFace) ? 0 : 1;
+          if (state.inverseMass[v] == 0)
+            stray[side] = std::max(stray[side], (state.end[v] - mapped(m, state.start[v])).norm());
+        }
+        const double nearest = primitives.distanceAtStart(c, state);
+        return nearest - stray[0] - stray[1] > (1 + 1e-9) * zoneCcd.minimumSeparation;
+      });
+    }
+    return true;
+  };
+  if (!resolveInZones(std::move(contacts))) return false;
 
   // A calamus that meets or passes through another stem over the step as it now is (the
   // impulses' pairs, or any pair once zones have moved stems): the step is tried again as two
-  // halves, as one with an intersection. At the smallest step it is accepted and counted
-  // (calamiCrossedLeft): the zones cannot move a root the body holds, and where the bend drives
-  // a calamus against a stack of stems no smaller step separates them.
-  if (calami || !zoneRoots.empty()) {
+  // halves, as one with an intersection. At the smallest step, where the bend drives a calamus
+  // against a stem no smaller step keeps it off, the pair goes into a rigid impact zone with the
+  // calamus's root: the zone moves with the root, so the stem keeps its side of the calamus,
+  // and the CCD then answers what the zone's move brings near in further rounds. A crossing
+  // left after zoneIterations rounds fails the step; none is ever accepted.
+  const auto calamusCrossings = [&] {
     CcdOptions touching;  // no separation: the pair meets (or passes through)
     touching.minimumSeparation = 0;
     const auto pairs = grid_.overlappingPairs(
         primitives.boxes(state, 0), groups,
         [&](int a, int b) { return primitives.wanted(a, b) && primitives.holdsCalamus(a, b); });
-    std::optional<Contact> crossing;
-    std::uint64_t crossings = 0;
+    std::vector<Contact> crossings;
     for (const auto& [a, b] : pairs) {
       const MovingPrimitives m = primitives.motion(a, b, state);
       const CcdResult r = primitives.list[b].kind == Kind::BodyTriangle ? vertexFaceCcd(m, touching)
                                                                         : edgeEdgeCcd(m, touching);
-      if (!r.contact) continue;
-      ++crossings;
-      if (!crossing) crossing = primitives.contactAt(a, b, state, r.timeOfImpact);
+      if (r.contact) crossings.push_back(primitives.contactAt(a, b, state, r.timeOfImpact));
     }
-    counters_.calamiCrossed += crossings;
-    if (crossing && !smallest) {
-      failure_ = "a calamus meets another stem in the step: " + describe(*crossing);
-      return false;
+    return crossings;
+  };
+  bool zonesMoved = false;
+  for (int v = 0; v < static_cast<int>(parent.size()) && !zonesMoved; ++v)
+    zonesMoved = findRoot(parent, v) != v;
+  if (calami || zonesMoved) {
+    for (int round = 0;; ++round) {
+      std::vector<Contact> crossings = calamusCrossings();
+      if (crossings.empty()) break;
+      counters_.calamiCrossed += crossings.size();
+      if (!smallest) {
+        failure_ = "a calamus meets another stem in the step: " + describe(crossings.front());
+        return false;
+      }
+      if (round >= parameters_.zoneIterations) {
+        failure_ = std::to_string(crossings.size()) + " calamus crossings left after " +
+                   std::to_string(parameters_.zoneIterations) +
+                   " rounds of impact zones; the first: " + describe(crossings.front());
+        return false;
+      }
+      counters_.calamiZoned += crossings.size();
+      if (!resolveInZones(std::move(crossings))) return false;
     }
-    counters_.calamiCrossedLeft += crossings;
   }
+  std::set<int> zoneRoots;
+  for (int v = 0; v < static_cast<int>(parent.size()); ++v)
+    if (findRoot(parent, v) != v) zoneRoots.insert(findRoot(parent, v));
+  counters_.impactZones += zoneRoots.size();
 
   // The positions and velocities the collisions leave.
   for (std::size_t s = 0; s < stems_.size(); ++s) {

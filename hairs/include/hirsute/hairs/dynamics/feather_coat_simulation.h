@@ -79,8 +79,9 @@ struct SimulationCounters {
                                    // of the zones' over the step
   std::uint64_t calamiLeft = 0;    // pairs with a calamus the impulses left within the separation
   std::uint64_t calamiCrossed = 0;  // pairs with a calamus that met or passed through each other
-                                    // in a step tried (then retried as halves)
-  std::uint64_t calamiCrossedLeft = 0;  // of those, in steps accepted at the smallest step
+                                    // in a step tried (retried as halves, or at the smallest
+                                    // step put into impact zones)
+  std::uint64_t calamiZoned = 0;  // of those, put into impact zones at the smallest step
 };
 
 // A step that could not be resolved even at the smallest time step: the state is left as it
@@ -92,9 +93,10 @@ struct StepFailure : std::runtime_error {
 // Which primitives of a state intersect: stem segments through body triangles (exact), and stem
 // segments that meet or come nearer than `minimumDistance` to each other (segments of one stem
 // that share a node excepted). A stem's first segment, its calamus, whose root lies on the body,
-// is not tested: the body places the roots, and where its bend drives a calamus against another
-// stem (or two roots together) the simulation cannot keep them apart; the impulses keep calami
-// off other stems where they can (`SimulationCounters::calamiLeft` counts where they did not).
+// is not tested: the body places the roots, and where its bend brings two roots together the
+// simulation cannot keep their calami apart; against other stems' segments a calamus is kept
+// from crossing by the steps' continuous check (`SimulationCounters::calamiCrossed`), and the
+// impulses keep it off them where they can (`calamiLeft` counts where they did not).
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
                               double minimumDistance);
 // The same searching in `grid`, whose memory it keeps for the next search.
