@@ -186,7 +186,11 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
   while (pos < end) {
     const std::uint8_t b = bytes[pos];
     const auto c = static_cast<unsigned char>(b & 0x7f);
-    if (!copied[c]) {
+    // Most modules of a long string are copied as they are: that path falls through.
+    if (copied[c]) [[likely]] {
+      if (runCount == 0) runFrom = pos;
+      ++runCount;
+    } else {
       if (!(b & 0x80) && plainSuccessor_[c] >= 0) {
         if (runCount) {
           next_.appendRange(s, runFrom, pos, runCount);
@@ -206,9 +210,6 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
         if (runCount == 0) runFrom = pos;
         ++runCount;
       }
-    } else {
-      if (runCount == 0) runFrom = pos;
-      ++runCount;
     }
     if (tracking) LeftNeighbours::pass(pos, static_cast<char>(c), l, last, open);
     pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
