@@ -40,7 +40,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr auto kKillAfter = std::chrono::seconds(5);
+// A run still going after this is a hang. Generous: the sanitizer build's renders take seconds,
+// and on a busy machine (CI's two test jobs and another process) the herb's took over 5.
+constexpr auto kKillAfter = std::chrono::seconds(20);
 constexpr double kSlowSeconds = 1.0;  // worth a warning line, not a failure: timing is no test
 
 struct RunResult {
@@ -445,6 +447,10 @@ std::string readFifoWhile(const fs::path& fifo, const std::function<void()>& run
     close(fd);
   });
   run();
+  // A writer that was killed (or failed) before it opened the FIFO leaves the reader blocked in
+  // open(): opening the write end without blocking lets it go on to the end of the (empty) pipe.
+  // When the reader has already finished there is no reader and the open fails: nothing to do.
+  if (int fd = open(fifo.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) close(fd);
   reader.join();
   return text;
 }
