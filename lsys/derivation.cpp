@@ -361,9 +361,26 @@ const BranchIndex& Derivation::branchesOf(const ModuleString& s) const {
   return branches_;
 }
 
+bool Derivation::partsSearchBranches() const {
+  LeftNeighbours neighbours;
+  neighbours.reset(program_);
+  for (const Lsystem& l : program_.lsystems) {
+    for (const RuleSet* rules : {&l.productions, &l.decomposition, &l.homomorphism}) {
+      for (const Production& p : rules->productions) {
+        if (!p.right.empty() || p.left.size() > 1 || (!p.left.empty() && !neighbours.enabled))
+          return true;
+      }
+    }
+  }
+  return false;
+}
+
+// A part of a step (helped_) reads the index of current_ only when rewriteInParts built it, and
+// never builds it: the other parts may be reading it.
 std::size_t Derivation::afterBranch(const ModuleString& s, std::size_t at) const {
   const Derivation& owner = helped_ ? *helped_ : *this;
-  if (&s == &owner.current_ && owner.branchesOf(s).usable()) {
+  if (&s == &owner.current_ && (!helped_ || owner.branches_.built()) &&
+      owner.branchesOf(s).usable()) {
     const std::size_t close = owner.branches_.partner(at);
     return close == BranchIndex::kNone ? s.end() : s.next(close);
   }
@@ -373,7 +390,10 @@ std::size_t Derivation::afterBranch(const ModuleString& s, std::size_t at) const
 
 std::size_t Derivation::branchOpening(const ModuleString& s, std::size_t at) const {
   const Derivation& owner = helped_ ? *helped_ : *this;
-  if (&s == &owner.current_ && owner.branchesOf(s).usable()) return owner.branches_.partner(at);
+  if (&s == &owner.current_ && (!helped_ || owner.branches_.built()) &&
+      owner.branchesOf(s).usable()) {
+    return owner.branches_.partner(at);
+  }
   int depth = 0;
   for (std::size_t r = at;; r = s.previous(r)) {
     const char d = s.at(r).symbol();
@@ -748,12 +768,31 @@ std::size_t Derivation::rewriteInParts() {
     return 0;
   }
   const std::size_t parts = std::min(static_cast<std::size_t>(threads_), current_.moduleCount());
-  // The parts' boundaries: module starts about equally far apart in bytes.
+  // The parts' boundaries: module starts about equally far apart in bytes. The way there carries
+  // the left neighbours along, so that no part passes over the string before it again.
   std::vector<std::size_t> bounds{0};
+  LeftNeighbours neighbours;
+  neighbours.reset(program_);
+  std::vector<LeftNeighbours> starts{neighbours};
+  const Lsystem& main = program_.lsystems.front();
+  const std::uint8_t* const bytes = current_.bytes();
   for (std::size_t k = 1, pos = 0; k < parts; ++k) {
     const std::size_t target = current_.end() / parts * k;
-    while (pos < target) pos = current_.next(pos);
-    if (pos > bounds.back() && pos < current_.end()) bounds.push_back(pos);
+    if (neighbours.enabled) {
+      while (pos < target) {
+        const std::uint8_t b = bytes[pos];
+        LeftNeighbours::pass(pos, static_cast<char>(b & 0x7f), main, neighbours.last,
+                             neighbours.open);
+        pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
+      }
+    } else {
+      while (pos < target) pos = current_.next(pos);
+    }
+    if (pos > bounds.back() && pos < current_.end()) {
+      bounds.push_back(pos);
+      neighbours.trackedTo = pos;
+      starts.push_back(neighbours);
+    }
   }
   bounds.push_back(current_.end());
   const std::size_t used = bounds.size() - 1;
@@ -768,8 +807,9 @@ std::size_t Derivation::rewriteInParts() {
     helper->derivation->helped_ = this;
     helpers_.push_back(std::move(helper));
   }
-  // Contexts search the string's branches through its index: built here, read by every part.
-  if (anyContext_) branchesOf(current_);
+  // Contexts that search the string's branches do it through its index: built here, read by
+  // every part (a part never builds it).
+  if (anyContext_ && partsSearchBranches()) branchesOf(current_);
   std::vector<std::exception_ptr> errors(used);
   std::vector<std::size_t> warningsBefore(used);
   for (std::size_t k = 0; k < used; ++k) {
@@ -777,6 +817,8 @@ std::size_t Derivation::rewriteInParts() {
     helper.evaluator->readVariablesOf(evaluator_);
     helper.derivation->stepsDone_ = stepsDone_;
     helper.derivation->next_.clear();
+    helper.derivation->partStart_ = starts[k];
+    helper.derivation->partStartKnown_ = true;
     warningsBefore[k] = helper.diagnostics.warnings().size() + helper.diagnostics.suppressed();
   }
   const auto rewritePart = [&](std::size_t k) {
@@ -827,6 +869,9 @@ std::size_t Derivation::rewriteInParts() {
 void Derivation::rewriteRange(const ModuleString& s, std::size_t from, std::size_t to) {
   subLsystems_.assign(1, 0);
   leftNeighbours_.reset(program_);
+  if (partStartKnown_ && partStart_.trackedTo == from && leftNeighbours_.enabled) {
+    leftNeighbours_ = partStart_;
+  }
   const bool nested = program_.lsystems.size() > 1;
   std::size_t pos = from;
   // Modules that stay as they are accumulate into one run [runFrom, pos), appended in one piece

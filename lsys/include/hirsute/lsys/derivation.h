@@ -231,6 +231,14 @@ class Derivation {
     }
   };
   LeftNeighbours leftNeighbours_;
+  // A part's left neighbours where it starts, found by rewriteInParts on its way to the part's
+  // boundary: rewriteRange from there starts with them instead of passing over the string again.
+  LeftNeighbours partStart_;
+  bool partStartKnown_ = false;
+  // Whether the parts of a step search the string's branches through its index: some production
+  // has a right context, a left context of more than one module, or a left context that the
+  // left neighbours do not answer. Otherwise the index is not built for them.
+  bool partsSearchBranches() const;
   // Symbols of the main L-system whose every production needs a left context (and one strict
   // module): such a module whose left neighbour is none of `leftLast_[symbol]`, the symbols
   // those contexts end with, cannot be rewritten and joins the run copied as it is.
