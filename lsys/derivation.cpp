@@ -147,6 +147,33 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
       break;
     }
   }
+  contextTable_.fill(-1);
+  for (std::size_t c = 0; fusedScan_ && c < 128; ++c) {
+    if (!needsLeft_[c]) continue;
+    std::array<int, 128> successors;
+    successors.fill(-1);
+    bool any = false;
+    for (std::size_t n = 0; n < 128; ++n) {
+      if (!leftLast_[c].test(n)) continue;
+      // choose()'s order: the first production whose module and the left context's last module
+      // (the neighbour n, without parameters) do not refuse it.
+      for (std::uint32_t id : main.productions.bySymbol[c]) {
+        const Production& p = main.productions.productions[id];
+        if (p.strict[0].parameterCount != 0) continue;
+        const ModulePattern& nearest = p.left.back();
+        if (static_cast<unsigned char>(nearest.symbol) != n || nearest.parameterCount != 0) continue;
+        if (p.left.size() == 1 && p.right.empty() && p.before.empty() && p.condition.empty() &&
+            p.after.empty() && p.successorValues.empty() && !p.callsSubLsystem) {
+          successors[n] = static_cast<int>(id);
+          any = true;
+        }
+        break;
+      }
+    }
+    if (!any) continue;
+    contextTable_[c] = static_cast<int>(contextSuccessors_.size());
+    contextSuccessors_.push_back(successors);
+  }
   modulesIndependent_ = rewritesModulesIndependently(program_);
   for (const Production& p : main.productions.productions) anyContext_ |= p.hasContext();
   threads_ = options_.threads > 0 ? options_.threads
@@ -191,13 +218,25 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
       if (runCount == 0) runFrom = pos;
       ++runCount;
     } else {
+      int successor = -1;
       if (!(b & 0x80) && plainSuccessor_[c] >= 0) {
+        successor = plainSuccessor_[c];
+      } else {
+        if (!tracking || !needsLeft_[c]) break;
+        if (last != BranchIndex::kNone && leftLast_[c].test(bytes[last] & 0x7f)) {
+          // The neighbour may satisfy a context: a plain production for it, or choose().
+          const int table = contextTable_[c];
+          if (table < 0 || (b & 0x80) || (bytes[last] & 0x80)) break;
+          successor = contextSuccessors_[static_cast<std::size_t>(table)][bytes[last] & 0x7f];
+          if (successor < 0) break;
+        }
+      }
+      if (successor >= 0) {
         if (runCount) {
           next_.appendRange(s, runFrom, pos, runCount);
           runCount = 0;
         }
-        const Production& p =
-            l.productions.productions[static_cast<std::size_t>(plainSuccessor_[c])];
+        const Production& p = l.productions.productions[static_cast<std::size_t>(successor)];
         std::uint8_t* at = next_.appendEncoded(p.successorBytes.size(), p.successor.size());
         if (!p.successorBytes.empty())
           std::memcpy(at, p.successorBytes.data(), p.successorBytes.size());
@@ -205,8 +244,6 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
         streamIfFull();
         left = room();
       } else {
-        if (!tracking || !needsLeft_[c]) break;
-        if (last != BranchIndex::kNone && leftLast_[c].test(bytes[last] & 0x7f)) break;
         if (runCount == 0) runFrom = pos;
         ++runCount;
       }

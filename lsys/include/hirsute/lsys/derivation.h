@@ -254,6 +254,13 @@ class Derivation {
   // a successor without computed values): such a module is replaced by that production's
   // successor bytes without choose(). The index is into the production set, -1 for none.
   std::array<int, 128> plainSuccessor_{};
+  // The same for a module without parameters whose every production needs a left context, by
+  // its left neighbour's symbol (a neighbour without parameters): the production choose() would
+  // apply when it is plain but for a left context of that one module, -1 when choose() must
+  // decide. contextSuccessors_[contextTable_[symbol]][neighbour]; contextTable_ is -1 for a
+  // symbol without such a table.
+  std::array<int, 128> contextTable_{};
+  std::vector<std::array<int, 128>> contextSuccessors_;
   void scanRun(const ModuleString& s, const Lsystem& l, std::size_t to, std::size_t& pos,
                std::size_t& runFrom, std::size_t& runCount);
   std::size_t ruleOutput_ = 0;  // modules decomposition or homomorphism produced in this pass
