@@ -18,7 +18,7 @@ if [[ -z "$program" ]]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DHIRSUTE_BUILD_TESTS=OFF \
     -DHIRSUTE_BUILD_BENCH=ON >/dev/null
   cmake --build "$build" --target hirsute hirsute_derive_bench hirsute_interpret_bench \
-    -j "${JOBS:-$(nproc)}"
+    hirsute_loops_native_bench -j "${JOBS:-$(nproc)}"
   "$build/bench/hirsute_derive_bench" "$@"
   echo
   program="$build/cli/hirsute"
@@ -97,6 +97,27 @@ echo " peak resident size the largest of the runs, GNU time's %M,"
 echo " which counts the preprocessor cpp that hirsute runs as cpfg does; cpfg columns: issue 10's"
 echo " measurement of cpfg, not run here; speed = cpfg s / ours, memory = ours / cpfg's;"
 echo " goal: at least 3x the speed at no more than cpfg's memory)"
+
+# The floor under the loops kind: its blocks compiled natively (bench/loops_native_bench.cpp),
+# the same libm calls and power operator, checked against the string hirsute derived above;
+# whole process, best of RUNS, on every core and on one. No evaluator can run the model in less.
+native="${NATIVE:-$build/bench/hirsute_loops_native_bench}"
+if [[ -x "$native" && -f "$out/loops.str" ]]; then
+  for threads in 0 1; do
+    best=""
+    for ((run = 0; run < runs; ++run)); do
+      /usr/bin/time -f '%e' -o "$out/time" "$native" --threads "$threads" \
+        --check "$out/loops.str" >"$out/native" || { cat "$out/native"; exit 1; }
+      read -r seconds <"$out/time"
+      if [[ -z "$best" ]] || awk -v a="$seconds" -v b="$best" 'BEGIN { exit !(a < b) }'; then
+        best="$seconds"
+      fi
+    done
+    label="$([[ "$threads" == 0 ]] && echo "a thread a core" || echo "one thread")"
+    echo "loops.l's blocks compiled natively, $label: $best s (best of $runs, the same string;" \
+      "cpfg/3 = $(awk 'BEGIN { printf "%.2f", 1.21 / 3 }') s)"
+  done
+fi
 [[ -n "${HIRSUTE:-}" ]] && exit 0
 echo
 # shellcheck disable=SC2086  # INTERPRET_ARGS is a list of arguments
