@@ -43,6 +43,9 @@ cpfg_reference() {
 # process (start-up, preprocessor, derivation, -str text), best wall time of RUNS (default 5)
 # and the peak resident size that GNU time reports (the largest of hirsute and its cpp).
 runs="${RUNS:-5}"
+# Wall seconds since an $EPOCHREALTIME reading, to the millisecond (GNU time's %e has two
+# decimals: a tenth of the stochastic kind's time). It includes starting GNU time itself.
+elapsed() { awk -v a="$1" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.3f", b - a }'; }
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 printf '%-11s %8s %6s %10s %9s %10s %13s %14s %8s %8s %5s\n' "model" "whole s" "cpu s" \
@@ -58,9 +61,11 @@ for model in models/bench/*.l; do
   single=""
   peak=0
   for ((run = 0; run < runs; ++run)); do
+    started="$EPOCHREALTIME"
     /usr/bin/time -f '%e %U %S %M' -o "$out/time" "$program" derive "$model" "${view[@]}" \
       -o "$out/$name.str"
-    read -r seconds user system kib <"$out/time"
+    seconds="$(elapsed "$started")"
+    read -r _ user system kib <"$out/time"
     if [[ -z "$best" ]] || awk -v a="$seconds" -v b="$best" 'BEGIN { exit !(a < b) }'; then
       best="$seconds"
     fi
@@ -70,9 +75,11 @@ for model in models/bench/*.l; do
     fi
     ((kib > peak)) && peak="$kib"
     # The same on one thread (--threads 1): what the parts of long steps win.
+    started="$EPOCHREALTIME"
     /usr/bin/time -f '%e %U %S %M' -o "$out/time" "$program" derive "$model" "${view[@]}" \
       -o "$out/$name.str" --threads 1
-    read -r seconds user system kib <"$out/time"
+    seconds="$(elapsed "$started")"
+    read -r _ user system kib <"$out/time"
     if [[ -z "$single" ]] || awk -v a="$seconds" -v b="$single" 'BEGIN { exit !(a < b) }'; then
       single="$seconds"
     fi
@@ -91,8 +98,9 @@ for model in models/bench/*.l; do
     "$(stat -c %s "$out/$name.str")" "$cpfg_s" "$cpfg_mib" "$speed" "$memory" "$goal"
   unset cpfg_s cpfg_mib
 done
-echo "(whole process, best of $runs: wall time with a thread a core ($(nproc) here), and the CPU time"
-echo " (user + system) of hirsute and its cpp; the wall time with --threads 1 beside;"
+echo "(whole process, best of $runs: wall time to the millisecond (GNU time's own start included)"
+echo " with a thread a core ($(nproc) here), the CPU time (user + system) of hirsute and its cpp,"
+echo " and the wall time with --threads 1;"
 echo " peak resident size the largest of the runs, GNU time's %M,"
 echo " which counts the preprocessor cpp that hirsute runs as cpfg does; cpfg columns: issue 10's"
 echo " measurement of cpfg, not run here; speed = cpfg s / ours, memory = ours / cpfg's;"
@@ -106,9 +114,10 @@ if [[ -x "$native" && -f "$out/loops.str" ]]; then
   for threads in 0 1; do
     best=""
     for ((run = 0; run < runs; ++run)); do
-      /usr/bin/time -f '%e' -o "$out/time" "$native" --threads "$threads" \
-        --check "$out/loops.str" >"$out/native" || { cat "$out/native"; exit 1; }
-      read -r seconds <"$out/time"
+      started="$EPOCHREALTIME"
+      "$native" --threads "$threads" --check "$out/loops.str" >"$out/native" ||
+        { cat "$out/native"; exit 1; }
+      seconds="$(elapsed "$started")"
       if [[ -z "$best" ]] || awk -v a="$seconds" -v b="$best" 'BEGIN { exit !(a < b) }'; then
         best="$seconds"
       fi
