@@ -10,6 +10,7 @@
 #include <unordered_set>
 
 #include "hirsute/lsys/builtins.h"
+#include "hirsute/lsys/native_code.h"
 #include "hirsute/lsys/module_string.h"
 #include "hirsute/lsys/program.h"
 
@@ -58,22 +59,8 @@ void collectAssigned(const ast::Block& block, std::vector<std::string>& names) {
   }
 }
 
-bool isMathBuiltin(Builtin b) {
-  switch (b) {
-    case Builtin::Sin: case Builtin::Cos: case Builtin::Tan: case Builtin::Asin:
-    case Builtin::Acos: case Builtin::Atan: case Builtin::Exp: case Builtin::Log:
-    case Builtin::Sqrt: case Builtin::Fabs: case Builtin::Floor: case Builtin::Ceil:
-    case Builtin::Sign: case Builtin::Trunc:
-      return true;
-    default:
-      return false;
-  }
-}
 
 }  // namespace
-
-// Exposed to the evaluator, which applies the same math at run time.
-double applyMathBuiltin(Builtin b, const double* args, int count);
 
 namespace {
 
@@ -781,6 +768,7 @@ int Program::lsystemIndex(double id) const {
 Program compileProgram(const ast::File& file, Diagnostics& diagnostics) {
   Program program;
   Compiler(program, diagnostics).compile(file);
+  compileNativeCode(program);
   return program;
 }
 

@@ -6,6 +6,7 @@
 
 #include "hirsute/lsys/builtins.h"
 #include "hirsute/lsys/function_curve.h"
+#include "hirsute/lsys/native_code.h"
 #include "hirsute/lsys/power.h"
 #include "hirsute/lsys/printf_format.h"
 
@@ -22,9 +23,6 @@ long long toInteger(double v) {
 
 // Shapes beyond this make Cheng's beta generator overflow (2ab) and never accept a variate.
 constexpr double kMaxBetaShape = 1e150;
-
-// Sin … Trunc: pure functions of their arguments (applyMathBuiltin).
-bool isMathBuiltin(Builtin id) { return id <= Builtin::Trunc; }
 }  // namespace
 
 // The math built-ins, shared with the compiler's constant folding. Angles are degrees (cpfg).
@@ -128,6 +126,17 @@ const double* Evaluator::values(const Code& code, double* frame, std::size_t cou
 // top = base + d. base[0] is a slot below the bottom value that a push onto an empty stack
 // writes (the register's stale value) and nothing reads.
 double Evaluator::run(const Code& code, double* frame) {
+  if (code.native) {
+    NativeFrame native{frame, code.constants.data(), shared_.data(), stack_.data() + 1,
+                       limits_.maxLoopIterations, 0.0};
+    const std::int64_t status = code.native(&native);
+    if (status != kNativeDone) [[unlikely]] {
+      const Instruction& failed = code.instructions[static_cast<std::size_t>(status / 2)];
+      if (status % 2 == 1) failLoop(failed.where);
+      fail(failed.where, "division by zero");
+    }
+    return native.result;
+  }
   if (code.instructions.empty()) return 0.0;
   // clang-format off
   static constexpr void* kCases[] = {

@@ -25,6 +25,11 @@ struct BuiltinInfo {
 // nullptr when `name` is not a built-in function.
 const BuiltinInfo* findBuiltin(std::string_view name);
 
+// The math built-ins, Sin … Trunc, of their arguments (angles in degrees, as cpfg's): the
+// evaluator's, the compiler's constant folding's and the machine code's (evaluator.cpp).
+double applyMathBuiltin(Builtin b, const double* args, int count);
+inline bool isMathBuiltin(Builtin id) { return id <= Builtin::Trunc; }
+
 // Names cpfg reserves for functions Hirsute does not provide (they get a clear error).
 bool isUnsupportedBuiltin(std::string_view name);
 

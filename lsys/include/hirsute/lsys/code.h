@@ -65,10 +65,15 @@ struct Instruction {
   std::int32_t operand2 = 0;  // the second operand of the fused Local… and Unless… forms
 };
 
+// The machine code of a Code (native_code.h), when it has one.
+struct NativeFrame;
+using NativeFunction = std::int64_t (*)(NativeFrame*);
+
 struct Code {
   std::vector<Instruction> instructions;
   std::vector<double> constants;
   int maxStack = 0;  // deepest stack the code needs
+  NativeFunction native = nullptr;  // set by compileNativeCode; run instead of the instructions
   bool empty() const { return instructions.empty(); }
 };
 

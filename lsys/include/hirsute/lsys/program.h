@@ -107,6 +107,8 @@ inline bool takesStringArgument(char symbol) {
 // String ids stay below 2^24 so that a float parameter holds them exactly.
 inline constexpr std::size_t kMaxStrings = std::size_t{1} << 24;
 
+class NativeCode;  // native_code.h
+
 struct Program {
   std::vector<Lsystem> lsystems;  // [0] is the main L-system
   std::vector<std::string> sharedNames;  // L-system and global variables, by slot
@@ -116,6 +118,8 @@ struct Program {
   std::vector<std::string> strings;      // string literals, by id (see takesStringArgument)
   std::vector<SourceLocation> locations; // by Instruction::where
   int maxStack = 0;
+  // The machine code of the codes compileNativeCode compiled (native_code.h): shared by copies.
+  std::shared_ptr<const NativeCode> nativeCode;
   bool usesQueries = false;              // ?P ?H ?L ?U modules appear
   bool usesEnvironment = false;          // ?E modules appear
 
