@@ -23,9 +23,29 @@ namespace {
 // The operations the machine code calls, computed as the evaluator computes them.
 constexpr double kDegree = M_PI / 180.0;
 double callPower(double a, double b) { return power(a, b); }
-// The same for the exponents written most (x^2, x^3), with the exponent's tests folded away.
-double callSquare(double a) { return power(a, 2.0); }
-double callCube(double a) { return power(a, 3.0); }
+// The exponent of x^2 and x^3, hidden from the compiler: it would turn the std::pow(x, 2.0) that
+// power() falls back on into x*x, which is not always libm's pow (the evaluator's exponent is a
+// value, and so is cpfg's).
+double exponent(double y) {
+  asm("" : "+x"(y));
+  return y;
+}
+// The exponents written most: one argument less to pass.
+double callSquare(double a) { return power(a, exponent(2.0)); }
+double callCube(double a) { return power(a, exponent(3.0)); }
+// With fused multiply-adds, where the processor has them: the same values, sooner.
+[[gnu::target("fma")]] double callPowerFused(double a, double b) { return powerFused(a, b); }
+[[gnu::target("fma")]] double callSquareFused(double a) { return powerFused(a, exponent(2.0)); }
+[[gnu::target("fma")]] double callCubeFused(double a) { return powerFused(a, exponent(3.0)); }
+struct PowerCalls {
+  double (*power)(double, double);
+  double (*square)(double);
+  double (*cube)(double);
+};
+PowerCalls powerCalls() {
+  if (__builtin_cpu_supports("fma")) return {&callPowerFused, &callSquareFused, &callCubeFused};
+  return {&callPower, &callSquare, &callCube};
+}
 double callSin(double a) { return std::sin(a * kDegree); }
 double callCos(double a) { return std::cos(a * kDegree); }
 double callExp(double a) { return std::exp(a); }
@@ -193,14 +213,15 @@ class Generator : public CodeGenerator {
       }
     };
     // xmm0 = xmm0 ^ b, where b is the constant `exponent` when that is known.
+    static const PowerCalls powers = powerCalls();
     const auto callPowerOf = [&](const double* exponent, const Address& b) {
       if (exponent && *exponent == 2.0) {
-        mov(rax, reinterpret_cast<std::uintptr_t>(&callSquare));
+        mov(rax, reinterpret_cast<std::uintptr_t>(powers.square));
       } else if (exponent && *exponent == 3.0) {
-        mov(rax, reinterpret_cast<std::uintptr_t>(&callCube));
+        mov(rax, reinterpret_cast<std::uintptr_t>(powers.cube));
       } else {
         movsd(xmm1, b);
-        mov(rax, reinterpret_cast<std::uintptr_t>(&callPower));
+        mov(rax, reinterpret_cast<std::uintptr_t>(powers.power));
       }
       call(rax);
     };
@@ -241,7 +262,7 @@ class Generator : public CodeGenerator {
         case Op::Power:
           movapd(xmm1, xmm0);
           movsd(xmm0, slot(d - 2));
-          mov(rax, reinterpret_cast<std::uintptr_t>(&callPower));
+          mov(rax, reinterpret_cast<std::uintptr_t>(powers.power));
           call(rax);
           continue;
         case Op::Jump: jmp(at[static_cast<std::size_t>(in.operand)], T_NEAR); continue;

@@ -200,6 +200,38 @@ TEST(NativeCode, LoopsGiveTheEvaluatorsBits) {
   expectSameOutcomes(code, {{0.1, 0.2}, {2.5, 0.3}, {-1, 7}, {0, 0}, {kNaN, 1}, {1e10, -1e10}});
 }
 
+// x^2 and x^3 with the exponent a constant (fused into one call) and a local: libm's pow to the
+// bit, on bases where pow(x, 2) is not x*x (about one in a thousand; a compiler that knows the
+// exponent turns pow(x, 2.0) into x*x).
+TEST(NativeCode, SquaresAndCubesAreLibmsPowNotProducts) {
+  volatile double two = 2;  // so that std::pow below is libm's
+  std::vector<std::vector<double>> frames;
+  double x = 0.5;
+  while (frames.size() < 200) {
+    x = std::nextafter(x * 1.0001, 1.0) ;
+    if (x >= 1) x = 0.5;
+    if (std::pow(x, two) != x * x) frames.push_back({x, 2});
+  }
+  frames.push_back({0x1.2e58da35b50e6p-1, 3});
+  for (double exponent : {2.0, 3.0}) {
+    Code code;
+    code.constants = {exponent};
+    code.instructions = {{Op::LoadLocal, 0, 0}, {Op::Constant, 0, 0}, {Op::Power, 0, 0},
+                         {Op::LoadLocal, 0, 0}, {Op::LoadLocal, 0, 1}, {Op::Power, 0, 0},
+                         {Op::StoreLocal, 0, 2}};
+    expectSameOutcomes(code, frames);
+  }
+  const Program program = programWithLocations();
+  Code code;
+  code.constants = {2};
+  code.instructions = {{Op::LoadLocal, 0, 0}, {Op::Constant, 0, 0}, {Op::Power, 0, 0}};
+  code = fuseInstructions(code);
+  const auto machineCode = compileNativeCodes({&code});
+  for (const std::vector<double>& frame : frames) {
+    EXPECT_EQ(runOn(program, code, frame, 1).values[0], std::pow(frame[0], two));
+  }
+}
+
 // if (x) r = 1; else r = 2; with x a value, not a comparison: NaN is true, both zeros false.
 TEST(NativeCode, AConditionOnAValueJumpsAsTheEvaluator) {
   Code code;

@@ -1,6 +1,7 @@
 // cpfg's `^` (power.h) against std::pow, bit for bit: squares and cubes of random doubles of
 // every magnitude the fast path takes and beyond it, of numbers blocks compute (cosines, small
-// integers and their neighbours), and the special values; other exponents go to std::pow.
+// integers and their neighbours), and the special values; other exponents go to std::pow. The
+// same for powerFused, where the processor has fused multiply-adds.
 #include "hirsute/lsys/power.h"
 
 #include <gtest/gtest.h>
@@ -19,12 +20,26 @@ bool same(double a, double b) {
   return std::isnan(a) ? std::isnan(b) : std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
 
-void expectPowOnEach(const std::vector<double>& bases, double y, std::size_t& fast) {
+// powerFused where the processor has fused multiply-adds, else power.
+double fused(double x, double y) {
+  return __builtin_cpu_supports("fma") ? powerFused(x, y) : power(x, y);
+}
+
+// The exponent, hidden from the compiler: knowing it, it would turn std::pow(x, 2.0) into x*x,
+// which libm's pow is not always, and the reference would not be libm's.
+double opaque(double y) {
+  asm("" : "+x"(y));
+  return y;
+}
+
+void expectPowOnEach(const std::vector<double>& bases, double exponent, std::size_t& fast) {
+  const double y = opaque(exponent);
   for (double x : bases) {
     const double want = std::pow(x, y);
     const double got = power(x, y);
     ASSERT_TRUE(same(got, want)) << std::hexfloat << x << " ^ " << y << ": " << got << ", std::pow "
                                  << want;
+    ASSERT_TRUE(same(fused(x, y), want)) << std::hexfloat << x << " ^ " << y << " (fused)";
     fast += got == x * x * (y == 3 ? x : 1);  // a rough share of the values the products gave
   }
 }
@@ -90,8 +105,12 @@ TEST(Power, SpecialValuesAndOtherExponentsAreStdPows) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<double> bases{0.0,  -0.0, inf, -inf, nan, 1e-320, -1e-320, 1e300, -1e300,
                                   1e160, 1e200, 0x1p-460, 0x1p460, 2.5,  -2.5};
-  for (double y : {2.0, 3.0, 0.5, -2.0, 4.0, 1.0, 0.0, 2.0000000000000004, nan, inf})
-    for (double x : bases) EXPECT_TRUE(same(power(x, y), std::pow(x, y))) << x << " ^ " << y;
+  for (double exponent : {2.0, 3.0, 0.5, -2.0, 4.0, 1.0, 0.0, 2.0000000000000004, nan, inf})
+    for (double x : bases) {
+      const double y = opaque(exponent);
+      EXPECT_TRUE(same(power(x, y), std::pow(x, y))) << x << " ^ " << y;
+      EXPECT_TRUE(same(fused(x, y), std::pow(x, y))) << x << " ^ " << y << " (fused)";
+    }
 }
 
 }  // namespace
