@@ -5,9 +5,10 @@
 // exception (libFuzzer reports it as a crash), a crash, a sanitizer report, a leak, a hang or
 // memory beyond libFuzzer's limits. A program whose steps may be rewritten in parts on several
 // threads (parallel_rewriting.h) is derived again so, every step split in three, and a string,
-// error or warning that differs is a bug too (an abort). The C preprocessor is skipped (it is an
-// external program); the input may still carry cpp's `# line "file"` markers, which the lexer
-// reads.
+// error or warning that differs is a bug too (an abort); so is one that differs when the
+// program's machine code (native_code.h) is dropped and the evaluator runs all of it. The C
+// preprocessor is skipped (it is an external program); the input may still carry cpp's
+// `# line "file"` markers, which the lexer reads.
 #include <signal.h>
 #include <sys/resource.h>
 
@@ -24,6 +25,7 @@
 #include "hirsute/lsys/diagnostic.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/module_sink.h"
+#include "hirsute/lsys/native_code.h"
 #include "hirsute/lsys/parallel_rewriting.h"
 #include "hirsute/lsys/parser.h"
 #include "hirsute/lsys/program.h"
@@ -143,5 +145,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::abort();  // the parts gave another string, error or warnings than one thread
   }
   modelFolder().reset();
+  if (program.nativeCode) {
+    hirsute::dropNativeCode(program);
+    if (!(derive(program, 1) == one)) {
+      std::abort();  // the machine code gave another string, error or warnings than the evaluator
+    }
+    modelFolder().reset();
+  }
   return 0;
 }
