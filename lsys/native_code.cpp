@@ -191,7 +191,8 @@ class Generator : public CodeGenerator {
     const auto spill = [&](int d) {
       if (d >= 1) movsd(slot(d - 1), xmm0);
     };
-    // xmm `a` = a OP b for the arithmetic operators (Power calls; a in xmm0 for it).
+    // xmm `a` = a + b, a - b or a * b (offsets 0, 1, 2 from Add; division and power have their
+    // own code).
     const auto arithmetic = [&](int offset, const Xmm& a, const Operand& b) {
       switch (offset) {
         case 0: addsd(a, b); break;
