@@ -8,7 +8,9 @@
 #   scripts/bench.sh --repeat 5
 # BUILD_DIR overrides the build folder; JOBS the build's parallel jobs (default: all cores).
 # HIRSUTE=PATH skips the build and the in-process benchmarks and prints only the whole-process
-# table for that program (e.g. HIRSUTE=build/release/cli/hirsute, an existing Release build).
+# table for that program (e.g. HIRSUTE=build/release/cli/hirsute, an existing Release build);
+# NATIVE=PATH then names the loops floor program to print below it
+# (build/release/bench/hirsute_loops_native_bench).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
