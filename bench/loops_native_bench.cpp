@@ -11,6 +11,7 @@
 // independent, so no thread waits for another). With --check it compares its final string with
 // FILE.str, the string `hirsute derive models/bench/loops.l` wrote, value by value as the writer
 // prints them (%g), and exits 1 on a difference: the floor is of the same computation.
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,8 +20,6 @@
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "hirsute/lsys/power.h"
 
@@ -42,10 +41,14 @@ double opaque(double y) {
 
 // power.h's ^, with fused multiply-adds where the processor has them, as the machine code of
 // native_code.h calls it.
-[[gnu::target("fma")]] double powerWithFma(double x, double y) { return hirsute::powerFused(x, y); }
-double powerWithout(double x, double y) { return hirsute::power(x, y); }
-double (*const power)(double, double) =
-    __builtin_cpu_supports("fma") ? &powerWithFma : &powerWithout;
+[[gnu::target("fma")]] double powerWithFma(double x, double y) {
+  return hirsute::powerFused(x, y);
+}
+double powerWithout(double x, double y) {
+  return hirsute::power(x, y);
+}
+double (*const power)(double, double) = __builtin_cpu_supports("fma") ? &powerWithFma
+                                                                      : &powerWithout;
 
 struct Leaf {
   float x, y, k;
@@ -61,8 +64,8 @@ Leaf step(Leaf leaf) {
   while (i <= kTerms) {
     const double divisor = i * i;
     if (i == 0 || divisor == 0) throw std::runtime_error("division by zero");
-    s = s + std::sin(i * x * 57.3 * kDegree) / i + power(std::cos(i * y * 40 * kDegree), two) / divisor +
-        std::sqrt(i + std::fabs(x * y));
+    s = s + std::sin(i * x * 57.3 * kDegree) / i +
+        power(std::cos(i * y * 40 * kDegree), two) / divisor + std::sqrt(i + std::fabs(x * y));
     i = i + 1;
   }
   if (!(s > 0)) return Leaf{leaf.x, leaf.y, static_cast<float>(k + 1)};
@@ -152,7 +155,8 @@ int main(int argc, char** argv) {
   if (ours != theirs) {
     std::size_t at = 0;
     while (at < ours.size() && at < theirs.size() && ours[at] == theirs[at]) ++at;
-    std::fprintf(stderr, "%s: differs from the native computation at value %zu of %zu (%s, not %s)\n",
+    std::fprintf(stderr,
+                 "%s: differs from the native computation at value %zu of %zu (%s, not %s)\n",
                  check.c_str(), at, ours.size(), at < theirs.size() ? theirs[at].c_str() : "none",
                  at < ours.size() ? ours[at].c_str() : "none");
     return 1;

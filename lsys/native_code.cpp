@@ -22,7 +22,9 @@ namespace {
 
 // The operations the machine code calls, computed as the evaluator computes them.
 constexpr double kDegree = M_PI / 180.0;
-double callPower(double a, double b) { return power(a, b); }
+double callPower(double a, double b) {
+  return power(a, b);
+}
 // The exponent of x^2 and x^3, hidden from the compiler: it would turn the std::pow(x, 2.0) that
 // power() falls back on into x*x, which is not always libm's pow (the evaluator's exponent is a
 // value, and so is cpfg's).
@@ -31,12 +33,22 @@ double exponent(double y) {
   return y;
 }
 // The exponents written most: one argument less to pass.
-double callSquare(double a) { return power(a, exponent(2.0)); }
-double callCube(double a) { return power(a, exponent(3.0)); }
+double callSquare(double a) {
+  return power(a, exponent(2.0));
+}
+double callCube(double a) {
+  return power(a, exponent(3.0));
+}
 // With fused multiply-adds, where the processor has them: the same values, sooner.
-[[gnu::target("fma")]] double callPowerFused(double a, double b) { return powerFused(a, b); }
-[[gnu::target("fma")]] double callSquareFused(double a) { return powerFused(a, exponent(2.0)); }
-[[gnu::target("fma")]] double callCubeFused(double a) { return powerFused(a, exponent(3.0)); }
+[[gnu::target("fma")]] double callPowerFused(double a, double b) {
+  return powerFused(a, b);
+}
+[[gnu::target("fma")]] double callSquareFused(double a) {
+  return powerFused(a, exponent(2.0));
+}
+[[gnu::target("fma")]] double callCubeFused(double a) {
+  return powerFused(a, exponent(3.0));
+}
 struct PowerCalls {
   double (*power)(double, double);
   double (*square)(double);
@@ -46,26 +58,50 @@ PowerCalls powerCalls() {
   if (__builtin_cpu_supports("fma")) return {&callPowerFused, &callSquareFused, &callCubeFused};
   return {&callPower, &callSquare, &callCube};
 }
-double callSin(double a) { return std::sin(a * kDegree); }
-double callCos(double a) { return std::cos(a * kDegree); }
-double callExp(double a) { return std::exp(a); }
-double callLog(double a) { return std::log(a); }
+double callSin(double a) {
+  return std::sin(a * kDegree);
+}
+double callCos(double a) {
+  return std::cos(a * kDegree);
+}
+double callExp(double a) {
+  return std::exp(a);
+}
+double callLog(double a) {
+  return std::log(a);
+}
 double callMath(int id, const double* arguments, int count) {
   return applyMathBuiltin(static_cast<Builtin>(id), arguments, count);
 }
 
-bool inRange(Op op, Op first, Op last) { return op >= first && op <= last; }
+bool inRange(Op op, Op first, Op last) {
+  return op >= first && op <= last;
+}
 
 // How an instruction changes the number of values on the stack.
 int stackEffect(const Instruction& in) {
   const Op op = in.op;
   switch (op) {
-    case Op::Constant: case Op::LoadLocal: case Op::LoadShared: return 1;
-    case Op::StoreLocal: case Op::StoreShared: case Op::Pop: case Op::JumpIfFalse: return -1;
-    case Op::Negate: case Op::Not: case Op::Truth: case Op::Jump: case Op::LoopBack:
-    case Op::End: return 0;
-    case Op::Call: return 1 - in.count;
-    default: break;
+    case Op::Constant:
+    case Op::LoadLocal:
+    case Op::LoadShared:
+      return 1;
+    case Op::StoreLocal:
+    case Op::StoreShared:
+    case Op::Pop:
+    case Op::JumpIfFalse:
+      return -1;
+    case Op::Negate:
+    case Op::Not:
+    case Op::Truth:
+    case Op::Jump:
+    case Op::LoopBack:
+    case Op::End:
+      return 0;
+    case Op::Call:
+      return 1 - in.count;
+    default:
+      break;
   }
   if (inRange(op, Op::Add, Op::GreaterEqual)) return -1;
   if (inRange(op, Op::AddLocal, Op::GreaterEqualConstant)) return 0;
@@ -119,12 +155,16 @@ std::vector<int> depths(const Code& code) {
 bool compilable(const Code& code) {
   for (const Instruction& in : code.instructions) {
     switch (in.op) {
-      case Op::LoadElement: case Op::StoreElement: case Op::Modulo: case Op::Scan:
+      case Op::LoadElement:
+      case Op::StoreElement:
+      case Op::Modulo:
+      case Op::Scan:
         return false;
       case Op::Call:
         if (!isMathBuiltin(static_cast<Builtin>(in.operand))) return false;
         break;
-      default: break;
+      default:
+        break;
     }
   }
   return true;
@@ -148,7 +188,8 @@ class Generator : public CodeGenerator {
   std::size_t function(const Code& code, const std::vector<int>& depth) {
     align(16);
     const std::size_t start = getSize();
-    const Reg64 frame = rbx, constants = r12, shared = r13, stack = r14, counter = r15, context = rbp;
+    const Reg64 frame = rbx, constants = r12, shared = r13, stack = r14, counter = r15,
+                context = rbp;
     push(rbx);
     push(rbp);
     push(r12);
@@ -195,10 +236,17 @@ class Generator : public CodeGenerator {
     // own code).
     const auto arithmetic = [&](int offset, const Xmm& a, const Operand& b) {
       switch (offset) {
-        case 0: addsd(a, b); break;
-        case 1: subsd(a, b); break;
-        case 2: mulsd(a, b); break;
-        default: break;
+        case 0:
+          addsd(a, b);
+          break;
+        case 1:
+          subsd(a, b);
+          break;
+        case 2:
+          mulsd(a, b);
+          break;
+        default:
+          break;
       }
     };
     // xmm `result` = the comparison's mask (all ones or zero) of xmm0 (a) and xmm `b`; `offset`:
@@ -226,6 +274,19 @@ class Generator : public CodeGenerator {
       }
       call(rax);
     };
+    // xmm0 = xmm0 OP b for Add, Subtract, Multiply, Divide and Power (offsets 0 … 4 from Add);
+    // `exponent` is b's value when it is a constant.
+    const auto operate = [&](int offset, const Address& b, const double* exponent, std::size_t i) {
+      if (offset <= 2) {
+        arithmetic(offset, xmm0, b);
+      } else if (offset == 3) {
+        movsd(xmm1, b);
+        failIfZero(xmm1, i);
+        divsd(xmm0, xmm1);
+      } else {
+        callPowerOf(exponent, b);
+      }
+    };
     const auto toOneOrZero = [&](const Xmm& mask) {
       movsd(xmm6, ptr[rip + one]);
       andpd(mask, xmm6);
@@ -237,12 +298,29 @@ class Generator : public CodeGenerator {
       const Instruction& in = code.instructions[i];
       const Op op = in.op;
       switch (op) {
-        case Op::Constant: spill(d); movsd(xmm0, constant(in.operand)); continue;
-        case Op::LoadLocal: spill(d); movsd(xmm0, local(in.operand)); continue;
-        case Op::LoadShared: spill(d); movsd(xmm0, qword[shared + 8 * in.operand]); continue;
-        case Op::StoreLocal: movsd(local(in.operand), xmm0); popValue(d); continue;
-        case Op::StoreShared: movsd(qword[shared + 8 * in.operand], xmm0); popValue(d); continue;
-        case Op::Pop: popValue(d); continue;
+        case Op::Constant:
+          spill(d);
+          movsd(xmm0, constant(in.operand));
+          continue;
+        case Op::LoadLocal:
+          spill(d);
+          movsd(xmm0, local(in.operand));
+          continue;
+        case Op::LoadShared:
+          spill(d);
+          movsd(xmm0, qword[shared + 8 * in.operand]);
+          continue;
+        case Op::StoreLocal:
+          movsd(local(in.operand), xmm0);
+          popValue(d);
+          continue;
+        case Op::StoreShared:
+          movsd(qword[shared + 8 * in.operand], xmm0);
+          popValue(d);
+          continue;
+        case Op::Pop:
+          popValue(d);
+          continue;
         case Op::Negate:
           movq(rax, xmm0);
           btc(rax, 63);
@@ -266,7 +344,9 @@ class Generator : public CodeGenerator {
           mov(rax, reinterpret_cast<std::uintptr_t>(powers.power));
           call(rax);
           continue;
-        case Op::Jump: jmp(at[static_cast<std::size_t>(in.operand)], T_NEAR); continue;
+        case Op::Jump:
+          jmp(at[static_cast<std::size_t>(in.operand)], T_NEAR);
+          continue;
         case Op::JumpIfFalse: {
           xorpd(xmm7, xmm7);
           ucomisd(xmm0, xmm7);
@@ -301,7 +381,8 @@ class Generator : public CodeGenerator {
           mov(rax, kNativeDone);
           jmp(exit, T_NEAR);
           continue;
-        default: break;
+        default:
+          break;
       }
       if (inRange(op, Op::Add, Op::Multiply)) {
         movsd(xmm1, slot(d - 2));
@@ -319,14 +400,9 @@ class Generator : public CodeGenerator {
         const int offset =
             static_cast<int>(op) - static_cast<int>(fromLocal ? Op::AddLocal : Op::AddConstant);
         const Address b = fromLocal ? local(in.operand) : constant(in.operand);
-        if (offset <= 2) {
-          arithmetic(offset, xmm0, b);
-        } else if (offset == 3) {
-          movsd(xmm1, b);
-          failIfZero(xmm1, i);
-          divsd(xmm0, xmm1);
-        } else if (offset == 4) {
-          callPowerOf(fromLocal ? nullptr : &code.constants[static_cast<std::size_t>(in.operand)], b);
+        if (offset <= 4) {
+          operate(offset, b,
+                  fromLocal ? nullptr : &code.constants[static_cast<std::size_t>(in.operand)], i);
         } else {
           movsd(xmm2, b);
           compare(offset - 5, xmm1, xmm2);
@@ -343,34 +419,36 @@ class Generator : public CodeGenerator {
         } else {
           double (*function)(double) = nullptr;
           switch (op) {
-            case Op::CallSin: function = &callSin; break;
-            case Op::CallCos: function = &callCos; break;
-            case Op::CallExp: function = &callExp; break;
-            default: function = &callLog; break;
+            case Op::CallSin:
+              function = &callSin;
+              break;
+            case Op::CallCos:
+              function = &callCos;
+              break;
+            case Op::CallExp:
+              function = &callExp;
+              break;
+            default:
+              function = &callLog;
+              break;
           }
           mov(rax, reinterpret_cast<std::uintptr_t>(function));
           call(rax);
         }
       } else if (inRange(op, Op::LocalAddLocal, Op::LocalPowerConstant)) {
         const bool fromLocal = op <= Op::LocalPowerLocal;
-        const int offset =
-            static_cast<int>(op) - static_cast<int>(fromLocal ? Op::LocalAddLocal : Op::LocalAddConstant);
+        const int offset = static_cast<int>(op) -
+                           static_cast<int>(fromLocal ? Op::LocalAddLocal : Op::LocalAddConstant);
         const Address b = fromLocal ? local(in.operand2) : constant(in.operand2);
         spill(d);
         movsd(xmm0, local(in.operand));
-        if (offset <= 2) {
-          arithmetic(offset, xmm0, b);
-        } else if (offset == 3) {
-          movsd(xmm1, b);
-          failIfZero(xmm1, i);
-          divsd(xmm0, xmm1);
-        } else {
-          callPowerOf(fromLocal ? nullptr : &code.constants[static_cast<std::size_t>(in.operand2)], b);
-        }
+        operate(offset, b,
+                fromLocal ? nullptr : &code.constants[static_cast<std::size_t>(in.operand2)], i);
       } else if (inRange(op, Op::UnlessEqualLocal, Op::UnlessGreaterEqualConstant)) {
         const bool fromLocal = op <= Op::UnlessGreaterEqualLocal;
-        const int offset = static_cast<int>(op) -
-                           static_cast<int>(fromLocal ? Op::UnlessEqualLocal : Op::UnlessEqualConstant);
+        const int offset =
+            static_cast<int>(op) -
+            static_cast<int>(fromLocal ? Op::UnlessEqualLocal : Op::UnlessEqualConstant);
         movsd(xmm2, fromLocal ? local(in.operand) : constant(in.operand));
         compare(offset, xmm1, xmm2);
         movq(rax, xmm1);
@@ -470,7 +548,9 @@ std::shared_ptr<const NativeCode> compileNativeCodes(const std::vector<Code*>& c
 
 void compileNativeCode(Program&) {}
 
-void dropNativeCode(Program& program) { program.nativeCode.reset(); }
+void dropNativeCode(Program& program) {
+  program.nativeCode.reset();
+}
 
 #endif
 

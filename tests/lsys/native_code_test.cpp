@@ -22,6 +22,7 @@
 #include "hirsute/lsys/model.h"
 #include "hirsute/lsys/program.h"
 #include "hirsute/lsys/string_writer.h"
+#include "support/model_corpus.h"
 
 namespace hirsute {
 namespace {
@@ -99,14 +100,15 @@ void expectSameOutcomes(Code code, const std::vector<std::vector<double>>& frame
 }
 
 const std::vector<std::vector<double>> kFrames = {
-    {1.5, 2}, {-2, 3}, {0.1, -0.7}, {1e200, 1e200}, {0, -0.0}, {-0.0, 0},
-    {kNaN, 1}, {1, kNaN}, {kInfinity, -kInfinity}, {2, 2}, {3, 0}, {-1e-310, 4}};
+    {1.5, 2},  {-2, 3},     {0.1, -0.7}, {1e200, 1e200},          {0, -0.0},
+    {-0.0, 0}, {kNaN, 1},   {1, kNaN},   {kInfinity, -kInfinity}, {2, 2},
+    {3, 0},    {-1e-310, 4}};
 
 // Every operator the code may hold, on two locals, unfused (a, b pushed) and fused with a local
 // and with a constant (the constant 2, so that x^2 takes its own path, then 3 and 0.5).
 TEST(NativeCode, EveryOperatorGivesTheEvaluatorsBits) {
-  for (Op op : {Op::Add, Op::Subtract, Op::Multiply, Op::Divide, Op::Power, Op::Equal,
-                Op::NotEqual, Op::Less, Op::LessEqual, Op::Greater, Op::GreaterEqual}) {
+  for (Op op : {Op::Add, Op::Subtract, Op::Multiply, Op::Divide, Op::Power, Op::Equal, Op::NotEqual,
+                Op::Less, Op::LessEqual, Op::Greater, Op::GreaterEqual}) {
     for (double constant : {2.0, 3.0, 0.5, -0.0}) {
       SCOPED_TRACE(static_cast<int>(op));
       SCOPED_TRACE(constant);
@@ -114,11 +116,20 @@ TEST(NativeCode, EveryOperatorGivesTheEvaluatorsBits) {
       Code code;
       code.constants = {constant};
       code.instructions = {
-          {Op::LoadLocal, 0, 0, 1}, {Op::LoadLocal, 0, 1, 2}, {op, 0, 0, 3},
-          {Op::LoadLocal, 0, 1, 4}, {Op::Constant, 0, 0, 5},  {op, 0, 0, 6},
-          {Op::Constant, 0, 0, 7},  {Op::LoadLocal, 0, 0, 8}, {op, 0, 0, 9},
-          {Op::LoadLocal, 0, 0, 10}, {Op::LoadLocal, 0, 1, 11}, {Op::LoadLocal, 0, 0, 12},
-          {op, 0, 0, 13},           {Op::Add, 0, 0, 14},
+          {Op::LoadLocal, 0, 0, 1},
+          {Op::LoadLocal, 0, 1, 2},
+          {op, 0, 0, 3},
+          {Op::LoadLocal, 0, 1, 4},
+          {Op::Constant, 0, 0, 5},
+          {op, 0, 0, 6},
+          {Op::Constant, 0, 0, 7},
+          {Op::LoadLocal, 0, 0, 8},
+          {op, 0, 0, 9},
+          {Op::LoadLocal, 0, 0, 10},
+          {Op::LoadLocal, 0, 1, 11},
+          {Op::LoadLocal, 0, 0, 12},
+          {op, 0, 0, 13},
+          {Op::Add, 0, 0, 14},
       };
       expectSameOutcomes(code, kFrames, 4);
     }
@@ -128,8 +139,11 @@ TEST(NativeCode, EveryOperatorGivesTheEvaluatorsBits) {
 TEST(NativeCode, UnaryOperatorsAndMathCallsGiveTheEvaluatorsBits) {
   for (Op op : {Op::Negate, Op::Not, Op::Truth}) {
     Code code;
-    code.instructions = {{Op::LoadLocal, 0, 0}, {op, 0, 0}, {Op::StoreLocal, 0, 2},
-                         {Op::LoadLocal, 0, 1}, {op, 0, 0}};
+    code.instructions = {{Op::LoadLocal, 0, 0},
+                         {op, 0, 0},
+                         {Op::StoreLocal, 0, 2},
+                         {Op::LoadLocal, 0, 1},
+                         {op, 0, 0}};
     expectSameOutcomes(code, kFrames);
   }
   for (Builtin b : {Builtin::Sin, Builtin::Cos, Builtin::Tan, Builtin::Asin, Builtin::Acos,
@@ -139,16 +153,16 @@ TEST(NativeCode, UnaryOperatorsAndMathCallsGiveTheEvaluatorsBits) {
     Code code;
     code.constants = {3};
     // b(x) + b(y) * 3, so that a call happens with values under it.
-    code.instructions = {{Op::LoadLocal, 0, 0},   {Op::Call, 1, static_cast<int>(b)},
-                         {Op::LoadLocal, 0, 1},   {Op::Call, 1, static_cast<int>(b)},
-                         {Op::Constant, 0, 0},    {Op::Multiply, 0, 0},
+    code.instructions = {{Op::LoadLocal, 0, 0}, {Op::Call, 1, static_cast<int>(b)},
+                         {Op::LoadLocal, 0, 1}, {Op::Call, 1, static_cast<int>(b)},
+                         {Op::Constant, 0, 0},  {Op::Multiply, 0, 0},
                          {Op::Add, 0, 0}};
     expectSameOutcomes(code, kFrames);
   }
   // atan with two arguments.
   Code code;
-  code.instructions = {{Op::LoadLocal, 0, 0}, {Op::LoadLocal, 0, 1},
-                       {Op::Call, 2, static_cast<int>(Builtin::Atan)}};
+  code.instructions = {
+      {Op::LoadLocal, 0, 0}, {Op::LoadLocal, 0, 1}, {Op::Call, 2, static_cast<int>(Builtin::Atan)}};
   expectSameOutcomes(code, kFrames);
 }
 
@@ -159,20 +173,43 @@ TEST(NativeCode, LoopsGiveTheEvaluatorsBits) {
   Code code;
   code.constants = {0, 1, 6, 2, 3, 8};
   code.instructions = {
-      {Op::Constant, 0, 0},    {Op::StoreLocal, 0, 2},   {Op::Constant, 0, 1},      // 0
-      {Op::StoreLocal, 0, 3},  {Op::LoadLocal, 0, 3},    {Op::Constant, 0, 2},      // 3
-      {Op::LessEqual, 0, 0},   {Op::JumpIfFalse, 0, 38}, {Op::LoadLocal, 0, 2},     // 6
-      {Op::LoadLocal, 0, 3},   {Op::LoadLocal, 0, 0},    {Op::Multiply, 0, 0},      // 9
-      {Op::Call, 1, static_cast<int>(Builtin::Sin)},     {Op::LoadLocal, 0, 3},     // 12
-      {Op::Divide, 0, 0},      {Op::Add, 0, 0},          {Op::LoadLocal, 0, 3},     // 14
-      {Op::LoadLocal, 0, 1},   {Op::Multiply, 0, 0},                                // 17
-      {Op::Call, 1, static_cast<int>(Builtin::Cos)},     {Op::Constant, 0, 3},      // 19
-      {Op::Power, 0, 0},       {Op::LoadLocal, 0, 3},    {Op::LoadLocal, 0, 3},     // 21
-      {Op::Multiply, 0, 0},    {Op::Divide, 0, 0},       {Op::Add, 0, 0},           // 24
-      {Op::LoadLocal, 0, 3},   {Op::LoadLocal, 0, 0},    {Op::LoadLocal, 0, 1},     // 27
-      {Op::Multiply, 0, 0},    {Op::Call, 1, static_cast<int>(Builtin::Fabs)},      // 30
-      {Op::Add, 0, 0},         {Op::Call, 1, static_cast<int>(Builtin::Sqrt)},      // 32
-      {Op::Add, 0, 0},         {Op::StoreLocal, 0, 2},   {Op::LoadLocal, 0, 3},     // 34
+      {Op::Constant, 0, 0},
+      {Op::StoreLocal, 0, 2},
+      {Op::Constant, 0, 1},  // 0
+      {Op::StoreLocal, 0, 3},
+      {Op::LoadLocal, 0, 3},
+      {Op::Constant, 0, 2},  // 3
+      {Op::LessEqual, 0, 0},
+      {Op::JumpIfFalse, 0, 38},
+      {Op::LoadLocal, 0, 2},  // 6
+      {Op::LoadLocal, 0, 3},
+      {Op::LoadLocal, 0, 0},
+      {Op::Multiply, 0, 0},  // 9
+      {Op::Call, 1, static_cast<int>(Builtin::Sin)},
+      {Op::LoadLocal, 0, 3},  // 12
+      {Op::Divide, 0, 0},
+      {Op::Add, 0, 0},
+      {Op::LoadLocal, 0, 3},  // 14
+      {Op::LoadLocal, 0, 1},
+      {Op::Multiply, 0, 0},  // 17
+      {Op::Call, 1, static_cast<int>(Builtin::Cos)},
+      {Op::Constant, 0, 3},  // 19
+      {Op::Power, 0, 0},
+      {Op::LoadLocal, 0, 3},
+      {Op::LoadLocal, 0, 3},  // 21
+      {Op::Multiply, 0, 0},
+      {Op::Divide, 0, 0},
+      {Op::Add, 0, 0},  // 24
+      {Op::LoadLocal, 0, 3},
+      {Op::LoadLocal, 0, 0},
+      {Op::LoadLocal, 0, 1},  // 27
+      {Op::Multiply, 0, 0},
+      {Op::Call, 1, static_cast<int>(Builtin::Fabs)},  // 30
+      {Op::Add, 0, 0},
+      {Op::Call, 1, static_cast<int>(Builtin::Sqrt)},  // 32
+      {Op::Add, 0, 0},
+      {Op::StoreLocal, 0, 2},
+      {Op::LoadLocal, 0, 3},  // 34
   };
   // The while's body ends with i = i + 1 and the jump back; its exit starts the do loop.
   code.instructions.push_back({Op::Constant, 0, 1});
@@ -182,15 +219,15 @@ TEST(NativeCode, LoopsGiveTheEvaluatorsBits) {
   const int exit = static_cast<int>(code.instructions.size());
   code.instructions[7].operand = exit;
   const std::vector<Instruction> doLoop = {
-      {Op::LoadLocal, 0, 2},  {Op::StoreLocal, 0, 3},  {Op::Constant, 0, 0},
+      {Op::LoadLocal, 0, 2},   {Op::StoreLocal, 0, 3}, {Op::Constant, 0, 0},
       {Op::StoreLocal, 0, 1},  // r = s (slot 3), j = 0 (slot 1)
-      {Op::LoadLocal, 0, 3},  {Op::LoadLocal, 0, 3},   {Op::Constant, 0, 4},   // body: r - (r^3
-      {Op::Power, 0, 0},      {Op::LoadLocal, 0, 2},   {Op::Subtract, 0, 0},   // - s)
-      {Op::Constant, 0, 4},   {Op::LoadLocal, 0, 3},   {Op::Constant, 0, 3},   // / (3 * r^2)
-      {Op::Power, 0, 0},      {Op::Multiply, 0, 0},    {Op::Divide, 0, 0},
-      {Op::Subtract, 0, 0},   {Op::StoreLocal, 0, 3},  {Op::LoadLocal, 0, 1},  // j = j + 1
-      {Op::Constant, 0, 1},   {Op::Add, 0, 0},         {Op::StoreLocal, 0, 1},
-      {Op::LoadLocal, 0, 1},  {Op::Constant, 0, 5},    {Op::Less, 0, 0},       // while (j < 8)
+      {Op::LoadLocal, 0, 3},   {Op::LoadLocal, 0, 3},  {Op::Constant, 0, 4},  // body: r - (r^3
+      {Op::Power, 0, 0},       {Op::LoadLocal, 0, 2},  {Op::Subtract, 0, 0},  // - s)
+      {Op::Constant, 0, 4},    {Op::LoadLocal, 0, 3},  {Op::Constant, 0, 3},  // / (3 * r^2)
+      {Op::Power, 0, 0},       {Op::Multiply, 0, 0},   {Op::Divide, 0, 0},
+      {Op::Subtract, 0, 0},    {Op::StoreLocal, 0, 3}, {Op::LoadLocal, 0, 1},  // j = j + 1
+      {Op::Constant, 0, 1},    {Op::Add, 0, 0},        {Op::StoreLocal, 0, 1},
+      {Op::LoadLocal, 0, 1},   {Op::Constant, 0, 5},   {Op::Less, 0, 0},  // while (j < 8)
       {Op::JumpIfFalse, 0, 0}, {Op::LoopBack, 0, 0},   {Op::LoadLocal, 0, 3},
   };
   for (Instruction in : doLoop) code.instructions.push_back(in);
@@ -208,7 +245,7 @@ TEST(NativeCode, SquaresAndCubesAreLibmsPowNotProducts) {
   std::vector<std::vector<double>> frames;
   double x = 0.5;
   while (frames.size() < 200) {
-    x = std::nextafter(x * 1.0001, 1.0) ;
+    x = std::nextafter(x * 1.0001, 1.0);
     if (x >= 1) x = 0.5;
     if (std::pow(x, two) != x * x) frames.push_back({x, 2});
   }
@@ -216,7 +253,7 @@ TEST(NativeCode, SquaresAndCubesAreLibmsPowNotProducts) {
   for (double exponent : {2.0, 3.0}) {
     Code code;
     code.constants = {exponent};
-    code.instructions = {{Op::LoadLocal, 0, 0}, {Op::Constant, 0, 0}, {Op::Power, 0, 0},
+    code.instructions = {{Op::LoadLocal, 0, 0}, {Op::Constant, 0, 0},  {Op::Power, 0, 0},
                          {Op::LoadLocal, 0, 0}, {Op::LoadLocal, 0, 1}, {Op::Power, 0, 0},
                          {Op::StoreLocal, 0, 2}};
     expectSameOutcomes(code, frames);
@@ -237,9 +274,9 @@ TEST(NativeCode, AConditionOnAValueJumpsAsTheEvaluator) {
   Code code;
   code.constants = {1, 2};
   code.instructions = {
-      {Op::LoadLocal, 0, 0}, {Op::JumpIfFalse, 0, 5}, {Op::Constant, 0, 0},
-      {Op::StoreLocal, 0, 3}, {Op::Jump, 0, 7},      {Op::Constant, 0, 1},  // 5
-      {Op::StoreLocal, 0, 3}, {Op::LoadLocal, 0, 3},                        // 7
+      {Op::LoadLocal, 0, 0},  {Op::JumpIfFalse, 0, 5}, {Op::Constant, 0, 0},
+      {Op::StoreLocal, 0, 3}, {Op::Jump, 0, 7},        {Op::Constant, 0, 1},  // 5
+      {Op::StoreLocal, 0, 3}, {Op::LoadLocal, 0, 3},                          // 7
   };
   expectSameOutcomes(code, kFrames);
   const Program program = programWithLocations();
@@ -254,8 +291,8 @@ TEST(NativeCode, ErrorsAreTheEvaluatorsAtTheSameLocation) {
   Code divisions;
   divisions.constants = {0, 1};
   divisions.instructions = {
-      {Op::LoadLocal, 0, 0, 1},  {Op::LoadLocal, 0, 1, 2}, {Op::Divide, 0, 0, 7},   // fused
-      {Op::LoadLocal, 0, 0, 3},  {Op::Constant, 0, 0, 4},  {Op::Divide, 0, 0, 9},   // x/0
+      {Op::LoadLocal, 0, 0, 1},  {Op::LoadLocal, 0, 1, 2}, {Op::Divide, 0, 0, 7},  // fused
+      {Op::LoadLocal, 0, 0, 3},  {Op::Constant, 0, 0, 4},  {Op::Divide, 0, 0, 9},  // x/0
       {Op::Add, 0, 0, 5},        {Op::Constant, 0, 1, 6},  {Op::LoadLocal, 0, 1, 8},
       {Op::LoadLocal, 0, 0, 10}, {Op::Multiply, 0, 0, 11}, {Op::Divide, 0, 0, 12},  // 1/(y*x)
   };
@@ -264,8 +301,8 @@ TEST(NativeCode, ErrorsAreTheEvaluatorsAtTheSameLocation) {
   Code loop;
   loop.constants = {1};
   loop.instructions = {
-      {Op::Constant, 0, 0, 1},  {Op::JumpIfFalse, 0, 6, 2}, {Op::LoadLocal, 0, 0, 3},
-      {Op::Constant, 0, 0, 4},  {Op::Add, 0, 0, 5},          {Op::StoreLocal, 0, 0, 6},
+      {Op::Constant, 0, 0, 1}, {Op::JumpIfFalse, 0, 6, 2}, {Op::LoadLocal, 0, 0, 3},
+      {Op::Constant, 0, 0, 4}, {Op::Add, 0, 0, 5},         {Op::StoreLocal, 0, 0, 6},
   };
   loop.instructions.insert(loop.instructions.begin() + 6, Instruction{Op::LoopBack, 0, 0, 13});
   loop.instructions[1].operand = 7;
@@ -287,16 +324,6 @@ TEST(NativeCode, CodeWithArraysModuloOrEffectsIsLeftToTheEvaluator) {
   }
 }
 
-// The view file a model is derived with: its own name's, else the folder's first.
-std::optional<fs::path> viewFor(const fs::path& lfile) {
-  fs::path same = fs::path(lfile).replace_extension(".v");
-  if (fs::exists(same)) return same;
-  std::optional<fs::path> first;
-  for (const auto& entry : fs::directory_iterator(lfile.parent_path()))
-    if (entry.path().extension() == ".v" && (!first || entry.path() < *first)) first = entry.path();
-  return first;
-}
-
 struct Derived {
   std::string text, warnings, error, printed;
   bool operator==(const Derived&) const = default;
@@ -316,18 +343,7 @@ Derived derive(const Model& model, std::optional<int> steps) {
   } catch (const DiagnosticError& e) {
     out.error = e.diagnostic().text();
   }
-  char* buffer = nullptr;
-  std::size_t size = 0;
-  std::FILE* memory = open_memstream(&buffer, &size);
-  {
-    StringWriter writer(memory, StringFormat::Compact);
-    writer.setStrings(&model.program.strings);
-    derivation.emit(writer, false);
-    writer.finish();
-  }
-  std::fclose(memory);
-  out.text.assign(buffer, size);
-  std::free(buffer);
+  out.text = testing::compactString(derivation, model.program);
   for (const Diagnostic& w : diagnostics.warnings()) out.warnings += w.text() + "\n";
   out.printed = printed.str();
   return out;
@@ -337,28 +353,15 @@ Derived derive(const Model& model, std::optional<int> steps) {
 // present, of ../shared/conformance: the same string, warnings, printed text and error with the
 // machine code as with the evaluator alone.
 TEST(NativeCode, EveryModelDerivesAsWithTheEvaluatorAlone) {
-  const fs::path source = HIRSUTE_SOURCE_DIR;
-  const fs::path copy = fs::temp_directory_path() / ("hirsute-native-" + std::to_string(getpid()));
-  fs::remove_all(copy);
-  fs::copy(source / "tests/fixtures/lsys", copy, fs::copy_options::recursive);
-  std::vector<std::pair<fs::path, std::optional<int>>> models;
-  for (const fs::path& root : {copy, source / "models", source / "../shared/conformance"}) {
-    if (!fs::exists(root)) continue;
-    for (const auto& entry : fs::recursive_directory_iterator(root)) {
-      const fs::path& p = entry.path();
-      if (p.extension() != ".l" || p.string().find("/bench/") != std::string::npos) continue;
-      models.emplace_back(p, std::nullopt);
-    }
-  }
-  models.emplace_back(source / "models/bench/loops.l", 19);
-  models.emplace_back(source / "models/bench/stochastic.l", 12);
+  const testing::ModelCorpus corpus(HIRSUTE_SOURCE_DIR, "native",
+                                    {{"loops", 19}, {"stochastic", 12}});
   int withCode = 0;
-  for (const auto& [lfile, steps] : models) {
+  for (const auto& [lfile, steps] : corpus.models()) {
     SCOPED_TRACE(lfile.string());
     std::optional<Model> model;
     try {
       Diagnostics diagnostics;
-      model = loadModel(lfile, viewFor(lfile), diagnostics);
+      model = loadModel(lfile, testing::viewFor(lfile), diagnostics);
     } catch (const DiagnosticError&) {
       continue;
     }
@@ -371,11 +374,10 @@ TEST(NativeCode, EveryModelDerivesAsWithTheEvaluatorAlone) {
     EXPECT_EQ(native.error, evaluated.error);
     EXPECT_EQ(native.printed, evaluated.printed);
   }
-  std::printf("%zu models, %d of them with machine code\n", models.size(), withCode);
+  std::printf("%zu models, %d of them with machine code\n", corpus.models().size(), withCode);
   if (kCompiles) {
     EXPECT_GT(withCode, 20);
   }
-  fs::remove_all(copy);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
 #include "hirsute/lsys/string_writer.h"
+#include "support/model_corpus.h"
 
 namespace hirsute {
 namespace {
@@ -25,17 +26,6 @@ const fs::path kSource = HIRSUTE_SOURCE_DIR;
 
 fs::path fixture(const std::string& name) {
   return kSource / "tests/fixtures/lsys/parallel" / (name + ".l");
-}
-
-// The view file a model is derived with: its own name's, else the folder's first (func() and
-// the function set come from it).
-std::optional<fs::path> viewFor(const fs::path& lfile) {
-  fs::path same = fs::path(lfile).replace_extension(".v");
-  if (fs::exists(same)) return same;
-  std::optional<fs::path> first;
-  for (const auto& entry : fs::directory_iterator(lfile.parent_path()))
-    if (entry.path().extension() == ".v" && (!first || entry.path() < *first)) first = entry.path();
-  return first;
 }
 
 struct Outcome {
@@ -66,25 +56,14 @@ Outcome derive(const Model& model, int threads, std::optional<int> steps = std::
     outcome.error = e.diagnostic().text();
   }
   outcome.stepsInParts = derivation.stepsRewrittenInParts();
-  char* buffer = nullptr;
-  std::size_t size = 0;
-  std::FILE* memory = open_memstream(&buffer, &size);
-  {
-    StringWriter writer(memory, StringFormat::Compact);
-    writer.setStrings(&model.program.strings);
-    derivation.emit(writer, false);
-    writer.finish();
-  }
-  std::fclose(memory);
-  outcome.text.assign(buffer, size);
-  std::free(buffer);
+  outcome.text = testing::compactString(derivation, model.program);
   for (const Diagnostic& w : diagnostics.warnings()) outcome.warnings += w.text() + "\n";
   return outcome;
 }
 
 Model load(const fs::path& lfile) {
   Diagnostics diagnostics;
-  return loadModel(lfile, viewFor(lfile), diagnostics);
+  return loadModel(lfile, testing::viewFor(lfile), diagnostics);
 }
 
 Program compiled(const fs::path& lfile) {
@@ -163,25 +142,10 @@ TEST(ParallelRewriting, DependentProgramsStayOnOneThread) {
 // present, of ../shared/conformance: the same string, warnings and error with every step that
 // may be split rewritten in three parts.
 TEST(ParallelRewriting, EveryModelDerivesAsOnOneThread) {
-  // The fixtures are derived from a private copy: some write files into their folder.
-  const fs::path copy =
-      fs::temp_directory_path() / ("hirsute-parallel-" + std::to_string(getpid()));
-  fs::remove_all(copy);
-  fs::copy(kSource / "tests/fixtures/lsys", copy, fs::copy_options::recursive);
-  std::vector<std::pair<fs::path, std::optional<int>>> models;
-  for (const fs::path& root : {copy, kSource / "models", kSource / "../shared/conformance"}) {
-    if (!fs::exists(root)) continue;
-    for (const auto& entry : fs::recursive_directory_iterator(root)) {
-      const fs::path& p = entry.path();
-      if (p.extension() != ".l" || p.string().find("/bench/") != std::string::npos) continue;
-      models.emplace_back(p, std::nullopt);
-    }
-  }
-  models.emplace_back(kSource / "models/bench/loops.l", 19);
-  models.emplace_back(kSource / "models/bench/signal.l", 24);
-  models.emplace_back(kSource / "models/bench/branching.l", 10);
+  const testing::ModelCorpus corpus(kSource, "parallel",
+                                    {{"loops", 19}, {"signal", 24}, {"branching", 10}});
   int split = 0;
-  for (const auto& [lfile, steps] : models) {
+  for (const auto& [lfile, steps] : corpus.models()) {
     SCOPED_TRACE(lfile.string());
     // A file that does not load (a broken fixture) has no derivation to compare.
     std::optional<Model> model;
@@ -197,9 +161,9 @@ TEST(ParallelRewriting, EveryModelDerivesAsOnOneThread) {
     EXPECT_EQ(parts.error, one.error);
     split += parts.stepsInParts > 0;
   }
-  std::printf("%zu models, %d of them with steps rewritten in parts\n", models.size(), split);
+  std::printf("%zu models, %d of them with steps rewritten in parts\n", corpus.models().size(),
+              split);
   EXPECT_GT(split, 10);
-  fs::remove_all(copy);
 }
 
 }  // namespace
