@@ -5,12 +5,13 @@
 // written (these libm calls, leaf by leaf), interpreted or compiled, cannot run the model's blocks
 // in less time than this program: it is what the model's arithmetic costs on this machine.
 //
-//   hirsute_loops_native_bench [--threads N] [--check FILE.str]
+//   hirsute_loops_native_bench [--threads N] [--check FILE.str] [--libm-pow]
 //
 // It prints its own time (the leaves split among N threads, default: one a core; the leaves are
 // independent, so no thread waits for another). With --check it compares its final string with
 // FILE.str, the string `hirsute derive models/bench/loops.l` wrote, value by value as the writer
-// prints them (%g), and exits 1 on a difference: the floor is of the same computation.
+// prints them (%g), and exits 1 on a difference: the floor is of the same computation. With
+// --libm-pow every ^ calls libm's pow, as cpfg's evaluator does: the floor under cpfg's run.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
@@ -47,8 +48,11 @@ double opaque(double y) {
 double powerWithout(double x, double y) {
   return hirsute::power(x, y);
 }
-double (*const power)(double, double) = __builtin_cpu_supports("fma") ? &powerWithFma
-                                                                      : &powerWithout;
+// libm's pow for every ^, as cpfg computes it (--libm-pow).
+double libmPow(double x, double y) {
+  return std::pow(x, y);
+}
+double (*power)(double, double) = __builtin_cpu_supports("fma") ? &powerWithFma : &powerWithout;
 
 struct Leaf {
   float x, y, k;
@@ -122,7 +126,10 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Threads (0: one a core)")->check(CLI::Range(0, 64));
   app.add_option("--check", check, "A string of loops.l written by hirsute derive, to compare")
       ->check(CLI::ExistingFile);
+  bool libm = false;
+  app.add_flag("--libm-pow", libm, "Every ^ as libm's pow, as cpfg computes it (the same values)");
   CLI11_PARSE(app, argc, argv);
+  if (libm) power = &libmPow;
   if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
   const std::size_t count = std::size_t{1} << kBuild;
@@ -137,8 +144,10 @@ int main(int argc, char** argv) {
   for (std::thread& w : workers) w.join();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  std::printf("loops.l's blocks compiled natively: %.3f s on %d thread%s (%zu leaves, %d steps)\n",
-              seconds, threads, threads == 1 ? "" : "s", count, kSteps - kBuild - 1);
+  std::printf(
+      "loops.l's blocks compiled natively%s: %.3f s on %d thread%s (%zu leaves, %d steps)\n",
+      libm ? ", libm's pow for ^" : "", seconds, threads, threads == 1 ? "" : "s", count,
+      kSteps - kBuild - 1);
 
   if (check.empty()) return 0;
   std::ifstream in(check);
