@@ -59,11 +59,6 @@ void collectAssigned(const ast::Block& block, std::vector<std::string>& names) {
   }
 }
 
-
-}  // namespace
-
-namespace {
-
 class Compiler {
  public:
   Compiler(Program& program, Diagnostics& diagnostics) : program_(program), diagnostics_(diagnostics) {}
