@@ -32,6 +32,7 @@ struct DeriveOptions {
   int environmentTimeout = 60;
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
+  std::uint64_t maxFileBytes = EvaluationLimits{}.maxWrittenBytes;
   int threads = 0;
 };
 
@@ -45,6 +46,7 @@ int runDerive(const DeriveOptions& o) {
     Model model = loadModel(o.lsystemFile, view, diagnostics);
     EvaluationLimits limits;
     limits.maxLoopIterations = o.maxLoopIterations;
+    limits.maxWrittenBytes = o.maxFileBytes;
     Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr,
                         limits);
     DerivationOptions options;
@@ -155,6 +157,7 @@ void registerDeriveCommand(CLI::App& app, Action& action) {
                      "A longer string is an error (default 100000000)");
   derive->add_option("--max-loop-iterations", options->maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
+  addMaxFileBytesOption(*derive, options->maxFileBytes);
   addThreadsOption(*derive, options->threads);
   derive->callback([options, &action] { action = [options] { return runDerive(*options); }; });
 }

@@ -41,6 +41,7 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   command.add_option("--max-modules", o.maxModules, "A longer string is an error (default 100000000)");
   command.add_option("--max-loop-iterations", o.maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
+  addMaxFileBytesOption(command, o.maxFileBytes);
   addThreadsOption(command, o.threads);
   command.add_option("--max-vertices", o.maxVertices,
                      "More vertices in the geometry are an error (default 100000000)");
@@ -70,6 +71,12 @@ void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external,
   command.add_option("--environment-timeout", timeout,
                      "Seconds an external environmental program may take to answer (default 60)")
       ->check(CLI::Range(1, 86400));
+}
+
+void addMaxFileBytesOption(CLI::App& command, std::uint64_t& bytes) {
+  command.add_option("--max-file-bytes", bytes,
+                     "Bytes the blocks may write to files through fprintf, all files together "
+                     "(default 268435456: 256 MiB)");
 }
 
 void addThreadsOption(CLI::App& command, int& threads) {
@@ -113,7 +120,9 @@ ModelResources loadResources(const ModelOptions& o, Diagnostics& diagnostics) {
 Model loadLsystem(const ModelOptions& o, Diagnostics& diagnostics) {
   std::optional<std::filesystem::path> view;
   if (!o.viewFile.empty()) view = o.viewFile;
-  Model model = loadModel(o.lsystemFile, view, diagnostics);
+  hirsute::ModelOptions loading;
+  loading.lsystemText = o.lsystemText;
+  Model model = loadModel(o.lsystemFile, view, diagnostics, loading);
   // `@Ul(-1)` is an error at its place in the file, not a warning after the derivation.
   checkConstantOrganModules(model.program);
   return model;
@@ -132,6 +141,7 @@ Scene growScene(const ModelOptions& o, const Model& model, const ModelResources&
   Scene scene;
   EvaluationLimits limits;
   limits.maxLoopIterations = o.maxLoopIterations;
+  limits.maxWrittenBytes = o.maxFileBytes;
   Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr,
                       limits);
   DerivationOptions options;

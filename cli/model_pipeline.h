@@ -12,6 +12,7 @@
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/lsys/diagnostic.h"
+#include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
 #include "hirsute/lsys/progress.h"
 
@@ -19,6 +20,9 @@ namespace hirsute::cli {
 
 struct ModelOptions {
   std::string lsystemFile;
+  // The .l's text when it differs from the file (the viewer's #define panel, simulate
+  // --animate): nothing is written beside the model, and messages name lsystemFile.
+  std::optional<std::string> lsystemText;
   std::string viewFile;
   std::optional<int> steps;
   std::vector<std::string> colormaps;  // -m FILE or -m N:FILE (bank N)
@@ -28,6 +32,7 @@ struct ModelOptions {
   int environmentTimeout = 60;           // seconds an external program may take per batch
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
+  std::uint64_t maxFileBytes = EvaluationLimits{}.maxWrittenBytes;  // --max-file-bytes
   int threads = 0;  // --threads: of the derivation (0: one a core)
   std::size_t maxVertices = kDefaultMaxVertices;
   bool hairs = true;                     // --no-hairs leaves them out
@@ -59,6 +64,8 @@ void addModelOptions(CLI::App& command, ModelOptions& options);
 void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external, int& timeout);
 // Adds --threads, the derivation's threads (derive has it too).
 void addThreadsOption(CLI::App& command, int& threads);
+// Adds --max-file-bytes, what the blocks may write through fprintf (derive has it too).
+void addMaxFileBytesOption(CLI::App& command, std::uint64_t& bytes);
 
 struct BuiltScene {
   Model model;

@@ -56,9 +56,10 @@ struct AnimatedDefine {
 };
 
 // The model of each frame: the animation's derivation step, and the animated #define's value
-// at that frame, written into a hidden copy beside the .l (its includes and files stay where
-// they were; messages name the user's file). The files are read once (the .l once a frame when a
-// #define moves): a frame derives and builds its Scene from them.
+// at that frame, put into the .l's text in memory (nothing is written beside the model; its
+// includes and files stay where they were; messages name the user's file). The files are read
+// once: a frame derives and builds its Scene from them (and compiles the changed text when a
+// #define moves).
 class FrameModels {
  public:
   FrameModels(const ModelOptions& model, const BuiltScene& first,
@@ -69,7 +70,9 @@ class FrameModels {
         lsystem_(first.model),
         animation_(std::move(animation)),
         define_(std::move(define)),
-        frames_(frames) {}
+        frames_(frames) {
+    if (define_) lsystemText_ = readText(model_.lsystemFile);
+  }
 
   // Whether frame k (from 1) has a body of its own, else the one before stays.
   bool moves(int k) const {
@@ -85,34 +88,13 @@ class FrameModels {
     if (!define_) return growScene(options, lsystem_, resources_, diagnostics);
     const double t = frames_ > 1 ? static_cast<double>(k - 1) / (frames_ - 1) : 0.0;
     const double value = define_->from + t * (define_->to - define_->from);
-    const fs::path original = model_.lsystemFile;
-    const fs::path copy =
-        original.parent_path() / ("." + original.filename().string() + ".hirsute-simulate.l");
-    {
-      OutputTarget out(copy);
-      const std::string text = replaceDefineValues(
-          readText(original),
-          {{define_->name,
-            formatDefineValue(define_->integer ? std::round(value) : value, define_->integer)}});
-      std::fputs(text.c_str(), out.stream());
-      out.commit();
-    }
-    struct Remove {
-      fs::path file;
-      ~Remove() {
-        std::error_code ec;
-        fs::remove(file, ec);
-      }
-    } remove{copy};
-    options.lsystemFile = copy.string();
-    try {
-      return growScene(options, loadLsystem(options, diagnostics), resources_, diagnostics);
-    } catch (const DiagnosticError& e) {
-      Diagnostic named = e.diagnostic();
-      if (named.where.fileName() == copy.string())
-        named.where.file = std::make_shared<const std::string>(original.string());
-      throw DiagnosticError(named);
-    }
+    // The constant changes in the .l's text, not in a copy beside it: nothing is written into
+    // the model's folder, and messages name the user's file.
+    options.lsystemText = replaceDefineValues(
+        lsystemText_,
+        {{define_->name,
+          formatDefineValue(define_->integer ? std::round(value) : value, define_->integer)}});
+    return growScene(options, loadLsystem(options, diagnostics), resources_, diagnostics);
   }
 
  private:
@@ -128,6 +110,7 @@ class FrameModels {
   Model lsystem_;
   std::vector<AnimationFrame> animation_;
   std::optional<AnimatedDefine> define_;
+  std::string lsystemText_;  // the .l as read, when a #define moves
   int frames_;
 };
 

@@ -1,6 +1,6 @@
 // `hirsute view`, in the drawing module: the interactive window (viewer_window.h) with its
-// builder, buildScene on the worker's thread, the panel's `#define` values applied to a hidden
-// copy of the `.l` beside it.
+// builder, buildScene on the worker's thread, the panel's `#define` values applied to the `.l`'s
+// text in memory.
 #include <algorithm>
 #include <fstream>
 #include <iostream>
@@ -26,14 +26,6 @@ std::string readFile(const std::filesystem::path& file) {
   return text.str();
 }
 
-void replaceAll(std::string& text, const std::string& from, const std::string& to) {
-  if (from.empty()) return;
-  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at)) {
-    text.replace(at, from.size(), to);
-    at += to.size();
-  }
-}
-
 // One build for the window, on the worker's thread.
 ModelBuild buildForViewer(const ModelOptions& base, const ModelRequest& request,
                           BuildProgress& progress) {
@@ -45,27 +37,10 @@ ModelBuild buildForViewer(const ModelOptions& base, const ModelRequest& request,
     progress.stepsDone = done;
     progress.totalSteps = total;
   };
-  // The panel's values go into a hidden copy beside the .l (includes and fopen stay relative to
-  // its folder, and the file watcher skips hidden files); messages name the user's file.
-  std::filesystem::path original = base.lsystemFile, temporary;
-  if (!request.defines.empty()) {
-    temporary = original.parent_path() / ("." + original.filename().string() + ".hirsute-view.l");
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << replaceDefineValues(readFile(original), request.defines);
-    if (!out.flush()) throw std::runtime_error(temporary.string() + ": cannot write the file");
-    options.lsystemFile = temporary.string();
-  }
-  struct RemoveTemporary {
-    std::filesystem::path file;
-    ~RemoveTemporary() {
-      std::error_code ec;
-      if (!file.empty()) std::filesystem::remove(file, ec);
-    }
-  } removeTemporary{temporary};
-  auto ownNames = [&](std::string text) {
-    if (!temporary.empty()) replaceAll(text, temporary.string(), original.string());
-    return text;
-  };
+  // The panel's values go into the .l's text in memory: nothing is written beside the model,
+  // includes and fopen stay relative to its folder, and messages name the user's file.
+  if (!request.defines.empty())
+    options.lsystemText = replaceDefineValues(readFile(base.lsystemFile), request.defines);
 
   std::ostringstream warnings;
   Diagnostics diagnostics(&warnings);
@@ -83,9 +58,9 @@ ModelBuild buildForViewer(const ModelOptions& base, const ModelRequest& request,
     model->materialMode = built.resources.materialMode;
     build.model = std::move(model);
   } catch (const DiagnosticError& e) {
-    build.error = ownNames(e.diagnostic().text());
+    build.error = e.diagnostic().text();
   }
-  std::cerr << ownNames(warnings.str());
+  std::cerr << warnings.str();
   return build;
 }
 

@@ -17,6 +17,8 @@
 #include <sstream>
 #include <thread>
 
+#include "hirsute/core/model_folder.h"
+
 namespace hirsute {
 namespace {
 
@@ -25,6 +27,8 @@ using Clock = std::chrono::steady_clock;
 // cpfg's shared memory: a block from cpfg to the program, then one back.
 constexpr std::size_t kToProgramBytes = 50000;
 constexpr std::size_t kFromProgramBytes = 10000;
+// An answer file larger than this is a program gone wrong.
+constexpr std::size_t kMaxAnswerFileBytes = std::size_t{256} << 20;
 
 class ExternalProgram : public EnvironmentProgram {
  public:
@@ -81,11 +85,11 @@ class ExternalProgram : public EnvironmentProgram {
     send(batch);
     waitSemaphore();
     if (file_.transport == Transport::Memory) return readAnswersFromMemory();
-    std::ifstream in(fromField_, std::ios::binary);
-    if (!in) fail("wrote no answer file " + fromField_.string());
-    std::ostringstream s;
-    s << in.rdbuf();
-    std::string answers = s.str();
+    // The exchange files are confined to the folder as the model's own files are
+    // (model_folder.h): a link planted in their place is not followed.
+    std::string answers, failure;
+    if (!ModelFolder(folder_).read(fromField_, answers, failure, kMaxAnswerFileBytes))
+      fail("wrote no answer file " + (folder_ / fromField_).string() + " (" + failure + ")");
     if (answers.find("Control:") == std::string::npos) fail("answered without a Control: line");
     return answers;
   }
@@ -126,9 +130,8 @@ class ExternalProgram : public EnvironmentProgram {
     memory_ = nullptr;
     if (segment_ >= 0) ::shmctl(segment_, IPC_RMID, nullptr);
     segment_ = -1;
-    std::error_code ec;
-    if (!toField_.empty()) std::filesystem::remove(toField_, ec);
-    if (!fromField_.empty()) std::filesystem::remove(fromField_, ec);
+    if (!toField_.empty()) ModelFolder(folder_).remove(toField_);
+    if (!fromField_.empty()) ModelFolder(folder_).remove(fromField_);
   }
 
   [[noreturn]] void fail(const std::string& what) {
@@ -220,8 +223,8 @@ class ExternalProgram : public EnvironmentProgram {
       const std::string ext = std::to_string(::getpid()) + ".0";
       argv.push_back("-ext");
       argv.push_back(ext);
-      toField_ = folder_ / (".to_field" + ext);
-      fromField_ = folder_ / (".from_field" + ext);
+      toField_ = ".to_field" + ext;
+      fromField_ = ".from_field" + ext;
     }
     argv.insert(argv.end(), command.words.begin() + 1, command.words.end());
     pid_ = spawn(argv, -1, -1);
@@ -236,10 +239,9 @@ class ExternalProgram : public EnvironmentProgram {
   // Files and memory: the batch goes out and semaphore 0 is raised.
   void send(const std::string& text) {
     if (file_.transport == Transport::Files) {
-      std::ofstream out(toField_, std::ios::binary | std::ios::trunc);
-      out << text;
-      out.close();
-      if (!out) fail("cannot write " + toField_.string());
+      ConfinedFile out = ModelFolder(folder_).open(toField_, FileAccess::Write);
+      if (!out) fail("cannot write " + (folder_ / toField_).string() + ": " + out.failure);
+      writeAll(out.fd.get(), text);
     } else {
       if (text.size() > kToProgramBytes)
         fail("a batch is larger than the shared memory block (50000 bytes)");
@@ -367,7 +369,7 @@ class ExternalProgram : public EnvironmentProgram {
   int toProgram_ = -1, fromProgram_ = -1;
   int semaphores_ = -1, segment_ = -1;
   char* memory_ = nullptr;
-  std::filesystem::path toField_, fromField_;
+  std::string toField_, fromField_;  // names in folder_
 };
 
 }  // namespace

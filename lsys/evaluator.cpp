@@ -1,6 +1,7 @@
 #include "hirsute/lsys/evaluator.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 
@@ -481,7 +482,13 @@ double Evaluator::call(Builtin id, const double* a, int count, std::uint32_t whe
     case Builtin::Fflush: std::fflush(file(a[0], where)); return 0;
     case Builtin::Fprintf: {
       std::string text = format(program_.strings[static_cast<std::size_t>(a[1])], a + 2, count - 2, where);
-      std::fwrite(text.data(), 1, text.size(), file(a[0], where));
+      std::FILE* f = file(a[0], where);
+      if (text.size() > limits_.maxWrittenBytes - std::min(writtenBytes_, limits_.maxWrittenBytes)) {
+        fail(where, "fprintf: the blocks would write more than " + std::to_string(limits_.maxWrittenBytes) +
+                        " bytes to files (--max-file-bytes)");
+      }
+      writtenBytes_ += text.size();
+      std::fwrite(text.data(), 1, text.size(), f);
       return 0;
     }
     case Builtin::Stop: stopRequested_ = true; return 0;
@@ -497,22 +504,23 @@ std::string Evaluator::format(const std::string& fmt, const double* args, int co
 }
 
 double Evaluator::openFile(const std::string& name, const std::string& mode, std::uint32_t where) {
-  // Files are confined to the model's folder: a plain relative name, no way up or out.
-  std::filesystem::path path(name);
-  if (name.empty() || path.is_absolute()) fail(where, "fopen: '" + name + "' must be a file name in the model's folder");
-  for (const auto& part : path) {
-    if (part == "..") fail(where, "fopen: '" + name + "' leaves the model's folder");
-  }
-  if (mode.empty() || !std::strchr("rwa", mode[0]) || mode.find_first_not_of("rwab+") != std::string::npos) {
+  // Files are confined to the model's folder (model_folder.h): a name beneath it, no way up,
+  // no link followed out, and only regular files.
+  FileAccess access{};
+  if (!fileAccessOfMode(mode, access)) {
     fail(where, "fopen: mode '" + mode + "' is not one of r, w, a (with + or b)");
   }
   std::size_t open = static_cast<std::size_t>(std::count_if(files_.begin(), files_.end(), [](auto* f) { return f; }));
   if (static_cast<int>(open) >= limits_.maxOpenFiles) fail(where, "fopen: too many open files");
-  std::FILE* f = std::fopen((modelFolder_ / path).c_str(), mode.c_str());
-  if (!f) {
-    diagnostics_.warn(program_.locations[where], "fopen: cannot open '" + name + "': " + std::strerror(errno));
+  ConfinedFile confined = modelFolder_.open(name, access);
+  if (confined.refused) fail(where, "fopen: cannot open '" + name + "': " + confined.failure);
+  if (!confined) {
+    diagnostics_.warn(program_.locations[where], "fopen: cannot open '" + name + "': " + confined.failure);
     return 0;
   }
+  std::FILE* f = fdopen(confined.fd.get(), mode.c_str());
+  if (!f) fail(where, "fopen: cannot open '" + name + "': " + std::strerror(errno));
+  confined.fd.release();
   for (std::size_t i = 0; i < files_.size(); ++i) {
     if (!files_[i]) {
       files_[i] = f;

@@ -19,7 +19,9 @@ Model loadModel(const std::filesystem::path& lsystemFile,
     // cpfg defines every function-set name for the preprocessor before reading the `.l`.
     if (modelOptions.defineFunctionSetNames) options.defines = model.functions.macroDefinitions;
   }
-  std::string text = preprocessFile(lsystemFile, options, diagnostics);
+  std::string text = modelOptions.lsystemText
+                         ? preprocessText(*modelOptions.lsystemText, lsystemFile, options, diagnostics)
+                         : preprocessFile(lsystemFile, options, diagnostics);
   ast::File file = parseLsystemText(text, lsystemFile.string());
   model.program = compileProgram(file, diagnostics);
   return model;

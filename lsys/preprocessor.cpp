@@ -1,7 +1,9 @@
 #include "hirsute/lsys/preprocessor.h"
 
+#include "hirsute/core/child_confinement.h"
+#include "hirsute/core/model_folder.h"
+
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -74,10 +76,40 @@ class TemporaryFile {
   int fd_ = -1;
 };
 
+// The program as the shell would find it on PATH (a name with a slash is taken as it is); empty
+// when there is none. Found before fork, so that the child only calls exec.
+std::string findOnPath(const std::string& program) {
+  if (program.find('/') != std::string::npos) return access(program.c_str(), X_OK) == 0 ? program : "";
+  const char* path = std::getenv("PATH");
+  std::string folders = path && *path ? path : "/usr/local/bin:/usr/bin:/bin";
+  std::size_t start = 0;
+  while (start <= folders.size()) {
+    std::size_t end = folders.find(':', start);
+    if (end == std::string::npos) end = folders.size();
+    const std::string folder = folders.substr(start, end - start);
+    const std::string candidate = (folder.empty() ? std::string(".") : folder) + "/" + program;
+    struct stat st {};
+    if (stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) && access(candidate.c_str(), X_OK) == 0)
+      return candidate;
+    start = end + 1;
+  }
+  return "";
+}
+
 // Traditional-mode cpp reports a missing `#include` file one line late, at the word `include`.
 // Moves `where` to the file name on the directive's own line, as the user would look for it.
-void locateMissingInclude(SourceLocation& where, const std::string& header) {
-  std::ifstream in(where.fileName(), std::ios::binary);
+// The file is read beneath the model's folder (a `#line` may name any file).
+void locateMissingInclude(SourceLocation& where, const std::string& header,
+                          const std::filesystem::path& folder) {
+  const ModelFolder model(folder.empty() ? std::filesystem::path(".") : folder);
+  const std::filesystem::path file(where.fileName());
+  std::string source, failure;
+  const std::string relative =
+      file.is_absolute() == model.path().is_absolute()
+          ? file.lexically_relative(model.path()).string()
+          : std::string();
+  if (relative.empty() || !model.read(relative, source, failure, std::size_t{64} << 20)) return;
+  std::istringstream in(source);
   std::string text;
   for (int number = 1; std::getline(in, text) && number <= where.line; ++number) {
     if (number < where.line - 1) continue;
@@ -85,6 +117,13 @@ void locateMissingInclude(SourceLocation& where, const std::string& header) {
     std::size_t include = text.find("include", directive == std::string::npos ? 0 : directive);
     if (directive == std::string::npos || include == std::string::npos) continue;
     std::size_t name = text.find(header, include);
+    // cpp names a file found through -I by its path there; the line has the name as written.
+    if (name == std::string::npos) {
+      const std::string written = std::filesystem::path(header).filename().string();
+      name = written.empty() ? std::string::npos : text.find(written, include);
+      if (name != std::string::npos) name = text.find_last_of("\"<", name);
+      if (name != std::string::npos) ++name;
+    }
     if (name == std::string::npos || name == 0) continue;
     where.line = number;
     where.column = static_cast<int>(name);  // the opening quote or angle bracket, 1-based
@@ -99,7 +138,7 @@ int cppNumber(const std::string& digits) {
 
 // Turns cpp's messages into diagnostics: the first error is thrown, warnings are passed on.
 void reportCppMessages(const std::string& messages, bool failed, const std::string& fallbackFile,
-                       Diagnostics& diagnostics) {
+                       const std::filesystem::path& folder, Diagnostics& diagnostics) {
   static const std::regex kLine(R"(^(.*?):(\d+):(?:(\d+):)? *(fatal error|error|warning): (.*)$)");
   std::istringstream lines(messages);
   std::string line;
@@ -116,7 +155,16 @@ void reportCppMessages(const std::string& messages, bool failed, const std::stri
     static const std::string kMissing = ": No such file or directory";
     if (message.size() > kMissing.size() &&
         message.compare(message.size() - kMissing.size(), kMissing.size(), kMissing) == 0) {
-      locateMissingInclude(where, message.substr(0, message.size() - kMissing.size()));
+      locateMissingInclude(where, message.substr(0, message.size() - kMissing.size()), folder);
+    }
+    // The confinement's refusal (child_confinement.h) reads as a denied permission.
+    static const std::string kDenied = ": Permission denied";
+    if (message.size() > kDenied.size() &&
+        message.compare(message.size() - kDenied.size(), kDenied.size(), kDenied) == 0) {
+      locateMissingInclude(where, message.substr(0, message.size() - kDenied.size()), folder);
+      throw DiagnosticError(where, message +
+                                       " (an #include reads only files beneath the model's "
+                                       "folder; no link out of it is followed)");
     }
     throw DiagnosticError(where, message);
   }
@@ -197,7 +245,13 @@ std::string preprocessFile(const std::filesystem::path& file, const Preprocessor
   if (!probe) throw DiagnosticError(fileLocation, "cannot read the file");
   probe.close();
 
-  std::string text = readWholeFile(file);
+  return preprocessText(readWholeFile(file), file, options, diagnostics);
+}
+
+std::string preprocessText(const std::string& text, const std::filesystem::path& file,
+                           const PreprocessorOptions& options, Diagnostics& diagnostics) {
+  const std::string name = file.string();
+  auto fileLocation = SourceLocation{std::make_shared<const std::string>(name), 0, 0};
   if (text.find('\0') != std::string::npos) {
     // Find the line of the first NUL byte for the message.
     std::size_t at = text.find('\0');
@@ -221,27 +275,40 @@ std::string preprocessFile(const std::filesystem::path& file, const Preprocessor
   for (const auto& [macro, value] : options.defines) args.push_back("-D" + macro + "=" + value);
   args.push_back("-");
 
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, input.path().c_str(), O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, output.fd(), 1);
-  posix_spawn_file_actions_adddup2(&actions, errors.fd(), 2);
+  // cpp opens the model's #include files itself: it runs confined to reading beneath the
+  // model's folder (child_confinement.h), so that an include cannot read through a link out of it.
+  const std::string executable = findOnPath(options.program);
+  if (executable.empty()) {
+    throw DiagnosticError(fileLocation, "cannot run the C preprocessor '" + options.program +
+                                            "': " + std::strerror(ENOENT) +
+                                            " (scripts/install-deps.sh installs it)");
+  }
+  const ChildConfinement confinement(folder.empty() ? std::filesystem::path(".") : folder);
+  FileDescriptor in(::open(input.path().c_str(), O_RDONLY | O_CLOEXEC));
+  if (!in) throw DiagnosticError(fileLocation, "cannot read a temporary file: " + std::string(std::strerror(errno)));
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  pid_t pid = 0;
-  int spawned = posix_spawnp(&pid, options.program.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) {
-    throw DiagnosticError(fileLocation, "cannot run the C preprocessor '" + options.program +
-                                            "': " + std::strerror(spawned) +
-                                            " (scripts/install-deps.sh installs it)");
+  const pid_t pid = fork();
+  if (pid < 0) {
+    throw DiagnosticError(fileLocation, "cannot run the C preprocessor: " + std::string(std::strerror(errno)));
+  }
+  if (pid == 0) {
+    // The child: only system calls until exec.
+    if (dup2(in.get(), 0) < 0 || dup2(output.fd(), 1) < 0 || dup2(errors.fd(), 2) < 0) _exit(127);
+    if (confinement.applyInChild() != 0) {
+      static const char kMessage[] = "cannot confine the C preprocessor to the model's folder\n";
+      (void)!::write(2, kMessage, sizeof kMessage - 1);
+      _exit(126);
+    }
+    execve(executable.c_str(), argv.data(), environ);
+    _exit(127);
   }
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   bool failed = !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  reportCppMessages(errors.read(), failed, name, diagnostics);
+  reportCppMessages(errors.read(), failed, name, folder, diagnostics);
   return output.read();
 }
 

@@ -9,6 +9,7 @@
 #include <ostream>
 #include <vector>
 
+#include "hirsute/core/model_folder.h"
 #include "hirsute/lsys/builtins.h"
 #include "hirsute/lsys/code.h"
 #include "hirsute/lsys/diagnostic.h"
@@ -24,6 +25,9 @@ struct EvaluationLimits {
   std::uint64_t maxLoopIterations = 10'000'000;
   // Files one model may have open at once.
   int maxOpenFiles = 32;
+  // Bytes the blocks may write through fprintf, in all their files together; a runaway loop
+  // that writes is an error at the call, not a full disk.
+  std::uint64_t maxWrittenBytes = std::uint64_t{256} << 20;
 };
 
 class Evaluator {
@@ -81,7 +85,7 @@ class Evaluator {
   const Program& program_;
   Diagnostics& diagnostics_;
   const ViewFunctions* functions_;
-  std::filesystem::path modelFolder_;
+  ModelFolder modelFolder_;
   std::ostream& printOut_;
   EvaluationLimits limits_;
   std::vector<double> shared_;
@@ -91,6 +95,7 @@ class Evaluator {
   BlockRandom ownRandom_;
   BlockRandom* random_ = &ownRandom_;
   std::vector<std::FILE*> files_;
+  std::uint64_t writtenBytes_ = 0;
   bool stopRequested_ = false;
 };
 

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "hirsute/lsys/diagnostic.h"
 #include "hirsute/lsys/function_curve.h"
@@ -24,6 +25,9 @@ struct ModelOptions {
   // cpfg defines the view file's function-set names for the preprocessor; its batch mode (-g)
   // reads the `.l` first and does not. Off reproduces that mode.
   bool defineFunctionSetNames = true;
+  // The `.l` text to use instead of the file's (a constant changed by the viewer's panel or by
+  // `simulate --animate`); messages still name the file, and includes and fopen its folder.
+  std::optional<std::string> lsystemText;
 };
 
 Model loadModel(const std::filesystem::path& lsystemFile,

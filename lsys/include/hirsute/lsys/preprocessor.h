@@ -27,6 +27,11 @@ struct PreprocessorOptions {
 // Throws DiagnosticError with the location of the problem in the user's file.
 std::string preprocessFile(const std::filesystem::path& file, const PreprocessorOptions& options,
                            Diagnostics& diagnostics);
+// The same for `text` standing in for the file's contents (the viewer's `#define` panel and
+// `simulate --animate` change a constant without writing a copy of the file): messages name
+// `file`, and includes are found beside it.
+std::string preprocessText(const std::string& text, const std::filesystem::path& file,
+                           const PreprocessorOptions& options, Diagnostics& diagnostics);
 
 // Removes `//` comments (outside strings and `/* */` comments) and moves indented
 // preprocessor directives to column 1; the number of lines is unchanged.
