@@ -1,0 +1,432 @@
+// The viewer's live model without a window: steps asked for are built and shown, the animation
+// keeps the .a file's swap interval on a clock moved by hand, the script's commands change what
+// is shown and wait for builds and for time, the screenshots it asks the window for fail the
+// script, the fur takes droplets and the feathers' dynamics runs and pauses on shipped models.
+#include "hirsute/viewer/interaction/live_model.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "model_pipeline.h"
+
+namespace hirsute {
+namespace {
+
+using namespace std::chrono_literals;
+using Clock = LiveModel::Clock;
+
+const std::filesystem::path kSource = HIRSUTE_SOURCE_DIR;
+const std::filesystem::path kFixtures = kSource / "tests/fixtures/viewer";
+
+// Time that moves only when the test says.
+struct HandClock {
+  Clock::time_point time = Clock::time_point{} + 1000h;
+  LiveModel::Now now() {
+    return [this] { return time; };
+  }
+  void advance(double seconds) {
+    time += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  }
+};
+
+// The window's side, recorded.
+struct RecordingView : LiveModelView {
+  const LiveModel* live = nullptr;
+  std::vector<int> uploadedSteps;
+  int furUpdates = 0, featherUpdates = 0;
+  Scene lastFeathers;
+  bool screenshotsWork = true;
+  struct Shot {
+    std::filesystem::path file;
+    bool withUi;
+    int step;  // the step shown when it was taken
+  };
+  std::vector<Shot> screenshots;
+  std::vector<int> measures;
+
+  void upload(const ViewerModel& model) override { uploadedSteps.push_back(model.steps); }
+  void updateFur(const Scene&) override { ++furUpdates; }
+  void updateFeathers(const Scene& feathers) override {
+    ++featherUpdates;
+    lastFeathers = feathers;
+  }
+  bool screenshot(const std::filesystem::path& file, bool withUi) override {
+    screenshots.push_back({file, withUi, live && live->model() ? live->model()->steps : -1});
+    return screenshotsWork;
+  }
+  void measure(int frames) override { measures.push_back(frames); }
+};
+
+// A model of nine steps that is only its step number; the requests are kept.
+struct StepBuilder {
+  std::mutex mutex;
+  std::vector<ModelRequest> requests;
+  ModelBuilder builder() {
+    return [this](const ModelRequest& request, BuildProgress&) {
+      {
+        std::lock_guard lock(mutex);
+        requests.push_back(request);
+      }
+      auto model = std::make_shared<ViewerModel>();
+      model->derivationLength = 9;
+      model->steps = std::clamp(request.steps.value_or(9), 0, 9);
+      model->bounds = Bounds{glm::vec3(-1), glm::vec3(1)};
+      ModelBuild build;
+      build.model = std::move(model);
+      return build;
+    };
+  }
+  ModelRequest last() {
+    std::lock_guard lock(mutex);
+    return requests.back();
+  }
+};
+
+// Turns of the window's loop until what was asked for is shown (the clock stands still).
+void settle(LiveModel& live) {
+  for (int i = 0; i < 2000; ++i) {
+    live.update();
+    if (live.worker().settled() && live.model()) return;
+    std::this_thread::sleep_for(1ms);
+  }
+  FAIL() << "the build did not finish";
+}
+
+// Turns of the loop until the script closes the window, or at most `turns`.
+void runScript(LiveModel& live, int turns = 2000) {
+  for (int i = 0; i < turns && !live.closed(); ++i) {
+    live.update();
+    std::this_thread::sleep_for(1ms);
+  }
+}
+
+LiveModelOptions optionsFor(const std::filesystem::path& lsystem) {
+  LiveModelOptions options;
+  options.lsystemFile = lsystem;
+  options.watch = false;
+  return options;
+}
+
+LiveModelOptions scripted(const std::string& commands) {
+  LiveModelOptions options = optionsFor(kFixtures / "constants.l");
+  options.script = parseViewScript(commands, "--commands");
+  return options;
+}
+
+TEST(LiveModelTest, StepsMoveWithinTheDerivation) {
+  LiveModelOptions options = optionsFor(kFixtures / "constants.l");
+  options.steps = 4;
+  StepBuilder steps;
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, steps.builder(), view, {}, clock.now());
+  settle(live);
+  ASSERT_EQ(live.model()->steps, 4);
+  EXPECT_EQ(view.uploadedSteps, std::vector<int>{4});
+  live.stepBy(3);
+  settle(live);
+  EXPECT_EQ(live.model()->steps, 7);
+  live.stepBy(10);  // no further than the derivation length
+  settle(live);
+  EXPECT_EQ(live.model()->steps, 9);
+  EXPECT_EQ(steps.last().steps, 9);
+  live.stepBy(-20);  // no further back than the axiom
+  settle(live);
+  EXPECT_EQ(live.model()->steps, 0);
+  live.goTo(5);
+  settle(live);
+  EXPECT_EQ(live.currentStep(), 5);
+  EXPECT_EQ(view.uploadedSteps, (std::vector<int>{4, 7, 9, 0, 5}));
+  EXPECT_EQ(live.exitCode(), 0);
+}
+
+TEST(LiveModelTest, AnimationShowsEachFrameOnlyAfterTheSwapInterval) {
+  // every_second.a: frames 2, 4, 6, 8 of the nine steps, half a second apart.
+  LiveModelOptions options = optionsFor(kFixtures / "constants.l");
+  options.animationFile = kFixtures / "every_second.a";
+  StepBuilder steps;
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, steps.builder(), view, {}, clock.now());
+  settle(live);
+  ASSERT_EQ(live.model()->steps, 9);
+  live.runAnimation();
+  settle(live);
+  EXPECT_TRUE(live.animating());
+  EXPECT_EQ(live.model()->steps, 2);  // the first frame at once
+  for (int frame : {4, 6, 8}) {
+    clock.advance(0.4);
+    settle(live);
+    EXPECT_EQ(live.model()->steps, frame - 2) << "before the swap interval";
+    clock.advance(0.1);
+    settle(live);
+    EXPECT_EQ(live.model()->steps, frame);
+  }
+  EXPECT_TRUE(live.animating());
+  clock.advance(0.5);
+  live.update();
+  EXPECT_FALSE(live.animating());  // cpfg's Run stops at the last frame
+  EXPECT_EQ(view.uploadedSteps, (std::vector<int>{9, 2, 4, 6, 8}));
+}
+
+TEST(LiveModelTest, StepAnimationGoesToTheNextFrameAndAfterTheLastToTheFirst) {
+  LiveModelOptions options = optionsFor(kFixtures / "constants.l");
+  options.animationFile = kFixtures / "every_second.a";
+  options.steps = 5;
+  StepBuilder steps;
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, steps.builder(), view, {}, clock.now());
+  settle(live);
+  live.stepAnimation();
+  settle(live);
+  EXPECT_EQ(live.model()->steps, 6);
+  live.lastFrame();
+  settle(live);
+  EXPECT_EQ(live.model()->steps, 8);
+  live.stepAnimation();
+  settle(live);
+  EXPECT_EQ(live.model()->steps, 2);
+  EXPECT_FALSE(live.animating());
+}
+
+TEST(LiveModelTest, ScriptCommandsWaitForTheirBuildsAndAskTheWindowForPictures) {
+  LiveModelOptions options = scripted(
+      "goto 3; step 2; hairs off; wireframe on; screenshot a.png; measure 5;"
+      "back; screenshot b.png ui; panel off; quit; hairs on");
+  StepBuilder steps;
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, steps.builder(), view, {}, clock.now());
+  view.live = &live;
+  runScript(live);
+  ASSERT_TRUE(live.closed());
+  EXPECT_EQ(live.exitCode(), 0);
+  ASSERT_EQ(view.screenshots.size(), 2u);
+  EXPECT_EQ(view.screenshots[0].file, "a.png");
+  EXPECT_FALSE(view.screenshots[0].withUi);
+  EXPECT_EQ(view.screenshots[0].step, 5);  // goto 3 and step 2 were built before it
+  EXPECT_EQ(view.screenshots[1].file, "b.png");
+  EXPECT_TRUE(view.screenshots[1].withUi);
+  EXPECT_EQ(view.screenshots[1].step, 4);
+  EXPECT_EQ(view.measures, std::vector<int>{5});
+  EXPECT_FALSE(live.shown().hairs);  // nothing runs after quit
+  EXPECT_TRUE(live.shown().wireframe);
+  EXPECT_FALSE(live.shown().panel);
+}
+
+TEST(LiveModelTest, ScriptCameraCommandsMoveTheMouseCamera) {
+  LiveModelOptions options = scripted("zoom 2; rotate 30 0; pan 0.1 0");
+  StepBuilder steps;
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, steps.builder(), view, {}, clock.now());
+  runScript(live);
+  ASSERT_TRUE(live.closed());  // the window closes after the last command
+  EXPECT_FLOAT_EQ(live.mouse().zoomFactor(), 2.0f);
+  EXPECT_FALSE(live.mouse().isIdentity());
+  live.resetView();
+  EXPECT_TRUE(live.mouse().isIdentity());
+}
+
+TEST(LiveModelTest, SleepWaitsForTheClock) {
+  LiveModelOptions options = scripted("sleep 2; screenshot a.png");
+  StepBuilder steps;
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, steps.builder(), view, {}, clock.now());
+  runScript(live, 50);
+  EXPECT_TRUE(view.screenshots.empty());
+  clock.advance(1.9);
+  runScript(live, 50);
+  EXPECT_TRUE(view.screenshots.empty());
+  EXPECT_FALSE(live.closed());
+  clock.advance(0.2);
+  runScript(live);
+  EXPECT_EQ(view.screenshots.size(), 1u);
+  EXPECT_TRUE(live.closed());
+  EXPECT_EQ(live.exitCode(), 0);
+}
+
+TEST(LiveModelTest, AScreenshotThatCannotBeWrittenFailsTheScript) {
+  LiveModelOptions options = scripted("screenshot a.png; hairs off");
+  StepBuilder steps;
+  RecordingView view;
+  view.screenshotsWork = false;
+  HandClock clock;
+  LiveModel live(options, steps.builder(), view, {}, clock.now());
+  testing::internal::CaptureStderr();
+  runScript(live);
+  const std::string errors = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(live.closed());
+  EXPECT_EQ(live.exitCode(), 1);
+  EXPECT_NE(errors.find("--commands:1:1: error: cannot write the screenshot a.png"),
+            std::string::npos)
+      << errors;
+  EXPECT_TRUE(live.shown().hairs);  // the script stopped there
+}
+
+TEST(LiveModelTest, WaitReloadFailsWhenNoFileChangesInTime) {
+  LiveModelOptions options = scripted("wait-reload 1");
+  StepBuilder steps;
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, steps.builder(), view, {}, clock.now());
+  runScript(live, 50);
+  EXPECT_FALSE(live.closed());
+  clock.advance(1.1);
+  testing::internal::CaptureStderr();
+  runScript(live);
+  const std::string errors = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(live.closed());
+  EXPECT_EQ(live.exitCode(), 1);
+  EXPECT_NE(errors.find("no model file changed within the time given"), std::string::npos);
+}
+
+TEST(LiveModelTest, DefinesAreBuiltAndReverted) {
+  LiveModelOptions options = optionsFor(kFixtures / "constants.l");
+  StepBuilder steps;
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, steps.builder(), view, {}, clock.now());
+  settle(live);
+  ASSERT_FALSE(live.constants().empty());
+  EXPECT_EQ(live.constants().front().name, "STEPS");
+  live.setDefine("STEPS", "3");
+  settle(live);
+  EXPECT_EQ(steps.last().defines, (std::map<std::string, std::string>{{"STEPS", "3"}}));
+  EXPECT_EQ(live.changedDefines().at("STEPS"), "3");
+  live.revertDefines();
+  settle(live);
+  EXPECT_TRUE(steps.last().defines.empty());
+  EXPECT_TRUE(live.changedDefines().empty());
+}
+
+TEST(LiveModelTest, ABrokenBuildKeepsTheLastPlantAndIsReported) {
+  LiveModelOptions options = optionsFor(kFixtures / "constants.l");
+  std::atomic<bool> broken{false};
+  StepBuilder steps;
+  ModelBuilder good = steps.builder();
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(
+      options,
+      [&](const ModelRequest& request, BuildProgress& progress) {
+        if (!broken) return good(request, progress);
+        ModelBuild build;
+        build.error = "constants.l:1:1: error: broken";
+        return build;
+      },
+      view, {}, clock.now());
+  settle(live);
+  broken = true;
+  testing::internal::CaptureStderr();
+  live.stepBy(-1);
+  settle(live);
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(live.model()->steps, 9);
+  EXPECT_EQ(live.error(), "constants.l:1:1: error: broken");
+  EXPECT_EQ(live.exitCode(), 2);
+}
+
+// A model of the shipped set built as `hirsute view` builds it.
+struct ShippedModel {
+  cli::ModelOptions options;
+  ModelBuilder builder() {
+    return [this](const ModelRequest& request, BuildProgress&) {
+      cli::ModelOptions o = options;
+      o.stopAfter = request.steps;
+      std::ostringstream warnings;
+      Diagnostics diagnostics(&warnings);
+      cli::BuiltScene built = cli::buildScene(o, diagnostics);
+      auto model = std::make_shared<ViewerModel>();
+      model->derivationLength = built.model.program.lsystems.front().derivationLength;
+      model->steps = request.steps.value_or(model->derivationLength);
+      model->scene = std::move(built.scene);
+      model->bounds = model->scene.bounds();
+      model->view = built.resources.view;
+      ModelBuild build;
+      build.model = std::move(model);
+      return build;
+    };
+  }
+};
+
+TEST(LiveModelTest, TheFeathersDynamicsStepsOnTheClockAndPauses) {
+  const std::filesystem::path folder = kSource / "models/coat-bending";
+  ShippedModel shipped;
+  shipped.options.lsystemFile = (folder / "bending.l").string();
+  shipped.options.viewFile = (folder / "bending.v").string();
+  LiveModelOptions options = optionsFor(folder / "bending.l");
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, shipped.builder(), view, {}, clock.now());
+  settle(live);
+  const std::size_t feathers = live.model()->scene.feathers.size();
+  ASSERT_GT(feathers, 0u);
+
+  live.toggleDynamics();
+  ASSERT_TRUE(live.simulating());
+  ASSERT_NE(live.coat(), nullptr);
+  live.update();  // no time has passed: no step
+  EXPECT_EQ(view.featherUpdates, 0);
+  clock.advance(1.0 / 60);
+  live.update();
+  EXPECT_EQ(view.featherUpdates, 1);
+  EXPECT_EQ(view.lastFeathers.featherPoses.size(), feathers);
+  EXPECT_NEAR(live.coat()->simulation().time(), 1.0 / 60, 1e-9);
+  // A slow frame is simulated as a 30th of a second, no more.
+  clock.advance(1.0);
+  live.update();
+  EXPECT_NEAR(live.coat()->simulation().time(), 1.0 / 60 + 1.0 / 30, 1e-9);
+
+  live.toggleDynamics();
+  EXPECT_FALSE(live.simulating());
+  clock.advance(0.5);
+  live.update();
+  EXPECT_EQ(view.featherUpdates, 2);
+  EXPECT_NEAR(live.coat()->simulation().time(), 1.0 / 60 + 1.0 / 30, 1e-9);
+  EXPECT_TRUE(live.error().empty());
+}
+
+TEST(LiveModelTest, DropletsWetTheFurAndItDriesOnTheClock) {
+  const std::filesystem::path folder = kSource / "models/fur-square";
+  ShippedModel shipped;
+  shipped.options.lsystemFile = (folder / "square.l").string();
+  shipped.options.viewFile = (folder / "square.v").string();
+  LiveModelOptions options = optionsFor(folder / "square.l");
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, shipped.builder(), view, {}, clock.now());
+  settle(live);
+  ASSERT_FALSE(live.fur().furSurfaces.empty());
+  auto wetness = [&] {
+    double sum = 0;
+    for (const FurSurface& s : live.fur().furSurfaces) {
+      for (const glm::vec4& texel : s.wetness) sum += texel.w;
+    }
+    return sum;
+  };
+  const double dry = wetness();
+  live.sprayDroplets(20);
+  EXPECT_EQ(view.furUpdates, 1);
+  const double wet = wetness();
+  EXPECT_GT(wet, dry);
+  // A droplet straight down the line of sight onto the middle of the picture.
+  live.dropletAt({0, 0}, {400, 400});
+  EXPECT_EQ(view.furUpdates, 2);
+  EXPECT_GT(wetness(), wet);
+  const double wetter = wetness();
+  live.toggleDrying();
+  ASSERT_TRUE(live.drying());
+  clock.advance(2.0);
+  live.update();
+  EXPECT_LT(wetness(), wetter);
+}
+
+}  // namespace
+}  // namespace hirsute
