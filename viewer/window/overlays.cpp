@@ -1,0 +1,105 @@
+#include "hirsute/viewer/window/overlays.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+
+#include "hirsute/viewer/window/key_map.h"
+
+namespace hirsute {
+namespace {
+
+constexpr ImGuiWindowFlags kOverlay =
+    ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+
+}  // namespace
+
+void drawStatusOverlay(const LiveModel& live, const GlRenderer& renderer,
+                       const std::string& modelName, double frameMs, bool fewerHairs) {
+  const ImVec2 size = ImGui::GetMainViewport()->WorkSize;
+  const ViewerModel* model = live.model();
+  const ShownParts& shown = live.shown();
+  ImGui::SetNextWindowPos(ImVec2(8, size.y - 8), ImGuiCond_Always, ImVec2(0, 1));
+  ImGui::SetNextWindowBgAlpha(0.55f);
+  if (ImGui::Begin("##status", nullptr, kOverlay)) {
+    ImGui::Text("%s  step %d / %d%s   %.1f ms   F1: help", modelName.c_str(),
+                model ? model->steps : 0, live.derivationLength(),
+                live.animating() ? "  (animating)" : "", frameMs);
+    if (model && renderer.hairCount() > 0) {
+      ImGui::Text("hairs %zu%s%s", renderer.hairCount(), shown.hairs ? "" : " (hidden)",
+                  fewerHairs ? "  (fewer while moving)" : "");
+    }
+    if (model && renderer.featherCount() > 0) {
+      ImGui::Text("feathers %zu%s", renderer.featherCount(), shown.feathers ? "" : " (hidden)");
+      if (const dynamics::CoatMotion* coat = live.coat()) {
+        ImGui::Text("dynamics %s: %.1f s simulated, %.0f frames/s, %llu steps retried",
+                    live.simulating() ? "running" : "paused (D)", coat->simulation().time(),
+                    live.simulatedFps(),
+                    static_cast<unsigned long long>(coat->simulation().counters().retries));
+      }
+    }
+    const Scene& fur = live.fur();
+    if (model && !fur.furSurfaces.empty()) {
+      ImGui::Text("fur: %zu surfaces, %d layers%s%s%s", fur.furSurfaces.size(),
+                  fur.furSurfaces.front().layers, shown.fur ? "" : " (hidden)",
+                  live.drying() ? "  drying" : "", live.furMoving() ? "  moving" : "");
+    }
+    // Builds that end within a quarter of a second show no progress (no flicker).
+    const ModelWorker& worker = live.worker();
+    if (worker.busy() && worker.runningSeconds() > 0.25) {
+      const BuildProgress& p = worker.progress();
+      static const char* kPhases[] = {"reading", "deriving", "interpreting", "placing hairs",
+                                      "growing feathers"};
+      int phase = std::clamp(p.phase.load(), 0, 4);
+      if (p.totalSteps > 0 && phase == 1) {
+        ImGui::Text("%s: step %d of %d  %.1f s", kPhases[phase], p.stepsDone.load(),
+                    p.totalSteps.load(), worker.runningSeconds());
+        ImGui::ProgressBar(static_cast<float>(p.stepsDone) / static_cast<float>(p.totalSteps),
+                           ImVec2(240, 0));
+      } else {
+        ImGui::Text("%s...  %.1f s", kPhases[phase], worker.runningSeconds());
+      }
+    }
+  }
+  ImGui::End();
+}
+
+void drawErrorOverlay(const std::string& error) {
+  if (error.empty()) return;
+  const ImVec2 size = ImGui::GetMainViewport()->WorkSize;
+  ImGui::SetNextWindowPos(ImVec2(size.x - 8, 8), ImGuiCond_Always, ImVec2(1, 0));
+  ImGui::SetNextWindowBgAlpha(0.8f);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(size.x * 0.7f, size.y * 0.5f));
+  if (ImGui::Begin("##error", nullptr, kOverlay)) {
+    ImGui::PushTextWrapPos(size.x * 0.65f);
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", error.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  ImGui::End();
+}
+
+void drawHelpOverlay(bool* open) {
+  if (!*open) return;
+  const ImVec2 size = ImGui::GetMainViewport()->WorkSize;
+  ImGui::SetNextWindowPos(ImVec2(size.x / 2, size.y / 2), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (ImGui::Begin("Keys and mouse", open,
+                   ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+                       ImGuiWindowFlags_NoCollapse)) {
+    if (ImGui::BeginTable("keys", 2)) {
+      for (const auto& [key, action] : viewerKeyMap()) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(key.c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(action.c_str());
+      }
+      ImGui::EndTable();
+    }
+  }
+  ImGui::End();
+}
+
+}  // namespace hirsute
