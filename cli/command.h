@@ -2,9 +2,12 @@
 // user picked it, leaves the action to run in `action`.
 #pragma once
 
+#include <cmath>
 #include <functional>
+#include <string>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 namespace hirsute::cli {
 
@@ -14,6 +17,20 @@ using Action = std::function<int()>;
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitIoError = 1;
 inline constexpr int kExitBadInput = 2;
+
+// A number from min to max. Unlike CLI::Range, which lets NaN through, NaN and infinities are
+// refused: a bad option ends the run with exit code 2 before anything is written.
+inline CLI::Validator finiteRange(double min, double max) {
+  return CLI::Validator(
+      [min, max](std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value)) return "'" + text + "' is not a number";
+        if (!std::isfinite(value) || value < min || value > max)
+          return fmt::format("'{}' is not a finite number from {:g} to {:g}", text, min, max);
+        return {};
+      },
+      fmt::format("FINITE in [{:g} - {:g}]", min, max));
+}
 
 void registerDeriveCommand(CLI::App& app, Action& action);
 void registerRenderCommand(CLI::App& app, Action& action);

@@ -1,5 +1,7 @@
 #include "model_pipeline.h"
 
+#include "command.h"
+
 #include <chrono>
 #include <iostream>
 #include <sstream>
@@ -56,9 +58,9 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
       ->check(CLI::Range(0, 10'000'000));
   command.add_option("--droplet-radius", o.dropletRadius,
                      "Radius of the random droplets, in the fur surface's [0, 1] units (default 0.05)")
-      ->check(CLI::Range(1e-6, 1.0));
+      ->check(finiteRange(1e-6, 1.0));
   command.add_option("--droplet-wetness", o.dropletWetness, "Wetness of the random droplets, 0 to 1 (default 1)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(finiteRange(0.0, 1.0));
   command.add_option("--droplet-seed", o.dropletSeed, "Seed of the random droplets (default 1)");
   command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");
 }

@@ -387,7 +387,7 @@ void registerSimulateCommand(CLI::App& app, Action& action) {
       ->add_option("--frames", options->frames, "Frames to write (default: the animation's, or 48)")
       ->check(CLI::Range(1, 1'000'000));
   command->add_option("--fps", options->fps, "Frames per second of simulated time (default 24)")
-      ->check(CLI::Range(0.01, 10000.0));
+      ->check(finiteRange(0.01, 10000.0));
   command
       ->add_option("--substeps", options->substeps,
                    "Time steps per frame (default: the view file's, or 4)")
@@ -396,18 +396,22 @@ void registerSimulateCommand(CLI::App& app, Action& action) {
       ->add_option("--segments", options->segments,
                    "Segments of each feather's stem (default: the view file's, or 8)")
       ->check(CLI::Range(1, 64));
+  // The view file's `dynamics gravity:` and `dynamics wind:` take components up to 1e6 too.
   command->add_option("--gravity", options->gravity, "Gravity X Y Z (default 0 -9.81 0)")
-      ->expected(3);
-  command->add_option("--wind", options->wind, "The steady wind X Y Z (default none)")->expected(3);
+      ->expected(3)
+      ->check(finiteRange(-1e6, 1e6));
+  command->add_option("--wind", options->wind, "The steady wind X Y Z (default none)")
+      ->expected(3)
+      ->check(finiteRange(-1e6, 1e6));
   command->add_option("--gusts", options->gusts, "Gusts: about the largest speed they add")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(finiteRange(0.0, 1e6));
   command->add_option("--gust-scale", options->gustScale, "The size of a gust (model units)")
-      ->check(CLI::Range(1e-6, 1e6));
+      ->check(finiteRange(1e-6, 1e6));
   command->add_option("--gust-period", options->gustPeriod, "Seconds over which the gusts change")
-      ->check(CLI::Range(1e-6, 1e6));
+      ->check(finiteRange(1e-6, 1e6));
   command->add_option("--gust-seed", options->gustSeed, "The gusts' seed");
   command->add_option("--drag", options->drag, "Drag per unit length per unit speed")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(finiteRange(0.0, 1e6));
   command->add_flag("--obj", options->obj, "Write a Wavefront OBJ of every frame too");
   command->add_flag("--no-frames", options->noFrames,
                     "Write no scenes, only simulation.csv (to measure the simulation alone)");

@@ -139,3 +139,19 @@ TEST_F(SimulateCommand, AModelWithoutFeathersIsAnError) {
 }
 
 }  // namespace
+
+// Options that are no finite number in range end the run with exit code 2 before a frame is
+// written: an earlier run's frames stay as they were.
+TEST_F(SimulateCommand, NonFiniteOptionsAreBadInputBeforeAnyFrame) {
+  fs::create_directories(folder_);
+  std::ofstream(folder_ / "frame-0001.pov") << "// an earlier run\n";
+  for (const char* options : {"--fps nan", "--fps inf", "--gravity nan 0 0", "--wind 1e308 0 0",
+                              "--gravity 0 -1e12 0", "--drag nan", "--droplet-radius nan"}) {
+    const Output out = simulate("coat-bending", "bending.l bending.v",
+                                std::string("--frames 2 ") + options, folder_);
+    EXPECT_EQ(out.status, 2) << options << ": " << out.text;
+    EXPECT_NE(out.text.find("is not a finite number from"), std::string::npos)
+        << options << ": " << out.text;
+    EXPECT_EQ(readText(folder_ / "frame-0001.pov"), "// an earlier run\n") << options;
+  }
+}
