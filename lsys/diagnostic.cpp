@@ -3,6 +3,35 @@
 #include "hirsute/lsys/progress.h"
 
 namespace hirsute {
+namespace {
+
+// A model's files may hold terminal control sequences (ESC, OSC) that a message quotes: they
+// are shown as \xHH, never passed to the terminal, and the C1 controls' UTF-8 forms (C2 80 to
+// C2 9F) as \u0080 to \u009f. Newlines and tabs stay.
+std::string printable(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  static const char* const kHex = "0123456789abcdef";
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f) {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    } else if (c == 0xc2 && i + 1 < text.size() &&
+               (static_cast<unsigned char>(text[i + 1]) & 0xe0) == 0x80) {
+      const auto next = static_cast<unsigned char>(text[++i]);
+      out += "\\u00";
+      out += kHex[next >> 4];
+      out += kHex[next & 15];
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 std::string SourceLocation::text() const {
   std::string out = fileName();
@@ -15,7 +44,8 @@ std::string SourceLocation::text() const {
 }
 
 std::string Diagnostic::text() const {
-  return where.text() + (severity == Severity::Error ? ": error: " : ": warning: ") + message;
+  return printable(where.text() + (severity == Severity::Error ? ": error: " : ": warning: ") +
+                   message);
 }
 
 DiagnosticError::DiagnosticError(Diagnostic diagnostic)

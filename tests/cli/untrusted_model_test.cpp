@@ -132,6 +132,20 @@ TEST_F(UntrustedModel, AnIncludeBeneathTheFolderIsRead) {
   EXPECT_NE(run.out.find("A(7)"), std::string::npos) << run.out;
 }
 
+// A view file's line with a terminal escape (an OSC that sets the window title, a clear-screen)
+// is quoted in the warning with the bytes shown, not sent to the terminal.
+TEST_F(UntrustedModel, ControlSequencesOfAViewFileAreNotEchoed) {
+  const fs::path lsystem = modelRunning("");
+  const fs::path view = model_ / "model.v";
+  std::ofstream(view, std::ios::binary) << "\x1b]0;owned\x07\x1b[2J: 1\n";
+  const RunResult run = runHirsute({"render", lsystem.string(), view.string(), "-o",
+                                    (root_.path() / "out.png").string(), "--size", "16x16"});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.err.find("\\x1b]0;owned\\x07\\x1b[2J"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find('\x1b'), std::string::npos);
+  EXPECT_EQ(run.err.find('\x07'), std::string::npos);
+}
+
 // simulate --animate once wrote the frame's .l into a hidden file beside the model, through any
 // link of that name, and deleted a file of that name afterwards.
 TEST_F(UntrustedModel, SimulateAnimateWritesNothingIntoTheModelFolder) {

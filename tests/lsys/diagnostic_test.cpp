@@ -1,0 +1,36 @@
+// Diagnostics as they are printed: terminal control bytes a model's file holds are shown, never
+// passed to the terminal.
+#include "hirsute/lsys/diagnostic.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+namespace hirsute {
+namespace {
+
+TEST(DiagnosticText, ControlBytesAreShownNotPassedOn) {
+  const SourceLocation where{std::make_shared<const std::string>("a\x1b[2Jb.v"), 3, 1};
+  const Diagnostic d{Severity::Warning, where,
+                     "unknown command '\x1b]0;title\x07:'\tnext\x7f \xc2\x9b"
+                     "31m"};
+  const std::string text = d.text();
+  EXPECT_EQ(text,
+            "a\\x1b[2Jb.v:3:1: warning: unknown command '\\x1b]0;title\\x07:'\tnext\\x7f "
+            "\\u009b31m");
+  for (char c : text) EXPECT_FALSE(c == '\x1b' || c == '\x07' || c == '\x7f');
+}
+
+TEST(DiagnosticText, PrintableTextAndUtf8StayAsTheyAre) {
+  const Diagnostic d{Severity::Error,
+                     SourceLocation{std::make_shared<const std::string>("m.l"), 1, 2},
+                     "\xc3\xa9t\xc3\xa9 \xc2\xb0"
+                     "C\nsecond line"};
+  EXPECT_EQ(d.text(),
+            "m.l:1:2: error: \xc3\xa9t\xc3\xa9 \xc2\xb0"
+            "C\nsecond line");
+}
+
+}  // namespace
+}  // namespace hirsute
