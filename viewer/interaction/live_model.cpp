@@ -159,7 +159,7 @@ void LiveModel::goTo(int step) {
 }
 
 void LiveModel::setDefine(const std::string& name, const std::string& value) {
-  // Applied to a hidden copy of the .l first; with --save the file itself follows once the
+  // Applied to the .l's text in memory first; with --save the file itself follows once the
   // change is complete (a slider let go, a scripted define), not at every step of a drag.
   auto found = changedDefines_.find(name);
   if (found != changedDefines_.end() && found->second == value) return;  // a slider let go
