@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <string>
 
@@ -23,8 +24,10 @@ inline constexpr int kExitBadInput = 2;
 inline CLI::Validator finiteRange(double min, double max) {
   return CLI::Validator(
       [min, max](std::string& text) -> std::string {
-        double value = 0;
-        if (!CLI::detail::lexical_cast(text, value)) return "'" + text + "' is not a number";
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size())
+          return "'" + text + "' is not a number";
         if (!std::isfinite(value) || value < min || value > max)
           return fmt::format("'{}' is not a finite number from {:g} to {:g}", text, min, max);
         return {};

@@ -308,7 +308,7 @@ TEST(OutputFile, BadInputKeepsThePreviousFile) {
   const RunResult run = deriveInto("homomorphism_explosion", output, kFailWhileWriting);
   ASSERT_FALSE(run.killed);
   EXPECT_EQ(run.exitCode, 2) << run.err;
-  EXPECT_EQ(readFile(output), "F(1)\n");
+  EXPECT_EQ(readText(output), "F(1)\n");
   EXPECT_EQ(folder.entries(), std::vector<std::string>{"out.str"});
 }
 
@@ -323,7 +323,7 @@ TEST(OutputFile, GoodModelWritesTheWholeString) {
   ASSERT_FALSE(run.killed);
   EXPECT_EQ(run.exitCode, 0) << run.err;
   EXPECT_EQ(run.out, "");
-  EXPECT_EQ(readFile(output), expected);
+  EXPECT_EQ(readText(output), expected);
   // Nothing but the target: the temporary file it was written to has been renamed into place.
   EXPECT_EQ(folder.entries(), std::vector<std::string>{"out.str"});
 
@@ -424,7 +424,7 @@ TEST(DrawingModule, ProgramLinksNoGlLibrary) {
     const std::string command = std::string("ldd '") + HIRSUTE_BINARY + "' > '" + listing + "'";
     RunResult result;
     result.exitCode = std::system(command.c_str());
-    result.out = readFile(listing);
+    result.out = readText(listing);
     return result;
   }();
   ASSERT_EQ(run.exitCode, 0);

@@ -33,7 +33,7 @@ class UntrustedModel : public ::testing::Test {
                                           << statement << " }\nAxiom: A\nendlsystem\n";
     return file;
   }
-  std::string profile() const { return readFile(outside_ / "profile"); }
+  std::string profile() const { return readText(outside_ / "profile"); }
 
   TemporaryFolder root_;
   fs::path model_, outside_;
@@ -69,7 +69,7 @@ TEST_F(UntrustedModel, FopenStillWritesPlainFilesOfTheFolder) {
       modelRunning("f = fopen(\"out.txt\", \"w\"); fprintf(f, \"%d\\n\", 42); fclose(f);");
   const RunResult run = runHirsute({"derive", file.string()});
   ASSERT_EQ(run.exitCode, 0) << run.err;
-  EXPECT_EQ(readFile(model_ / "out.txt"), "42\n");
+  EXPECT_EQ(readText(model_ / "out.txt"), "42\n");
 }
 
 TEST_F(UntrustedModel, FopenOfAFifoIsRefusedAtOnce) {
@@ -161,9 +161,9 @@ TEST_F(UntrustedModel, SimulateAnimateWritesNothingIntoTheModelFolder) {
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_EQ(profile(), "# the user's own file\n");
   EXPECT_TRUE(fs::is_symlink(model_ / ".bending.l.hirsute-simulate.l"));
-  EXPECT_EQ(readFile(model_ / ".bending.l.hirsute-view.l"), "mine\n");
+  EXPECT_EQ(readText(model_ / ".bending.l.hirsute-view.l"), "mine\n");
   // A mistake in the frame's text names the user's file, not a copy.
-  std::string text = readFile(model_ / "bending.l");
+  std::string text = readText(model_ / "bending.l");
   const std::string production = "Body(t) --> Body(t + 1)";
   ASSERT_NE(text.find(production), std::string::npos);
   text.replace(text.find(production), production.size(), "Body(t) --> Body(t + )");

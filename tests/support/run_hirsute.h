@@ -4,6 +4,8 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+
+#include "support/test_files.h"
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -39,13 +41,6 @@ struct RunResult {
   std::string out;
   std::string err;
 };
-
-inline std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // A folder of its own for one test, removed afterwards.
 class TemporaryFolder {
@@ -115,8 +110,8 @@ inline RunResult runHirsute(const std::vector<std::string>& arguments) {
   result.exited = WIFEXITED(status);
   result.exitCode = result.exited ? WEXITSTATUS(status) : -1;
   result.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-  result.out = readFile(outPath);
-  result.err = readFile(errPath);
+  result.out = readText(outPath);
+  result.err = readText(errPath);
   return result;
 }
 

@@ -333,8 +333,15 @@ TEST(LiveModelTest, ABrokenBuildKeepsTheLastPlantAndIsReported) {
   EXPECT_EQ(live.exitCode(), 2);
 }
 
-// A model of the shipped set built as `hirsute view` builds it.
+// A model of the shipped set (models/FOLDER/NAME.l and NAME.v) built as `hirsute view` builds it.
 struct ShippedModel {
+  ShippedModel(const std::string& folder, const std::string& name) {
+    const std::filesystem::path base = kSource / "models" / folder / name;
+    options.lsystemFile = base.string() + ".l";
+    options.viewFile = base.string() + ".v";
+  }
+  LiveModelOptions liveOptions() const { return optionsFor(options.lsystemFile); }
+
   cli::ModelOptions options;
   ModelBuilder builder() {
     return [this](const ModelRequest& request, BuildProgress&) {
@@ -357,11 +364,8 @@ struct ShippedModel {
 };
 
 TEST(LiveModelTest, TheFeathersDynamicsStepsOnTheClockAndPauses) {
-  const std::filesystem::path folder = kSource / "models/coat-bending";
-  ShippedModel shipped;
-  shipped.options.lsystemFile = (folder / "bending.l").string();
-  shipped.options.viewFile = (folder / "bending.v").string();
-  LiveModelOptions options = optionsFor(folder / "bending.l");
+  ShippedModel shipped("coat-bending", "bending");
+  LiveModelOptions options = shipped.liveOptions();
   RecordingView view;
   HandClock clock;
   LiveModel live(options, shipped.builder(), view, {}, clock.now());
@@ -394,11 +398,8 @@ TEST(LiveModelTest, TheFeathersDynamicsStepsOnTheClockAndPauses) {
 }
 
 TEST(LiveModelTest, DropletsWetTheFurAndItDriesOnTheClock) {
-  const std::filesystem::path folder = kSource / "models/fur-square";
-  ShippedModel shipped;
-  shipped.options.lsystemFile = (folder / "square.l").string();
-  shipped.options.viewFile = (folder / "square.v").string();
-  LiveModelOptions options = optionsFor(folder / "square.l");
+  ShippedModel shipped("fur-square", "square");
+  LiveModelOptions options = shipped.liveOptions();
   RecordingView view;
   HandClock clock;
   LiveModel live(options, shipped.builder(), view, {}, clock.now());
