@@ -4,6 +4,7 @@
 #include "hirsute/core/model_folder.h"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,11 +12,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <thread>
 
 extern char** environ;
 
@@ -296,6 +300,11 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
   if (pid == 0) {
     // The child: only system calls until exec.
     if (dup2(in.get(), 0) < 0 || dup2(output.fd(), 1) < 0 || dup2(errors.fd(), 2) < 0) _exit(127);
+    // The text it writes is capped: past the limit cpp gets SIGXFSZ.
+    const rlimit size{static_cast<rlim_t>(options.maxOutputBytes) + 1,
+                      static_cast<rlim_t>(options.maxOutputBytes) + 1};
+    if (setrlimit(RLIMIT_FSIZE, &size) != 0) _exit(127);
+    signal(SIGXFSZ, SIG_DFL);  // an ignored signal would stay ignored across exec
     if (confinement.applyInChild() != 0) {
       static const char kMessage[] = "cannot confine the C preprocessor to the model's folder\n";
       (void)!::write(2, kMessage, sizeof kMessage - 1);
@@ -305,7 +314,37 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
     _exit(127);
   }
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(options.timeoutSeconds);
+  auto pause = std::chrono::microseconds(200);
+  bool timedOut = false;
+  for (;;) {
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == pid || (done < 0 && errno != EINTR)) break;
+    if (std::chrono::steady_clock::now() > until) {
+      kill(pid, SIGKILL);
+      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      timedOut = true;
+      break;
+    }
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(20'000));
+  }
+  if (timedOut) {
+    throw DiagnosticError(fileLocation, "the C preprocessor ran for more than " +
+                                            std::to_string(options.timeoutSeconds) +
+                                            " s (an #include of a FIFO or a device waits for "
+                                            "ever); it was stopped");
+  }
+  // cpp's driver reports its cc1's SIGXFSZ as a failure of its own: the file's size tells.
+  struct stat written {};
+  const bool full = fstat(output.fd(), &written) == 0 &&
+                    static_cast<std::size_t>(written.st_size) >= options.maxOutputBytes;
+  if ((WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ) ||
+      (full && !(WIFEXITED(status) && WEXITSTATUS(status) == 0))) {
+    throw DiagnosticError(fileLocation, "the preprocessed text is larger than " +
+                                            std::to_string(options.maxOutputBytes) +
+                                            " bytes (are #include files included again and again?)");
   }
   bool failed = !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   reportCppMessages(errors.read(), failed, name, folder, diagnostics);

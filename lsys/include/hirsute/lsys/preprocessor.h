@@ -7,6 +7,7 @@
 // `//` comments are removed and indented directives are moved to column 1.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -21,6 +22,10 @@ struct PreprocessorOptions {
   std::vector<std::pair<std::string, std::string>> defines;
   // The preprocessor program; `cpp` on the PATH by default.
   std::string program = "cpp";
+  // Limits of one run: the preprocessed text (an #include of itself twice per level doubles it
+  // at every level), and the wall-clock time (an #include of a FIFO waits for its writer).
+  std::size_t maxOutputBytes = std::size_t{64} << 20;
+  int timeoutSeconds = 60;
 };
 
 // The preprocessed text with line markers, ready for a lexer that understands them.
