@@ -1,6 +1,7 @@
 #include "model_pipeline.h"
 
 #include "command.h"
+#include "hirsute/core/model_folder.h"
 
 #include <chrono>
 #include <iostream>
@@ -99,9 +100,18 @@ ColorFiles colorFilesFor(const ModelOptions& o, Diagnostics& diagnostics) {
   if (folder.empty()) folder = ".";
   std::vector<std::filesystem::path> maps, mats;
   std::error_code ec;
+  const ModelFolder model(folder);
   for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
-    if (entry.path().extension() == ".map") maps.push_back(entry.path());
-    if (entry.path().extension() == ".mat") mats.push_back(entry.path());
+    const std::filesystem::path extension = entry.path().extension();
+    if (extension != ".map" && extension != ".mat") continue;
+    // Only a regular file beneath the folder is taken (model_folder.h), not a link out of it.
+    const std::string refused = model.refusal(entry.path().filename().string());
+    if (!refused.empty()) {
+      diagnostics.warn(SourceLocation{std::make_shared<const std::string>(entry.path().string()), 0, 0},
+                       "not used as the colour file: " + refused);
+      continue;
+    }
+    (extension == ".map" ? maps : mats).push_back(entry.path());
   }
   if (maps.size() + mats.size() == 1) {
     if (maps.size() == 1) files.colormaps.push_back({1, maps.front()});

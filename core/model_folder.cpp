@@ -220,6 +220,11 @@ ConfinedFile ModelFolder::open(const std::string& name, FileAccess access) const
   return result;
 }
 
+std::string ModelFolder::refusal(const std::string& name) const {
+  const ConfinedFile file = open(name, FileAccess::Read);
+  return file.refused ? file.failure : std::string();
+}
+
 bool ModelFolder::read(const std::string& name, std::string& text, std::string& failure,
                        std::size_t maxBytes) const {
   ConfinedFile file = open(name, FileAccess::Read);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 
+#include "hirsute/core/model_folder.h"
 #include "programs/builtin_programs.h"
 
 namespace hirsute {
@@ -31,11 +32,15 @@ ProgramCommand parseProgramCommand(const CommunicationFile& file) {
       ++i;  // the option's value
       continue;
     }
-    std::filesystem::path spec = w;
-    if (spec.is_relative()) spec = file.file.parent_path() / spec;
-    command.specification = spec;
     command.specificationWhere = file.executableWhere;
     command.specificationWhere.column += words[i].column;
+    // The specification is read beside the .e and must stay beneath its folder
+    // (model_folder.h): an absolute name, a `..`, a link out or a FIFO is an error at it.
+    const ModelFolder folder(file.file.parent_path());
+    const std::string refused = folder.refusal(w);
+    if (!refused.empty())
+      throw DiagnosticError(command.specificationWhere, "cannot open '" + w + "': " + refused);
+    command.specification = folder.pathOf(w);
     break;
   }
   return command;

@@ -25,6 +25,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "hirsute/core/model_folder.h"
 #include "hirsute/interpreter/contour.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/lsys/view_file_lines.h"
@@ -317,11 +318,14 @@ class Command {
     }
   }
 
-  // A file name of the view file, resolved against its folder.
-  std::string resolve(std::string_view name) const {
-    const std::filesystem::path path{std::string(name)};
-    if (path.is_absolute() || folder_.empty()) return path.string();
-    return (folder_ / path).string();
+  // A file name of the view file, resolved against its folder. The name must stay beneath that
+  // folder (model_folder.h): an absolute name, a `..`, a link out of the folder, a FIFO or a
+  // device is an error here, at the reference; a missing file is for its reader to report.
+  std::string resolve(std::string_view name, const SourceLocation& where) const {
+    const ModelFolder folder(folder_);
+    const std::string refused = folder.refusal(std::string(name));
+    if (!refused.empty()) fail(where, "cannot open " + inQuotes(name) + ": " + refused);
+    return folder.pathOf(std::string(name)).string();
   }
 
   ArgumentReader args;
@@ -613,8 +617,8 @@ void texture(Command& c) {
     switch (key) {
       case 'F': {
         const std::string_view file = subcommandWord(c, tokens, i, "a file name");
-        texture.file = c.resolve(file);
         texture.where = tokens[i].where;
+        texture.file = c.resolve(file, texture.where);
         hasFile = true;
         break;
       }
@@ -685,7 +689,7 @@ void contour(Command& c) {
   ContourDeclaration contour;
   contour.id = static_cast<int>(c.requiredInteger("a contour id", 1, 1000000));
   contour.where = c.args.here();
-  contour.file = c.resolve(c.requiredWord("a contour file name"));
+  contour.file = c.resolve(c.requiredWord("a contour file name"), contour.where);
   auto& contours = c.view.contours;
   const auto same = std::find_if(contours.begin(), contours.end(),
                                  [&](const ContourDeclaration& d) { return d.id == contour.id; });
@@ -709,7 +713,7 @@ void surface(Command& c) {
   }
   surface.id = id[0];
   surface.where = c.args.here();
-  surface.file = c.resolve(c.requiredWord("a surface file name"));
+  surface.file = c.resolve(c.requiredWord("a surface file name"), surface.where);
   surface.size = static_cast<float>(c.requiredNumber("the surface's size"));
   if (!c.args.atEnd() && integerAtFront(c.args.peekWord())) {
     const SourceLocation precisionAt = c.args.here();
@@ -726,7 +730,7 @@ void surface(Command& c) {
     } else {
       TextureDeclaration texture;
       texture.where = c.args.here();
-      texture.file = c.resolve(*c.args.word());
+      texture.file = c.resolve(*c.args.word(), texture.where);
       c.view.textures.push_back(texture);
       surface.texture = static_cast<int>(c.view.textures.size());
     }
@@ -746,7 +750,7 @@ void surface(Command& c) {
 void backgroundScene(Command& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   if (tokens.empty()) c.fail(c.labelAt(), "expected a file name after 'background scene:'");
-  for (const Token& token : tokens) c.view.backgroundScenes.push_back(c.resolve(token.text));
+  for (const Token& token : tokens) c.view.backgroundScenes.push_back(c.resolve(token.text, token.where));
   c.args.skipAll();
 }
 
@@ -1102,7 +1106,7 @@ const std::unordered_map<std::string_view, Handler>& commandTable() {
       {"hair:",
        [](Command& c) {
          const SourceLocation where = c.args.here();
-         const std::string file = c.resolve(c.requiredWord("a template L-system file"));
+         const std::string file = c.resolve(c.requiredWord("a template L-system file"), where);
          if (c.view.hairTemplates.size() >= static_cast<std::size_t>(kMaxHairTemplates)) {
            c.fail(where, "at most " + std::to_string(kMaxHairTemplates) + " template hairs per model");
          }
@@ -1115,7 +1119,7 @@ const std::unordered_map<std::string_view, Handler>& commandTable() {
       {"feather:",
        [](Command& c) {
          const SourceLocation where = c.args.here();
-         const std::string file = c.resolve(c.requiredWord("a feather type file (.fea)"));
+         const std::string file = c.resolve(c.requiredWord("a feather type file (.fea)"), where);
          if (c.view.featherTypes.size() >= static_cast<std::size_t>(kMaxFeatherTypes)) {
            c.fail(where, "at most " + std::to_string(kMaxFeatherTypes) + " feather types per model");
          }

@@ -1,5 +1,7 @@
 #include "hirsute/lsys/function_curve.h"
 
+#include "hirsute/core/model_folder.h"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -795,7 +797,12 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
                                   std::to_string(*samples));
       }
     }
-    const std::filesystem::path path = folder / std::filesystem::path(std::string(fileName));
+    // The file must stay beneath the view file's folder (model_folder.h).
+    const ModelFolder modelFolder(folder);
+    const std::string refused = modelFolder.refusal(std::string(fileName));
+    if (!refused.empty())
+      throw DiagnosticError(fileAt, "cannot open " + quoted(fileName) + ": " + refused);
+    const std::filesystem::path path = modelFolder.pathOf(std::string(fileName));
 
     requireFile(fileAt,
                 isFunction      ? "function"

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "builtin_programs.h"
+#include "hirsute/core/model_folder.h"
 #include "hirsute/interpreter/texture_image.h"
 
 namespace hirsute::programs {
@@ -44,8 +45,14 @@ class Clover : public BuiltinProgram {
       } else if (line.keyword == "input image") {
         if (values.empty())
           throw DiagnosticError(line.at(static_cast<int>(line.rest) + 1), "expected an image file");
-        std::filesystem::path name = first;
-        if (name.is_relative()) name = file.file.parent_path() / name;
+        // The image is read beside the specification and must stay beneath its folder.
+        const ModelFolder folder(file.file.parent_path());
+        const std::string refused = folder.refusal(first);
+        if (!refused.empty()) {
+          throw DiagnosticError(line.at(values[0].column),
+                                "cannot open '" + first + "': " + refused);
+        }
+        const std::filesystem::path name = folder.pathOf(first);
         try {
           image = loadTexture(name);
         } catch (const DiagnosticError& e) {

@@ -3,6 +3,8 @@
 // file:line:col: a feather type that silently lost a parameter would look plausible and wrong.
 #include "hirsute/hairs/feathers/feather_file.h"
 
+#include "hirsute/core/model_folder.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -188,11 +190,13 @@ class Line {
       fail(here(), "unexpected " + found() + " after the values of " + inQuotes(keyword));
     }
   }
-  // The folder names in the line are relative to.
-  fs::path resolve(std::string_view name) const {
-    const fs::path path{std::string(name)};
-    if (path.is_absolute()) return path;
-    return fs::path(*file_).parent_path() / path;
+  // A file the line names, beside the .fea. It must stay beneath the .fea's folder
+  // (model_folder.h): an absolute name, a `..`, a link out, a FIFO or a device is an error at it.
+  fs::path resolve(std::string_view name, const SourceLocation& where) const {
+    const ModelFolder folder(fs::path(*file_).parent_path());
+    const std::string refused = folder.refusal(std::string(name));
+    if (!refused.empty()) fail(where, "cannot open " + inQuotes(name) + ": " + refused);
+    return folder.pathOf(std::string(name));
   }
 
  private:
@@ -337,7 +341,7 @@ void readAfterfeather(Line& line, Reader& reader) {
     reader.type.afterfeatherSize = line.number("the afterfeather's size factor", 0, kInfinity);
   }
   line.finish();
-  const fs::path path = line.resolve(name);
+  const fs::path path = line.resolve(name, nameAt);
   std::error_code error;
   if (!fs::is_regular_file(path, error)) {
     line.fail(nameAt,
@@ -422,7 +426,7 @@ const std::map<std::string_view, Handler>& handlers() {
       {"texture:",
        [](Line& l, Reader& r) {
          const SourceLocation nameAt = l.here();
-         const fs::path file = l.resolve(l.word("a texture file"));
+         const fs::path file = l.resolve(l.word("a texture file"), nameAt);
          std::error_code error;
          if (!fs::is_regular_file(file, error)) {
            l.fail(nameAt, "cannot read the texture image " + inQuotes(file.string()));

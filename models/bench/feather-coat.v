@@ -6,8 +6,8 @@ view reference point: 0,0,0
 z buffer: on
 render mode: shaded
 line style: cylinder
-contour: 1 ../feather-coat/strip.con
-feather: ../feather-coat/brown.fea
-feather: ../feather-coat/grey.fea
-feather: ../feather-coat/green.fea
-feather: ../feather-coat/blue.fea
+contour: 1 strip.con
+feather: brown.fea
+feather: grey.fea
+feather: green.fea
+feather: blue.fea

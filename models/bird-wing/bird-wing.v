@@ -10,7 +10,7 @@ render mode: shaded
 line style: cylinder
 contour sides: 10
 light: V: 0.3,0.4,1 D: 1,1,1
-feather: ../feather-types/flight.fea
+feather: flight.fea
 
 /* The dynamics (docs/dynamics.md), in centimetres and seconds. */
 dynamics gravity: 0 0 -981

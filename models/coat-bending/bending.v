@@ -8,13 +8,13 @@ scale factor: 0.9
 z buffer: on
 render mode: shaded
 line style: cylinder
-contour: 1 ../feather-coat/strip.con
+contour: 1 strip.con
 light: V: 0.3,0.6,1 D: 1,1,1
 feather follicles: hexagonal
-feather: ../feather-coat/brown.fea
-feather: ../feather-coat/grey.fea
-feather: ../feather-coat/green.fea
-feather: ../feather-coat/blue.fea
+feather: brown.fea
+feather: grey.fea
+feather: green.fea
+feather: blue.fea
 
 /* The dynamics (docs/dynamics.md), in the model's units and seconds: stiff feathers that gravity bends a little, pressed together where the body bends. */
 dynamics gravity: 0 -9.81 0

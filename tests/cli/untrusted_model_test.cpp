@@ -132,6 +132,46 @@ TEST_F(UntrustedModel, AnIncludeBeneathTheFolderIsRead) {
   EXPECT_NE(run.out.find("A(7)"), std::string::npos) << run.out;
 }
 
+// Every file a view file names must stay beneath its folder: a link out of it, an absolute name
+// or `..` is an error at the line, for each kind of reference.
+TEST_F(UntrustedModel, AViewFileNamesNoFileOutsideItsFolder) {
+  fs::create_symlink(outside_ / "profile", model_ / "link");
+  const fs::path lsystem = modelRunning("");
+  for (const std::string& line :
+       {std::string("contour: 1 link"), std::string("surface: X link 1"),
+        std::string("texture: F: link"), std::string("background scene: link"),
+        std::string("hair: link"), std::string("feather: link"), std::string("function: link"),
+        std::string("contour: 1 ") + (outside_ / "profile").string(),
+        std::string("surface: X ../outside/profile 1")}) {
+    const fs::path view = model_ / "model.v";
+    std::ofstream(view, std::ios::binary) << "\n" << line << "\n";
+    const RunResult run = runHirsute({"render", lsystem.string(), view.string(), "-o",
+                                      (root_.path() / "out.png").string(), "--size", "16x16"});
+    EXPECT_EQ(run.exitCode, 2) << line << ": " << run.err;
+    EXPECT_NE(run.err.find("model.v:2:"), std::string::npos) << line << ": " << run.err;
+    EXPECT_NE(run.err.find("the model's folder"), std::string::npos) << line << ": " << run.err;
+    EXPECT_FALSE(fs::exists(root_.path() / "out.png")) << line;
+  }
+}
+
+TEST_F(UntrustedModel, AFeatherFileNamesNoFileOutsideItsFolder) {
+  fs::copy(kModels / "feather-types" / "contour.fea", model_ / "contour.fea");
+  fs::create_symlink(outside_ / "profile", model_ / "after.fea");
+  std::ofstream(model_ / "contour.fea", std::ios::app) << "afterfeather: after.fea\n";
+  const fs::path lsystem = model_ / "model.l";
+  std::ofstream(lsystem, std::ios::binary) << "Lsystem: 1\nderivation length: 1\nAxiom: @Fe(1)\n"
+                                           << "endlsystem\n";
+  std::ofstream(model_ / "model.v", std::ios::binary) << "feather: contour.fea\n";
+  const RunResult run =
+      runHirsute({"render", lsystem.string(), (model_ / "model.v").string(), "-o",
+                  (root_.path() / "out.png").string(), "--size", "16x16"});
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_NE(run.err.find("contour.fea:"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("cannot open 'after.fea': a symbolic link leads out of the model's folder"),
+            std::string::npos)
+      << run.err;
+}
+
 // A view file's line with a terminal escape (an OSC that sets the window title, a clear-screen)
 // is quoted in the warning with the bytes shown, not sent to the terminal.
 TEST_F(UntrustedModel, ControlSequencesOfAViewFileAreNotEchoed) {
@@ -151,7 +191,6 @@ TEST_F(UntrustedModel, ControlSequencesOfAViewFileAreNotEchoed) {
 TEST_F(UntrustedModel, SimulateAnimateWritesNothingIntoTheModelFolder) {
   for (const auto& entry : fs::directory_iterator(kModels / "coat-bending"))
     fs::copy(entry.path(), model_ / entry.path().filename());
-  fs::copy(kModels / "feather-coat", root_.path() / "feather-coat");  // its view file's types
   fs::create_symlink(outside_ / "profile", model_ / ".bending.l.hirsute-simulate.l");
   std::ofstream(model_ / ".bending.l.hirsute-view.l", std::ios::binary) << "mine\n";
   const RunResult run =

@@ -92,7 +92,8 @@ std::optional<fs::path> communicationFile(const fs::path& folder) {
 }
 
 // A model whose environmental program is its own (`executable: ./NAME`, built by NAME.mak)
-// runs in a scratch folder beside links to the model's files: the program is built there with
+// runs in a scratch folder beside copies of the model's files (links out of a model's folder are
+// not followed, docs/files.md): the program is built there with
 // the model's own makefile against Hirsute's communication library. Returns the scratch
 // folder's .e file, or nullopt with `why` set.
 std::vector<fs::path> scratchFolders;  // removed when the runner ends
@@ -112,7 +113,7 @@ std::optional<fs::path> buildModelProgram(const fs::path& folder, const fs::path
   scratchFolders.push_back(scratch);
   for (const auto& entry : fs::directory_iterator(folder)) {
     if (entry.path().extension() == ".a") continue;  // a prebuilt library of another platform
-    fs::create_symlink(fs::absolute(entry.path()), scratch / entry.path().filename());
+    fs::copy(entry.path(), scratch / entry.path().filename(), fs::copy_options::recursive);
   }
   const std::string make = "cd '" + scratch.string() + "' && make -s -f " + name + ".mak LOCAL='" +
                            HIRSUTE_COMM_LIBRARY_DIR + "' >make.log 2>&1";

@@ -81,6 +81,13 @@ class ModelFolder {
   // the umask; Write and WriteRead truncate it only once it is known to be a regular file.
   ConfinedFile open(const std::string& name, FileAccess access) const;
 
+  // Why `name` may not be opened: it leaves the folder or is no regular file (the refusals of
+  // open()); empty when it may, and when it is missing or the system denies it (those are for
+  // the reader to report, as cpfg reports a missing file). For references a model's file makes
+  // to files that a reader opens by path afterwards: a model is files at rest, and the check is
+  // made when they are read.
+  std::string refusal(const std::string& name) const;
+
   // Reads a whole regular file beneath the folder into `text`; false with `failure` set when it
   // cannot be opened or is larger than maxBytes.
   bool read(const std::string& name, std::string& text, std::string& failure,
