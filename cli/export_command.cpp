@@ -41,21 +41,30 @@ int runExport(ExportOptions o) {
     return kExitBadInput;
   }
   try {
+    // Every file asked for is written, then all are renamed into place: a run that fails on
+    // one leaves every one of them as it was (output_target.h).
+    OutputGroup outputs;
     if (!o.pov.empty()) {
       PovOptions options;
+      options.group = &outputs;
       options.view = built.resources.view;
       options.materialMode = built.resources.materialMode;
       options.width = o.width;
       options.height = o.height;
       writePov(built.scene, options, o.pov, &progress);
     }
-    if (!o.obj.empty()) writeObj(built.scene, o.obj, {}, &progress);
-    if (!o.hairs.empty()) writeHairCsv(built.scene, o.hairs, &progress);
+    if (!o.obj.empty()) {
+      ObjOptions options;
+      options.group = &outputs;
+      writeObj(built.scene, o.obj, options, &progress);
+    }
+    if (!o.hairs.empty()) writeHairCsv(built.scene, o.hairs, &progress, &outputs);
     if (!o.feathers.empty()) {
       progress.begin("writing feathers", Progress::Unit::None);
       progress.update(0);
-      writeFeatherCsv(built.scene, o.feathers);
+      writeFeatherCsv(built.scene, o.feathers, &outputs);
     }
+    outputs.commit();
     progress.clear();
   } catch (const std::invalid_argument& e) {
     progress.clear();

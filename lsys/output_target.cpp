@@ -36,8 +36,24 @@ std::optional<int> descriptorNamedBy(const std::filesystem::path& path) {
 
 }  // namespace
 
-OutputTarget::OutputTarget(std::filesystem::path target)
-    : target_(std::move(target)), destination_(target_) {
+OutputGroup::~OutputGroup() {
+  for (const Pending& file : pending_) unlink(file.temporary.c_str());
+}
+
+void OutputGroup::commit() {
+  std::vector<Pending> files = std::move(pending_);
+  pending_.clear();
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (std::rename(files[i].temporary.c_str(), files[i].destination.c_str()) != 0) {
+      const int error = errno;
+      for (std::size_t j = i; j < files.size(); ++j) unlink(files[j].temporary.c_str());
+      throw std::runtime_error(files[i].target.string() + ": cannot write: " + std::strerror(error));
+    }
+  }
+}
+
+OutputTarget::OutputTarget(std::filesystem::path target, OutputGroup* group)
+    : target_(std::move(target)), destination_(target_), group_(group) {
   if (std::optional<int> fd = descriptorNamedBy(target_)) {
     fd_ = fcntl(*fd, F_DUPFD_CLOEXEC, 3);
     if (fd_ < 0) fail("cannot open the output", errno);
@@ -121,6 +137,12 @@ void OutputTarget::commit() {
     error = errno;
   }
   fd_ = -1;
+  if (error == 0 && !temporary_.empty() && group_ != nullptr) {
+    // The group renames it with the others, or removes it.
+    group_->pending_.push_back({temporary_, destination_, target_});
+    committed_ = true;
+    return;
+  }
   if (error == 0 && !temporary_.empty() &&
       std::rename(temporary_.c_str(), destination_.c_str()) != 0) {
     error = errno;

@@ -407,6 +407,41 @@ TEST(OutputFile, FifoGetsTheStringAndStaysAFifo) {
   EXPECT_EQ(kindOf(fifo), before);
 }
 
+// An OBJ written to a FIFO (or a device) has no folder of its own: no material library or
+// image is written beside it, and it names none.
+TEST(OutputFile, AnObjToAFifoWritesNothingBesideIt) {
+  TemporaryFolder folder;
+  const fs::path fifo = folder.path() / "scene.fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const fs::path herb = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "herb";
+  RunResult run;
+  const std::string obj = readFifoWhile(fifo, [&] {
+    run = runHirsute({"export", (herb / "herb.l").string(), (herb / "herb.v").string(), "--obj",
+                      fifo.string()});
+  });
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(obj.find("\nv "), std::string::npos);
+  EXPECT_EQ(obj.find("mtllib"), std::string::npos);
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"scene.fifo"});
+}
+
+// Several outputs are written, then renamed together: when one cannot be written, the others
+// are left as they were.
+TEST(OutputFile, AFailedExportLeavesEveryOutputAsItWas) {
+  TemporaryFolder folder;
+  const fs::path keep = folder.path() / "keep.pov";
+  std::ofstream(keep) << "// the scene of an earlier run\n";
+  const fs::path herb = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "herb";
+  const RunResult run =
+      runHirsute({"export", (herb / "herb.l").string(), (herb / "herb.v").string(), "--pov",
+                  keep.string(), "--hairs", (folder.path() / "hairs.csv").string(), "--obj",
+                  (folder.path() / "missing" / "x.obj").string()});
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("x.obj"), std::string::npos) << run.err;
+  EXPECT_EQ(readText(keep), "// the scene of an earlier run\n");
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"keep.pov"});  // no hairs.csv, no temporary
+}
+
 TEST(OutputFile, DevStdoutWritesToTheProcessOutput) {
   const fs::path model = fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "cli" / "branching.l";
   const RunResult run = runHirsute({"derive", model.string(), "-o", "/dev/stdout"});

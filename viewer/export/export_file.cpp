@@ -76,8 +76,8 @@ std::size_t formatFixed(double value, NumberFormat format, char* out) {
   return static_cast<std::size_t>(p - out);
 }
 
-ExportFile::ExportFile(std::filesystem::path target)
-    : file_(std::move(target)), buffer_(kBufferSize) {}
+ExportFile::ExportFile(std::filesystem::path target, OutputGroup* group)
+    : file_(std::move(target), group), buffer_(kBufferSize) {}
 
 void ExportFile::put(std::string_view text) {
   if (text.size() > buffer_.size() - used_) {

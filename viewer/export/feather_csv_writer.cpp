@@ -9,8 +9,9 @@
 
 namespace hirsute {
 
-FeatherCsvStats writeFeatherCsv(const Scene& scene, const std::filesystem::path& target) {
-  ExportFile out(target);
+FeatherCsvStats writeFeatherCsv(const Scene& scene, const std::filesystem::path& target,
+                                OutputGroup* group) {
+  ExportFile out(target, group);
   auto number = [&](float value) {
     if (!std::isfinite(value))
       throw std::invalid_argument("a feather's position or frame is not a finite number");

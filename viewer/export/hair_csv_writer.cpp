@@ -18,7 +18,8 @@ const char* hairSideName(HairSide side) {
   return "front";
 }
 
-HairCsvWriter::HairCsvWriter(std::filesystem::path target) : out_(std::move(target)) {}
+HairCsvWriter::HairCsvWriter(std::filesystem::path target, OutputGroup* group)
+    : out_(std::move(target), group) {}
 
 HairCsvWriter::~HairCsvWriter() = default;
 
@@ -66,8 +67,8 @@ void HairCsvWriter::endScene() {
 }
 
 HairCsvStats writeHairCsv(const Scene& scene, const std::filesystem::path& target,
-                          Progress* progress) {
-  HairCsvWriter writer(target);
+                          Progress* progress, OutputGroup* group) {
+  HairCsvWriter writer(target, group);
   printScene(scene, writer, progress, "writing hairs");
   return writer.stats();
 }

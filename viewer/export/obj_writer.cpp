@@ -60,7 +60,7 @@ void unitSphere(int slices, int stacks, std::vector<glm::vec3>& points,
 }  // namespace
 
 ObjWriter::ObjWriter(std::filesystem::path target, ObjOptions options)
-    : target_(std::move(target)), options_(options), out_(target_) {
+    : target_(std::move(target)), options_(options), out_(target_, options_.group) {
   mtlTarget_ = target_;
   mtlTarget_.replace_extension(".mtl");
   if (mtlTarget_ == target_)
@@ -77,9 +77,14 @@ void ObjWriter::beginScene(const Scene& scene) {
   out_.putInteger(static_cast<std::int64_t>(scene.triangleCount()));
   out_.put(" triangles and ");
   out_.putInteger(static_cast<std::int64_t>(scene.lines.size()));
-  out_.put(" line segments (docs/export.md)\nmtllib ");
-  out_.put(mtlTarget_.filename().string());
-  out_.put('\n');
+  out_.put(" line segments (docs/export.md)\n");
+  // Written to a device or FIFO, the OBJ has no folder for its material library and images: it
+  // names none, and they are not written (no side file beside /dev/null).
+  if (!out_.writesInPlace()) {
+    out_.put("mtllib ");
+    out_.put(mtlTarget_.filename().string());
+    out_.put('\n');
+  }
 }
 
 void ObjWriter::group(std::string_view name) {
@@ -95,9 +100,9 @@ void ObjWriter::useMaterial(int material, int texture) {
   if (key == current_) return;
   if (materialSet_.insert(key).second) {
     materialsUsed_.push_back(key);
-    if (texture >= 0) {
+    if (texture >= 0 && !out_.writesInPlace()) {
       writeTexturePng(scene_->textures.at(static_cast<std::size_t>(texture)),
-                      target_.parent_path() / textureFileName(target_, texture));
+                      target_.parent_path() / textureFileName(target_, texture), options_.group);
     }
   }
   out_.put("usemtl ");
@@ -281,7 +286,7 @@ void ObjWriter::label(const Label& label) {
 }
 
 void ObjWriter::writeMaterialLibrary() {
-  ExportFile mtl(mtlTarget_);
+  ExportFile mtl(mtlTarget_, options_.group);
   NumberFormat colour{4, true};
   auto rgb = [&mtl, colour](const char* key, const glm::vec3& c) {
     mtl.put(key);
@@ -323,7 +328,7 @@ void ObjWriter::writeMaterialLibrary() {
 void ObjWriter::endScene() {
   finishPolyline();
   // The library first, so that the OBJ never appears naming a library that is not there.
-  writeMaterialLibrary();
+  if (!out_.writesInPlace()) writeMaterialLibrary();
   out_.commit();
   stats_.bytes = out_.bytesWritten();
 }

@@ -78,7 +78,7 @@ std::string commentText(const std::string& text) {
 }  // namespace
 
 PovWriter::PovWriter(std::filesystem::path target, PovOptions options)
-    : target_(std::move(target)), options_(std::move(options)), out_(target_) {}
+    : target_(std::move(target)), options_(std::move(options)), out_(target_, options_.group) {}
 
 PovWriter::~PovWriter() = default;
 
@@ -340,13 +340,14 @@ void PovWriter::writeMaterial(std::string_view name, const Material& material, i
   out_.put("#declare ");
   out_.put(name);
   out_.put("=texture{");
-  if (texture >= 0) {
+  // A scene written to a device or FIFO has no folder for its images: drawn untextured.
+  if (texture >= 0 && !out_.writesInPlace()) {
     // The image replaces the diffuse colour (cpfg's textures are usually on white surfaces).
     std::string file = textureFileName(target_, texture);
     if (std::find(texturesWritten_.begin(), texturesWritten_.end(), texture) ==
         texturesWritten_.end()) {
       writeTexturePng(scene_->textures.at(static_cast<std::size_t>(texture)),
-                      target_.parent_path() / file);
+                      target_.parent_path() / file, options_.group);
       texturesWritten_.push_back(texture);
     }
     out_.put("uv_mapping pigment{image_map{png \"");

@@ -23,7 +23,8 @@ std::string textureFileName(const std::filesystem::path& target, int index) {
   return target.stem().string() + "_texture" + std::to_string(index + 1) + ".png";
 }
 
-void writeTexturePng(const Texture& texture, const std::filesystem::path& file) {
+void writeTexturePng(const Texture& texture, const std::filesystem::path& file,
+                     OutputGroup* group) {
   std::size_t size =
       static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 4;
   if (texture.width <= 0 || texture.height <= 0 || texture.rgba.size() != size) {
@@ -34,7 +35,7 @@ void writeTexturePng(const Texture& texture, const std::filesystem::path& file) 
                                              texture.height, 4, &length);
   if (!png) throw std::runtime_error(file.string() + ": cannot encode the texture as PNG");
   std::unique_ptr<unsigned char, void (*)(void*)> owned(png, std::free);
-  ExportFile out(file);
+  ExportFile out(file, group);
   out.putBytes(png, static_cast<std::size_t>(length));
   out.commit();
 }

@@ -13,13 +13,40 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace hirsute {
+
+// Outputs that are committed together: a command asked for several files (`export --pov --obj
+// --hairs`) writes them all, then renames them all, so that a failed run leaves every one of
+// them as it was. A target opened in a group keeps its temporary file at commit(); the group
+// renames them at its own commit(), or removes them when it is destroyed first.
+class OutputGroup {
+ public:
+  OutputGroup() = default;
+  ~OutputGroup();
+  OutputGroup(const OutputGroup&) = delete;
+  OutputGroup& operator=(const OutputGroup&) = delete;
+
+  // Renames every file of the group into place; throws std::runtime_error "PATH: cannot
+  // write: REASON" on the first that fails.
+  void commit();
+
+ private:
+  friend class OutputTarget;
+  struct Pending {
+    std::string temporary;
+    std::filesystem::path destination, target;
+  };
+  std::vector<Pending> pending_;
+};
 
 class OutputTarget {
  public:
   // Opens the target for writing; throws std::runtime_error naming the path and the reason.
-  explicit OutputTarget(std::filesystem::path target);
+  // In a group, commit() leaves the renaming to the group.
+  explicit OutputTarget(std::filesystem::path target, OutputGroup* group = nullptr);
   // Unless commit() succeeded: removes the temporary file (the target is left as it was).
   ~OutputTarget();
   OutputTarget(const OutputTarget&) = delete;
@@ -46,6 +73,7 @@ class OutputTarget {
   std::string temporary_;
   int fd_ = -1;
   std::FILE* stream_ = nullptr;
+  OutputGroup* group_ = nullptr;
   bool committed_ = false;
 };
 

@@ -34,8 +34,9 @@ std::size_t formatFixed(double value, NumberFormat format, char* out);
 
 class ExportFile {
  public:
-  // Opens `target` (hirsute/lsys/output_target.h); throws std::runtime_error naming the path.
-  explicit ExportFile(std::filesystem::path target);
+  // Opens `target` (hirsute/lsys/output_target.h), in `group` when given; throws
+  // std::runtime_error naming the path.
+  explicit ExportFile(std::filesystem::path target, OutputGroup* group = nullptr);
   ExportFile(const ExportFile&) = delete;
   ExportFile& operator=(const ExportFile&) = delete;
 
@@ -56,6 +57,8 @@ class ExportFile {
   void commit();
 
   const std::filesystem::path& target() const { return file_.target(); }
+  // A device, FIFO or descriptor written directly: no file may be written beside it.
+  bool writesInPlace() const { return file_.writesInPlace(); }
   std::uint64_t bytesWritten() const { return flushed_ + used_; }
 
   static constexpr std::size_t kMaxNumberLength = 32;

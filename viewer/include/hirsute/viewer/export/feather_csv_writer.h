@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/output_target.h"
 
 namespace hirsute {
 
@@ -25,7 +26,8 @@ inline constexpr const char* kFeatherCsvHeader =
     "type3,type4,blend34,blend_along,age,size,origin";
 
 // Throws std::runtime_error when the file cannot be written, std::invalid_argument for a value
-// that is not finite.
-FeatherCsvStats writeFeatherCsv(const Scene& scene, const std::filesystem::path& target);
+// that is not finite. Commits with `group` when given (output_target.h).
+FeatherCsvStats writeFeatherCsv(const Scene& scene, const std::filesystem::path& target,
+                                OutputGroup* group = nullptr);
 
 }  // namespace hirsute

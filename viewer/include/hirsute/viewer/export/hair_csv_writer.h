@@ -23,7 +23,7 @@ struct HairCsvStats {
 // as the same float.
 class HairCsvWriter : public ScenePrinter {
  public:
-  explicit HairCsvWriter(std::filesystem::path target);
+  explicit HairCsvWriter(std::filesystem::path target, OutputGroup* group = nullptr);
   ~HairCsvWriter() override;
 
   static constexpr const char* kHeader =
@@ -54,8 +54,8 @@ class HairCsvWriter : public ScenePrinter {
 const char* hairSideName(HairSide side);
 
 // Writes a row for every hair of `scene` to `target`, through a temporary file renamed into place;
-// shows its progress on `progress` when given.
+// shows its progress on `progress` when given; commits with `group` when given.
 HairCsvStats writeHairCsv(const Scene& scene, const std::filesystem::path& target,
-                          Progress* progress = nullptr);
+                          Progress* progress = nullptr, OutputGroup* group = nullptr);
 
 }  // namespace hirsute

@@ -23,6 +23,8 @@ struct ObjOptions {
   int sphereSlices = 16;  // around the axis
   int sphereStacks = 8;   // pole to pole
   int discSegments = 16;
+  // The outputs this scene is committed with (output_target.h); none: on its own.
+  OutputGroup* group = nullptr;
 };
 
 struct ObjExportStats {

@@ -33,6 +33,8 @@ struct PovOptions {
   // The box the camera is fitted to and the lights placed by; absent: the scene's. The frames of
   // a simulation share the first frame's, so that the camera stays where it was.
   std::optional<Bounds> fitBounds;
+  // The outputs this scene is committed with (output_target.h); none: on its own.
+  OutputGroup* group = nullptr;
 };
 
 struct PovExportStats {
