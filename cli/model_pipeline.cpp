@@ -179,6 +179,10 @@ Scene growScene(const ModelOptions& o, const Model& model, const ModelResources&
     EnvironmentOptions environmentOptions;
     environmentOptions.forceExternal = o.externalEnvironment;
     environmentOptions.timeoutSeconds = o.environmentTimeout;
+    if (o.verbose) {
+      if (o.terminalProgress) o.terminalProgress->clear();
+      environmentOptions.log = &std::cerr;
+    }
     environment = openEnvironment(o.environmentFile, diagnostics, environmentOptions);
   }
   installQueryPass(derivation, resources, diagnostics, environment.get());

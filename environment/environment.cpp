@@ -131,7 +131,7 @@ std::unique_ptr<Environment> openEnvironment(const std::filesystem::path& file,
   }
   std::unique_ptr<EnvironmentProgram> program;
   if (!options.forceExternal) program = makeBuiltinProgram(e, diagnostics);
-  if (!program) program = startExternalProgram(e, options.timeoutSeconds, diagnostics);
+  if (!program) program = startExternalProgram(e, options.timeoutSeconds, diagnostics, options.log);
   return std::make_unique<Environment>(std::move(e), std::move(program), diagnostics);
 }
 

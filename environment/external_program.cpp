@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <ostream>
 #include <sstream>
 #include <thread>
 
@@ -32,8 +33,8 @@ constexpr std::size_t kMaxAnswerFileBytes = std::size_t{256} << 20;
 
 class ExternalProgram : public EnvironmentProgram {
  public:
-  ExternalProgram(const CommunicationFile& file, int timeoutSeconds)
-      : file_(file), timeout_(std::chrono::seconds(timeoutSeconds)) {
+  ExternalProgram(const CommunicationFile& file, int timeoutSeconds, std::ostream* log)
+      : file_(file), timeout_(std::chrono::seconds(timeoutSeconds)), log_(log) {
     const ProgramCommand command = parseProgramCommand(file);
     if (command.program.empty()) fail("the executable: line names no program");
     name_ = command.program;
@@ -130,6 +131,9 @@ class ExternalProgram : public EnvironmentProgram {
     memory_ = nullptr;
     if (segment_ >= 0) ::shmctl(segment_, IPC_RMID, nullptr);
     segment_ = -1;
+    // What the program started (a `sleep`, a helper) ends with it.
+    if (group_ > 0) ::kill(-group_, SIGKILL);
+    group_ = -1;
     if (!toField_.empty()) ModelFolder(folder_).remove(toField_);
     if (!fromField_.empty()) ModelFolder(folder_).remove(fromField_);
   }
@@ -162,15 +166,27 @@ class ExternalProgram : public EnvironmentProgram {
     for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     const std::string folder = folder_.string();
+    if (log_ != nullptr) {
+      // A .e file runs the program it names: -v shows what, before it starts.
+      std::string line;
+      for (const std::string& a : argv) {
+        if (!line.empty()) line += ' ';
+        line += a.find_first_of(" \t'\"") == std::string::npos ? a : "'" + a + "'";
+      }
+      *log_ << printableText("environment: running " + line + " in " + folder) << std::endl;
+    }
     const pid_t pid = ::fork();
     if (pid < 0) fail(std::string("cannot start: ") + std::strerror(errno));
     if (pid == 0) {
+      ::setpgid(0, 0);  // its own process group, ended with it (stop())
       if (in >= 0) ::dup2(in, 0);
       if (out >= 0) ::dup2(out, 1);
       if (::chdir(folder.c_str()) != 0) ::_exit(127);
       ::execvp(args[0], args.data());
       ::_exit(127);
     }
+    ::setpgid(pid, pid);  // also here, whichever runs first
+    group_ = pid;
     return pid;
   }
 
@@ -370,14 +386,17 @@ class ExternalProgram : public EnvironmentProgram {
   int semaphores_ = -1, segment_ = -1;
   char* memory_ = nullptr;
   std::string toField_, fromField_;  // names in folder_
+  std::ostream* log_ = nullptr;
+  pid_t group_ = -1;  // the program's process group
 };
 
 }  // namespace
 
 std::unique_ptr<EnvironmentProgram> startExternalProgram(const CommunicationFile& file,
                                                          int timeoutSeconds,
-                                                         Diagnostics& /*diagnostics*/) {
-  return std::make_unique<ExternalProgram>(file, timeoutSeconds);
+                                                         Diagnostics& /*diagnostics*/,
+                                                         std::ostream* log) {
+  return std::make_unique<ExternalProgram>(file, timeoutSeconds, log);
 }
 
 }  // namespace hirsute

@@ -3,12 +3,11 @@
 #include "hirsute/lsys/progress.h"
 
 namespace hirsute {
-namespace {
 
 // A model's files may hold terminal control sequences (ESC, OSC) that a message quotes: they
 // are shown as \xHH, never passed to the terminal, and the C1 controls' UTF-8 forms (C2 80 to
 // C2 9F) as \u0080 to \u009f. Newlines and tabs stay.
-std::string printable(const std::string& text) {
+std::string printableText(const std::string& text) {
   std::string out;
   out.reserve(text.size());
   static const char* const kHex = "0123456789abcdef";
@@ -31,8 +30,6 @@ std::string printable(const std::string& text) {
   return out;
 }
 
-}  // namespace
-
 std::string SourceLocation::text() const {
   std::string out = fileName();
   if (out.empty()) out = "<input>";
@@ -44,7 +41,7 @@ std::string SourceLocation::text() const {
 }
 
 std::string Diagnostic::text() const {
-  return printable(where.text() + (severity == Severity::Error ? ": error: " : ": warning: ") +
+  return printableText(where.text() + (severity == Severity::Error ? ": error: " : ": warning: ") +
                    message);
 }
 

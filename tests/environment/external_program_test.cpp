@@ -7,6 +7,8 @@
 
 #include <chrono>
 #include <fstream>
+#include <sstream>
+#include <thread>
 
 #include "hirsute/environment/environment.h"
 #include "support/test_files.h"
@@ -19,13 +21,15 @@ class ExternalProgramTest : public testing::TemporaryFolderTest {
   ExternalProgramTest() : TemporaryFolderTest("hirsute_external_") {}
 
   std::unique_ptr<Environment> open(const std::string& program, const std::string& argument,
-                                    const std::string& transport, int timeout = 20) {
+                                    const std::string& transport, int timeout = 20,
+                                    std::ostream* log = nullptr) {
     std::ofstream(file("data.txt")) << "obstacles\n";
     std::ofstream(file("model.e")) << "executable: " << program << " " << argument << "\n"
                                    << "communication type: " << transport << "\n"
                                    << "turtle position:P:%.4f %.4f %.4f\n";
     EnvironmentOptions options;
     options.timeoutSeconds = timeout;
+    options.log = log;
     return openEnvironment(file("model.e"), diagnostics_, options);
   }
 
@@ -119,6 +123,36 @@ TEST_F(ExternalProgramTest, AProgramThatHangsRunsIntoTheTimeout) {
     EXPECT_NE(message.find("did not answer within the time limit"), std::string::npos) << message;
     EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(10));
   }
+}
+
+// Whether process `pid` has ended (gone, or a zombie no one has reaped yet).
+bool ended(int pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;
+  const std::size_t close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'Z';
+}
+
+// A .e file runs the program it names: -v shows its command line first, and what it starts
+// ends with it.
+TEST_F(ExternalProgramTest, WhatTheProgramStartsEndsWithIt) {
+  std::ostringstream log;
+  int child = 0;
+  {
+    auto environment = open(HIRSUTE_MISBEHAVING, "spawn", "pipes", 20, &log);
+    for (int i = 0; i < 200 && !(std::ifstream(file("child.pid")) >> child); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ASSERT_GT(child, 0);
+    EXPECT_FALSE(ended(child));
+  }
+  for (int i = 0; i < 200 && !ended(child); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_TRUE(ended(child)) << "process " << child << " outlived its environment";
+  EXPECT_NE(log.str().find("environment: running " + std::string(HIRSUTE_MISBEHAVING) +
+                           " -e model.e spawn in "),
+            std::string::npos)
+      << log.str();
 }
 
 TEST_F(ExternalProgramTest, GarbageAnswersAreAnErrorNamingTheProgram) {

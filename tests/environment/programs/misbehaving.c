@@ -1,5 +1,6 @@
 /* An environmental program that goes wrong in the way its argument names: `die` exits at the
-   first query, `hang` never answers, `garbage` answers lines that are no answer records. */
+   first query, `hang` never answers, `garbage` answers lines that are no answer records,
+   `spawn` starts a child that never ends (its process id in child.pid) and answers garbage. */
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,6 +32,17 @@ static int AnswerQuery(Cmodule_type* two_modules, CTURTLE* turtle) {
 int main(int argc, char** argv) {
   CSInitialize(&argc, &argv);
   if (argc == 2) mode = argv[1];
+  if (strcmp(mode, "spawn") == 0) {
+    const pid_t child = fork();
+    if (child == 0) {
+      for (;;) pause();
+    }
+    FILE* out = fopen("child.pid", "w");
+    if (out) {
+      fprintf(out, "%d\n", (int)child);
+      fclose(out);
+    }
+  }
   CSMainLoop(AnswerQuery);
   CTerminate();
   return 0;

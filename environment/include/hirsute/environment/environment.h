@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -19,6 +20,8 @@ namespace hirsute {
 struct EnvironmentOptions {
   bool forceExternal = false;  // run the executable even when a built-in has its name
   int timeoutSeconds = 60;     // an external program that takes longer to answer is an error
+  // -v: where an external program's command line is shown before it starts; none: not shown.
+  std::ostream* log = nullptr;
 };
 
 class Environment : public EnvironmentQueries {

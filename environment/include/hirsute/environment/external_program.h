@@ -3,6 +3,7 @@
 // communication library work unchanged.
 #pragma once
 
+#include <iosfwd>
 #include <memory>
 
 #include "hirsute/environment/communication_file.h"
@@ -12,9 +13,11 @@ namespace hirsute {
 
 // Starts the executable of `file` in the folder of the .e file. A program that cannot be
 // started, dies, takes more than `timeoutSeconds` for a batch or answers garbage is an error
-// naming it.
+// naming it. With `log`, its command line and folder are shown there before it starts. It runs
+// in a process group of its own, which is ended with it: nothing it started outlives Hirsute.
 std::unique_ptr<EnvironmentProgram> startExternalProgram(const CommunicationFile& file,
                                                          int timeoutSeconds,
-                                                         Diagnostics& diagnostics);
+                                                         Diagnostics& diagnostics,
+                                                         std::ostream* log = nullptr);
 
 }  // namespace hirsute

@@ -24,6 +24,10 @@ struct SourceLocation {
   std::string text() const;
 };
 
+// `text` with its terminal control bytes shown as \xHH and the C1 controls' UTF-8 forms as
+// \u00HH, for a message that quotes a model's file (newlines and tabs stay).
+std::string printableText(const std::string& text);
+
 enum class Severity { Warning, Error };
 
 struct Diagnostic {
