@@ -293,6 +293,13 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // A limit is only ever lowered: a process may already run under a smaller one (the fuzzers'
+  // harness does), which it cannot raise.
+  rlimit size{};
+  getrlimit(RLIMIT_FSIZE, &size);
+  const rlim_t wanted = static_cast<rlim_t>(options.maxOutputBytes) + 1;
+  if (size.rlim_max == RLIM_INFINITY || size.rlim_max > wanted) size.rlim_max = wanted;
+  if (size.rlim_cur == RLIM_INFINITY || size.rlim_cur > size.rlim_max) size.rlim_cur = size.rlim_max;
   const pid_t pid = fork();
   if (pid < 0) {
     throw DiagnosticError(fileLocation, "cannot run the C preprocessor: " + std::string(std::strerror(errno)));
@@ -301,8 +308,6 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
     // The child: only system calls until exec.
     if (dup2(in.get(), 0) < 0 || dup2(output.fd(), 1) < 0 || dup2(errors.fd(), 2) < 0) _exit(127);
     // The text it writes is capped: past the limit cpp gets SIGXFSZ.
-    const rlimit size{static_cast<rlim_t>(options.maxOutputBytes) + 1,
-                      static_cast<rlim_t>(options.maxOutputBytes) + 1};
     if (setrlimit(RLIMIT_FSIZE, &size) != 0) _exit(127);
     signal(SIGXFSZ, SIG_DFL);  // an ignored signal would stay ignored across exec
     if (confinement.applyInChild() != 0) {
