@@ -75,6 +75,23 @@ std::vector<std::optional<float>> parenthesisedValues(std::string_view inside) {
   return values;
 }
 
+// The parameters between an answer's parentheses, each empty (no value) or a number with
+// nothing after it but blanks; false when one is neither.
+bool allNumbers(std::string_view inside, std::vector<std::optional<float>>& values) {
+  values = parenthesisedValues(inside);
+  while (true) {
+    const std::size_t comma = inside.find(',');
+    const std::string piece(inside.substr(0, comma));
+    if (piece.find_first_not_of(" \t\r") != std::string::npos) {
+      char* end = nullptr;
+      std::strtod(piece.c_str(), &end);
+      if (end == piece.c_str() || std::strspn(end, " \t\r") != std::strlen(end)) return false;
+    }
+    if (comma == std::string_view::npos) return true;
+    inside.remove_prefix(comma + 1);
+  }
+}
+
 // A module at `at` of `line`: its symbol (two characters for `~` and `@`) and its parameters;
 // `at` moves past it.
 ModuleValues readModule(std::string_view line, std::size_t& at) {
@@ -143,12 +160,20 @@ std::vector<AnswerRecord> parseAnswers(std::string_view text, std::vector<std::s
       if (rejected) rejected->push_back(std::string(line));
       continue;
     }
+    // The id is a whole number, and parameters in parentheses are closed and numbers (or empty):
+    // `zz E(1,2` or `1 E((((` is no answer.
+    const bool numbered = token.find_first_not_of("0123456789") == std::string::npos;
     AnswerRecord record;
     record.id = std::strtoul(token.c_str(), nullptr, 10);
-    if (e + 1 < line.size() && line[e + 1] == '(') {
+    bool readable = numbered;
+    if (readable && e + 1 < line.size() && line[e + 1] == '(') {
       const std::size_t close = line.find(')', e + 2);
-      const std::size_t end = close == std::string_view::npos ? line.size() : close;
-      record.values = parenthesisedValues(line.substr(e + 2, end - e - 2));
+      readable = close != std::string_view::npos &&
+                 allNumbers(line.substr(e + 2, close - e - 2), record.values);
+    }
+    if (!readable) {
+      if (rejected) rejected->push_back(std::string(line));
+      continue;
     }
     out.push_back(std::move(record));
   }

@@ -145,7 +145,9 @@ TEST_F(EnvironmentTest, QueryRecordsAreCpfgs) {
 TEST_F(EnvironmentTest, AnswersAreReadAsCpfgReadsThem) {
   std::vector<std::string> rejected;
   const std::vector<AnswerRecord> a =
-      parseAnswers("0 E(1)\n25 E(,0.5)\n7;E()\nnonsense\n9 E\nControl: 5\n12 E(3)\n", &rejected);
+      parseAnswers("0 E(1)\n25 E(,0.5)\n7;E()\nnonsense\nzz E(1,2\n1 E((((\n3 E(1,x)\n9 E\n"
+                   "Control: 5\n12 E(3)\n",
+                   &rejected);
   ASSERT_EQ(a.size(), 4u);
   EXPECT_EQ(a[0].id, 0u);
   EXPECT_EQ(a[0].values, (std::vector<std::optional<float>>{1.0f}));
@@ -153,7 +155,8 @@ TEST_F(EnvironmentTest, AnswersAreReadAsCpfgReadsThem) {
   EXPECT_EQ(a[2].id, 7u);
   EXPECT_EQ(a[2].values, (std::vector<std::optional<float>>{std::nullopt}));
   EXPECT_TRUE(a[3].values.empty());
-  EXPECT_EQ(rejected, (std::vector<std::string>{"nonsense"}));
+  EXPECT_EQ(rejected,
+            (std::vector<std::string>{"nonsense", "zz E(1,2", "1 E((((", "3 E(1,x)"}));
 }
 
 TEST_F(EnvironmentTest, TheSlaveSideSkipsThePrefixAndKeepsStaleValues) {

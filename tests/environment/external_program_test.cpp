@@ -156,14 +156,17 @@ TEST_F(ExternalProgramTest, WhatTheProgramStartsEndsWithIt) {
 }
 
 TEST_F(ExternalProgramTest, GarbageAnswersAreAnErrorNamingTheProgram) {
-  auto environment = open(HIRSUTE_MISBEHAVING, "garbage", "pipes");
-  const std::string message = errorOf([&] { twoPasses(*environment, 1); });
-  EXPECT_NE(
-      message.find(
-          "model.e:1:12: error: environmental program " + std::string(HIRSUTE_MISBEHAVING) +
-          " answered a line that is not an answer record: 'the answer is blowing in the wind'"),
-      std::string::npos)
-      << message;
+  const std::pair<const char*, const char*> answers[] = {
+      {"garbage", "the answer is blowing in the wind"}, {"open", "zz E(1,2"}, {"unclosed", "1 E(((("}};
+  for (const auto& [mode, line] : answers) {
+    auto environment = open(HIRSUTE_MISBEHAVING, mode, "pipes");
+    const std::string message = errorOf([&] { twoPasses(*environment, 1); });
+    EXPECT_NE(message.find("model.e:1:12: error: environmental program " +
+                           std::string(HIRSUTE_MISBEHAVING) +
+                           " answered a line that is not an answer record: '" + line + "'"),
+              std::string::npos)
+        << message;
+  }
 }
 
 TEST_F(ExternalProgramTest, LibcommAnswersEachPartOfASplitBatch) {

@@ -1,5 +1,6 @@
 /* An environmental program that goes wrong in the way its argument names: `die` exits at the
-   first query, `hang` never answers, `garbage` answers lines that are no answer records,
+   first query, `hang` never answers, `garbage`, `open` and `unclosed` answer lines that are no
+   answer records (words; an id that is no number; parentheses left open),
    `spawn` starts a child that never ends (its process id in child.pid) and answers garbage. */
 #include <stdarg.h>
 #include <stdio.h>
@@ -25,7 +26,13 @@ static int AnswerQuery(Cmodule_type* two_modules, CTURTLE* turtle) {
   if (strcmp(mode, "hang") == 0) {
     for (;;) pause();
   }
-  CSSendString(0, "the answer is blowing in the wind\n");
+  if (strcmp(mode, "open") == 0) {
+    CSSendString(0, "zz E(1,2\n");
+  } else if (strcmp(mode, "unclosed") == 0) {
+    CSSendString(0, "1 E((((\n");
+  } else {
+    CSSendString(0, "the answer is blowing in the wind\n");
+  }
   return 0;
 }
 

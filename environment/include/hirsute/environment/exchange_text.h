@@ -33,7 +33,8 @@ struct AnswerRecord {
   std::vector<std::optional<float>> values;
 };
 // The answer records of `text` up to its control line, read as cpfg does (atof to float).
-// Lines that are not records (no `E`) are returned in `rejected` by number.
+// Lines that are not records (no `E`, an id that is not a whole number, parentheses left open or
+// holding what is not a number) are returned in `rejected`.
 std::vector<AnswerRecord> parseAnswers(std::string_view text,
                                        std::vector<std::string>* rejected = nullptr);
 
