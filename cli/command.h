@@ -10,6 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "hirsute/lsys/progress.h"
+
 namespace hirsute::cli {
 
 using Action = std::function<int()>;
@@ -18,6 +20,15 @@ using Action = std::function<int()>;
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitIoError = 1;
 inline constexpr int kExitBadInput = 2;
+
+// What a run that ran out of memory says: the stage that was running, and the limits that
+// bound what a model can make.
+inline std::string outOfMemoryMessage() {
+  const std::string stage = Progress::lastStage();
+  return "hirsute: error: out of memory" + (stage.empty() ? std::string() : " while " + stage) +
+         ": the model made more than this machine holds; lower its size or the limits "
+         "(--max-modules, --max-vertices, --max-hairs, --max-feathers)";
+}
 
 // A number from min to max. Unlike CLI::Range, which lets NaN through, NaN and infinities are
 // refused: a bad option ends the run with exit code 2 before anything is written.

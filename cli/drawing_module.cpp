@@ -14,7 +14,7 @@ int guarded(const Options* options, Run run) {
   try {
     return run(*options);
   } catch (const std::bad_alloc&) {
-    std::cerr << "hirsute: error: out of memory\n";
+    std::cerr << hirsute::cli::outOfMemoryMessage() << '\n';
     return hirsute::cli::kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "hirsute: error: " << e.what() << '\n';

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   try {
     return action ? action() : 0;
   } catch (const std::bad_alloc&) {
-    std::cerr << "hirsute: error: out of memory\n";
+    std::cerr << hirsute::cli::outOfMemoryMessage() << '\n';
     return hirsute::cli::kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "hirsute: error: " << e.what() << '\n';

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace hirsute {
@@ -11,6 +12,9 @@ namespace {
 
 // The line is redrawn at most this often.
 constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
+
+// Progress::lastStage(): names are string literals, so the pointer is all there is to keep.
+std::atomic<const char*> lastStageBegun{""};
 
 }  // namespace
 
@@ -46,8 +50,13 @@ Progress::~Progress() {
   clear();
 }
 
+const char* Progress::lastStage() {
+  return lastStageBegun.load(std::memory_order_relaxed);
+}
+
 void Progress::begin(const char* name, Unit unit, double total) {
   stage_ = name;
+  lastStageBegun.store(name, std::memory_order_relaxed);
   unit_ = unit;
   total_ = total;
   countdown_ = kTicksPerPoll;

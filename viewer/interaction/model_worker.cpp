@@ -73,7 +73,10 @@ void ModelWorker::run() {
     try {
       build = builder_(request, progress_);
     } catch (const std::bad_alloc&) {
-      build.error = "hirsute: error: out of memory";
+      build.error =
+          "hirsute: error: out of memory while building the model: it made more than this "
+          "machine holds; lower its size or the limits (--max-modules, --max-vertices, "
+          "--max-hairs, --max-feathers)";
     } catch (const std::exception& e) {
       build.error = std::string("hirsute: error: ") + e.what();
     }

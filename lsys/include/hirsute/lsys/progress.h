@@ -63,6 +63,10 @@ class Progress {
 
   static constexpr std::uint32_t kTicksPerPoll = 4096;
 
+  // The stage any Progress of the process began last ("" before the first): where an
+  // out-of-memory error happened.
+  static const char* lastStage();
+
  private:
   using Clock = std::chrono::steady_clock;
   void poll(double done);
