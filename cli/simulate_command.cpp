@@ -327,8 +327,17 @@ int runSimulate(SimulateOptions o) {
     if (!o.noFrames) {
       try {
         motion->pose(drawn);
-        writePov(drawn, pov, folder / frameName(frame, frames, ".pov"));
-        if (o.obj) writeObj(drawn, folder / frameName(frame, frames, ".obj"));
+        // A frame's files (the scene, its OBJ and their side files) land together or not at all.
+        OutputGroup files;
+        PovOptions framePov = pov;
+        framePov.group = &files;
+        writePov(drawn, framePov, folder / frameName(frame, frames, ".pov"));
+        if (o.obj) {
+          ObjOptions frameObj;
+          frameObj.group = &files;
+          writeObj(drawn, folder / frameName(frame, frames, ".obj"), frameObj);
+        }
+        files.commit();
       } catch (const std::invalid_argument& e) {
         return badInput(progress, o.model.lsystemFile + ": error: cannot export: " + e.what());
       } catch (const std::runtime_error& e) {
