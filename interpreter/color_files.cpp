@@ -24,8 +24,12 @@ SourceLocation fileLocation(const std::filesystem::path& file) {
 
 std::vector<std::uint8_t> readBytes(const std::filesystem::path& file, const std::string& kind) {
   std::error_code error;
-  if (!std::filesystem::is_regular_file(file, error)) {
+  const std::filesystem::file_status status = std::filesystem::status(file, error);
+  if (!std::filesystem::exists(status)) {
     throw DiagnosticError(fileLocation(file), "cannot open " + kind + " file (no such file)");
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw DiagnosticError(fileLocation(file), "cannot open " + kind + " file (not a regular file)");
   }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw DiagnosticError(fileLocation(file), "cannot open " + kind + " file");
