@@ -53,7 +53,7 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
                      "Seed of hair placement (default: the view file's `hair texture:` seed)");
   command.add_option("--max-hairs", o.maxHairs, "More hairs are an error (default 50000000)");
   command.add_flag("!--no-feathers", o.feathers, "Leave out the feathers (@F modules)");
-  command.add_option("--max-feathers", o.maxFeathers, "More coat feathers are an error (default 1000000)");
+  command.add_option("--max-feathers", o.maxFeathers, "More feathers (@Fe, @Fi and coats) are an error (default 1000000)");
   command.add_flag("!--no-fur", o.fur, "Leave out the fur (@U modules)");
   command.add_option("--droplets", o.droplets, "Random droplets of water on the fur (docs/fur.md)")
       ->check(CLI::Range(0, 10'000'000));
@@ -229,6 +229,7 @@ Scene growScene(const ModelOptions& o, const Model& model, const ModelResources&
     featherOptions.lsystemFile = o.lsystemFile;
     featherOptions.seed = o.hairSeed;
     featherOptions.maxFeathers = o.maxFeathers;
+    featherOptions.maxVertices = o.maxVertices;
     featherOptions.progress = o.terminalProgress;
     const FeatherStageReport report =
         growFeathers(scene, resources, model.functions, featherOptions, diagnostics);

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include <fmt/format.h>
+
 #include "cpfg_numbers.h"
 #include "cylinder_mesh.h"
 #include "hirsute/interpreter/generalized_cylinder.h"
@@ -740,6 +742,18 @@ void Turtle::drawSurface(char id, const float* p, std::size_t count) {
       appearance.perSurfaceTexture = static_cast<std::size_t>(texture) <= declarations.size() &&
                                      declarations[static_cast<std::size_t>(texture - 1)].perSurface;
     }
+    // A surface's tessellation is counted before it is built: PRECISION S: 1000 T: 1000 makes
+    // a million vertices a patch.
+    const std::size_t vertices = surface.patches.size() *
+                                 (static_cast<std::size_t>(std::max(1, surface.sPrecision)) + 1) *
+                                 (static_cast<std::size_t>(std::max(1, surface.tPrecision)) + 1);
+    if (vertices > maxVertices_ || scene_->vertexCount() > maxVertices_ - vertices) {
+      throw GeometryLimitError(fmt::format(
+          "surface ~{} ({} patches at precision {} × {}) would grow the geometry past {} vertices "
+          "(lower its precision, or raise the limit with --max-vertices)",
+          surface.id, surface.patches.size(), std::max(1, surface.sPrecision),
+          std::max(1, surface.tPrecision), maxVertices_));
+    }
     ++counts_.surfaces;
     counts_.surfaceTriangles +=
         appendSurface(*scene_, surface, placement, appearance, state_.organs);
@@ -797,6 +811,11 @@ std::string Turtle::labelText(const float* p, std::size_t count) {
     if (result.missingValues) {
       warnOnce("@L format",
                "@L: the format has more conversions than values; they are drawn as written");
+    }
+    if (result.fieldTooWide > 0) {
+      warnOnce("@L field", "@L: the format asks for a field of " +
+                               std::to_string(result.fieldTooWide) + " characters (the limit is " +
+                               std::to_string(kMaxPrintfField) + "); it is drawn as written");
     }
     return std::move(result.text);
   }

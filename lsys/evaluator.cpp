@@ -500,6 +500,10 @@ double Evaluator::call(Builtin id, const double* a, int count, std::uint32_t whe
 std::string Evaluator::format(const std::string& fmt, const double* args, int count, std::uint32_t where) {
   PrintfResult result = formatPrintf(fmt, args, count);
   if (result.missingValues) fail(where, "the format has more conversions than values");
+  if (result.fieldTooWide > 0) {
+    fail(where, "the format asks for a field of " + std::to_string(result.fieldTooWide) +
+                    " characters; the limit is " + std::to_string(kMaxPrintfField));
+  }
   return std::move(result.text);
 }
 

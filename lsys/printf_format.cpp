@@ -1,17 +1,38 @@
 #include "hirsute/lsys/printf_format.h"
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 
 namespace hirsute {
+namespace {
+
+// The larger of a conversion's field width and precision, from its flags (`%-08.3`): the
+// numbers in them, at most 20 characters long.
+int widestField(const std::string& flags) {
+  int widest = 0, number = 0;
+  for (char c : flags) {
+    if (c >= '0' && c <= '9') {
+      number = static_cast<int>(std::min<long long>(number * 10LL + (c - '0'), INT_MAX));
+    } else {
+      widest = std::max(widest, number);
+      number = 0;
+    }
+  }
+  return std::max(widest, number);
+}
+
+}  // namespace
 
 PrintfResult formatPrintf(const std::string& fmt, const double* values, int count) {
   PrintfResult result;
   std::string& out = result.text;
   int next = 0;
   std::size_t pos = 0;
-  char buffer[512];
+  // Wide enough for any conversion within the field limit: %.1000f of 1e308 is 1 311 characters.
+  char buffer[2 * kMaxPrintfField + 64];
   while (pos < fmt.size()) {
     char c = fmt[pos];
     if (c != '%') {
@@ -31,6 +52,13 @@ PrintfResult formatPrintf(const std::string& fmt, const double* values, int coun
     if (end >= fmt.size() || flags.size() > 20) {
       out += fmt.substr(pos);
       break;
+    }
+    const int field = widestField(flags);
+    if (field > kMaxPrintfField) {
+      result.fieldTooWide = std::max(result.fieldTooWide, field);
+      out += fmt.substr(pos, end + 1 - pos);
+      pos = end + 1;
+      continue;
     }
     char conversion = fmt[end];
     if (!std::strchr("diouxXcfFeEgGaA", conversion)) {

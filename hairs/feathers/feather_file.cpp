@@ -26,6 +26,8 @@ namespace fs = std::filesystem;
 // Enough for any real feather (a flight feather has a few hundred barbs a side) and small
 // enough that a typo in the spacing cannot ask for a billion barbs.
 constexpr double kMaxBarbsPerVane = 100000;
+// The papers' key barbs have four; every barb between two keys is raised to the larger degree.
+constexpr std::size_t kMaxKeyBarbVertices = 64;
 
 std::string inQuotes(std::string_view text) {
   return "'" + std::string(text) + "'";
@@ -283,6 +285,11 @@ void readKeyBarb(Line& line, Reader& reader) {
   SourceLocation lastVertex = firstVertex;
   while (!line.atEnd()) {
     lastVertex = line.here();
+    if (barb.vertices.size() == kMaxKeyBarbVertices) {
+      line.fail(lastVertex, fmt::format("a key barb has at most {} control vertices (the barbs' "
+                                        "Bézier curves cost the cube of their number)",
+                                        kMaxKeyBarbVertices));
+    }
     const std::vector<float> values = line.group("a control vertex", 2, 3, -kInfinity, kInfinity);
     barb.vertices.emplace_back(values[0], values[1], values.size() == 3 ? values[2] : 0.0f);
   }

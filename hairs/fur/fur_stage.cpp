@@ -5,6 +5,8 @@
 #include <map>
 #include <random>
 
+#include <fmt/format.h>
+
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_texture.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
@@ -20,6 +22,78 @@ int furRecordOf(const Scene& scene, const CylinderSegment& segment) {
   if (record < 0 || !scene.furAttributes[static_cast<std::size_t>(record)].enabled()) return -1;
   if (scene.furAttributes[static_cast<std::size_t>(record)].length <= 0) return -1;
   return record;
+}
+
+// What the droplets of a run cost, against the limits: counted before they blend, so that a run
+// past a limit stops at once.
+class DropletCosts {
+ public:
+  DropletCosts(const DropletLimits& limits, std::size_t surfaces)
+      : limits_(limits), wet_(surfaces, false) {}
+
+  // `count` droplets of `radius` on a mask of size n: each blends its square of texels (what
+  // blendDroplet visits), at most the whole mask.
+  void chargeTexels(int n, float radius, std::uint64_t count, const SourceLocation& where,
+                    const std::string& what) {
+    const double size = std::max(n, 0);
+    const double side = std::min(size, 2.0 * radius * size + 2);
+    const double texels = side * side * static_cast<double>(count);
+    if (static_cast<double>(texels_) + texels > static_cast<double>(limits_.texels)) {
+      throw DiagnosticError(where, fmt::format("{} would blend more than {} texels of the wetness "
+                                               "masks (the limit); use fewer or smaller droplets, "
+                                               "or a smaller `wetness mask:` than {}",
+                                               what, limits_.texels, n));
+    }
+    texels_ += static_cast<std::uint64_t>(texels);
+  }
+
+  // Surface `index` gets its mask when the first droplet falls on it.
+  void chargeMask(std::size_t index, const FurSurface& surface, const SourceLocation& where,
+                  const std::string& what) {
+    const int n = surface.wetnessSize;
+    if (wet_[index] || !surface.wetness.empty() || n <= 0) return;
+    wet_[index] = true;
+    const auto size = static_cast<std::uint64_t>(n);
+    maskBytes_ += size * size * sizeof(glm::vec4);
+    if (maskBytes_ > limits_.maskBytes) {
+      throw DiagnosticError(where, fmt::format("{} would wet fur surfaces whose wetness masks take "
+                                               "more than {} MiB (the limit); use a smaller "
+                                               "`wetness mask:` than {} or fewer droplets",
+                                               what, limits_.maskBytes >> 20, n));
+    }
+  }
+
+ private:
+  DropletLimits limits_;
+  std::uint64_t texels_ = 0, maskBytes_ = 0;
+  std::vector<bool> wet_;
+};
+
+// sprayDroplets, its costs counted with those of the droplets before.
+std::size_t spray(Scene& scene, std::size_t count, float radius, float wetness, std::uint32_t seed,
+                  DropletCosts& costs) {
+  if (count == 0 || scene.furSurfaces.empty()) return 0;
+  const std::string what = fmt::format("{} random droplets (--droplets)", count);
+  int largest = 0;
+  for (const FurSurface& s : scene.furSurfaces) largest = std::max(largest, s.wetnessSize);
+  costs.chargeTexels(largest, radius, count, SourceLocation{}, what);
+  std::vector<double> cumulative;
+  double total = 0;
+  for (const FurSurface& s : scene.furSurfaces) cumulative.push_back(total += s.area);
+  if (!(total > 0)) return 0;
+  std::mt19937 random(seed);
+  auto unit = [&random] { return random() / 4294967296.0; };
+  for (std::size_t i = 0; i < count; ++i) {
+    const double pick = unit() * total;
+    const auto at = static_cast<std::size_t>(
+        std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
+    const std::size_t index = std::min(at, scene.furSurfaces.size() - 1);
+    FurSurface& s = scene.furSurfaces[index];
+    const glm::vec2 centre(static_cast<float>(unit()), static_cast<float>(unit()));
+    costs.chargeMask(index, s, SourceLocation{}, what);
+    fur::blendDroplet(s, centre, radius, wetness);
+  }
+  return count;
 }
 
 // A surface under construction: the segments' vertices, and the arc length along the axis of
@@ -270,21 +344,34 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
     addOrganSurface(scene, organ, record, view, textureFor(fur.density));
   }
 
+  // The view file's droplets: counted first, each on the surfaces it falls on, then blended.
+  DropletCosts costs(options.dropletLimits, scene.furSurfaces.size());
+  const auto fallsOn = [&scene](const Droplet& d, std::size_t i) {
+    return i < scene.furSurfaces.size() &&
+           (d.surface == 0 || static_cast<std::size_t>(d.surface - 1) == i);
+  };
   for (const Droplet& d : view.droplets) {
     if (d.surface > static_cast<int>(scene.furSurfaces.size())) {
       throw DiagnosticError(d.where, "no fur surface " + std::to_string(d.surface) + " (the model has " +
                                          std::to_string(scene.furSurfaces.size()) + ")");
     }
     for (std::size_t i = 0; i < scene.furSurfaces.size(); ++i) {
-      if (d.surface != 0 && static_cast<std::size_t>(d.surface - 1) != i) continue;
-      fur::blendDroplet(scene.furSurfaces[i], d.centre, d.radius, d.wetness);
+      if (!fallsOn(d, i)) continue;
+      const FurSurface& surface = scene.furSurfaces[i];
+      costs.chargeTexels(surface.wetnessSize, d.radius, 1, d.where, "the view file's droplets");
+      costs.chargeMask(i, surface, d.where, "the view file's droplets");
+    }
+  }
+  for (const Droplet& d : view.droplets) {
+    for (std::size_t i = 0; i < scene.furSurfaces.size(); ++i) {
+      if (fallsOn(d, i)) fur::blendDroplet(scene.furSurfaces[i], d.centre, d.radius, d.wetness);
     }
     ++report.droplets;
   }
   if (!view.droplets.empty() && scene.furSurfaces.empty())
     diagnostics.warn(view.droplets.front().where, "the model has no fur for the droplets to fall on");
-  report.droplets += sprayDroplets(scene, options.droplets, options.dropletRadius,
-                                   options.dropletWetness, options.dropletSeed);
+  report.droplets += spray(scene, options.droplets, options.dropletRadius, options.dropletWetness,
+                           options.dropletSeed, costs);
   report.surfaces = scene.furSurfaces.size();
   for (const FurSurface& s : scene.furSurfaces) {
     report.triangles += s.triangleCount();
@@ -294,23 +381,9 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
 }
 
 std::size_t sprayDroplets(Scene& scene, std::size_t count, float radius, float wetness,
-                          std::uint32_t seed) {
-  if (count == 0 || scene.furSurfaces.empty()) return 0;
-  std::vector<double> cumulative;
-  double total = 0;
-  for (const FurSurface& s : scene.furSurfaces) cumulative.push_back(total += s.area);
-  if (!(total > 0)) return 0;
-  std::mt19937 random(seed);
-  auto unit = [&random] { return random() / 4294967296.0; };
-  for (std::size_t i = 0; i < count; ++i) {
-    const double pick = unit() * total;
-    const auto at = static_cast<std::size_t>(
-        std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
-    FurSurface& s = scene.furSurfaces[std::min(at, scene.furSurfaces.size() - 1)];
-    const glm::vec2 centre(static_cast<float>(unit()), static_cast<float>(unit()));
-    fur::blendDroplet(s, centre, radius, wetness);
-  }
-  return count;
+                          std::uint32_t seed, const DropletLimits& limits) {
+  DropletCosts costs(limits, scene.furSurfaces.size());
+  return spray(scene, count, radius, wetness, seed, costs);
 }
 
 }  // namespace hirsute

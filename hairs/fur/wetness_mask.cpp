@@ -7,8 +7,8 @@ namespace hirsute::fur {
 
 void clearWetness(FurSurface& surface, int size) {
   surface.wetnessSize = size;
-  surface.wetness.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size),
-                         glm::vec4(0.0f));
+  surface.wetness.clear();
+  surface.wetness.shrink_to_fit();
 }
 
 glm::vec2 parameterDifference(const FurSurface& surface, const glm::vec2& a, const glm::vec2& b) {
@@ -20,6 +20,9 @@ glm::vec2 parameterDifference(const FurSurface& surface, const glm::vec2& a, con
 void blendDroplet(FurSurface& surface, const glm::vec2& centre, float radius, float wetness) {
   const int n = surface.wetnessSize;
   if (n <= 0 || radius <= 0) return;
+  if (surface.wetness.empty()) {
+    surface.wetness.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), glm::vec4(0.0f));
+  }
   const float texel = 1.0f / static_cast<float>(n);
   // The texel rows and columns the droplet can reach (columns may run past the edges: they wrap
   // on a wrapping surface and are dropped on another).
@@ -61,7 +64,7 @@ void blendDroplet(FurSurface& surface, const glm::vec2& centre, float radius, fl
 
 glm::vec4 wetnessAt(const FurSurface& surface, const glm::vec2& uv) {
   const int n = surface.wetnessSize;
-  if (n <= 0) return glm::vec4(0.0f);
+  if (n <= 0 || surface.wetness.empty()) return glm::vec4(0.0f);
   auto index = [n](float t) { return static_cast<int>(std::floor(t * static_cast<float>(n))); };
   int column = index(uv.x), row = index(uv.y);
   column = surface.wrapsU ? ((column % n) + n) % n : std::clamp(column, 0, n - 1);

@@ -114,9 +114,11 @@ void main() {
 void uploadWetness(const GlFunctions& gl, GLuint texture, const FurSurface& surface) {
   gl.BindTexture(GL_TEXTURE_2D, texture);
   static const glm::vec4 kDry(0.0f);
-  const int size = surface.wetnessSize > 0 ? surface.wetnessSize : 1;
+  // A dry surface has no texels: one dry texel stands for them all.
+  const bool wet = surface.wetnessSize > 0 && !surface.wetness.empty();
+  const int size = wet ? surface.wetnessSize : 1;
   gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, size, size, 0, GL_RGBA, GL_FLOAT,
-                surface.wetnessSize > 0 ? static_cast<const void*>(surface.wetness.data()) : glm::value_ptr(kDry));
+                wet ? static_cast<const void*>(surface.wetness.data()) : glm::value_ptr(kDry));
 }
 
 }  // namespace

@@ -255,7 +255,8 @@ struct FurSurface {
   // the view file's force; the viewer steps them.
   std::vector<glm::vec3> tips;
   // The wetness mask (Sec. 3.1): wetnessSize² texels, row v, column u, each (clump centre u,
-  // clump centre v, clump radius, wetness rho); rho = 0 is dry.
+  // clump centre v, clump radius, wetness rho); rho = 0 is dry. A mask no droplet has touched
+  // holds no texels (`wetness` empty): the whole surface is dry.
   int wetnessSize = 0;
   std::vector<glm::vec4> wetness;
 

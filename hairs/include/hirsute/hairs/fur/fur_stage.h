@@ -15,6 +15,14 @@
 
 namespace hirsute {
 
+// What the droplets of one run may cost; passing either is an error naming it. A droplet blends
+// the texels of its square on the mask; a surface gets its mask (wetness mask² texels of 16
+// bytes) when the first droplet falls on it, and a dry one has none.
+struct DropletLimits {
+  std::uint64_t texels = std::uint64_t{1} << 30;     // about 3 s of blending
+  std::uint64_t maskBytes = std::uint64_t{1} << 30;  // 1 GiB: four 4096² masks, 4096 of 256²
+};
+
 struct FurStageOptions {
   // Random droplets (`--droplets N`), spread over the fur surfaces by area.
   std::size_t droplets = 0;
@@ -22,6 +30,7 @@ struct FurStageOptions {
   float dropletWetness = 1.0f;
   std::uint32_t dropletSeed = 1;
   std::size_t maxSurfaces = 100'000;  // more fur surfaces are an error
+  DropletLimits dropletLimits;
 };
 
 struct FurStageReport {
@@ -42,7 +51,9 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
 
 // Blends `count` droplets, seeded, at random points of the fur surfaces (each surface's chance
 // its share of the area), as `--droplets` and the viewer's spray do. Returns how many landed.
+// Throws DiagnosticError (no place in a file: the count is an option) when they would pass
+// `limits`; the droplets blended before stay.
 std::size_t sprayDroplets(Scene& scene, std::size_t count, float radius, float wetness,
-                          std::uint32_t seed);
+                          std::uint32_t seed, const DropletLimits& limits = {});
 
 }  // namespace hirsute

@@ -9,7 +9,8 @@
 
 namespace hirsute::fur {
 
-// Makes the mask size² texels, all dry.
+// Makes the mask size² texels, all dry: a dry mask holds no texels (FurSurface::wetness is
+// empty) until the first droplet falls on it.
 void clearWetness(FurSurface& surface, int size);
 
 // Blends a droplet (centre in [0, 1]², radius in those units, wetness rho in [0, 1]) into every

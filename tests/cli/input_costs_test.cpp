@@ -1,0 +1,149 @@
+// Every cost a model's input can drive has a limit that ends in an error naming it, or stays
+// fast. Each case is a reproduction of an input that once took minutes or gigabytes, run end to
+// end through the program; a run past kKillAfter counts as the hang it used to be.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "support/run_hirsute.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace hirsute::testing;
+
+const fs::path kModels = fs::path(HIRSUTE_SOURCE_DIR) / "models";
+
+class InputCosts : public ::testing::Test {
+ protected:
+  fs::path write(const std::string& name, const std::string& text) const {
+    const fs::path file = folder_.path() / name;
+    std::ofstream(file, std::ios::binary) << text;
+    return file;
+  }
+  // `hirsute export MODEL [VIEW] --pov` into the test's folder.
+  RunResult exportPov(const fs::path& model, const fs::path& view = {},
+                      std::vector<std::string> more = {}) const {
+    std::vector<std::string> arguments{"export", model.string()};
+    if (!view.empty()) arguments.push_back(view.string());
+    arguments.insert(arguments.end(), {"--pov", (folder_.path() / "out.pov").string()});
+    arguments.insert(arguments.end(), more.begin(), more.end());
+    return runHirsute(arguments);
+  }
+  static void expectError(const RunResult& run, const std::string& where, const std::string& text) {
+    EXPECT_FALSE(run.killed) << "the run did not end";
+    EXPECT_EQ(run.exitCode, 2) << run.err;
+    EXPECT_NE(run.err.find(where), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find(text), std::string::npos) << run.err;
+  }
+
+  TemporaryFolder folder_;
+};
+
+TEST_F(InputCosts, APrintfFieldWidthHasALimit) {
+  const fs::path model = write("model.l",
+                               "Lsystem: 1\nderivation length: 1\n"
+                               "Start: { printf(\"%2000000000d\", 1); }\nAxiom: A\nendlsystem\n");
+  expectError(runHirsute({"derive", model.string()}), "model.l:3:",
+              "error: the format asks for a field of 2000000000 characters; the limit is 1000");
+  // Within the limit the field is written whole (printf writes to the standard error: the
+  // standard output is the string's).
+  const fs::path fine = write("fine.l",
+                              "Lsystem: 1\nderivation length: 1\n"
+                              "Start: { printf(\"[%900.3f]\", 2); }\nAxiom: A\nendlsystem\n");
+  const RunResult run = runHirsute({"derive", fine.string()});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.err.find("[" + std::string(895, ' ') + "2.000]"), std::string::npos);
+}
+
+TEST_F(InputCosts, ALabelFieldPastTheLimitIsDrawnAsWritten) {
+  const fs::path model = write("model.l",
+                               "Lsystem: 1\nderivation length: 0\n"
+                               "Axiom: @L(\"%2000000000d\", 1) F\nendlsystem\n");
+  const RunResult run = exportPov(model);
+  EXPECT_FALSE(run.killed) << "the label took more than " << kKillAfter.count() << " s";
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.err.find("@L: the format asks for a field of 2000000000 characters (the limit is "
+                         "1000); it is drawn as written"),
+            std::string::npos)
+      << run.err;
+}
+
+TEST_F(InputCosts, AKeyBarbHasAtMost64ControlVertices) {
+  std::string vertices;
+  for (int i = 0; i < 1000; ++i) vertices += " (" + std::to_string(i / 1000.0) + " 0.1)";
+  write("many.fea", "key barb: left 0.5" + vertices + "\n");
+  const fs::path view = write("model.v", "feather: many.fea\n");
+  const fs::path model =
+      write("model.l", "Lsystem: 1\nderivation length: 0\nAxiom: @Fe(1)\nendlsystem\n");
+  // The 65th vertex: "key barb: left 0.5" is 18 characters, each vertex " (0.000000 0.1)" 15.
+  expectError(exportPov(model, view), "many.fea:1:" + std::to_string(20 + 64 * 15) + ": error:",
+              "a key barb has at most 64 control vertices");
+}
+
+TEST_F(InputCosts, ASurfaceIsCountedAgainstTheVertexLimitBeforeItIsBuilt) {
+  std::string surface;
+  std::ifstream in(kModels / "herb" / "leaf.s");
+  for (std::string line; std::getline(in, line);) {
+    surface += line + "\n";
+    if (surface.find('\n') == surface.size() - 1) surface += "PRECISION S: 1000 T: 1000\n";
+  }
+  write("leaf.s", surface);
+  const fs::path view = write("model.v", "surface: l leaf.s 1\n");
+  const fs::path model =
+      write("model.l", "Lsystem: 1\nderivation length: 0\nAxiom: ~l(1)\nendlsystem\n");
+  const RunResult run = exportPov(model, view, {"--max-vertices", "200000"});
+  EXPECT_FALSE(run.killed) << "the run did not end";
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_NE(run.err.find("surface ~l (1 patches at precision 1000 × 1000) would grow the geometry "
+                         "past 200000 vertices"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
+}
+
+TEST_F(InputCosts, RandomDropletsHaveALimit) {
+  const fs::path square = kModels / "fur-square";
+  const RunResult run =
+      exportPov(square / "square.l", square / "square.v", {"--droplets", "10000000"});
+  EXPECT_FALSE(run.killed) << "the droplets took more than " << kKillAfter.count() << " s";
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_NE(run.err.find("error: 10000000 random droplets (--droplets) would blend more than "
+                         "1073741824 texels of the wetness masks (the limit)"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
+}
+
+TEST_F(InputCosts, TheViewFilesDropletsOnALargeMaskHaveALimit) {
+  for (const char* file : {"square.l", "flat.con"})
+    fs::copy_file(kModels / "fur-square" / file, folder_.path() / file);
+  std::string view = "line style: cylinder\ncontour: 1 flat.con\nwetness mask: 4096\n";
+  for (int i = 0; i < 70; ++i) view += "droplet: 0.5 0.5 1 1\n";
+  // Each droplet of radius 1 blends the whole 4096² mask: the 65th passes 2^30 texels.
+  expectError(exportPov(folder_.path() / "square.l", write("square.v", view)), "square.v:68:1: error:",
+              "the view file's droplets would blend more than 1073741824 texels");
+}
+
+// Feathers at the turtle count against --max-feathers, and what they would draw against
+// --max-vertices, before any output builds them.
+TEST_F(InputCosts, FeathersAtTheTurtleHaveLimits) {
+  const fs::path peacock = kModels / "peacock-feather";
+  for (const char* file : {"peacock.fea", "peacock-eye.png", "peacock-feather.v"})
+    fs::copy_file(peacock / file, folder_.path() / file);
+  std::string axiom;
+  for (int i = 0; i < 4095; ++i) axiom += "@Fe(1)";
+  const fs::path model =
+      write("many.l", "Lsystem: 1\nderivation length: 0\nAxiom: " + axiom + "\nendlsystem\n");
+  const fs::path view = folder_.path() / "peacock-feather.v";
+  expectError(exportPov(model, view), "many.l: error:",
+              "the 4095 feathers would draw up to ");
+  expectError(exportPov(model, view, {"--max-feathers", "100"}), "many.l: error:",
+              "4095 feathers (@Fe, @Fi and coats), more than 100 (raise the limit with "
+              "--max-feathers)");
+  EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
+}
+
+}  // namespace
