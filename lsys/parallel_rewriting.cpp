@@ -1,7 +1,11 @@
 #include "hirsute/lsys/parallel_rewriting.h"
 
+#include <algorithm>
 #include <deque>
+#include <exception>
 #include <optional>
+#include <system_error>
+#include <thread>
 
 #include "hirsute/lsys/builtins.h"
 
@@ -148,6 +152,136 @@ bool rewritesModulesIndependently(const Program& program, std::string* why) {
     }
   }
   return true;
+}
+
+ParallelSteps::ParallelSteps(const Program& program, Settings settings, PartFactory makePart)
+    : program_(program), settings_(settings), makePart_(std::move(makePart)) {
+  modulesIndependent_ = rewritesModulesIndependently(program_);
+  for (const Production& p : program_.lsystems.front().productions.productions)
+    anyContext_ |= p.hasContext();
+  threads_ = settings_.threads > 0 ? settings_.threads
+                                   : static_cast<int>(std::thread::hardware_concurrency());
+  threads_ = std::clamp(threads_, 1, 64);
+}
+
+ParallelSteps::~ParallelSteps() = default;
+
+void ParallelSteps::measured(std::size_t modules, std::size_t parts,
+                             std::chrono::steady_clock::time_point started) {
+  // A short string's step is mostly the step's own fixed costs: it tells nothing.
+  if (modules < std::max<std::size_t>(settings_.minimumModules, 1)) return;
+  const double cost =
+      std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - started).count() /
+      static_cast<double>(modules);
+  if (parts == 0) {
+    sequentialCost_ = stepCost_ = cost;
+    remeasure_ = false;
+    return;
+  }
+  // What the step would have cost one thread, about: the next step is judged by it.
+  stepCost_ = cost * static_cast<double>(parts);
+  if (cost > 0.9 * sequentialCost_) {
+    // The parts took as long a module as one thread did (their memory grows page by page and
+    // they are copied together): the next step is measured on one thread, and after three such
+    // steps in a row the derivation stays on one.
+    remeasure_ = true;
+    if (++splitsUnpaid_ >= 3) splittingPays_ = false;
+  } else {
+    splitsUnpaid_ = 0;
+  }
+}
+
+std::size_t ParallelSteps::rewrite(const ModuleString& s, ModuleString& out,
+                                   const ContextMatcher& matcher, int stepsDone) {
+  if (!modulesIndependent_ || threads_ < 2 ||
+      s.moduleCount() < std::max<std::size_t>(settings_.minimumModules, 1)) {
+    return 0;
+  }
+  if (settings_.minimumCost > 0 &&
+      (!splittingPays_ || remeasure_ || stepCost_ < settings_.minimumCost)) {
+    return 0;
+  }
+  const std::size_t parts = std::min(static_cast<std::size_t>(threads_), s.moduleCount());
+  // The parts' boundaries: module starts about equally far apart in bytes. The way there carries
+  // the left neighbours along, so that no part passes over the string before it again.
+  std::vector<std::size_t> bounds{0};
+  LeftNeighbours neighbours;
+  neighbours.reset(program_);
+  std::vector<LeftNeighbours> starts{neighbours};
+  const Lsystem& main = program_.lsystems.front();
+  const std::uint8_t* const bytes = s.bytes();
+  for (std::size_t k = 1, pos = 0; k < parts; ++k) {
+    const std::size_t target = s.end() / parts * k;
+    if (neighbours.enabled) {
+      while (pos < target) {
+        const std::uint8_t b = bytes[pos];
+        LeftNeighbours::pass(pos, static_cast<char>(b & 0x7f), main, neighbours.last,
+                             neighbours.open);
+        pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
+      }
+    } else {
+      while (pos < target) pos = s.next(pos);
+    }
+    if (pos > bounds.back() && pos < s.end()) {
+      bounds.push_back(pos);
+      neighbours.trackedTo = pos;
+      starts.push_back(neighbours);
+    }
+  }
+  bounds.push_back(s.end());
+  const std::size_t used = bounds.size() - 1;
+  while (parts_.size() < used) parts_.push_back(makePart_());
+  // Contexts that search the string's branches do it through its index: built here, read by
+  // every part (a part never builds it).
+  if (anyContext_ && contextsSearchBranches(program_)) matcher.buildIndex();
+  std::vector<std::exception_ptr> errors(used);
+  std::vector<std::size_t> warningsBefore(used);
+  for (std::size_t k = 0; k < used; ++k) {
+    parts_[k]->prepare(stepsDone);
+    warningsBefore[k] = parts_[k]->warnings();
+  }
+  const auto rewritePart = [&](std::size_t k) {
+    try {
+      parts_[k]->rewrite(s, bounds[k], bounds[k + 1], starts[k]);
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t k = 1; k < used; ++k) {
+    try {
+      threads.emplace_back(rewritePart, k);
+    } catch (const std::system_error&) {
+      rewritePart(k);  // no thread to be had: this one does the part
+    }
+  }
+  rewritePart(0);
+  for (std::thread& thread : threads) thread.join();
+  bool whole = true;
+  std::size_t modules = 0;
+  for (std::size_t k = 0; k < used; ++k) {
+    whole = whole && !errors[k] && parts_[k]->warnings() == warningsBefore[k];
+    modules += parts_[k]->string().moduleCount();
+  }
+  whole = whole && modules <= settings_.maxModules;
+  out.clear();
+  if (whole) {
+    try {
+      out.swap(parts_[0]->string());
+      for (std::size_t k = 1; k < used; ++k) {
+        const ModuleString& part = parts_[k]->string();
+        out.appendRange(part, part.begin(), part.end(), part.moduleCount());
+      }
+    } catch (const ModuleStringTooLarge&) {
+      whole = false;
+      out.clear();
+    }
+  }
+  // The parts' strings go: the next step's may be of another size.
+  for (std::size_t k = 0; k < used; ++k) parts_[k]->string().release();
+  if (!whole) return 0;
+  ++stepsInParts_;
+  return used;
 }
 
 }  // namespace hirsute

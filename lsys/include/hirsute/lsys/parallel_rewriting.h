@@ -7,12 +7,22 @@
 // reads `n` before it writes it sees the value the last module left). A program none of whose
 // productions can do any of that rewrites each module from the module, its contexts and values
 // fixed for the whole step, so that the modules of a step can be rewritten in any order.
+//
+// ParallelSteps rewrites such a step in parts, one a thread, each part by a StepPart (a derivation
+// of its own: its own evaluator, frames and string), and joins the parts' strings in order. It
+// splits a step only where that pays, by the cost of the last steps.
 #pragma once
 
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "hirsute/lsys/code.h"
+#include "hirsute/lsys/context_matching.h"
+#include "hirsute/lsys/module_string.h"
 #include "hirsute/lsys/program.h"
 
 namespace hirsute {
@@ -26,5 +36,70 @@ bool readsOnlyWrittenSlots(const Code& code, std::vector<char>& written);
 // Whether `program`'s steps can be rewritten in parts; when not, `why` says what prevents it
 // (for tests and the benchmark's notes).
 bool rewritesModulesIndependently(const Program& program, std::string* why = nullptr);
+
+// A part of a step: rewrites a range of the step's string into a string of its own, on a thread
+// of its own.
+class StepPart {
+ public:
+  virtual ~StepPart() = default;
+  // On the step's thread, before the parts run: takes the step's variables and its number
+  // (`stepsDone` steps done before it), and empties string().
+  virtual void prepare(int stepsDone) = 0;
+  // Rewrites the modules of `s` from byte `from` up to byte `to` (module starts) into string();
+  // `start`: the left neighbours at `from`.
+  virtual void rewrite(const ModuleString& s, std::size_t from, std::size_t to,
+                       const LeftNeighbours& start) = 0;
+  virtual ModuleString& string() = 0;
+  // The warnings the part has given so far, those suppressed counted too.
+  virtual std::size_t warnings() const = 0;
+};
+
+// Which steps are split, and their rewriting in parts.
+class ParallelSteps {
+ public:
+  struct Settings {
+    int threads = 0;  // 0: one a processor core (DerivationOptions::threads)
+    std::size_t minimumModules = 0;
+    double minimumCost = 0;
+    std::size_t maxModules = 0;  // a longer string is not joined: one thread fails in order
+  };
+  using PartFactory = std::function<std::unique_ptr<StepPart>()>;
+
+  ParallelSteps(const Program& program, Settings settings, PartFactory makePart);
+  ~ParallelSteps();
+  ParallelSteps(const ParallelSteps&) = delete;
+  ParallelSteps& operator=(const ParallelSteps&) = delete;
+
+  // Rewrites the step's string `s` in parts into `out` and returns the number of parts; 0, with
+  // `out` empty, when the step is not to be split or a part met a warning or an error (the step
+  // is then rewritten on one thread, which warns and fails in order). `matcher` indexes the
+  // branches of `s` first when the parts' contexts search them; `stepsDone`: the steps before.
+  std::size_t rewrite(const ModuleString& s, ModuleString& out, const ContextMatcher& matcher,
+                      int stepsDone);
+  // The step just rewritten, begun at `started`, of `modules` modules, in `parts` parts (0: on
+  // one thread): what the next step's decision weighs.
+  void measured(std::size_t modules, std::size_t parts,
+                std::chrono::steady_clock::time_point started);
+  // Steps rewritten in parts.
+  int stepsInParts() const { return stepsInParts_; }
+
+ private:
+  const Program& program_;
+  Settings settings_;
+  PartFactory makePart_;
+  std::vector<std::unique_ptr<StepPart>> parts_;
+  bool modulesIndependent_ = false;  // rewritesModulesIndependently(program_)
+  bool anyContext_ = false;          // a production has a left or right context
+  int threads_ = 1;
+  int stepsInParts_ = 0;
+  // Nanoseconds of rewriting a module: in the last step with a string of minimumModules at
+  // least (for a step in parts, its time times the parts), and in the last such step on one
+  // thread (-1: none yet).
+  double stepCost_ = -1;
+  double sequentialCost_ = -1;
+  bool remeasure_ = false;  // the last step in parts did not pay: the next is measured alone
+  int splitsUnpaid_ = 0;    // steps in parts in a row that did not pay
+  bool splittingPays_ = true;
+};
 
 }  // namespace hirsute
