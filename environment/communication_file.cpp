@@ -78,16 +78,14 @@ void readInterpretedModules(const KeywordLine& line, CommunicationFile& out) {
   }
 }
 
-}  // namespace
-
-CommunicationFile readCommunicationFile(const std::filesystem::path& file,
-                                        Diagnostics& diagnostics) {
+CommunicationFile communicationFileOf(const std::vector<KeywordLine>& lines,
+                                      const std::filesystem::path& file, Diagnostics& diagnostics) {
   CommunicationFile out;
   out.file = file;
   static const char* const kTurtleKeywords[kTurtleValues] = {
       "turtle position", "turtle heading",    "turtle left",
       "turtle up",       "turtle line width", "turtle scale factor"};
-  for (const KeywordLine& line : readKeywordLines(file, kMaxLine)) {
+  for (const KeywordLine& line : lines) {
     const std::string& k = line.keyword;
     bool known = true;
     if (k == "executable") {
@@ -160,6 +158,18 @@ CommunicationFile readCommunicationFile(const std::filesystem::path& file,
                      "environment gets the queries without the modules' geometry");
   }
   return out;
+}
+
+}  // namespace
+
+CommunicationFile readCommunicationFile(const std::filesystem::path& file,
+                                        Diagnostics& diagnostics) {
+  return communicationFileOf(readKeywordLines(file, kMaxLine), file, diagnostics);
+}
+
+CommunicationFile parseCommunicationFile(std::string_view text, const std::filesystem::path& file,
+                                         Diagnostics& diagnostics) {
+  return communicationFileOf(keywordLines(text, file, kMaxLine), file, diagnostics);
 }
 
 }  // namespace hirsute

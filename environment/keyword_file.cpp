@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 namespace hirsute {
 
@@ -21,32 +22,47 @@ std::vector<KeywordToken> KeywordLine::tokens(const char* separators) const {
   return out;
 }
 
-std::vector<KeywordLine> readKeywordLines(const std::filesystem::path& file,
-                                          std::size_t maxLength) {
+std::vector<KeywordLine> keywordLines(std::string_view text, const std::filesystem::path& file,
+                                      std::size_t maxLength) {
   auto name = std::make_shared<const std::string>(file.string());
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw DiagnosticError(SourceLocation{name, 0, 0}, "cannot read the file");
   std::vector<KeywordLine> lines;
-  std::string text;
   int number = 0;
-  while (std::getline(in, text)) {
+  // Lines as std::getline splits them: a last line without its newline counts, the empty
+  // remainder after a final newline does not.
+  while (!text.empty()) {
+    const std::size_t end = text.find('\n');
+    std::string line(text.substr(0, end));
+    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
     ++number;
-    if (!text.empty() && text.back() == '\r') text.pop_back();
-    if (text.size() > maxLength) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.size() > maxLength) {
       throw DiagnosticError(SourceLocation{name, number, static_cast<int>(maxLength) + 1},
                             "the line is longer than " + std::to_string(maxLength) + " characters");
     }
-    KeywordLine line;
-    line.file = name;
-    line.line = number;
-    line.text = text;
-    const std::size_t end = text.find_first_of(":\t");
-    line.keyword = text.substr(0, end);
-    line.rest = end == std::string::npos ? text.size() : end + 1;
-    lines.push_back(std::move(line));
+    KeywordLine keywordLine;
+    keywordLine.file = name;
+    keywordLine.line = number;
+    const std::size_t keywordEnd = line.find_first_of(":\t");
+    keywordLine.keyword = line.substr(0, keywordEnd);
+    keywordLine.rest = keywordEnd == std::string::npos ? line.size() : keywordEnd + 1;
+    keywordLine.text = std::move(line);
+    lines.push_back(std::move(keywordLine));
   }
-  if (in.bad()) throw DiagnosticError(SourceLocation{name, number, 0}, "cannot read the file");
   return lines;
+}
+
+std::vector<KeywordLine> readKeywordLines(const std::filesystem::path& file,
+                                          std::size_t maxLength) {
+  std::ifstream in(file, std::ios::binary);
+  const auto cannotRead = [&file] {
+    return DiagnosticError(SourceLocation{std::make_shared<const std::string>(file.string()), 0, 0},
+                           "cannot read the file");
+  };
+  if (!in) throw cannotRead();
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw cannotRead();
+  return keywordLines(text.str(), file, maxLength);
 }
 
 float keywordNumber(const KeywordLine& line, const KeywordToken& token) {

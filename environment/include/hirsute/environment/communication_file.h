@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hirsute/lsys/diagnostic.h"
@@ -56,5 +57,9 @@ struct CommunicationFile {
 // error at its line and column.
 CommunicationFile readCommunicationFile(const std::filesystem::path& file,
                                         Diagnostics& diagnostics);
+// The same for text already read; `file` names it in diagnostics, and its folder is where the
+// executable line's specification file is found.
+CommunicationFile parseCommunicationFile(std::string_view text, const std::filesystem::path& file,
+                                         Diagnostics& diagnostics);
 
 }  // namespace hirsute

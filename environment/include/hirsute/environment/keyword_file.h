@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hirsute/lsys/diagnostic.h"
@@ -34,6 +35,9 @@ struct KeywordLine {
 // Reads every line of `file`; a line longer than `maxLength` characters, or a file that cannot
 // be read, is an error.
 std::vector<KeywordLine> readKeywordLines(const std::filesystem::path& file, std::size_t maxLength);
+// The same for text already read; `file` names it in diagnostics.
+std::vector<KeywordLine> keywordLines(std::string_view text, const std::filesystem::path& file,
+                                      std::size_t maxLength);
 
 // A number at the start of `token` as C's atof reads it, rounded to float (the programs keep
 // f32). A token that does not begin with a number is an error at its column.
