@@ -12,7 +12,6 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,35 +24,12 @@
 #include "hirsute/viewer/interaction/animation_file.h"
 #include "hirsute/viewer/interaction/define_editor.h"
 #include "model_pipeline.h"
+#include "simulate_options.h"
 
 namespace hirsute::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct SimulateOptions {
-  ModelOptions model;
-  std::string animation;
-  std::string output;
-  std::optional<int> frames;
-  double fps = 24;
-  bool obj = false;
-  bool noFrames = false;  // only the table: for measuring the simulation alone
-  int width = 800, height = 600;
-  // Overrides of the view file's `dynamics …:` lines.
-  std::vector<double> gravity, wind;
-  std::optional<double> gusts, gustScale, gustPeriod, drag;
-  std::optional<unsigned> gustSeed;
-  std::optional<int> substeps, segments;
-  std::string animate;  // NAME=FROM:TO: a #define of the .l moved over the frames
-};
-
-// `--animate NAME=FROM:TO`, read.
-struct AnimatedDefine {
-  std::string name;
-  double from = 0, to = 0;
-  bool integer = false;  // the .l writes it as an integer: frames round it
-};
 
 // The model of each frame: the animation's derivation step, and the animated #define's value
 // at that frame, put into the .l's text in memory (nothing is written beside the model; its
@@ -138,35 +114,6 @@ int badInput(Progress& progress, const std::string& text) {
   progress.clear();
   std::cerr << text << '\n';
   return kExitBadInput;
-}
-
-// NAME=FROM:TO, NAME one of the .l's #define constants; nothing when it is not that.
-std::optional<AnimatedDefine> animatedDefine(const std::string& text, const fs::path& lsystem) {
-  static const std::regex kForm(R"(^([A-Za-z_][A-Za-z0-9_]*)=([^:]+):(.+)$)");
-  std::smatch m;
-  if (!std::regex_match(text, m, kForm)) return std::nullopt;
-  AnimatedDefine d;
-  d.name = m[1];
-  try {
-    const std::string from = m[2], to = m[3];
-    std::size_t used = 0;
-    d.from = std::stod(from, &used);
-    if (used != from.size()) return std::nullopt;
-    d.to = std::stod(to, &used);
-    if (used != to.size()) return std::nullopt;
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (!std::isfinite(d.from) || !std::isfinite(d.to)) return std::nullopt;
-  std::ifstream in(lsystem, std::ios::binary);
-  std::ostringstream source;
-  source << in.rdbuf();
-  for (const DefineConstant& c : findDefineConstants(source.str()))
-    if (c.name == d.name) {
-      d.integer = c.integer;
-      return d;
-    }
-  return std::nullopt;
 }
 
 int runSimulate(SimulateOptions o) {
@@ -382,52 +329,7 @@ void registerSimulateCommand(CLI::App& app, Action& action) {
       "simulate",
       "Simulate the model's feathers (wind, gravity, collisions) over its animation and write a "
       "POV-Ray scene per frame");
-  addModelOptions(*command, options->model);
-  command
-      ->add_option("animation", options->animation,
-                   "The .a animation file: the body moves through its frames")
-      ->check(CLI::ExistingFile);
-  command->add_option("-o,--output", options->output, "The folder the frames are written to")
-      ->required();
-  command->add_option("--animate", options->animate,
-                      "NAME=FROM:TO: move the .l's #define NAME from FROM to TO over the frames "
-                      "(the body moves with it)");
-  command
-      ->add_option("--frames", options->frames, "Frames to write (default: the animation's, or 48)")
-      ->check(CLI::Range(1, 1'000'000));
-  command->add_option("--fps", options->fps, "Frames per second of simulated time (default 24)")
-      ->check(finiteRange(0.01, 10000.0));
-  command
-      ->add_option("--substeps", options->substeps,
-                   "Time steps per frame (default: the view file's, or 4)")
-      ->check(CLI::Range(1, 1000));
-  command
-      ->add_option("--segments", options->segments,
-                   "Segments of each feather's stem (default: the view file's, or 8)")
-      ->check(CLI::Range(1, 64));
-  // The view file's `dynamics gravity:` and `dynamics wind:` take components up to 1e6 too.
-  command->add_option("--gravity", options->gravity, "Gravity X Y Z (default 0 -9.81 0)")
-      ->expected(3)
-      ->check(finiteRange(-1e6, 1e6));
-  command->add_option("--wind", options->wind, "The steady wind X Y Z (default none)")
-      ->expected(3)
-      ->check(finiteRange(-1e6, 1e6));
-  command->add_option("--gusts", options->gusts, "Gusts: about the largest speed they add")
-      ->check(finiteRange(0.0, 1e6));
-  command->add_option("--gust-scale", options->gustScale, "The size of a gust (model units)")
-      ->check(finiteRange(1e-6, 1e6));
-  command->add_option("--gust-period", options->gustPeriod, "Seconds over which the gusts change")
-      ->check(finiteRange(1e-6, 1e6));
-  command->add_option("--gust-seed", options->gustSeed, "The gusts' seed");
-  command->add_option("--drag", options->drag, "Drag per unit length per unit speed")
-      ->check(finiteRange(0.0, 1e6));
-  command->add_flag("--obj", options->obj, "Write a Wavefront OBJ of every frame too");
-  command->add_flag("--no-frames", options->noFrames,
-                    "Write no scenes, only simulation.csv (to measure the simulation alone)");
-  command->add_option("--width", options->width, "The frames' width in pixels (default 800)")
-      ->check(CLI::Range(1, 16384));
-  command->add_option("--height", options->height, "The frames' height in pixels (default 600)")
-      ->check(CLI::Range(1, 16384));
+  addSimulateOptions(*command, *options);
   command->callback([options, &action] { action = [options] { return runSimulate(*options); }; });
 }
 

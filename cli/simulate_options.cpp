@@ -1,0 +1,92 @@
+#include "simulate_options.h"
+
+#include <cmath>
+#include <exception>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "command.h"
+#include "hirsute/viewer/interaction/define_editor.h"
+
+namespace hirsute::cli {
+
+void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
+  addModelOptions(command, options.model);
+  command
+      .add_option("animation", options.animation,
+                   "The .a animation file: the body moves through its frames")
+      ->check(CLI::ExistingFile);
+  command.add_option("-o,--output", options.output, "The folder the frames are written to")
+      ->required();
+  command.add_option("--animate", options.animate,
+                      "NAME=FROM:TO: move the .l's #define NAME from FROM to TO over the frames "
+                      "(the body moves with it)");
+  command
+      .add_option("--frames", options.frames, "Frames to write (default: the animation's, or 48)")
+      ->check(CLI::Range(1, 1'000'000));
+  command.add_option("--fps", options.fps, "Frames per second of simulated time (default 24)")
+      ->check(finiteRange(0.01, 10000.0));
+  command
+      .add_option("--substeps", options.substeps,
+                   "Time steps per frame (default: the view file's, or 4)")
+      ->check(CLI::Range(1, 1000));
+  command
+      .add_option("--segments", options.segments,
+                   "Segments of each feather's stem (default: the view file's, or 8)")
+      ->check(CLI::Range(1, 64));
+  // The view file's `dynamics gravity:` and `dynamics wind:` take components up to 1e6 too.
+  command.add_option("--gravity", options.gravity, "Gravity X Y Z (default 0 -9.81 0)")
+      ->expected(3)
+      ->check(finiteRange(-1e6, 1e6));
+  command.add_option("--wind", options.wind, "The steady wind X Y Z (default none)")
+      ->expected(3)
+      ->check(finiteRange(-1e6, 1e6));
+  command.add_option("--gusts", options.gusts, "Gusts: about the largest speed they add")
+      ->check(finiteRange(0.0, 1e6));
+  command.add_option("--gust-scale", options.gustScale, "The size of a gust (model units)")
+      ->check(finiteRange(1e-6, 1e6));
+  command.add_option("--gust-period", options.gustPeriod, "Seconds over which the gusts change")
+      ->check(finiteRange(1e-6, 1e6));
+  command.add_option("--gust-seed", options.gustSeed, "The gusts' seed");
+  command.add_option("--drag", options.drag, "Drag per unit length per unit speed")
+      ->check(finiteRange(0.0, 1e6));
+  command.add_flag("--obj", options.obj, "Write a Wavefront OBJ of every frame too");
+  command.add_flag("--no-frames", options.noFrames,
+                    "Write no scenes, only simulation.csv (to measure the simulation alone)");
+  command.add_option("--width", options.width, "The frames' width in pixels (default 800)")
+      ->check(CLI::Range(1, 16384));
+  command.add_option("--height", options.height, "The frames' height in pixels (default 600)")
+      ->check(CLI::Range(1, 16384));
+}
+
+std::optional<AnimatedDefine> animatedDefine(const std::string& text,
+                                             const std::filesystem::path& lsystem) {
+  static const std::regex kForm(R"(^([A-Za-z_][A-Za-z0-9_]*)=([^:]+):(.+)$)");
+  std::smatch m;
+  if (!std::regex_match(text, m, kForm)) return std::nullopt;
+  AnimatedDefine d;
+  d.name = m[1];
+  try {
+    const std::string from = m[2], to = m[3];
+    std::size_t used = 0;
+    d.from = std::stod(from, &used);
+    if (used != from.size()) return std::nullopt;
+    d.to = std::stod(to, &used);
+    if (used != to.size()) return std::nullopt;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (!std::isfinite(d.from) || !std::isfinite(d.to)) return std::nullopt;
+  std::ifstream in(lsystem, std::ios::binary);
+  std::ostringstream source;
+  source << in.rdbuf();
+  for (const DefineConstant& c : findDefineConstants(source.str()))
+    if (c.name == d.name) {
+      d.integer = c.integer;
+      return d;
+    }
+  return std::nullopt;
+}
+
+}  // namespace hirsute::cli
