@@ -1,54 +1,138 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with the CMake preset `fuzz` (clang) and runs each for SECONDS:
-# parse_derive_fuzzer (parser, compiler, derivation, homomorphism) and interpret_fuzzer (the same
-# text interpreted into a Scene and covered with plant hairs).
+# Builds the libFuzzer targets with the CMake preset `fuzz` (clang) and runs each in turn:
+#   parse_derive_fuzzer      .l text: parser, compiler, derivation, homomorphism
+#   interpret_fuzzer         the same text interpreted into a Scene and covered with plant hairs
+#   feather_file_fuzzer      a feather type file (.fea), read and built into its geometry
+#   view_file_fuzzer         a view file (.v): every command, the organ lines (hair:, feather:,
+#                            fur …:, droplet:), the dynamics lines, function/curve lines
+#   environment_fuzzer       open L-systems: a .e file, the answers a program sends back, query
+#                            text, the built-in programs' specification files
+#   animation_file_fuzzer    an animation file (.a) and the frames it gives
+#   simulate_options_fuzzer  `hirsute simulate`'s argument vector, parsed and checked
 #
-#   scripts/fuzz.sh [SECONDS] [libFuzzer flags…]     (SECONDS defaults to 60, per target)
-#   FUZZ_TARGETS=interpret_fuzzer scripts/fuzz.sh 600   (one target)
+#   scripts/fuzz.sh [SECONDS] [libFuzzer flags…]
+#   FUZZ_TARGETS=interpret_fuzzer scripts/fuzz.sh 600              (one target)
+#   FUZZ_TARGETS=view_file_fuzzer READER_SECONDS=300 scripts/fuzz.sh
 #
-# The seed corpus is every `.l` under models/ and tests/ (and ../shared/conformance when it is
-# there), each as written and as the C preprocessor hands it to the parser. Seeds, the growing
-# corpus and any crash files live in build/fuzz/, never in the repository. A finding ends the run
-# with a non-zero status and leaves its input in build/fuzz/artifacts/; replay it with
+# SECONDS (default 60) is the time of each of the two .l targets. The five reader targets run
+# READER_SECONDS each, by default a third of SECONDS (at least 1): their inputs are small and
+# their formats flat, so they cover in seconds what the .l targets take a minute for, and CI's
+# stage (`scripts/fuzz.sh 60`: 2 × 60 s + 5 × 20 s after the build) stays within ten minutes.
+#
+# Seeds are prepared in build/fuzz/seeds/TARGET: every `.l` under models/ and tests/ (and
+# ../shared/conformance when it is there), each as written and as the C preprocessor hands it to
+# the parser; every `.fea`; every `.v` as written and preprocessed; every `.a`; every `.e` and
+# every specification file its executable line names (with the byte that picks the program),
+# and a few answer and query texts; a few hand-written argument vectors for simulate. Each
+# target has its dictionary in fuzz/. Seeds, the growing corpus and any crash files live in
+# build/fuzz/, never in the repository. A finding ends the run with a non-zero status and leaves
+# its input in build/fuzz/artifacts/; replay it with
 #   build/fuzz/fuzz/TARGET build/fuzz/artifacts/crash-…
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-60}
 shift $(( $# > 0 ? 1 : 0 ))
+reader_seconds=${READER_SECONDS:-$(( seconds / 3 > 0 ? seconds / 3 : 1 ))}
 build="$root/build/fuzz"
+all_targets="parse_derive_fuzzer interpret_fuzzer feather_file_fuzzer view_file_fuzzer \
+environment_fuzzer animation_file_fuzzer simulate_options_fuzzer"
 
 cd "$root"
 cmake --preset fuzz >/dev/null
-targets=(${FUZZ_TARGETS:-parse_derive_fuzzer interpret_fuzzer})
+targets=(${FUZZ_TARGETS:-$all_targets})
 cmake --build --preset fuzz --target "${targets[@]}" -j "${JOBS:-1}"
 
 seeds="$build/seeds"
 corpus_root="$build/corpus"
 artifacts="$build/artifacts"
 rm -rf "$seeds"
-mkdir -p "$seeds" "$artifacts"
+mkdir -p "$artifacts"
+for target in $all_targets; do mkdir -p "$seeds/$target"; done
 folders=("$root/models" "$root/tests")
 [ -d "$root/../shared/conformance" ] && folders+=("$root/../shared/conformance")
+seed_name() { printf '%s' "$1" | md5sum | cut -c1-16; }
+# What a parser sees in a real run: cpp's output with its line markers.
+preprocessed() {
+  cpp -traditional-cpp -undef -nostdinc -x c -I "$(dirname "$1")" "$1" >"$2" 2>/dev/null ||
+    rm -f "$2"
+}
+
 count=0
 while IFS= read -r -d '' file; do
-  name=$(printf '%s' "$file" | md5sum | cut -c1-16)
-  cp "$file" "$seeds/$name.l"
-  # What the parser sees in a real run: cpp's output with its line markers.
-  cpp -traditional-cpp -undef -nostdinc -x c -I "$(dirname "$file")" "$file" \
-    >"$seeds/$name.cpp.l" 2>/dev/null || rm -f "$seeds/$name.cpp.l"
+  name=$(seed_name "$file")
+  cp "$file" "$seeds/parse_derive_fuzzer/$name.l"
+  preprocessed "$file" "$seeds/parse_derive_fuzzer/$name.cpp.l"
   count=$((count + 1))
 done < <(find "${folders[@]}" -name '*.l' -type f -print0 2>/dev/null)
-echo "fuzz: $count seed files; running ${targets[*]} for $seconds s each" >&2
+cp "$seeds/parse_derive_fuzzer/"* "$seeds/interpret_fuzzer/"
+
+while IFS= read -r -d '' file; do
+  cp "$file" "$seeds/feather_file_fuzzer/$(seed_name "$file").fea"
+done < <(find models tests -name '*.fea' -type f -print0)
+
+while IFS= read -r -d '' file; do
+  name=$(seed_name "$file")
+  cp "$file" "$seeds/view_file_fuzzer/$name.v"
+  preprocessed "$file" "$seeds/view_file_fuzzer/$name.cpp.v"
+done < <(find models tests -name '*.v' -type f -print0)
+
+while IFS= read -r -d '' file; do
+  cp "$file" "$seeds/animation_file_fuzzer/$(seed_name "$file").a"
+done < <(find models tests -name '*.a' -type f -print0)
+
+# environment_fuzzer: the first byte picks the kind of text (fuzz/environment_fuzzer.cpp).
+env_seeds="$seeds/environment_fuzzer"
+programs=(honda81 ecosystem clover chiba density)
+while IFS= read -r -d '' file; do
+  name=$(seed_name "$file")
+  { printf '\x00'; cat "$file"; } >"$env_seeds/$name.e"
+  # The specification file the executable line names (its last word), for its program.
+  read -r -a words < <(sed -n 's/^executable:[[:space:]]*//p' "$file" | head -n 1)
+  [ ${#words[@]} -ge 2 ] || continue
+  spec="$(dirname "$file")/${words[-1]}"
+  for i in "${!programs[@]}"; do
+    if [ "${programs[$i]}" = "${words[0]}" ] && [ -f "$spec" ]; then
+      { printf '\x03'; printf "\\x0$i"; cat "$spec"; } >"$env_seeds/$name.spec"
+    fi
+  done
+done < <(find models tests -name '*.e' -type f -print0)
+printf '\x011 E(0.5,2)\n2 E(,3e2)\n3 E\n4 E(1,2,3,4,5,6,7,8,9,10,11)\nControl: 5\n' \
+  >"$env_seeds/answers"
+printf '\x01  7;E(-1e-3)\r\nnot a record\nControl: 4 2\n' >"$env_seeds/answers-rejected"
+printf '\x021 E(1,2)F(0.5)\n0 0 0\n0 1 0\n-1 0 0\n0 0 -1\n0.1\n1\n2 E\n1 2\n\n\n\n\n\nControl: 5 1\n' \
+  >"$env_seeds/queries"
+
+# simulate_options_fuzzer: arguments separated by NUL bytes, @/ the coat-bending model.
+sim_seeds="$seeds/simulate_options_fuzzer"
+vector() { local out=$1; shift; printf '%s\0' "$@" >"$sim_seeds/$out"; }
+vector plain @/bending.l @/bending.v -o out
+vector animation @/bending.l @/bending.v @/bending.a -o out --frames 12 --fps 30 --obj
+vector forces @/bending.l @/bending.v -o out --gravity 0 -9.81 0 --wind 1 0 0.5 --gusts 2 \
+  --gust-scale 0.5 --gust-period 1.5 --gust-seed 7 --drag 0.1 --substeps 8 --segments 4
+vector animate @/bending.l @/bending.v -o out --animate WIDTH=2:4 --no-frames --width 320 \
+  --height 240
+vector fur @/bending.l @/bending.v -o out --droplets 20 --droplet-radius 0.1 \
+  --droplet-wetness 0.5 --droplet-seed 3 --no-fur --no-hairs --max-hairs 10
+vector colours @/bending.l -o out -m 2:@/feather-coat.map -M @/feather-coat.map -n 3 \
+  --threads 2 --max-modules 1000 --max-vertices 100000 --max-file-bytes 4096
+vector bad @/bending.l -o out --fps nan --frames 0 --gravity 1 2
+
+echo "fuzz: $count .l seed files; running ${targets[*]}" \
+  "(.l targets $seconds s each, the readers $reader_seconds s each)" >&2
 
 # libFuzzer's own work files go to the build folder too.
 cd "$build"
 for target in "${targets[@]}"; do
+  case "$target" in
+    parse_derive_fuzzer | interpret_fuzzer) dict=lsystem time=$seconds ;;
+    *) dict=${target%_fuzzer} time=$reader_seconds ;;
+  esac
   corpus="$corpus_root/$target"
   mkdir -p "$corpus"
   echo "fuzz: $target" >&2
   "$build/fuzz/$target" \
-    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
-    -dict="$root/fuzz/lsystem.dict" -artifact_prefix="$artifacts/" -print_final_stats=1 \
-    "$@" "$corpus" "$seeds"
+    -max_total_time="$time" -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
+    -dict="$root/fuzz/$dict.dict" -artifact_prefix="$artifacts/" -print_final_stats=1 \
+    "$@" "$corpus" "$seeds/$target"
 done
