@@ -53,6 +53,21 @@ TEST(AnimationFileTest, FrameIntervalsTakePrecedence) {
   EXPECT_FALSE(frames[0].rotateAfter.has_value());
 }
 
+// A step past INT_MAX once wrapped (undefined behaviour), and a range from far below 0 walked up
+// to 0 a frame at a time (two billion steps); found by animation_file_fuzzer.
+TEST(AnimationFileTest, AStepNearIntMaxEndsAtTheLastFrame) {
+  Diagnostics diagnostics;
+  AnimationSettings a = readAnimationFile(fixture("huge_step.a"), diagnostics);
+  EXPECT_EQ(steps(animationFrames(a, 10)), (std::vector<int>{1}));
+}
+
+TEST(AnimationFileTest, ARangeFromFarBelowZeroStartsAtItsFirstFrameFromZero) {
+  Diagnostics diagnostics;
+  AnimationSettings a = readAnimationFile(fixture("far_below_zero.a"), diagnostics);
+  // -2000000001 + 1000000001·2 = 1; then 3 and 5; the second range gives 7 alone.
+  EXPECT_EQ(steps(animationFrames(a, 100)), (std::vector<int>{1, 3, 5, 7}));
+}
+
 TEST(AnimationFileTest, BadValueNamesLineAndColumn) {
   Diagnostics diagnostics;
   try {

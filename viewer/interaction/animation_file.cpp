@@ -1,7 +1,9 @@
 #include "hirsute/viewer/interaction/animation_file.h"
 
 #include <cctype>
+#include <algorithm>
 #include <charconv>
+#include <cstdint>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -181,30 +183,31 @@ AnimationSettings readAnimationFile(const std::filesystem::path& file, Diagnosti
 std::vector<AnimationFrame> animationFrames(const AnimationSettings& settings,
                                             int derivationLength) {
   std::vector<AnimationFrame> frames;
-  auto add = [&](int step, const FrameInterval* interval) {
-    if (step < 0 || step > derivationLength) return;
-    AnimationFrame frame;
-    frame.step = step;
-    if (interval) {
-      frame.rotateAfter = interval->rotate;
-      frame.scaleAfter = interval->scale;
+  // The frames first, first + step, … up to last and the derivation length. Counted in 64 bits:
+  // a step near INT_MAX past the last frame must not wrap, and a range that starts far below 0
+  // starts at its first frame from 0 instead of walking up to it.
+  const auto addRange = [&](int first, int last, int step, const FrameInterval* interval) {
+    const std::int64_t by = std::max(step, 1);
+    const std::int64_t end = std::min(last, derivationLength);
+    std::int64_t f = first;
+    if (f < 0) f += (-f + by - 1) / by * by;
+    for (; f <= end; f += by) {
+      AnimationFrame frame;
+      frame.step = static_cast<int>(f);
+      if (interval) {
+        frame.rotateAfter = interval->rotate;
+        frame.scaleAfter = interval->scale;
+      }
+      frames.push_back(frame);
     }
-    frames.push_back(frame);
   };
   if (!settings.frameIntervals.empty()) {
-    for (const FrameInterval& interval : settings.frameIntervals) {
-      for (int f = interval.first; f <= interval.last && f <= derivationLength;
-           f += interval.step) {
-        add(f, &interval);
-      }
-    }
+    for (const FrameInterval& interval : settings.frameIntervals)
+      addRange(interval.first, interval.last, interval.step, &interval);
     return frames;
   }
-  int last =
-      settings.lastFrame ? std::min(*settings.lastFrame, derivationLength) : derivationLength;
-  for (int f = std::max(settings.firstFrame, 0); f <= last; f += std::max(settings.step, 1)) {
-    add(f, nullptr);
-  }
+  addRange(std::max(settings.firstFrame, 0), settings.lastFrame.value_or(derivationLength),
+           settings.step, nullptr);
   return frames;
 }
 
