@@ -474,7 +474,10 @@ void box(Command& c) {
   c.view.box = bounds;
 }
 
-// `shadow map: size: n color: r g b offset: factor units`, every part optional.
+// `shadow map: size: n color: r g b offset: factor units`, every part optional. A shadow map is a
+// square depth texture: no GL takes one wider than 16384 texels (llvmpipe's limit).
+constexpr int kMaxShadowMapSize = 16384;
+
 void shadowMap(Command& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   c.args.skipAll();
@@ -499,17 +502,22 @@ void shadowMap(Command& c) {
       }
       values.push_back(*value);
     }
-    if (key == "size:") map.size = static_cast<int>(values[0]);
+    if (key == "size:") {
+      // Checked as a double: a size past int's range (or NaN) cannot be cast.
+      if (!(values[0] >= 1 && values[0] <= kMaxShadowMapSize)) {
+        c.warn(tokens[i + 1].where, "the shadow map size must be from 1 to " +
+                                        std::to_string(kMaxShadowMapSize) +
+                                        "; the line is ignored");
+        return;
+      }
+      map.size = static_cast<int>(values[0]);
+    }
     if (key == "color:") map.color = asVector(values);
     if (key == "offset:") {
       map.offsetFactor = static_cast<float>(values[0]);
       map.offsetUnits = static_cast<float>(values[1]);
     }
     i += count;
-  }
-  if (map.size < 1) {
-    c.warn(c.labelAt(), "the shadow map size must be positive; the line is ignored");
-    return;
   }
   c.view.shadowMap = map;
 }

@@ -312,6 +312,20 @@ TEST(ViewFileTest, BrokenSettingIsAWarningAndKeepsTheValue) {
             file + ":4:19: warning: 'extra' after the arguments of 'scale factor:' is ignored");
 }
 
+// A size past int's range was cast to int (undefined behaviour); found by view_file_fuzzer.
+TEST(ViewFileTest, ShadowMapSizeOutOfRangeIsIgnoredWithAWarning) {
+  Diagnostics diagnostics;
+  const ViewSettings view = parseFixture("shadow_map_size.v", diagnostics);
+  const std::string file = (kFixtures / "shadow_map_size.v").string();
+  EXPECT_EQ(view.shadowMap.size, 4096);  // the last good line
+  ASSERT_EQ(diagnostics.warnings().size(), 3u);
+  EXPECT_EQ(diagnostics.warnings()[0].text(),
+            file + ":2:19: warning: the shadow map size must be from 1 to 16384; the line is "
+                   "ignored");
+  EXPECT_EQ(diagnostics.warnings()[1].where.line, 3);
+  EXPECT_EQ(diagnostics.warnings()[2].where.line, 4);
+}
+
 TEST(ViewFileTest, BrokenDeclarationIsAnErrorAtItsLine) {
   Diagnostics diagnostics;
   const auto errorOf = [&](const std::string& name) {
