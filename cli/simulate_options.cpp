@@ -15,13 +15,13 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
   addModelOptions(command, options.model);
   command
       .add_option("animation", options.animation,
-                   "The .a animation file: the body moves through its frames")
+                  "The .a animation file: the body moves through its frames")
       ->check(CLI::ExistingFile);
   command.add_option("-o,--output", options.output, "The folder the frames are written to")
       ->required();
   command.add_option("--animate", options.animate,
-                      "NAME=FROM:TO: move the .l's #define NAME from FROM to TO over the frames "
-                      "(the body moves with it)");
+                     "NAME=FROM:TO: move the .l's #define NAME from FROM to TO over the frames "
+                     "(the body moves with it)");
   command
       .add_option("--frames", options.frames, "Frames to write (default: the animation's, or 48)")
       ->check(CLI::Range(1, 1'000'000));
@@ -29,11 +29,11 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
       ->check(finiteRange(0.01, 10000.0));
   command
       .add_option("--substeps", options.substeps,
-                   "Time steps per frame (default: the view file's, or 4)")
+                  "Time steps per frame (default: the view file's, or 4)")
       ->check(CLI::Range(1, 1000));
   command
       .add_option("--segments", options.segments,
-                   "Segments of each feather's stem (default: the view file's, or 8)")
+                  "Segments of each feather's stem (default: the view file's, or 8)")
       ->check(CLI::Range(1, 64));
   // The view file's `dynamics gravity:` and `dynamics wind:` take components up to 1e6 too.
   command.add_option("--gravity", options.gravity, "Gravity X Y Z (default 0 -9.81 0)")
@@ -53,7 +53,7 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
       ->check(finiteRange(0.0, 1e6));
   command.add_flag("--obj", options.obj, "Write a Wavefront OBJ of every frame too");
   command.add_flag("--no-frames", options.noFrames,
-                    "Write no scenes, only simulation.csv (to measure the simulation alone)");
+                   "Write no scenes, only simulation.csv (to measure the simulation alone)");
   command.add_option("--width", options.width, "The frames' width in pixels (default 800)")
       ->check(CLI::Range(1, 16384));
   command.add_option("--height", options.height, "The frames' height in pixels (default 600)")

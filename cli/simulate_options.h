@@ -3,12 +3,11 @@
 // alone can be tested and fuzzed (fuzz/simulate_options_fuzzer.cpp).
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "model_pipeline.h"
 

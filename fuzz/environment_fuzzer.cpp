@@ -127,8 +127,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::ofstream(specFolder / "fuzz.spec", std::ios::binary | std::ios::trunc)
             << text.substr(1);
         const hirsute::CommunicationFile file = hirsute::parseCommunicationFile(
-            "executable: " + program + " fuzz.spec\nturtle position: %g %g %g\n"
-            "turtle heading: %g %g %g\nturtle up: %g %g %g\nturtle line width: %g\n",
+            "executable: " + program +
+                " fuzz.spec\nturtle position: %g %g %g\n"
+                "turtle heading: %g %g %g\nturtle up: %g %g %g\nturtle line width: %g\n",
             specFolder / "fuzz.e", diagnostics);
         exchange(file, diagnostics);
         break;
