@@ -65,7 +65,7 @@ class Chiba : public BuiltinProgram {
       };
       if (line.keyword == "grid size") {
         for (std::size_t c = 0; c < 3 && c < a.size(); ++c) {
-          cells_[c] = static_cast<int>(keywordNumber(line, a[c]));
+          cells_[c] = keywordInteger(line, a[c]);
           if (cells_[c] < 1)
             throw DiagnosticError(line.at(a[c].column), "the grid needs at least one cell");
         }

@@ -408,6 +408,20 @@ TEST_F(EnvironmentTest, ChibaShadesABallUnderAnother) {
             "0 E(1)\n8 E(1)\nControl: 5\n");
 }
 
+// A grid size past int's range was cast to int (undefined behaviour); found by
+// environment_fuzzer. It is an error at the number, as other numbers out of range are.
+TEST_F(EnvironmentTest, ChibaGridSizePastIntIsAnErrorAtTheNumber) {
+  const std::string e = "executable: chiba program.spec\nturtle position:P:%g %g %g\n";
+  write("program.spec", "transmittance: 0.5\ngrid size:  14x4e9x9\n");
+  try {
+    makeBuiltinProgram(read(e), diagnostics_);
+    FAIL() << "no error";
+  } catch (const DiagnosticError& error) {
+    EXPECT_EQ(error.diagnostic().text(),
+              file("program.spec").string() + ":2:16: error: the number '4e9' is out of range");
+  }
+}
+
 // ---- density -------------------------------------------------------------------------------
 
 TEST_F(EnvironmentTest, DensitySumsTheFieldOfSourcesAndQueries) {
