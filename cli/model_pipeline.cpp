@@ -3,6 +3,7 @@
 #include "command.h"
 #include "hirsute/core/model_folder.h"
 
+#include <charconv>
 #include <chrono>
 #include <iostream>
 #include <sstream>
@@ -26,7 +27,16 @@ namespace {
 std::pair<int, std::filesystem::path> bankAndFile(const std::string& text) {
   std::size_t colon = text.find(':');
   if (colon != std::string::npos && colon > 0 && text.find_first_not_of("0123456789") == colon) {
-    return {std::stoi(text.substr(0, colon)), text.substr(colon + 1)};
+    const std::string file = text.substr(colon + 1);
+    int bank = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + colon, bank);
+    // A bank past int's range (std::stoi threw out_of_range here) is outside 1 to 12 too.
+    if (error != std::errc() || bank < 1 || bank > kMaxColorBanks) {
+      throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(file), 0, 0},
+                            "colour bank " + text.substr(0, colon) + " is outside 1 to " +
+                                std::to_string(kMaxColorBanks));
+    }
+    return {bank, file};
   }
   return {1, text};
 }

@@ -140,6 +140,20 @@ TEST_F(SimulateCommand, AModelWithoutFeathersIsAnError) {
 
 }  // namespace
 
+// A colour bank past int's range ended the run with std::stoi's out_of_range ("hirsute: error:
+// stoi", exit code 1); found with simulate_options_fuzzer. It is bad input like bank 13.
+TEST_F(SimulateCommand, AColourBankPastIntIsBadInput) {
+  for (const char* bank : {"99999999999", "13"}) {
+    const Output out = simulate("coat-bending", "bending.l bending.v",
+                                std::string("--frames 2 -m ") + bank + ":feather-coat.map", folder_);
+    EXPECT_EQ(out.status, 2) << bank << ": " << out.text;
+    EXPECT_NE(out.text.find(std::string("feather-coat.map: error: colour bank ") + bank +
+                            " is outside 1 to 12"),
+              std::string::npos)
+        << bank << ": " << out.text;
+  }
+}
+
 // Options that are no finite number in range end the run with exit code 2 before a frame is
 // written: an earlier run's frames stay as they were.
 TEST_F(SimulateCommand, NonFiniteOptionsAreBadInputBeforeAnyFrame) {
