@@ -141,7 +141,7 @@ TEST_F(SimulateCommand, AModelWithoutFeathersIsAnError) {
 }  // namespace
 
 // A colour bank past int's range ended the run with std::stoi's out_of_range ("hirsute: error:
-// stoi", exit code 1); found with simulate_options_fuzzer. It is bad input like bank 13.
+// stoi", exit code 1); reproduced through simulate_options_fuzzer. It is bad input like bank 13.
 TEST_F(SimulateCommand, AColourBankPastIntIsBadInput) {
   for (const char* bank : {"99999999999", "13"}) {
     const Output out = simulate("coat-bending", "bending.l bending.v",

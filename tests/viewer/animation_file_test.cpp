@@ -54,7 +54,7 @@ TEST(AnimationFileTest, FrameIntervalsTakePrecedence) {
 }
 
 // A step past INT_MAX once wrapped (undefined behaviour), and a range from far below 0 walked up
-// to 0 a frame at a time (two billion steps); found by animation_file_fuzzer.
+// to 0 a frame at a time (two billion steps); reproduced through animation_file_fuzzer.
 TEST(AnimationFileTest, AStepNearIntMaxEndsAtTheLastFrame) {
   Diagnostics diagnostics;
   AnimationSettings a = readAnimationFile(fixture("huge_step.a"), diagnostics);
