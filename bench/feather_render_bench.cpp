@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/viewer/gl/feather_buffers.h"
+#include "hirsute/viewer/view/feather_buffers.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
 #include "model_pipeline.h"

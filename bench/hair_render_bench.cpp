@@ -27,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
 #include "model_pipeline.h"

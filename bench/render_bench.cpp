@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
 #include "raw_gl.h"

@@ -6,7 +6,7 @@
 #include "command.h"
 #include "drawing_commands.h"
 #include "hirsute/viewer/gl/offscreen.h"
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 
 namespace hirsute::cli {
 

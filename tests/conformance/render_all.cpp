@@ -38,7 +38,7 @@
 #include <vector>
 
 #include "hirsute/viewer/export/povray_runner.h"
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 
 extern char** environ;
 

@@ -1,5 +1,5 @@
 // cpfg's camera: fitting in parallel projection, the eye in perspective, twist.
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 
 namespace hirsute {
 namespace {

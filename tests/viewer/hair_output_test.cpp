@@ -26,10 +26,10 @@
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 #include "support/test_files.h"
 
 namespace hirsute {

@@ -1,5 +1,5 @@
 // PNG files: what is written reads back the same, and a file appears only when complete.
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "hirsute/interpreter/model_resources.h"
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 
 namespace hirsute {
 namespace {

@@ -7,7 +7,7 @@
 #include <glm/gtc/constants.hpp>
 #include <string>
 
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
 

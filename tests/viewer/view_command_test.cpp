@@ -15,7 +15,7 @@
 #include <string>
 #include <thread>
 
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 
 namespace hirsute {
 namespace {

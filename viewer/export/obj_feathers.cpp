@@ -4,7 +4,7 @@
 // `o feathers`. OBJ has no per-vertex transparency: the barbs' fading is left out, and they take
 // the scene's material 0 (the colour of a feather type is in its .fea file).
 #include "hirsute/viewer/export/obj_writer.h"
-#include "hirsute/viewer/gl/feather_buffers.h"
+#include "hirsute/viewer/view/feather_buffers.h"
 
 namespace hirsute {
 namespace {

@@ -11,7 +11,7 @@
 #include <tuple>
 
 #include "hirsute/viewer/export/pov_writer.h"
-#include "hirsute/viewer/gl/feather_buffers.h"
+#include "hirsute/viewer/view/feather_buffers.h"
 
 namespace hirsute {
 namespace {

@@ -10,7 +10,7 @@
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/viewer/export/pov_writer.h"
-#include "hirsute/viewer/gl/view_lighting.h"
+#include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute {
 namespace {

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "hirsute/viewer/export/texture_file.h"
-#include "hirsute/viewer/gl/view_lighting.h"
+#include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute {
 namespace {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/viewer/gl/camera.h"
-#include "hirsute/viewer/gl/feather_buffers.h"
+#include "hirsute/viewer/view/camera.h"
+#include "hirsute/viewer/view/feather_buffers.h"
 #include "hirsute/viewer/gl/gl_functions.h"
 
 namespace hirsute {

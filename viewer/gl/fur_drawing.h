@@ -11,7 +11,7 @@
 
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_functions.h"
 
 namespace hirsute {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_functions.h"
 
 namespace hirsute {

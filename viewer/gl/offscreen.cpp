@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 
 // Mesa's OSMesa (22.3) never frees the buffers OSMesaMakeCurrent makes for a context, so in the

@@ -20,7 +20,7 @@
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/export/export_file.h"
 #include "hirsute/viewer/export/scene_writer.h"
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 
 namespace hirsute {
 

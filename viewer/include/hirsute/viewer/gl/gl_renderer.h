@@ -17,9 +17,9 @@
 
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_functions.h"
-#include "hirsute/viewer/gl/view_lighting.h"  // backgroundColor, the lights of a view
+#include "hirsute/viewer/view/view_lighting.h"  // backgroundColor, the lights of a view
 
 namespace hirsute {
 

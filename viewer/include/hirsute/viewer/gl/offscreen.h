@@ -8,7 +8,7 @@
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/gl/gl_functions.h"
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 
 namespace hirsute {
 

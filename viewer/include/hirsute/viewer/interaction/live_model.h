@@ -18,7 +18,7 @@
 
 #include "hirsute/hairs/dynamics/coat_motion.h"
 #include "hirsute/hairs/fur/fur_motion.h"
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/interaction/animation_file.h"
 #include "hirsute/viewer/interaction/define_editor.h"
 #include "hirsute/viewer/interaction/file_watcher.h"

@@ -7,7 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 
 namespace hirsute {
 

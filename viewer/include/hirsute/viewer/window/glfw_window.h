@@ -7,7 +7,7 @@
 #include <string>
 
 #include "hirsute/viewer/gl/gl_functions.h"
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 
 struct GLFWwindow;
 

@@ -1,4 +1,4 @@
-#include "hirsute/viewer/gl/png_image.h"
+#include "hirsute/viewer/view/png_image.h"
 
 #include <png.h>
 

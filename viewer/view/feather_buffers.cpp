@@ -1,4 +1,4 @@
-#include "hirsute/viewer/gl/feather_buffers.h"
+#include "hirsute/viewer/view/feather_buffers.h"
 
 #include <algorithm>
 #include <cmath>

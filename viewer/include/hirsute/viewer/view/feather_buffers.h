@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 
 namespace hirsute {
 

@@ -1,4 +1,4 @@
-#include "hirsute/viewer/gl/view_lighting.h"
+#include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute {
 

@@ -1,4 +1,4 @@
-#include "hirsute/viewer/gl/camera.h"
+#include "hirsute/viewer/view/camera.h"
 
 #include <algorithm>
 #include <array>
