@@ -13,7 +13,7 @@
 
 #include "command.h"
 #include "hirsute/hairs/dynamics/ccd_query_file.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute::cli {
 namespace {

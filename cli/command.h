@@ -10,7 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/progress.h"
 
 namespace hirsute::cli {
 

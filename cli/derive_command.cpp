@@ -12,8 +12,8 @@
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
-#include "hirsute/lsys/output_target.h"
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/output_target.h"
+#include "hirsute/core/progress.h"
 #include "hirsute/lsys/string_writer.h"
 
 namespace hirsute::cli {

@@ -11,10 +11,10 @@
 
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/progress.h"
 
 namespace hirsute::cli {
 

@@ -18,7 +18,7 @@
 
 #include "command.h"
 #include "hirsute/hairs/dynamics/coat_motion.h"
-#include "hirsute/lsys/output_target.h"
+#include "hirsute/core/output_target.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/interaction/animation_file.h"

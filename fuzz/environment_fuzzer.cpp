@@ -26,7 +26,7 @@
 #include "hirsute/environment/environment_program.h"
 #include "hirsute/environment/exchange_text.h"
 #include "hirsute/interpreter/turtle_state.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include "fuzz_folder.h"
 #include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/feather_geometry.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path kFile =

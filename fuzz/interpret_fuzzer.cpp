@@ -23,7 +23,7 @@
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/parser.h"
 #include "hirsute/lsys/program.h"

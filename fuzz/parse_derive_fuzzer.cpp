@@ -22,7 +22,7 @@
 #include <system_error>
 
 #include "hirsute/lsys/derivation.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/module_sink.h"
 #include "hirsute/lsys/native_code.h"

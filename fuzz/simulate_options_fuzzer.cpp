@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "fuzz_folder.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "simulate_options.h"
 
 namespace {

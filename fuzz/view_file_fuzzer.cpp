@@ -13,7 +13,7 @@
 
 #include "fuzz_folder.h"
 #include "hirsute/interpreter/model_resources.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/function_curve.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

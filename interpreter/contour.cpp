@@ -8,7 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/function_curve.h"
 #include "hirsute/lsys/uniform_bspline.h"
 

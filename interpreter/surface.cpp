@@ -23,40 +23,11 @@
 #include <system_error>
 #include <vector>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
+#include "hirsute/core/line_reader.h"
 
 namespace hirsute {
 namespace {
-
-struct SurfaceLine {
-  int number = 0;
-  std::string_view text;                // trimmed
-  std::vector<std::string_view> words;  // `X:0.5` is split into `X:` and `0.5`
-};
-
-bool isBlank(char c) {
-  return c == ' ' || c == '\t' || c == '\r';
-}
-
-std::vector<std::string_view> surfaceWords(std::string_view text) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    while (i < text.size() && isBlank(text[i])) ++i;
-    const std::size_t start = i;
-    while (i < text.size() && !isBlank(text[i])) ++i;
-    if (i == start) continue;
-    const std::string_view word = text.substr(start, i - start);
-    const std::size_t colon = word.find(':');
-    if (colon != std::string_view::npos && colon + 1 < word.size()) {
-      words.push_back(word.substr(0, colon + 1));
-      words.push_back(word.substr(colon + 1));
-    } else {
-      words.push_back(word);
-    }
-  }
-  return words;
-}
 
 std::string inQuotes(std::string_view text) {
   // Built by appending: GCC 12's -O3 reports a false -Wrestrict on "'" + std::string(...).
@@ -68,53 +39,18 @@ std::string inQuotes(std::string_view text) {
   return quoted;
 }
 
-class SurfaceReader {
+// A surface file's lines: a label and its number are two words even when no blank parts them.
+class SurfaceReader : public LineReader {
  public:
   SurfaceReader(std::string_view text, const std::string& file)
-      : file_(std::make_shared<const std::string>(file)) {
-    int number = 0;
-    std::size_t start = 0;
-    while (start < text.size()) {
-      std::size_t end = text.find('\n', start);
-      if (end == std::string_view::npos) end = text.size();
-      ++number;
-      std::string_view line = text.substr(start, end - start);
-      start = end + 1;
-      const std::size_t first = line.find_first_not_of(" \t\r");
-      if (first == std::string_view::npos) continue;
-      line = line.substr(first, line.find_last_not_of(" \t\r") + 1 - first);
-      lines_.push_back(SurfaceLine{number, line, surfaceWords(line)});
-      last_ = number;
-    }
-  }
+      : LineReader(text, file, WordSplit::AfterColons) {}
 
-  bool atEnd() const { return next_ >= lines_.size(); }
-  const SurfaceLine& peek() const { return lines_[next_]; }
-  const SurfaceLine& take(const std::string& expected) {
-    if (atEnd()) fail(std::max(1, last_), "the file ends where " + expected + " was expected");
-    return lines_[next_++];
-  }
-
-  [[noreturn]] void fail(int line, const std::string& message) const {
-    throw DiagnosticError(SourceLocation{file_, line, 0}, message);
-  }
-
-  static std::optional<double> number(std::string_view word) {
-    double value = 0;
-    const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-    if (error != std::errc() || end != word.data() + word.size()) return std::nullopt;
-    return value;
-  }
-  static std::optional<int> integer(std::string_view word) {
-    int value = 0;
-    const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-    if (error != std::errc() || end != word.data() + word.size()) return std::nullopt;
-    return value;
-  }
+  static std::optional<double> number(std::string_view word) { return wordAsNumber(word); }
+  static std::optional<int> integer(std::string_view word) { return wordAsInteger(word); }
 
   // A line of fixed words with numbers between them: `pattern` lists the words, and "#" where a
   // number stands. Returns the numbers in order.
-  std::vector<double> labelled(const SurfaceLine& line,
+  std::vector<double> labelled(const TextLine& line,
                                std::initializer_list<std::string_view> pattern,
                                const std::string& expected) const {
     std::vector<double> values;
@@ -134,12 +70,6 @@ class SurfaceReader {
     if (!ok) fail(line.number, "expected " + inQuotes(expected) + ", found " + inQuotes(line.text));
     return values;
   }
-
- private:
-  std::shared_ptr<const std::string> file_;
-  std::vector<SurfaceLine> lines_;
-  std::size_t next_ = 0;
-  int last_ = 0;
 };
 
 glm::dvec3 asPoint(const std::vector<double>& v) {
@@ -150,7 +80,7 @@ BezierPatch readPatch(SurfaceReader& reader) {
   BezierPatch patch;
   patch.name = std::string(reader.take("a patch name").text);
 
-  const SurfaceLine& colors = reader.take("the patch colours");
+  const TextLine& colors = reader.take("the patch colours");
   const std::vector<double> c = reader.labelled(
       colors, {"TOP", "COLOR:", "#", "DIFFUSE:", "#", "BOTTOM", "COLOR:", "#", "DIFFUSE:", "#"},
       "TOP COLOR: i DIFFUSE: x BOTTOM COLOR: j DIFFUSE: y");
@@ -172,7 +102,7 @@ BezierPatch readPatch(SurfaceReader& reader) {
     std::string expected;
     for (std::string_view label : labels) expected += std::string(label) + " name ";
     expected.pop_back();
-    const SurfaceLine& line = reader.take(inQuotes(expected));
+    const TextLine& line = reader.take(inQuotes(expected));
     bool ok = line.words.size() == 2 * labels.size();
     for (std::size_t k = 0; ok && k < labels.size(); ++k) ok = line.words[2 * k] == labels[k];
     if (!ok) {
@@ -186,7 +116,7 @@ BezierPatch readPatch(SurfaceReader& reader) {
   }
 
   for (int row = 0; row < 4; ++row) {
-    const SurfaceLine& line =
+    const TextLine& line =
         reader.take("row " + std::to_string(row + 1) + " of the control points of patch " +
                     inQuotes(patch.name));
     if (line.words.size() != 12) {
@@ -211,14 +141,14 @@ Surface parseSurface(std::string_view text, const std::string& file) {
   Surface surface;
   surface.file = file;
 
-  const SurfaceLine& bounds = reader.take("'xmin xmax ymin ymax zmin zmax'");
+  const TextLine& bounds = reader.take("'xmin xmax ymin ymax zmin zmax'");
   const std::vector<double> b =
       reader.labelled(bounds, {"#", "#", "#", "#", "#", "#"}, "xmin xmax ymin ymax zmin zmax");
   surface.boundsMin = glm::dvec3(b[0], b[2], b[4]);
   surface.boundsMax = glm::dvec3(b[1], b[3], b[5]);
 
   if (!reader.atEnd() && reader.peek().words[0] == "PRECISION") {
-    const SurfaceLine& line = reader.take("PRECISION");
+    const TextLine& line = reader.take("PRECISION");
     const std::vector<double> p =
         reader.labelled(line, {"PRECISION", "S:", "#", "T:", "#"}, "PRECISION S: i T: j");
     const std::optional<int> s = SurfaceReader::integer(line.words[2]);
@@ -232,7 +162,7 @@ Surface parseSurface(std::string_view text, const std::string& file) {
 
   const auto readPoint = [&reader](std::string_view first, std::string_view second,
                                    const std::string& expected) {
-    const SurfaceLine& line = reader.take(inQuotes(expected));
+    const TextLine& line = reader.take(inQuotes(expected));
     if (second.empty()) {
       return asPoint(reader.labelled(line, {first, "X:", "#", "Y:", "#", "Z:", "#"}, expected));
     }
@@ -244,7 +174,7 @@ Surface parseSurface(std::string_view text, const std::string& file) {
   surface.heading = readPoint("HEADING", "", "HEADING X: x Y: y Z: z");
   surface.up = readPoint("UP", "", "UP X: x Y: y Z: z");
 
-  const SurfaceLine& sizeLine = reader.take("'SIZE: s'");
+  const TextLine& sizeLine = reader.take("'SIZE: s'");
   surface.fileSize = reader.labelled(sizeLine, {"SIZE:", "#"}, "SIZE: s")[0];
   if (!(surface.fileSize > 0)) reader.fail(sizeLine.number, "SIZE must be positive");
 

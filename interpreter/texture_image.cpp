@@ -8,7 +8,7 @@
 #include <string>
 #include <system_error>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 // stb_image's implementation lives in this file alone. Files are read here, so its stdio
 // functions are left out; the dimension limit keeps a corrupt header from asking for gigabytes.

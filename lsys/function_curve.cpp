@@ -13,7 +13,8 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
+#include "hirsute/core/line_reader.h"
 #include "hirsute/lsys/view_file_lines.h"
 
 namespace hirsute {
@@ -22,36 +23,12 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Reading the text files of funcedit and cuspy: whitespace-separated words on numbered lines.
 
-struct TextLine {
-  int number = 0;                       // 1-based line in the file
-  std::vector<std::string_view> words;  // never empty: blank lines are skipped
-  std::string_view text;                // the whole line, for `name:` values with spaces
-};
-
-std::vector<std::string_view> splitWords(std::string_view text) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    while (i < text.size() && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) ++i;
-    const std::size_t start = i;
-    while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r') ++i;
-    if (i > start) words.push_back(text.substr(start, i - start));
-  }
-  return words;
-}
-
 std::optional<double> parseDouble(std::string_view word) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (error != std::errc() || end != word.data() + word.size()) return std::nullopt;
-  return value;
+  return wordAsNumber(word);
 }
 
 std::optional<int> parseInt(std::string_view word) {
-  int value = 0;
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (error != std::errc() || end != word.data() + word.size()) return std::nullopt;
-  return value;
+  return wordAsInteger(word);
 }
 
 // cuspy writes multiplicities 1 to 3; cpfg accepts any, so only absurd ones are refused.
@@ -61,37 +38,10 @@ std::string quoted(std::string_view word) {
   return "'" + std::string(word) + "'";
 }
 
-// The non-blank lines of one file, read front to back, with errors located in that file.
-class LineReader {
+// The lines of a funcedit or cuspy file, with the forms their lines take.
+class CurveFileReader : public LineReader {
  public:
-  LineReader(std::string_view text, const std::string& fileName)
-      : file_(std::make_shared<const std::string>(fileName)) {
-    int number = 0;
-    std::size_t start = 0;
-    while (start < text.size()) {
-      std::size_t end = text.find('\n', start);
-      if (end == std::string_view::npos) end = text.size();
-      ++number;
-      const std::string_view line = text.substr(start, end - start);
-      std::vector<std::string_view> words = splitWords(line);
-      if (!words.empty()) lines_.push_back(TextLine{number, std::move(words), line});
-      lastNumber_ = number;
-      start = end + 1;
-    }
-  }
-
-  bool atEnd() const { return next_ >= lines_.size(); }
-  const TextLine& peek() const { return lines_[next_]; }
-
-  // The next line; `what` says what was expected when the file ends instead.
-  const TextLine& take(const std::string& what) {
-    if (atEnd()) fail(std::max(1, lastNumber_), "the file ends where " + what + " was expected");
-    return lines_[next_++];
-  }
-
-  [[noreturn]] void fail(int line, const std::string& message) const {
-    throw DiagnosticError(SourceLocation{file_, line, 0}, message);
-  }
+  using LineReader::LineReader;
 
   // The line must be `label` followed by exactly `count` numbers.
   std::vector<double> numbersAfter(const TextLine& line, std::string_view label, std::size_t count,
@@ -132,12 +82,6 @@ class LineReader {
     const int count = countAfter(markersLine, "markers:", "a count");
     for (int i = 0; i < count; ++i) take("marker " + std::to_string(i + 1));
   }
-
- private:
-  std::shared_ptr<const std::string> file_;
-  std::vector<TextLine> lines_;
-  std::size_t next_ = 0;
-  int lastNumber_ = 0;
 };
 
 std::string readFile(const std::filesystem::path& file, const std::string& kind) {
@@ -167,7 +111,7 @@ struct FunctionData {
 };
 
 // `points: n` and the n rows `x y [multiplicity]` after it.
-void readFunctionPoints(LineReader& reader, const TextLine& pointsLine, FunctionData& data) {
+void readFunctionPoints(CurveFileReader& reader, const TextLine& pointsLine, FunctionData& data) {
   const int count = reader.countAfter(pointsLine, "points:", "a count");
   for (int i = 0; i < count; ++i) {
     const TextLine& row =
@@ -201,7 +145,7 @@ void readFunctionPoints(LineReader& reader, const TextLine& pointsLine, Function
 
 // funcedit v1.01 (`fver 1 1`): name, samples, optional background and markers, flip, points.
 // The file's own `samples:` is used; the count on the view's `function:` line is ignored.
-FunctionData readVersion1Function(LineReader& reader) {
+FunctionData readVersion1Function(CurveFileReader& reader) {
   const TextLine& header = reader.take("'fver 1 1'");
   if (header.words.size() != 3 || header.words[0] != "fver" || header.words[1] != "1" ||
       !parseInt(header.words[2])) {
@@ -214,7 +158,7 @@ FunctionData readVersion1Function(LineReader& reader) {
     const TextLine& line = reader.take("'points:'");
     const std::string_view label = line.words[0];
     if (label == "name:") {
-      data.name = LineReader::restAfterLabel(line);
+      data.name = CurveFileReader::restAfterLabel(line);
       hasName = true;
     } else if (label == "samples:") {
       data.samples = reader.countAfter(line, "samples:", "a count");
@@ -246,7 +190,7 @@ FunctionData readVersion1Function(LineReader& reader) {
 
 // funcedit v1.0: `range: a b`, `points: n`, points. cpfg ignores the range (the domain is always
 // [0, 1]) and takes the sample count from the view's `function:` line.
-FunctionData readVersion0Function(LineReader& reader, int viewSamples) {
+FunctionData readVersion0Function(CurveFileReader& reader, int viewSamples) {
   const TextLine& rangeLine = reader.take("'range:'");
   reader.numbersAfter(rangeLine, "range:", 2, "two numbers");
   FunctionData data;
@@ -255,7 +199,7 @@ FunctionData readVersion0Function(LineReader& reader, int viewSamples) {
   return data;
 }
 
-FunctionData readFunction(LineReader& reader, int viewSamples) {
+FunctionData readFunction(CurveFileReader& reader, int viewSamples) {
   if (reader.atEnd()) reader.fail(1, "empty function file; expected 'fver 1 1' or 'range:'");
   const std::string_view first = reader.peek().words[0];
   if (first == "fver") return readVersion1Function(reader);
@@ -263,7 +207,7 @@ FunctionData readFunction(LineReader& reader, int viewSamples) {
   reader.fail(reader.peek().number, "expected 'fver 1 1' or 'range:' at the start of a function");
 }
 
-void expectEnd(const LineReader& reader, const std::string& what) {
+void expectEnd(const CurveFileReader& reader, const std::string& what) {
   if (!reader.atEnd()) {
     reader.fail(reader.peek().number,
                 "unexpected " + quoted(reader.peek().words[0]) + " after " + what);
@@ -279,7 +223,7 @@ struct ContourData {
   std::vector<std::array<double, 3>> points;
 };
 
-bool contourTypeIsClosed(const LineReader& reader, const TextLine& line) {
+bool contourTypeIsClosed(const CurveFileReader& reader, const TextLine& line) {
   if (line.words.size() == 2) {
     const std::string_view type = line.words[1];
     // cuspy: or/cr open/closed regular; the deprecated oe/ce (endpoint interpolation) are read
@@ -291,7 +235,7 @@ bool contourTypeIsClosed(const LineReader& reader, const TextLine& line) {
 }
 
 // A control-point row of `dimension` numbers: x y, x y z or x y z multiplicity.
-void readContourRow(const LineReader& reader, const TextLine& row, std::size_t dimension,
+void readContourRow(const CurveFileReader& reader, const TextLine& row, std::size_t dimension,
                     ContourData& data) {
   const std::string expected = dimension == 4   ? "'x y z multiplicity'"
                                : dimension == 3 ? "'x y z'"
@@ -323,7 +267,7 @@ bool startsWithNumber(const TextLine& line) {
 // cuspy `cver 1 x`: labelled lines (name, points n1 n2, type, samples, background, markers) and
 // n1 rows `x y z multiplicity`. cver 1.3 puts type and samples before the rows, 1.1 and 1.2 put
 // type after them, so labels are accepted in any order around the rows.
-ContourData readCverContour(LineReader& reader) {
+ContourData readCverContour(CurveFileReader& reader) {
   const TextLine& header = reader.take("'cver 1 3'");
   if (header.words.size() != 3 || header.words[1] != "1" || !parseInt(header.words[2])) {
     reader.fail(header.number, "expected 'cver 1 n' at the start of a contour");
@@ -346,7 +290,7 @@ ContourData readCverContour(LineReader& reader) {
       readContourRow(reader, line, 4, data);
       ++rows;
     } else if (label == "name:") {
-      data.name = LineReader::restAfterLabel(line);
+      data.name = CurveFileReader::restAfterLabel(line);
     } else if (label == "points:") {
       std::optional<int> distinct;
       std::optional<int> total;
@@ -396,7 +340,7 @@ ContourData readCverContour(LineReader& reader) {
 // contact, end, heading, up, size, points, range, dimension, type, then the rows. cpfg's curveX/Y
 // use the rows as they are (Ridley's positions match only untransformed), so the placement labels
 // are read and not applied; with dimension 4 the fourth number is the multiplicity.
-ContourData readVersion14Curve(LineReader& reader) {
+ContourData readVersion14Curve(CurveFileReader& reader) {
   const TextLine& header = reader.take("'version:'");
   if (header.words.size() != 2 || !parseDouble(header.words[1])) {
     reader.fail(header.number, "expected 'version:' followed by a number");
@@ -449,7 +393,7 @@ ContourData readVersion14Curve(LineReader& reader) {
 }
 
 // cuspy v1.0: a header `n dim open|closed`, then n rows of dim coordinates.
-ContourData readVersion10Contour(LineReader& reader) {
+ContourData readVersion10Contour(CurveFileReader& reader) {
   const TextLine& header = reader.take("a header");
   std::optional<int> count;
   std::optional<int> dimension;
@@ -473,7 +417,7 @@ ContourData readVersion10Contour(LineReader& reader) {
   return data;
 }
 
-ContourData readContour(LineReader& reader) {
+ContourData readContour(CurveFileReader& reader) {
   if (reader.atEnd()) reader.fail(1, "empty contour file");
   const std::string_view first = reader.peek().words[0];
   ContourData data;
@@ -549,7 +493,7 @@ FunctionCurve::FunctionCurve(std::string name, int samples,
 
 FunctionCurve FunctionCurve::parse(std::string_view text, const std::string& fileName,
                                    int viewSamples) {
-  LineReader reader(text, fileName);
+  CurveFileReader reader(text, fileName);
   FunctionData data = readFunction(reader, viewSamples);
   expectEnd(reader, "the last control point");
   return FunctionCurve(std::move(data.name), data.samples, std::move(data.points));
@@ -557,7 +501,7 @@ FunctionCurve FunctionCurve::parse(std::string_view text, const std::string& fil
 
 std::vector<FunctionCurve> FunctionCurve::parseSet(std::string_view text,
                                                    const std::string& fileName) {
-  LineReader reader(text, fileName);
+  CurveFileReader reader(text, fileName);
   const TextLine& header = reader.take("'funcgalleryver 1 1'");
   if (header.words.size() != 3 || header.words[0] != "funcgalleryver" || header.words[1] != "1") {
     reader.fail(header.number, "expected 'funcgalleryver 1 1' at the start of a function set");
@@ -699,7 +643,7 @@ ContourCurve::ContourCurve(std::string name, bool closed, std::vector<std::array
 }
 
 ContourCurve ContourCurve::parse(std::string_view text, const std::string& fileName, int samples) {
-  LineReader reader(text, fileName);
+  CurveFileReader reader(text, fileName);
   ContourData data = readContour(reader);
   return ContourCurve(std::move(data.name), data.closed, std::move(data.points), samples);
 }

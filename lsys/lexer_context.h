@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "hirsute/lsys/ast.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute::detail {
 

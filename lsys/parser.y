@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 #include "hirsute/lsys/ast.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 namespace hirsute::detail { struct LexerContext; }
 typedef void* yyscan_t;
 }

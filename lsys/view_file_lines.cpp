@@ -1,29 +1,12 @@
 #include "hirsute/lsys/view_file_lines.h"
 
+#include "hirsute/core/line_reader.h"
+
 #include <charconv>
 #include <memory>
 #include <system_error>
 
 namespace hirsute {
-namespace {
-
-bool isBlank(char c) {
-  return c == ' ' || c == '\t' || c == '\r';
-}
-
-std::vector<std::string_view> splitWords(std::string_view text) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    while (i < text.size() && isBlank(text[i])) ++i;
-    const std::size_t start = i;
-    while (i < text.size() && !isBlank(text[i])) ++i;
-    if (i > start) words.push_back(text.substr(start, i - start));
-  }
-  return words;
-}
-
-}  // namespace
 
 SourceLocation ViewFileLine::at(std::size_t restOffset) const {
   SourceLocation location = where;
@@ -57,13 +40,9 @@ std::vector<ViewFileLine> viewFileLines(std::string_view text,
   std::vector<ViewFileLine> lines;
   std::shared_ptr<const std::string> currentFile =
       std::make_shared<const std::string>(viewFile.string());
+  // Numbered by the markers, not by forEachLine: they count the user's file's lines.
   int lineNumber = 0;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(start, end - start);
-    start = end + 1;
+  forEachLine(text, [&](int, std::string_view line) {
     if (const auto marker = lineMarker(line)) {
       lineNumber = marker->first - 1;
       // cpp names the view file as it was given; keep the caller's spelling for it. The
@@ -71,13 +50,13 @@ std::vector<ViewFileLine> viewFileLines(std::string_view text,
       if (!marker->second.empty() && marker->second != *currentFile) {
         currentFile = std::make_shared<const std::string>(marker->second);
       }
-      continue;
+      return;
     }
     ++lineNumber;
     // cpfg skips leading spaces only: a tab-indented command is an unknown label.
     const std::size_t first = line.find_first_not_of(' ');
     if (first == std::string_view::npos || line.find_first_not_of(" \t\r") == std::string::npos) {
-      continue;
+      return;
     }
     ViewFileLine out;
     out.where = SourceLocation{currentFile, lineNumber, 0};
@@ -90,7 +69,7 @@ std::vector<ViewFileLine> viewFileLines(std::string_view text,
     out.rest = line.substr(restStart);
     out.restColumn = static_cast<int>(restStart) + 1;
     lines.push_back(out);
-  }
+  });
   return lines;
 }
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string_view>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute::dynamics {
 namespace {

@@ -1,4 +1,4 @@
-// The progress line of `hirsute derive` (hirsute/lsys/progress.h): on a terminal (a pseudo-
+// The progress line of `hirsute derive` (hirsute/core/progress.h): on a terminal (a pseudo-
 // terminal here) a run that takes longer than a second names its stage on stderr; with stderr on
 // a pipe the same run writes nothing there at all.
 #include <fcntl.h>

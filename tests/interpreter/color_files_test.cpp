@@ -7,7 +7,7 @@
 #include <tuple>
 
 #include "hirsute/interpreter/model_resources.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "support/diagnostic_of.h"
 
 #ifndef HIRSUTE_SOURCE_DIR

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 #ifndef HIRSUTE_SOURCE_DIR
 #define HIRSUTE_SOURCE_DIR "/work/main"

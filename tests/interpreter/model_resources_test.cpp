@@ -10,7 +10,7 @@
 #include <string>
 
 #include "hirsute/interpreter/texture_image.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "support/diagnostic_of.h"
 
 #ifndef HIRSUTE_SOURCE_DIR

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "hirsute/interpreter/model_resources.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 #ifndef HIRSUTE_SOURCE_DIR
 #define HIRSUTE_SOURCE_DIR "/work/main"

@@ -9,7 +9,7 @@
 
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/view_settings.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "support/diagnostic_of.h"
 
 #ifndef HIRSUTE_SOURCE_DIR

@@ -1,6 +1,6 @@
 // Diagnostics as they are printed: terminal control bytes a model's file holds are shown, never
 // passed to the terminal.
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 #include <gtest/gtest.h>
 

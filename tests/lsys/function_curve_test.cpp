@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "support/diagnostic_of.h"
 
 #ifndef HIRSUTE_SOURCE_DIR

@@ -1,6 +1,6 @@
-// The one rule for output files (hirsute/lsys/output_target.h): regular files are replaced in one
+// The one rule for output files (hirsute/core/output_target.h): regular files are replaced in one
 // piece, everything else that exists is written where it is.
-#include "hirsute/lsys/output_target.h"
+#include "hirsute/core/output_target.h"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>

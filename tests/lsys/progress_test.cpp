@@ -1,6 +1,6 @@
-// The terminal's progress line (hirsute/lsys/progress.h): what it says, that it stays silent for
+// The terminal's progress line (hirsute/core/progress.h): what it says, that it stays silent for
 // its first second and off a terminal, and that it leaves the line blank when it is cleared.
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/progress.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute::testing {
 

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "hirsute/lsys/output_target.h"
+#include "hirsute/core/output_target.h"
 
 namespace hirsute {
 namespace {

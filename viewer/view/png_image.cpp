@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "hirsute/lsys/output_target.h"
+#include "hirsute/core/output_target.h"
 
 namespace hirsute {
 namespace {

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

@@ -13,7 +13,7 @@
 #include "hirsute/environment/communication_file.h"
 #include "hirsute/environment/environment_program.h"
 #include "hirsute/interpreter/environment_queries.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

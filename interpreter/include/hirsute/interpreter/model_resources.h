@@ -13,7 +13,7 @@
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/surface.h"
 #include "hirsute/interpreter/view_settings.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

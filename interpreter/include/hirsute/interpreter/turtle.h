@@ -16,9 +16,9 @@
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/turtle_state.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/module_sink.h"
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/progress.h"
 
 namespace hirsute {
 

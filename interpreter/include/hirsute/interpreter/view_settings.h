@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

@@ -14,14 +14,14 @@
 #include <vector>
 
 #include "hirsute/lsys/context_matching.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/module_sink.h"
 #include "hirsute/lsys/module_string.h"
 #include "hirsute/lsys/parallel_rewriting.h"
 #include "hirsute/lsys/production_choice.h"
 #include "hirsute/lsys/program.h"
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/progress.h"
 
 namespace hirsute {
 

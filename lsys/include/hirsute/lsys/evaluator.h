@@ -12,7 +12,7 @@
 #include "hirsute/core/model_folder.h"
 #include "hirsute/lsys/builtins.h"
 #include "hirsute/lsys/code.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/program.h"
 #include "hirsute/lsys/random_streams.h"
 

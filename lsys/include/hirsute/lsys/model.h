@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/function_curve.h"
 #include "hirsute/lsys/program.h"
 

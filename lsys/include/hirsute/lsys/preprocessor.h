@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

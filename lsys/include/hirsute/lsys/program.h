@@ -11,7 +11,7 @@
 
 #include "hirsute/lsys/ast.h"
 #include "hirsute/lsys/code.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

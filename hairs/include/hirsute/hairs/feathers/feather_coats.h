@@ -13,7 +13,7 @@
 #include "hirsute/hairs/placement/segment_values.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/progress.h"
 
 namespace hirsute {
 

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "hirsute/interpreter/feather_type.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

@@ -9,7 +9,7 @@
 
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/function_curve.h"
 
 namespace hirsute {

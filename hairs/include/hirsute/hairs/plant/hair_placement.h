@@ -11,7 +11,7 @@
 #include "hirsute/hairs/placement/point_diffusion.h"
 #include "hirsute/hairs/placement/segment_values.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/progress.h"
 
 namespace hirsute {
 

@@ -7,7 +7,7 @@
 
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/lsys/diagnostic.h"
+#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

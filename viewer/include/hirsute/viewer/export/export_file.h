@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hirsute/lsys/output_target.h"
+#include "hirsute/core/output_target.h"
 
 namespace hirsute {
 
@@ -34,7 +34,7 @@ std::size_t formatFixed(double value, NumberFormat format, char* out);
 
 class ExportFile {
  public:
-  // Opens `target` (hirsute/lsys/output_target.h), in `group` when given; throws
+  // Opens `target` (hirsute/core/output_target.h), in `group` when given; throws
   // std::runtime_error naming the path.
   explicit ExportFile(std::filesystem::path target, OutputGroup* group = nullptr);
   ExportFile(const ExportFile&) = delete;

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/lsys/output_target.h"
+#include "hirsute/core/output_target.h"
 
 namespace hirsute {
 

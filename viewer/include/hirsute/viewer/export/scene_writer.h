@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/progress.h"
 
 namespace hirsute {
 

@@ -1,4 +1,4 @@
-#include "hirsute/lsys/output_target.h"
+#include "hirsute/core/output_target.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,4 +1,4 @@
-#include "hirsute/lsys/progress.h"
+#include "hirsute/core/progress.h"
 
 #include <fmt/format.h>
 #include <unistd.h>
