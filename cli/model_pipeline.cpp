@@ -239,7 +239,6 @@ Scene growScene(const ModelOptions& o, const Model& model, const ModelResources&
     featherOptions.lsystemFile = o.lsystemFile;
     featherOptions.seed = o.hairSeed;
     featherOptions.maxFeathers = o.maxFeathers;
-    featherOptions.maxVertices = o.maxVertices;
     featherOptions.progress = o.terminalProgress;
     const FeatherStageReport report =
         growFeathers(scene, resources, model.functions, featherOptions, diagnostics);

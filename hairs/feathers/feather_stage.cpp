@@ -21,22 +21,6 @@ namespace {
 // curves at coarser steps, and the camera frames with a margin.
 constexpr FeatherDetail kBoundsDetail{3, 3, 3};
 
-// The finest detail any output builds a feather at (featherDetailForProjectedLength's largest).
-constexpr FeatherDetail kFinestDetail{64, 32, 12};
-
-// The vertices the outputs draw for a feather's geometry, its afterfeathers' included: a barb
-// vertex counts five times, since a ribbon or strip adds two either side of it at the end of each
-// of its segments.
-constexpr std::size_t kDrawnPerBarbVertex = 5;
-
-std::size_t vertexCount(const FeatherGeometry& geometry) {
-  std::size_t count = 0;
-  forEachFeatherPart(geometry, [&](const FeatherGeometry& part, bool) {
-    count += part.shaft.positions.size() + kDrawnPerBarbVertex * part.vertices.positions.size();
-  });
-  return count;
-}
-
 void addBounds(const FeatherGeometry& geometry, const glm::mat4& toWorld, Bounds& bounds) {
   forEachFeatherPart(geometry, [&](const FeatherGeometry& part, bool) {
     for (const glm::vec3& p : part.shaft.positions)
@@ -84,6 +68,15 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
     }
     scene.featherTypes.push_back(loadFeatherType(declaration.file, diagnostics));
   }
+  // The turtle's feathers (@Fe, @Fi) count against the limit before any coat is placed; the
+  // coats count on from them.
+  if (scene.feathers.size() > options.maxFeathers) {
+    throw DiagnosticError(
+        SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
+        fmt::format("{} feathers at the turtle (@Fe, @Fi), more than {} (raise the limit with "
+                    "--max-feathers)",
+                    scene.feathers.size(), options.maxFeathers));
+  }
   std::map<std::string, int> textures;
   for (FeatherType& type : scene.featherTypes) attachTextures(type, scene, textures);
   report.types = scene.featherTypes.size();
@@ -128,30 +121,6 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
                 [&](const Feather& feather) { return !hasFeatherTypes(scene, feather); });
   report.dropped = before - scene.feathers.size();
   report.feathers = scene.feathers.size();
-  const SourceLocation lsystem{std::make_shared<const std::string>(options.lsystemFile), 0, 0};
-  if (scene.feathers.size() > options.maxFeathers) {
-    throw DiagnosticError(lsystem, fmt::format("{} feathers (@Fe, @Fi and coats), more than {} "
-                                               "(raise the limit with --max-feathers)",
-                                               scene.feathers.size(), options.maxFeathers));
-  }
-  // What the feathers will draw, before any output builds it: each at most its types' finest
-  // geometry (4 095 feathers at one spot took gigabytes).
-  std::vector<std::size_t> typeVertices(scene.featherTypes.size());
-  for (std::size_t t = 0; t < scene.featherTypes.size(); ++t)
-    typeVertices[t] = vertexCount(buildFeatherGeometry(scene.featherTypes[t], kFinestDetail));
-  std::size_t featherVertices = 0;
-  for (const Feather& feather : scene.feathers) {
-    std::size_t most = 0;
-    for (std::uint16_t type : feather.types) most = std::max(most, typeVertices[type - 1u]);
-    featherVertices += most;
-  }
-  if (featherVertices > options.maxVertices - std::min(options.maxVertices, scene.vertexCount())) {
-    throw DiagnosticError(
-        lsystem, fmt::format("the {} feathers would draw up to {} vertices at their finest detail, "
-                             "and with the rest of the geometry pass the limit of {} (fewer or "
-                             "simpler feathers, or raise the limit with --max-vertices)",
-                             scene.feathers.size(), featherVertices, options.maxVertices));
-  }
   if (report.dropped > 0) {
     diagnostics.warn(
         SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},

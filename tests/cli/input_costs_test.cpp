@@ -127,9 +127,8 @@ TEST_F(InputCosts, TheViewFilesDropletsOnALargeMaskHaveALimit) {
               "the view file's droplets would blend more than 1073741824 texels");
 }
 
-// Feathers at the turtle count against --max-feathers, and what they would draw against
-// --max-vertices, before any output builds them.
-TEST_F(InputCosts, FeathersAtTheTurtleHaveLimits) {
+// Feathers at the turtle count against --max-feathers before any output builds them.
+TEST_F(InputCosts, FeathersAtTheTurtleCountAgainstTheFeatherLimit) {
   const fs::path peacock = kModels / "peacock-feather";
   for (const char* file : {"peacock.fea", "peacock-eye.png", "peacock-feather.v"})
     fs::copy_file(peacock / file, folder_.path() / file);
@@ -138,10 +137,8 @@ TEST_F(InputCosts, FeathersAtTheTurtleHaveLimits) {
   const fs::path model =
       write("many.l", "Lsystem: 1\nderivation length: 0\nAxiom: " + axiom + "\nendlsystem\n");
   const fs::path view = folder_.path() / "peacock-feather.v";
-  expectError(exportPov(model, view), "many.l: error:",
-              "the 4095 feathers would draw up to ");
   expectError(exportPov(model, view, {"--max-feathers", "100"}), "many.l: error:",
-              "4095 feathers (@Fe, @Fi and coats), more than 100 (raise the limit with "
+              "4095 feathers at the turtle (@Fe, @Fi), more than 100 (raise the limit with "
               "--max-feathers)");
   EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
 }

@@ -18,9 +18,6 @@ struct FeatherStageOptions {
   std::string lsystemFile;  // where warnings and limit errors about the L-system's feathers point
   std::uint64_t seed = 0;   // of the coats' follicles; 0: the view file's `hair texture:` seed
   std::size_t maxFeathers = 1'000'000;  // more feathers (@Fe and @Fi ones and coats) are an error
-  // The geometry's vertices, the feathers' at their finest detail with the Scene's: more is an
-  // error (the model's --max-vertices).
-  std::size_t maxVertices = 100'000'000;
   Progress* progress = nullptr;         // shows the coats' placement (null: nothing)
 };
 
@@ -36,8 +33,7 @@ bool hasFeathers(const Scene& scene, const ModelResources& resources);
 
 // Reads the types into scene.featherTypes, places the coats (feather_coats.h) and measures
 // scene.featherBounds. Throws DiagnosticError for a broken .fea file (at its own line:col), a
-// missing one (at the view file's `feather:` line), more feathers than maxFeathers and feathers
-// whose geometry would pass maxVertices.
+// missing one (at the view file's `feather:` line) and more feathers than maxFeathers.
 FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
                                 const ViewFunctions& functions, const FeatherStageOptions& options,
                                 Diagnostics& diagnostics);
