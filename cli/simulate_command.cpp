@@ -151,6 +151,11 @@ int runSimulate(SimulateOptions o) {
       animation = animationFrames(settings, length);
       if (animation.empty())
         return badInput(progress, o.animation + ": error: the animation has no frames");
+      if (animation.size() > kMaxAnimationFrames && !o.frames) {
+        return badInput(progress, fmt::format("{}: error: the animation has more than {} frames "
+                                              "(the limit); --frames N draws its first N",
+                                              o.animation, kMaxAnimationFrames));
+      }
     }
     frames = o.frames.value_or(animation.empty() ? 48 : static_cast<int>(animation.size()));
     models.emplace(o.model, first, animation, define, frames);

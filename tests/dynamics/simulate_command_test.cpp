@@ -154,6 +154,18 @@ TEST_F(SimulateCommand, AColourBankPastIntIsBadInput) {
   }
 }
 
+// An animation of more frames than the limit is an error before any frame is listed past it (a
+// billion steps once listed 40 GB of frames); --frames N takes its first N.
+TEST_F(SimulateCommand, AnAnimationOfTooManyFramesIsBadInput) {
+  const Output out =
+      simulate("coat-bending", "bending.l bending.v bending.a", "-n 1000000000 --no-frames", folder_);
+  EXPECT_EQ(out.status, 2) << out.text;
+  EXPECT_NE(out.text.find("bending.a: error: the animation has more than 1000000 frames (the "
+                          "limit); --frames N draws its first N"),
+            std::string::npos)
+      << out.text;
+}
+
 // Options that are no finite number in range end the run with exit code 2 before a frame is
 // written: an earlier run's frames stay as they were.
 TEST_F(SimulateCommand, NonFiniteOptionsAreBadInputBeforeAnyFrame) {

@@ -91,5 +91,11 @@ TEST(AnimationFileTest, WithoutAFileEveryStepIsAFrame) {
   EXPECT_EQ(steps(animationFrames(AnimationSettings(), 3)), (std::vector<int>{1, 2, 3}));
 }
 
+TEST(AnimationFileTest, TheFramesStopOnePastTheLimit) {
+  const std::vector<AnimationFrame> frames = animationFrames(AnimationSettings(), 2'000'000'000);
+  ASSERT_EQ(frames.size(), kMaxAnimationFrames + 1);
+  EXPECT_EQ(frames.back().step, static_cast<int>(kMaxAnimationFrames) + 1);
+}
+
 }  // namespace
 }  // namespace hirsute

@@ -191,7 +191,7 @@ std::vector<AnimationFrame> animationFrames(const AnimationSettings& settings,
     const std::int64_t end = std::min(last, derivationLength);
     std::int64_t f = first;
     if (f < 0) f += (-f + by - 1) / by * by;
-    for (; f <= end; f += by) {
+    for (; f <= end && frames.size() <= kMaxAnimationFrames; f += by) {
       AnimationFrame frame;
       frame.step = static_cast<int>(f);
       if (interval) {

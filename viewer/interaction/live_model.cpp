@@ -13,6 +13,13 @@
 namespace hirsute {
 namespace {
 
+// The animation's frames, at most kMaxAnimationFrames of them: the viewer plays the first million.
+std::vector<AnimationFrame> playedFrames(const AnimationSettings& settings, int derivationLength) {
+  std::vector<AnimationFrame> frames = animationFrames(settings, derivationLength);
+  if (frames.size() > kMaxAnimationFrames) frames.resize(kMaxAnimationFrames);
+  return frames;
+}
+
 using Kind = ViewCommand::Kind;
 
 std::string readText(const std::filesystem::path& file) {
@@ -105,7 +112,7 @@ void LiveModel::applyBuild(ModelBuild build) {
   }
   bool newLength = derivationLength_ != model_->derivationLength;
   derivationLength_ = model_->derivationLength;
-  if (newLength || frames_.empty()) frames_ = animationFrames(animation_, derivationLength_);
+  if (newLength || frames_.empty()) frames_ = playedFrames(animation_, derivationLength_);
   bool refit = !fitted_ || (animating_ && animation_.scaleBetweenFrames);
   if (refit) {
     fitBounds_ = model_->bounds;
@@ -125,7 +132,7 @@ void LiveModel::readAnimation() {
     error_ = animationError_ = e.diagnostic().text();
     std::cerr << error_ << '\n';
   }
-  frames_ = animationFrames(animation_, derivationLength_);
+  frames_ = playedFrames(animation_, derivationLength_);
 }
 
 void LiveModel::readConstants() {
@@ -195,7 +202,7 @@ void LiveModel::revertDefines() {
 // ---- animation ----
 
 void LiveModel::runAnimation() {
-  if (frames_.empty()) frames_ = animationFrames(animation_, derivationLength_);
+  if (frames_.empty()) frames_ = playedFrames(animation_, derivationLength_);
   if (frames_.empty()) return;
   animating_ = true;
   frameIndex_ = 0;
@@ -203,7 +210,7 @@ void LiveModel::runAnimation() {
 }
 
 void LiveModel::stepAnimation() {
-  if (frames_.empty()) frames_ = animationFrames(animation_, derivationLength_);
+  if (frames_.empty()) frames_ = playedFrames(animation_, derivationLength_);
   if (frames_.empty()) return;
   // One frame on (cpfg's Step): after the last comes the first.
   int step = currentStep();

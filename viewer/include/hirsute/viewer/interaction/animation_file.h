@@ -50,9 +50,14 @@ struct AnimationFrame {
   std::optional<glm::vec3> rotateAfter, scaleAfter;
 };
 
+// The most frames an animation has, as simulate's --frames: a derivation of a billion steps
+// drawn frame by frame would list 40 GB of frames before the first was drawn.
+inline constexpr std::size_t kMaxAnimationFrames = 1'000'000;
+
 // The frames in order for a model whose derivation length is `derivationLength`: first frame to
 // last frame by step, or the frame intervals; frames past the derivation length are dropped
-// (cpfg stops there too).
+// (cpfg stops there too). The list stops one frame past kMaxAnimationFrames, so that a caller
+// can tell an animation that has more.
 std::vector<AnimationFrame> animationFrames(const AnimationSettings& settings,
                                             int derivationLength);
 
