@@ -12,7 +12,8 @@
 #   RENDER=0                 leaves the PNGs out (they take most of the time)
 #
 # A model X.l is run with X.v beside it, else with the folder's only view file; a view file that
-# no .l is named after is run with the folder's only .l. X.e beside it is its environment.
+# no .l is named after is run with the folder's only .l. X.e beside it is its environment. The
+# conformance models run as their index.tsv gives them (.l, .v, colour file, steps).
 # Runs that fail print their exit code in place of the digests, so a change in failures shows too.
 set -uo pipefail
 
@@ -31,14 +32,21 @@ digest() {  # digest LABEL FILE…: one line per file that exists
   done
 }
 
-run() {  # run LABEL MODEL.l [VIEW.v]
+run() {  # run LABEL MODEL.l [VIEW.v [OPTION…]]
   local label=$1 model=$2 view=${3:-} stem env=()
+  shift 3 2>/dev/null || shift $#
   stem=${model%.l}
   [ -f "$stem.e" ] && env=(-e "$stem.e")
   local args=("$model")
   [ -n "$view" ] && args+=("$view")
+  args+=("$@")
+  # derive takes no colour or material file.
+  local derive=() i
+  for ((i = 0; i < ${#args[@]}; i++)); do
+    case ${args[i]} in -m* | -M*) i=$((i + 1)) ;; *) derive+=("${args[i]}") ;; esac
+  done
   rm -rf "$work"/out && mkdir "$work"/out
-  if "$hirsute" derive "${args[@]}" "${env[@]}" -o "$work/out/derived.str" >/dev/null 2>&1; then
+  if "$hirsute" derive "${derive[@]}" "${env[@]}" -o "$work/out/derived.str" >/dev/null 2>&1; then
     digest "$label derive" "$work/out/derived.str"
   else
     echo "exit $?  $label derive"
@@ -84,14 +92,27 @@ for folder in models/*/; do
 done
 
 conformance="$root/../shared/conformance"
-if [ -d "$conformance" ]; then
-  for folder in "$conformance"/*/; do
-    for model in "$folder"*.l; do
-      [ -f "$model" ] || continue
-      stem=${model%.l}
+if [ -f "$conformance/index.tsv" ]; then
+  # Each model as its index gives it: its .l and .v, its colour or material file, its steps.
+  tail -n +2 "$conformance/index.tsv" |
+    while IFS=$'\t' read -r id lfile vfile afile colors steps environment rest; do
+      folder="$conformance/$id"
+      [ -f "$folder/$lfile" ] || continue
       view=""
-      [ -f "$stem.v" ] && view="$stem.v"
-      run "conformance/$(basename "$folder")/$(basename "$model")" "$model" $view
+      [ "$vfile" != "-" ] && view="$folder/$vfile"
+      options=(-n "$steps")
+      # "-M material.mat", "-m1 sedge.map -m2 sedge.map2": options, each with a name in the folder.
+      if [ "$colors" != "-" ]; then
+        read -r -a more <<<"$colors"
+        for ((k = 0; k + 1 < ${#more[@]}; k += 2)); do
+          option=${more[k]} bank=${more[k]:2}
+          if [ -n "$bank" ]; then  # cpfg's -m2 FILE is -m 2:FILE here
+            options+=("${option:0:2}" "$bank:$folder/${more[k + 1]}")
+          else
+            options+=("$option" "$folder/${more[k + 1]}")
+          fi
+        done
+      fi
+      run "conformance/$id/$lfile" "$folder/$lfile" "$view" "${options[@]}"
     done
-  done
 fi
