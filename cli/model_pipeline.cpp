@@ -10,11 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "hirsute/hairs/feathers/feather_stage.h"
-#include "hirsute/hairs/fur/fur_stage.h"
-#include "hirsute/hairs/plant/plant_hairs.h"
-
 #include "hirsute/environment/environment.h"
+#include "hirsute/hairs/organ_stage.h"
 #include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -58,21 +55,10 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   addThreadsOption(command, o.threads);
   command.add_option("--max-vertices", o.maxVertices,
                      "More vertices in the geometry are an error (default 100000000)");
-  command.add_flag("!--no-hairs", o.hairs, "Leave out the plant hairs (@H modules)");
-  command.add_option("--hair-seed", o.hairSeed,
+  command.add_option("--hair-seed", o.placementSeed,
                      "Seed of hair placement (default: the view file's `hair texture:` seed)");
-  command.add_option("--max-hairs", o.maxHairs, "More hairs are an error (default 50000000)");
-  command.add_flag("!--no-feathers", o.feathers, "Leave out the feathers (@F modules)");
-  command.add_option("--max-feathers", o.maxFeathers, "More feathers (@Fe, @Fi and coats) are an error (default 1000000)");
-  command.add_flag("!--no-fur", o.fur, "Leave out the fur (@U modules)");
-  command.add_option("--droplets", o.droplets, "Random droplets of water on the fur (docs/fur.md)")
-      ->check(CLI::Range(0, 10'000'000));
-  command.add_option("--droplet-radius", o.dropletRadius,
-                     "Radius of the random droplets, in the fur surface's [0, 1] units (default 0.05)")
-      ->check(finiteRange(1e-6, 1.0));
-  command.add_option("--droplet-wetness", o.dropletWetness, "Wetness of the random droplets, 0 to 1 (default 1)")
-      ->check(finiteRange(0.0, 1.0));
-  command.add_option("--droplet-seed", o.dropletSeed, "Seed of the random droplets (default 1)");
+  const std::span<const OrganStage* const> stages = organStages();
+  for (std::size_t k = 0; k < stages.size(); ++k) stages[k]->addOptions(command, o.organs[k]);
   command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");
 }
 
@@ -216,52 +202,24 @@ Scene growScene(const ModelOptions& o, const Model& model, const ModelResources&
                     scene.triangleCount(), scene.lines.size(), scene.cylinderSegments.size(),
                     seconds(started)));
   }
-  if (o.hairs && hasHairs(scene)) {
-    started = Clock::now();
-    if (o.progress) o.progress(3, 0, 0);
-    PlantHairOptions hairOptions;
-    hairOptions.seed = o.hairSeed;
-    hairOptions.maxHairs = o.maxHairs;
-    hairOptions.lsystemFile = o.lsystemFile;
-    hairOptions.progress = o.terminalProgress;
-    const HairPlacementReport report =
-        growPlantHairs(scene, resources, model.functions, hairOptions, diagnostics);
-    if (o.verbose) {
-      say(fmt::format("placed {} hairs on {} segments and {} surfaces ({} templates) in {:.3f} s\n",
-                      report.hairs, report.segments, report.surfaces, scene.hairTemplates.size(),
-                      seconds(started)));
+  const std::span<const OrganStage* const> stages = organStages();
+  for (std::size_t k = 0; k < stages.size(); ++k) {
+    const OrganStage& stage = *stages[k];
+    if (!o.organs[k].enabled || !stage.wanted(scene, resources)) {
+      stage.leaveOut(scene);
+      continue;
     }
-  }
-  if (o.feathers && hasFeathers(scene, resources)) {
     started = Clock::now();
-    if (o.progress) o.progress(4, 0, 0);
-    FeatherStageOptions featherOptions;
-    featherOptions.lsystemFile = o.lsystemFile;
-    featherOptions.seed = o.hairSeed;
-    featherOptions.maxFeathers = o.maxFeathers;
-    featherOptions.progress = o.terminalProgress;
-    const FeatherStageReport report =
-        growFeathers(scene, resources, model.functions, featherOptions, diagnostics);
-    if (o.verbose) {
-      say(fmt::format("feathers: {} ({} in coats) of {} types in {:.3f} s\n",
-                               report.feathers, report.coat, report.types, seconds(started)));
-    }
-  } else {
-    scene.feathers.clear();
-  }
-  if (o.fur && hasFur(scene)) {
-    started = Clock::now();
-    FurStageOptions furOptions;
-    furOptions.droplets = o.droplets;
-    furOptions.dropletRadius = o.dropletRadius;
-    furOptions.dropletWetness = o.dropletWetness;
-    furOptions.dropletSeed = o.dropletSeed;
-    const FurStageReport report = growFur(scene, resources, furOptions, diagnostics);
-    if (o.verbose) {
-      say(fmt::format("fur: {} surfaces, {} triangles, {:.4g} units², {} droplets in {:.3f} s\n",
-                      report.surfaces, report.triangles, report.area, report.droplets,
-                      seconds(started)));
-    }
+    if (o.progress) o.progress(3 + static_cast<int>(k), 0, 0);
+    const OrganStageRun run{.scene = scene,
+                            .resources = resources,
+                            .functions = model.functions,
+                            .diagnostics = diagnostics,
+                            .lsystemFile = o.lsystemFile,
+                            .seed = o.placementSeed,
+                            .progress = o.terminalProgress};
+    const std::string report = stage.grow(run, o.organs[k]);
+    if (o.verbose) say(fmt::format("{} in {:.3f} s\n", report, seconds(started)));
   }
   return scene;
 }

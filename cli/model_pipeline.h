@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "hirsute/hairs/organ_stage.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
@@ -35,20 +36,12 @@ struct ModelOptions {
   std::uint64_t maxFileBytes = EvaluationLimits{}.maxWrittenBytes;  // --max-file-bytes
   int threads = 0;  // --threads: of the derivation (0: one a core)
   std::size_t maxVertices = kDefaultMaxVertices;
-  bool hairs = true;                     // --no-hairs leaves them out
-  std::uint64_t hairSeed = 0;            // 0: the view file's `hair texture:` seed
-  std::size_t maxHairs = 50'000'000;
-  bool feathers = true;                  // --no-feathers leaves them out
-  std::size_t maxFeathers = 1'000'000;
-  bool fur = true;                       // --no-fur leaves it out
-  std::size_t droplets = 0;              // --droplets N: random droplets on the fur
-  float dropletRadius = 0.05f;           // --droplet-radius
-  float dropletWetness = 1.0f;           // --droplet-wetness
-  std::uint32_t dropletSeed = 1;         // --droplet-seed
+  std::uint64_t placementSeed = 0;       // --hair-seed; 0: the view file's `hair texture:` seed
+  OrganSettingsSet organs;               // each organ's own options (organ_stage.h)
   bool verbose = false;                  // -v: counts and times on stderr
   // Called as the build goes on (`hirsute view` shows it while building off its render thread):
-  // the stage (1 deriving, 2 interpreting, 3 placing hairs, 4 feathers) and, while deriving, the steps done
-  // of the steps to do.
+  // the stage (1 deriving, 2 interpreting, 3 + k the stage of organStages()[k]) and, while
+  // deriving, the steps done of the steps to do.
   std::function<void(int stage, int done, int total)> progress;
   // Stop after this many steps of the derivation, whose length stays the file's (the derivation
   // length the model sees, and End, are as in the whole run): cpfg's animation frames.
@@ -74,15 +67,14 @@ struct BuiltScene {
 };
 
 // Loads the model (loadResources, loadLsystem) and grows its Scene (growScene). Throws
-// DiagnosticError on bad input (including a broken template hair, and more hairs than
-// --max-hairs).
+// DiagnosticError on bad input (including an organ's, and past an organ's limits).
 BuiltScene buildScene(const ModelOptions& options, Diagnostics& diagnostics);
 // The view file's resources (colours, contours, surfaces, functions, feather types, …).
 ModelResources loadResources(const ModelOptions& options, Diagnostics& diagnostics);
 // The .l through the preprocessor, compiled; constant organ parameters checked.
 Model loadLsystem(const ModelOptions& options, Diagnostics& diagnostics);
-// Derives `model` (to options.stopAfter steps when set), interprets it and covers it with its
-// hairs, feathers and fur: a model loaded once grows the Scene of each of its animation's frames.
+// Derives `model` (to options.stopAfter steps when set), interprets it and runs the organs'
+// stages (organ_stage.h) that are switched on and have something to do: a model loaded once grows the Scene of each of its animation's frames.
 Scene growScene(const ModelOptions& options, const Model& model, const ModelResources& resources,
                 Diagnostics& diagnostics);
 

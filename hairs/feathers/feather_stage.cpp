@@ -1,5 +1,6 @@
 #include "hirsute/hairs/feathers/feather_stage.h"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -161,6 +162,51 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
     }
   }
   return report;
+}
+
+}  // namespace hirsute
+
+namespace hirsute {
+namespace {
+
+struct FeatherSettings : OrganSettingsOf<FeatherSettings> {
+  std::size_t maxFeathers = FeatherStageOptions{}.maxFeathers;
+};
+
+class FeatherStage : public OrganStageOf<FeatherSettings> {
+ public:
+  const char* activity() const override { return "growing feathers"; }
+
+  bool wanted(const Scene& scene, const ModelResources& resources) const override {
+    return hasFeathers(scene, resources);
+  }
+
+ protected:
+  void declareOptions(CLI::App& command, FeatherSettings& s) const override {
+    command.add_flag("!--no-feathers", s.enabled, "Leave out the feathers (@F modules)");
+    command.add_option("--max-feathers", s.maxFeathers,
+                       "More feathers (@Fe, @Fi and coats) are an error (default 1000000)");
+  }
+  std::string growFrom(const OrganStageRun& run, const FeatherSettings& settings) const override {
+    FeatherStageOptions options;
+    options.lsystemFile = run.lsystemFile;
+    options.seed = run.seed;
+    options.maxFeathers = settings.maxFeathers;
+    options.progress = run.progress;
+    const FeatherStageReport report =
+        growFeathers(run.scene, run.resources, run.functions, options, run.diagnostics);
+    return fmt::format("feathers: {} ({} in coats) of {} types", report.feathers, report.coat,
+                       report.types);
+  }
+  // The turtle's @Fe and @Fi feathers go with the rest.
+  void leaveOut(Scene& scene) const override { scene.feathers.clear(); }
+};
+
+}  // namespace
+
+const OrganStage& featherStage() {
+  static const FeatherStage stage;
+  return stage;
 }
 
 }  // namespace hirsute

@@ -5,8 +5,10 @@
 #include <map>
 #include <random>
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "hirsute/core/option_checks.h"
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_texture.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
@@ -384,6 +386,55 @@ std::size_t sprayDroplets(Scene& scene, std::size_t count, float radius, float w
                           std::uint32_t seed, const DropletLimits& limits) {
   DropletCosts costs(limits, scene.furSurfaces.size());
   return spray(scene, count, radius, wetness, seed, costs);
+}
+
+}  // namespace hirsute
+
+namespace hirsute {
+namespace {
+
+struct FurSettings : OrganSettingsOf<FurSettings> {
+  FurStageOptions stage;
+};
+
+class FurStage : public OrganStageOf<FurSettings> {
+ public:
+  const char* activity() const override { return "growing fur"; }
+
+  bool wanted(const Scene& scene, const ModelResources&) const override { return hasFur(scene); }
+
+ protected:
+  void declareOptions(CLI::App& command, FurSettings& s) const override {
+    command.add_flag("!--no-fur", s.enabled, "Leave out the fur (@U modules)");
+    command
+        .add_option("--droplets", s.stage.droplets,
+                    "Random droplets of water on the fur (docs/fur.md)")
+        ->check(CLI::Range(0, 10'000'000));
+    command
+        .add_option(
+            "--droplet-radius", s.stage.dropletRadius,
+            "Radius of the random droplets, in the fur surface's [0, 1] units (default 0.05)")
+        ->check(finiteRange(1e-6, 1.0));
+    command
+        .add_option("--droplet-wetness", s.stage.dropletWetness,
+                    "Wetness of the random droplets, 0 to 1 (default 1)")
+        ->check(finiteRange(0.0, 1.0));
+    command.add_option("--droplet-seed", s.stage.dropletSeed,
+                       "Seed of the random droplets (default 1)");
+  }
+  std::string growFrom(const OrganStageRun& run, const FurSettings& settings) const override {
+    const FurStageReport report =
+        growFur(run.scene, run.resources, settings.stage, run.diagnostics);
+    return fmt::format("fur: {} surfaces, {} triangles, {:.4g} units², {} droplets",
+                       report.surfaces, report.triangles, report.area, report.droplets);
+  }
+};
+
+}  // namespace
+
+const OrganStage& furStage() {
+  static const FurStage stage;
+  return stage;
 }
 
 }  // namespace hirsute

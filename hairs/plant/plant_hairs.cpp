@@ -1,5 +1,6 @@
 #include "hirsute/hairs/plant/plant_hairs.h"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -63,6 +64,47 @@ HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources
                     report.segmentsWithoutMesh));
   }
   return report;
+}
+
+}  // namespace hirsute
+
+namespace hirsute {
+namespace {
+
+struct PlantHairSettings : OrganSettingsOf<PlantHairSettings> {
+  std::size_t maxHairs = PlantHairOptions{}.maxHairs;
+};
+
+class PlantHairStage : public OrganStageOf<PlantHairSettings> {
+ public:
+  const char* activity() const override { return "placing hairs"; }
+
+  bool wanted(const Scene& scene, const ModelResources&) const override { return hasHairs(scene); }
+
+ protected:
+  void declareOptions(CLI::App& command, PlantHairSettings& s) const override {
+    command.add_flag("!--no-hairs", s.enabled, "Leave out the plant hairs (@H modules)");
+    command.add_option("--max-hairs", s.maxHairs, "More hairs are an error (default 50000000)");
+  }
+  std::string growFrom(const OrganStageRun& run, const PlantHairSettings& settings) const override {
+    PlantHairOptions options;
+    options.seed = run.seed;
+    options.maxHairs = settings.maxHairs;
+    options.lsystemFile = run.lsystemFile;
+    options.progress = run.progress;
+    const HairPlacementReport report =
+        growPlantHairs(run.scene, run.resources, run.functions, options, run.diagnostics);
+    return fmt::format("placed {} hairs on {} segments and {} surfaces ({} templates)",
+                       report.hairs, report.segments, report.surfaces,
+                       run.scene.hairTemplates.size());
+  }
+};
+
+}  // namespace
+
+const OrganStage& plantHairStage() {
+  static const PlantHairStage stage;
+  return stage;
 }
 
 }  // namespace hirsute

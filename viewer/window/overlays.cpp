@@ -3,7 +3,9 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <span>
 
+#include "hirsute/hairs/organ_stage.h"
 #include "hirsute/viewer/window/key_map.h"
 
 namespace hirsute {
@@ -50,16 +52,19 @@ void drawStatusOverlay(const LiveModel& live, const GlRenderer& renderer,
     const ModelWorker& worker = live.worker();
     if (worker.busy() && worker.runningSeconds() > 0.25) {
       const BuildProgress& p = worker.progress();
-      static const char* kPhases[] = {"reading", "deriving", "interpreting", "placing hairs",
-                                      "growing feathers"};
-      int phase = std::clamp(p.phase.load(), 0, 4);
+      // Past interpretation, the organs' stages in their order (organ_stage.h).
+      static const char* kPhases[] = {"reading", "deriving", "interpreting"};
+      const std::span<const OrganStage* const> stages = organStages();
+      const int phase = std::clamp(p.phase.load(), 0, 2 + static_cast<int>(stages.size()));
+      const char* activity =
+          phase < 3 ? kPhases[phase] : stages[static_cast<std::size_t>(phase - 3)]->activity();
       if (p.totalSteps > 0 && phase == 1) {
-        ImGui::Text("%s: step %d of %d  %.1f s", kPhases[phase], p.stepsDone.load(),
+        ImGui::Text("%s: step %d of %d  %.1f s", activity, p.stepsDone.load(),
                     p.totalSteps.load(), worker.runningSeconds());
         ImGui::ProgressBar(static_cast<float>(p.stepsDone) / static_cast<float>(p.totalSteps),
                            ImVec2(240, 0));
       } else {
-        ImGui::Text("%s...  %.1f s", kPhases[phase], worker.runningSeconds());
+        ImGui::Text("%s...  %.1f s", activity, worker.runningSeconds());
       }
     }
   }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "hirsute/hairs/organ_stage.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
@@ -37,5 +38,9 @@ bool hasFeathers(const Scene& scene, const ModelResources& resources);
 FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
                                 const ViewFunctions& functions, const FeatherStageOptions& options,
                                 Diagnostics& diagnostics);
+
+// The feathers' stage (organ_stage.h): --no-feathers, --max-feathers; growFeathers with the run's
+// seed when hasFeathers; switched off, the turtle's feathers are taken out.
+const OrganStage& featherStage();
 
 }  // namespace hirsute

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <string>
 
+#include "hirsute/hairs/organ_stage.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
@@ -55,5 +56,8 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
 // `limits`; the droplets blended before stay.
 std::size_t sprayDroplets(Scene& scene, std::size_t count, float radius, float wetness,
                           std::uint32_t seed, const DropletLimits& limits = {});
+
+// The fur's stage (organ_stage.h): --no-fur and the random droplets' options; growFur when hasFur.
+const OrganStage& furStage();
 
 }  // namespace hirsute

@@ -11,6 +11,7 @@
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/hairs/organ_stage.h"
 #include "hirsute/lsys/function_curve.h"
 
 namespace hirsute {
@@ -30,5 +31,9 @@ bool hasHairs(const Scene& scene);
 HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources,
                                    const ViewFunctions& functions, const PlantHairOptions& options,
                                    Diagnostics& diagnostics);
+
+// The plant hairs' stage (organ_stage.h): --no-hairs, --max-hairs; growPlantHairs with the run's
+// seed; it runs when hasHairs.
+const OrganStage& plantHairStage();
 
 }  // namespace hirsute

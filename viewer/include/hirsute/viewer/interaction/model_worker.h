@@ -32,7 +32,7 @@ struct ModelRequest {
 struct BuildProgress {
   std::atomic<int> stepsDone{0};
   std::atomic<int> totalSteps{0};
-  // 0 reading, 1 deriving, 2 interpreting, 3 placing hairs
+  // 0 reading, 1 deriving, 2 interpreting, 3 + k the stage of organStages()[k]
   std::atomic<int> phase{0};
 };
 
