@@ -163,10 +163,10 @@ int main(int argc, char** argv) {
     std::printf(
         "POV-Ray export: %.2f s for %zu strands: %.0f strands/s; %.1f MB (%.0f bytes a "
         "strand)\n",
-        best, stats.furStrands, static_cast<double>(stats.furStrands) / best,
+        best, stats.organ("fur strands"), static_cast<double>(stats.organ("fur strands")) / best,
         static_cast<double>(stats.bytes) / 1e6,
         static_cast<double>(stats.bytes) /
-            static_cast<double>(std::max<std::size_t>(stats.furStrands, 1)));
+            static_cast<double>(std::max<std::size_t>(stats.organ("fur strands"), 1)));
     std::printf("exporter's peak memory: %.0f MiB\n", ownPeakMebibytes());
     std::fflush(stdout);
 

@@ -16,7 +16,7 @@
 #include <filesystem>
 #include <string>
 
-#include "hirsute/viewer/export/hair_csv_writer.h"
+#include "hirsute/hairs/plant/hair_csv_writer.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
@@ -84,8 +84,10 @@ int main(int argc, char** argv) {
     std::printf(
         "POV-Ray export: %.3f s  %llu bytes  (%zu hairs in %zu tubes, %.1f bytes/hair, %.3f s "
         "per million hairs)\n",
-        povSeconds, static_cast<unsigned long long>(pov.bytes), pov.hairs, pov.hairMeshes,
-        static_cast<double>(pov.bytes) / static_cast<double>(std::max<std::size_t>(pov.hairs, 1)),
+        povSeconds, static_cast<unsigned long long>(pov.bytes), pov.organ("hairs"),
+        pov.organ("hair meshes"),
+        static_cast<double>(pov.bytes) /
+            static_cast<double>(std::max<std::size_t>(pov.organ("hairs"), 1)),
         povSeconds / million);
 
     hirsute::ObjExportStats obj;

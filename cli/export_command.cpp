@@ -1,16 +1,17 @@
 // `hirsute export`: the model's Scene written as a POV-Ray 3.7 scene and/or a Wavefront OBJ with
-// its material library and/or its hairs as CSV (docs/export.md), and, with --render, the POV-Ray
-// scene rendered by the installed povray.
+// its material library and/or its organs as CSV tables (docs/export.md), and, with --render, the
+// POV-Ray scene rendered by the installed povray.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "command.h"
-#include "hirsute/viewer/export/feather_csv_writer.h"
-#include "hirsute/viewer/export/hair_csv_writer.h"
 #include "hirsute/viewer/export/obj_writer.h"
+#include "hirsute/viewer/export/organ_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
 #include "model_pipeline.h"
@@ -22,8 +23,8 @@ struct ExportOptions {
   ModelOptions model;
   std::string pov;
   std::string obj;
-  std::string hairs;
-  std::string feathers;
+  // The organs' tables (organ_writer.h), one file name a writer of organWriters() (empty: none).
+  std::vector<std::string> tables = std::vector<std::string>(organWriters().size());
   bool render = false;
   int width = 800, height = 600;
 };
@@ -58,11 +59,9 @@ int runExport(ExportOptions o) {
       options.group = &outputs;
       writeObj(built.scene, o.obj, options, &progress);
     }
-    if (!o.hairs.empty()) writeHairCsv(built.scene, o.hairs, &progress, &outputs);
-    if (!o.feathers.empty()) {
-      progress.begin("writing feathers", Progress::Unit::None);
-      progress.update(0);
-      writeFeatherCsv(built.scene, o.feathers, &outputs);
+    for (std::size_t k = 0; k < o.tables.size(); ++k) {
+      if (o.tables[k].empty()) continue;
+      organWriters()[k]->table()->write(built.scene, o.tables[k], &progress, &outputs);
     }
     outputs.commit();
     progress.clear();
@@ -97,21 +96,28 @@ int runExport(ExportOptions o) {
 
 void registerExportCommand(CLI::App& app, Action& action) {
   auto options = std::make_shared<ExportOptions>();
-  CLI::App* command =
-      app.add_subcommand("export",
-                         "Write the model as a POV-Ray 3.7 scene (--pov), a Wavefront "
-                         "OBJ with its .mtl (--obj) and/or its hairs as CSV (--hairs)");
+  // The organs' table options, as the help and the error name them: "--hairs, --feathers".
+  std::string tableOptions, tableFiles;
+  for (const OrganWriter* writer : organWriters()) {
+    if (const std::optional<OrganTable> table = writer->table()) {
+      tableOptions += (tableOptions.empty() ? "" : ", ") + std::string(table->option);
+      tableFiles += " or " + std::string(table->option) + " FILE";
+    }
+  }
+  CLI::App* command = app.add_subcommand(
+      "export",
+      "Write the model as a POV-Ray 3.7 scene (--pov), a Wavefront OBJ with its .mtl "
+      "(--obj) and/or its organs as CSV tables (" +
+          tableOptions + ")");
   addModelOptions(*command, options->model);
   command->add_option("--pov", options->pov, "Write a POV-Ray 3.7 scene to FILE (.pov)");
   command->add_option(
       "--obj", options->obj,
       "Write a Wavefront OBJ to FILE (.obj) and its material library beside it (.mtl)");
-  command->add_option("--hairs", options->hairs,
-                      "Write the placed hairs to FILE (.csv): one row per hair (root, direction, "
-                      "template, length, radius, side)");
-  command->add_option("--feathers", options->feathers,
-                      "Write the feathers to FILE (.csv): one row per feather (root, heading, up, "
-                      "types and blends, age, size, single or coat)");
+  for (std::size_t k = 0; k < organWriters().size(); ++k) {
+    if (const std::optional<OrganTable> table = organWriters()[k]->table())
+      command->add_option(table->option, options->tables[k], table->help);
+  }
   CLI::Option* render = command->add_flag(
       "--render", options->render,
       "Render the POV-Ray scene with the installed povray, to the .pov's name with .png");
@@ -123,12 +129,12 @@ void registerExportCommand(CLI::App& app, Action& action) {
       ->check(CLI::Range(1, 16384));
   command->add_option("--height", options->height, "Image height in pixels (default 600)")
       ->check(CLI::Range(1, 16384));
-  command->callback([options, &action] {
-    if (options->pov.empty() && options->obj.empty() && options->hairs.empty() &&
-        options->feathers.empty()) {
-      throw CLI::RequiredError(
-          "export needs an output: --pov FILE or --obj FILE or --hairs FILE or --feathers FILE "
-          "(or several)");
+  command->callback([options, &action, tableFiles] {
+    const bool noTable = std::all_of(options->tables.begin(), options->tables.end(),
+                                     [](const std::string& file) { return file.empty(); });
+    if (options->pov.empty() && options->obj.empty() && noTable) {
+      throw CLI::RequiredError("export needs an output: --pov FILE or --obj FILE" + tableFiles +
+                               " (or several)");
     }
     action = [options] { return runExport(*options); };
   });

@@ -442,6 +442,19 @@ TEST(OutputFile, AFailedExportLeavesEveryOutputAsItWas) {
   EXPECT_EQ(folder.entries(), std::vector<std::string>{"keep.pov"});  // no hairs.csv, no temporary
 }
 
+// The organs' tables are the export command's options, each named by its organ's writer
+// (organ_writer.h); export without any output names them all.
+TEST(OutputFile, ExportWithoutAnOutputNamesEachOrgansTable) {
+  const fs::path herb = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "herb";
+  const RunResult run =
+      runHirsute({"export", (herb / "herb.l").string(), (herb / "herb.v").string()});
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_NE(run.err.find("export needs an output: --pov FILE or --obj FILE or --hairs FILE or "
+                         "--feathers FILE (or several)"),
+            std::string::npos)
+      << run.err;
+}
+
 TEST(OutputFile, DevStdoutWritesToTheProcessOutput) {
   const fs::path model = fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "cli" / "branching.l";
   const RunResult run = runHirsute({"derive", model.string(), "-o", "/dev/stdout"});

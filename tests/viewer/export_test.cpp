@@ -463,7 +463,7 @@ TEST_F(ExportTest, PovrayDrawsEveryInstanceOfADeclaredMesh) {
   addQuad(templateScene, 0, {0, 0}, 0.5f);
   PovOptions options = renderOptions();
   PovWriter writer(file("instances.pov"), options);
-  writer.beginScene(scene);
+  writer.beginScene(scene, {});
   std::string name = writer.declareMesh(templateScene.meshes[0]);
   glm::mat4 left = glm::translate(glm::mat4(1.0f), glm::vec3(-2, 0, 0));
   glm::mat4 right =

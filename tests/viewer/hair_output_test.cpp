@@ -22,13 +22,13 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/viewer/export/hair_csv_writer.h"
+#include "hirsute/hairs/plant/hair_csv_writer.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
-#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/view/png_image.h"
 #include "support/test_files.h"
 
@@ -334,13 +334,13 @@ TEST_F(HairExportTest, PovDeclaresOneTubePerTemplateAndRadiusBucket) {
   Scene scene = exportScene();
   PovExportStats stats = writePov(scene, PovOptions{}, file("hairs.pov"));
   std::string text = readText(file("hairs.pov"));
-  EXPECT_EQ(stats.hairMeshes, 3u);
+  EXPECT_EQ(stats.organ("hair meshes"), 3u);
   EXPECT_EQ(countOccurrences(text, "=mesh2{"), 3u) << text;
   EXPECT_EQ(countOccurrences(text, "#declare H"), 3u);
   // A tube: sides × segments × 2 triangles.
   EXPECT_EQ(stats.triangles, 5u * 2 * 2 * 2 + 5u * 3 * 2);
-  EXPECT_EQ(stats.hairs, 5u);
-  EXPECT_EQ(stats.hairsSkipped, 2u);
+  EXPECT_EQ(stats.organ("hairs"), 5u);
+  EXPECT_EQ(stats.organ("hairs skipped"), 2u);
 }
 
 TEST_F(HairExportTest, PovPlacesOneObjectPerHairInAUnionPerMaterial) {
@@ -428,7 +428,7 @@ TEST_F(HairExportTest, ObjHasOnePolylinePerPlacedTemplatePolyline) {
   // template 1: 3 + 2 vertices, 2 hairs; the hair of template 7 is left out.
   EXPECT_EQ(countLinesStarting(text, "l "), 4u * 1 + 2u * 2) << text;
   EXPECT_EQ(countLinesStarting(text, "v "), 4u * 3 + 2u * 5);
-  EXPECT_EQ(stats.hairs, 6u);
+  EXPECT_EQ(stats.organ("hairs"), 6u);
   EXPECT_EQ(countLinesStarting(text, "o hairs"), 1u);
   EXPECT_EQ(countLinesStarting(text, "usemtl "), 2u);
   EXPECT_EQ(countLinesStarting(readText(file("hairs.mtl")), "newmtl "), 2u);
@@ -466,7 +466,7 @@ TEST_F(HairExportTest, CsvHasOneRowPerHairThatReadsBack) {
   EXPECT_EQ(stats.rows, 500u);
   std::vector<std::string> rows = linesOf(readText(file("hairs.csv")));
   ASSERT_EQ(rows.size(), 501u);
-  EXPECT_EQ(rows[0], HairCsvWriter::kHeader);
+  EXPECT_EQ(rows[0], kHairCsvHeader);
   EXPECT_EQ(rows[0],
             "root_x,root_y,root_z,direction_x,direction_y,direction_z,template,length,radius,side");
   const char* sides[] = {"", "front", "back", "edge"};
@@ -498,7 +498,7 @@ TEST_F(HairExportTest, CsvHasOneRowPerHairThatReadsBack) {
 TEST_F(HairExportTest, CsvOfASceneWithoutHairsIsItsHeader) {
   Scene scene = paletteScene();
   writeHairCsv(scene, file("none.csv"));
-  EXPECT_EQ(readText(file("none.csv")), std::string(HairCsvWriter::kHeader) + "\n");
+  EXPECT_EQ(readText(file("none.csv")), std::string(kHairCsvHeader) + "\n");
 }
 
 int runHirsute(const std::string& arguments, const fs::path& log) {
@@ -517,7 +517,7 @@ TEST_F(HairExportTest, CommandWritesTheHairsCsvAlone) {
       << readText(file("log"));
   std::vector<std::string> rows = linesOf(readText(csv));
   ASSERT_FALSE(rows.empty());
-  EXPECT_EQ(rows[0], HairCsvWriter::kHeader);
+  EXPECT_EQ(rows[0], kHairCsvHeader);
   for (std::size_t i = 1; i < rows.size(); ++i) {
     EXPECT_EQ(std::count(rows[i].begin(), rows[i].end(), ','), 9) << rows[i];
   }

@@ -70,7 +70,7 @@ ObjWriter::ObjWriter(std::filesystem::path target, ObjOptions options)
 
 ObjWriter::~ObjWriter() = default;
 
-void ObjWriter::beginScene(const Scene& scene) {
+void ObjWriter::beginScene(const Scene& scene, std::span<const OrganWriter* const>) {
   scene_ = &scene;
   position_.decimals = positionDecimals(scene.bounds());
   out_.put("# Hirsute: ");
@@ -333,11 +333,33 @@ void ObjWriter::endScene() {
   stats_.bytes = out_.bytesWritten();
 }
 
-ObjExportStats writeObj(const Scene& scene, const std::filesystem::path& target,
-                        ObjOptions options, Progress* progress) {
-  ObjWriter writer(target, options);
-  printScene(scene, writer, progress, "writing OBJ");
-  return writer.stats();
+void ObjWriter::organ(const OrganWriter& organ, const Scene& scene) {
+  finishPolyline();
+  organ.writeObj(scene, *this);
+}
+
+void ObjWriter::face(const std::array<std::uint64_t, 3>& vertices,
+                     const std::optional<std::array<std::uint64_t, 3>>& normals) {
+  out_.put('f');
+  for (std::size_t k = 0; k < 3; ++k) {
+    out_.put(' ');
+    out_.putInteger(static_cast<std::int64_t>(vertices[k]));
+    if (normals) {
+      out_.put("//");
+      out_.putInteger(static_cast<std::int64_t>((*normals)[k]));
+    }
+  }
+  out_.put('\n');
+  ++stats_.faces;
+}
+
+void ObjWriter::count(std::string_view what, std::uint64_t count) {
+  const auto found = stats_.organs.find(what);
+  if (found != stats_.organs.end()) {
+    found->second += count;
+  } else {
+    stats_.organs.emplace(std::string(what), count);
+  }
 }
 
 }  // namespace hirsute

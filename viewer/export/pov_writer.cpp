@@ -92,7 +92,7 @@ void PovWriter::vector(const glm::vec3& v, NumberFormat format) {
   out_.put('>');
 }
 
-void PovWriter::beginScene(const Scene& scene) {
+void PovWriter::beginScene(const Scene& scene, std::span<const OrganWriter* const> organs) {
   scene_ = &scene;
   Bounds bounds = options_.fitBounds ? *options_.fitBounds : scene.bounds();
   position_.decimals = positionDecimals(bounds);
@@ -102,7 +102,7 @@ void PovWriter::beginScene(const Scene& scene) {
                        ? 2 * glm::distance(camera_.eye, camera_.target) *
                              std::tan(glm::radians(camera_.fieldOfViewY) / 2) / pixels
                        : 2 * camera_.halfHeight / pixels;
-  writeHeader(scene);
+  writeHeader(scene, organs);
   writeCamera();
   writeLights(bounds);
 }
@@ -198,7 +198,7 @@ void PovWriter::writePrimitive(const Primitive& p, const std::string* texture) {
   out_.put("}\n");
 }
 
-void PovWriter::writeHeader(const Scene& scene) {
+void PovWriter::writeHeader(const Scene& scene, std::span<const OrganWriter* const> organs) {
   std::string file = target_.filename().string();
   std::string image = target_.stem().string() + ".png";
   out_.put("// Hirsute: a POV-Ray 3.7 scene of ");
@@ -206,10 +206,15 @@ void PovWriter::writeHeader(const Scene& scene) {
   out_.put(" triangles and ");
   out_.putInteger(static_cast<std::int64_t>(scene.lines.size()));
   out_.put(" line segments");
-  if (!scene.hairs.empty()) {
-    out_.put(", ");
-    out_.putInteger(static_cast<std::int64_t>(scene.hairs.size()));
-    out_.put(" hairs");
+  int traceLevel = 0;
+  for (const OrganWriter* organ : organs) {
+    if (organ->items(scene) == 0) continue;
+    const std::string summary = organ->povSummary(scene);
+    if (!summary.empty()) {
+      out_.put(", ");
+      out_.put(summary);
+    }
+    traceLevel = std::max(traceLevel, organ->povTraceLevel(scene));
   }
   out_.put(" (docs/export.md).\n// Render: povray +I");
   out_.put(file);
@@ -228,9 +233,10 @@ void PovWriter::writeHeader(const Scene& scene) {
     ambient += light.ambient;
   out_.put("global_settings{assumed_gamma 1 ambient_light rgb");
   vector(ambient, colour_);
-  // Feathers' barbs are layers of transparent triangles: a ray may pass many before it is
-  // opaque, and POV-Ray's default of 5 would blacken it.
-  if (!scene.feathers.empty()) out_.put(" max_trace_level 64");
+  if (traceLevel > 0) {
+    out_.put(" max_trace_level ");
+    out_.putInteger(traceLevel);
+  }
   out_.put("}\n");
   // cpfg takes the background from entry 0 of the palette: the colour of a colour map, the
   // emission of a material file.
@@ -551,11 +557,73 @@ void PovWriter::endScene() {
   stats_.bytes = out_.bytesWritten();
 }
 
-PovExportStats writePov(const Scene& scene, const PovOptions& options,
-                        const std::filesystem::path& target, Progress* progress) {
-  PovWriter writer(target, options);
-  printScene(scene, writer, progress, "writing POV-Ray");
-  return writer.stats();
+void PovWriter::organ(const OrganWriter& organ, const Scene& scene) {
+  closeRun();
+  organ.writePov(scene, *this);
+}
+
+void PovWriter::count(std::string_view what, std::size_t count, std::size_t triangles) {
+  const auto found = stats_.organs.find(what);
+  if (found != stats_.organs.end()) {
+    found->second += count;
+  } else {
+    stats_.organs.emplace(std::string(what), count);
+  }
+  stats_.triangles += triangles;
+}
+
+PovWriter::Shade PovWriter::shadeOf(const glm::vec3& c, float alpha) {
+  auto q = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
+  return {q(c.r), q(c.g), q(c.b),
+          static_cast<int>(std::lround(std::clamp(alpha, 0.0f, 1.0f) * kShadeAlphaLevels))};
+}
+
+void PovWriter::writeShadedMesh(std::string_view comment, const std::vector<glm::vec3>& points,
+                                const std::vector<Shade>& shades,
+                                const std::vector<std::uint32_t>& faces, std::string_view finish) {
+  std::map<Shade, int> textureOf;
+  for (const Shade& s : shades) textureOf.emplace(s, 0);
+  int n = 0;
+  for (auto& [shade, index] : textureOf) index = n++;
+  out_.put("\n// ");
+  out_.put(comment);
+  out_.put("\nmesh2{\nvertex_vectors{");
+  out_.putInteger(static_cast<std::int64_t>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    out_.put(i % 4 == 0 ? ",\n" : ",");
+    vector(points[i], position_);
+  }
+  out_.put("}\ntexture_list{");
+  out_.putInteger(n);
+  for (const auto& [shade, index] : textureOf) {
+    out_.put(",\ntexture{pigment{rgbt<");
+    number(shade.r / 255.0, colour_);
+    out_.put(',');
+    number(shade.g / 255.0, colour_);
+    out_.put(',');
+    number(shade.b / 255.0, colour_);
+    out_.put(',');
+    number(1.0 - static_cast<double>(shade.a) / kShadeAlphaLevels, colour_);
+    out_.put(">}finish{");
+    out_.put(finish);
+    out_.put("}}");
+  }
+  out_.put("}\nface_indices{");
+  out_.putInteger(static_cast<std::int64_t>(faces.size() / 3));
+  for (std::size_t t = 0; t + 2 < faces.size(); t += 3) {
+    out_.put(t % 12 == 0 ? ",\n<" : ",<");
+    for (int c = 0; c < 3; ++c) {
+      if (c > 0) out_.put(',');
+      out_.putInteger(faces[t + static_cast<std::size_t>(c)]);
+    }
+    out_.put('>');
+    for (int c = 0; c < 3; ++c) {
+      out_.put(',');
+      out_.putInteger(textureOf[shades[faces[t + static_cast<std::size_t>(c)]]]);
+    }
+  }
+  out_.put("}\n}\n");
+  stats_.triangles += faces.size() / 3;
 }
 
 }  // namespace hirsute

@@ -5,49 +5,6 @@
 
 namespace hirsute {
 
-void printScene(const Scene& scene, ScenePrinter& printer, Progress* progress, const char* stage) {
-  printer.progress_ = progress;
-  printer.done_ = 0;
-  if (progress != nullptr) {
-    const std::size_t items = scene.triangleCount() + scene.lines.size() + scene.spheres.size() +
-                              scene.discs.size() + scene.labels.size() + scene.hairs.size() +
-                              scene.feathers.size();
-    progress->begin(stage, Progress::Unit::Percent, static_cast<double>(items));
-  }
-  printer.beginScene(scene);
-  for (const TriangleMesh& mesh : scene.meshes) {
-    if (mesh.triangleCount() == 0) continue;
-    printer.mesh(mesh);
-    printer.advance(static_cast<double>(mesh.triangleCount()));
-  }
-  for (const LineSegment& line : scene.lines) {
-    printer.line(line, scene.lineStyle);
-    printer.advance();
-  }
-  for (const Sphere& sphere : scene.spheres) {
-    printer.sphere(sphere);
-    printer.advance();
-  }
-  for (const Disc& disc : scene.discs) {
-    printer.disc(disc);
-    printer.advance();
-  }
-  for (const Label& label : scene.labels) printer.label(label);
-  printer.advance(static_cast<double>(scene.labels.size()));
-  if (!scene.hairs.empty()) {
-    // The printer advances hair by hair if it can; after it, the count is right either way.
-    const double before = printer.done_;
-    printer.hairs(scene.hairTemplates, scene.hairs);
-    printer.done_ = before;
-    printer.advance(static_cast<double>(scene.hairs.size()));
-  }
-  if (!scene.feathers.empty()) printer.feathers(scene);
-  printer.advance(static_cast<double>(scene.feathers.size()));
-  if (!scene.furSurfaces.empty()) printer.fur(scene);
-  printer.endScene();
-  printer.progress_ = nullptr;
-}
-
 bool drawnTextured(const Scene& scene, const TriangleMesh& mesh) {
   if (mesh.texture < 0 || static_cast<std::size_t>(mesh.texture) >= scene.textures.size())
     return false;

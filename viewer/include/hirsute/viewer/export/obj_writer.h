@@ -4,9 +4,12 @@
 // docs/export.md describes the files.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -30,10 +33,13 @@ struct ObjOptions {
 struct ObjExportStats {
   std::uint64_t bytes = 0, mtlBytes = 0;
   std::uint64_t vertices = 0, normals = 0, texcoords = 0, faces = 0;
-  std::uint64_t lineElements = 0;  // `l` polylines (hairs' included)
-  std::uint64_t hairs = 0;         // hairs written (their template has segments)
-  std::uint64_t feathers = 0;      // feathers written
-  std::uint64_t furStrands = 0;    // fur strands written, one `l` each
+  std::uint64_t lineElements = 0;  // `l` polylines (the organs' included)
+  // What the organs' writers wrote, by the names they count under (ObjWriter::count).
+  std::map<std::string, std::uint64_t, std::less<>> organs;
+  std::uint64_t organ(std::string_view what) const {
+    const auto found = organs.find(what);
+    return found == organs.end() ? 0 : found->second;
+  }
   std::size_t materials = 0;       // `newmtl` entries
 };
 
@@ -43,30 +49,36 @@ class ObjWriter : public ScenePrinter {
   explicit ObjWriter(std::filesystem::path target, ObjOptions options = {});
   ~ObjWriter() override;
 
-  void beginScene(const Scene& scene) override;
+  void beginScene(const Scene& scene, std::span<const OrganWriter* const> organs) override;
   void mesh(const TriangleMesh& mesh) override;
   void line(const LineSegment& line, LineStyle style) override;
   void sphere(const Sphere& sphere) override;
   void disc(const Disc& disc) override;
   void label(const Label& label) override;
-  // Hairs as polylines: each polyline of a hair's template, placed, one `l` element, under
-  // `o hairs`, grouped by their template's material (one `usemtl` each).
-  void hairs(const std::vector<HairTemplate>& templates, const std::vector<Hair>& hairs) override;
-  // `o feathers`: the shafts as faces, the barbs as `l` polylines (drawing: lines) or faces
-  // (strips), one material a colour (obj_feathers.cpp).
-  void feathers(const Scene& scene) override;
-  // `o fur`: each fur strand one `l` polyline in its surface's material (obj_fur.cpp).
-  void fur(const Scene& scene) override;
+  // Ends the polyline being gathered and hands the writer to the organ (organ_writer.h).
+  void organ(const OrganWriter& organ, const Scene& scene) override;
   void endScene() override;
 
   const ObjExportStats& stats() const { return stats_; }
 
- private:
+  // What the organs' writers draw with (organ_writer.h), between beginScene() and endScene().
+  ExportFile& out() { return out_; }
   void useMaterial(int material, int texture);
-  void group(std::string_view name);  // `o name`, unless it is the current object
+  // `o name`, unless it is the current object; `name` outlives the writer (a literal).
+  void group(std::string_view name);
+  // `v`, `vn`: numbered from 1 in the order written (stats().vertices, stats().normals).
   void vertex(const glm::vec3& p);
   void normal(const glm::vec3& n);
+  // A face of three vertex numbers, with the normal numbers `normals` (none: without).
+  void face(const std::array<std::uint64_t, 3>& vertices,
+            const std::optional<std::array<std::uint64_t, 3>>& normals = std::nullopt);
+  // The polyline being gathered: vertex numbers, written as one `l` by finishPolyline().
+  std::vector<std::uint64_t>& polyline() { return polyline_; }
   void finishPolyline();
+  // Adds `count` to what the organ's writers wrote of `what` (ObjExportStats::organs).
+  void count(std::string_view what, std::uint64_t count);
+
+ private:
   void writeMaterialLibrary();
 
   std::filesystem::path target_, mtlTarget_;
@@ -79,14 +91,13 @@ class ObjWriter : public ScenePrinter {
   std::vector<std::pair<int, int>> materialsUsed_;  // (material, texture) in order of first use
   std::set<std::pair<int, int>> materialSet_;
   std::pair<int, int> current_{0, -2};
-  std::string_view currentGroup_;  // a literal: "lines", "spheres", "discs", "hairs"
+  std::string_view currentGroup_;  // a literal: "lines", "spheres", "discs", an organ's
   int meshNumber_ = 0;
   // Unit-sphere tessellation: positions (= normals) and triangles, made once.
   std::vector<glm::vec3> spherePoints_;
   std::vector<std::uint32_t> sphereTriangles_;
   // The polyline being gathered: its vertex numbers, and where it ends.
   std::vector<std::uint64_t> polyline_;
-  std::uint64_t shaftNormalBase_ = 0;  // obj_feathers.cpp: the first normal of the shafts
   glm::vec3 polylineEnd_{0.0f};
   ObjExportStats stats_;
 };

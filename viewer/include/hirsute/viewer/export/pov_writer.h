@@ -7,8 +7,9 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <optional>
 #include <glm/glm.hpp>
+#include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -41,11 +42,12 @@ struct PovExportStats {
   std::uint64_t bytes = 0;
   std::size_t triangles = 0, cylinders = 0, cones = 0, spheres = 0, discs = 0, objects = 0;
   std::size_t linesSkipped = 0;  // zero length or zero width at the file's precision
-  std::size_t hairs = 0;         // hair instances (`object`s in the hair unions)
-  std::size_t hairMeshes = 0;    // declared hair tubes: one per template and radius/length bucket
-  std::size_t hairsSkipped = 0;  // no template with segments, zero radius or length
-  std::size_t feathers = 0;      // feathers written (pov_feathers.cpp)
-  std::size_t furStrands = 0;    // fur strands written (pov_fur.cpp)
+  // What the organs' writers wrote, by the names they count under (PovWriter::count).
+  std::map<std::string, std::size_t, std::less<>> organs;
+  std::size_t organ(std::string_view what) const {
+    const auto found = organs.find(what);
+    return found == organs.end() ? 0 : found->second;
+  }
 };
 
 class PovWriter : public ScenePrinter {
@@ -53,33 +55,19 @@ class PovWriter : public ScenePrinter {
   PovWriter(std::filesystem::path target, PovOptions options);
   ~PovWriter() override;
 
-  void beginScene(const Scene& scene) override;
+  void beginScene(const Scene& scene, std::span<const OrganWriter* const> organs) override;
   void mesh(const TriangleMesh& mesh) override;
   void line(const LineSegment& line, LineStyle style) override;
   void sphere(const Sphere& sphere) override;
   void disc(const Disc& disc) override;
   void label(const Label& label) override;
-  // Hairs as instances (DESIGN.md, "Plant hairs"): a tube of the hair radius around each template
-  // is declared once per template and bucket of radius/length (the tube is in the template's
-  // frame, which length scales), and each hair is an `object` of it with its matrix; the hairs
-  // of a material are one union carrying the material's texture. docs/export.md has the figures.
-  void hairs(const std::vector<HairTemplate>& templates, const std::vector<Hair>& hairs) override;
-  // Shafts and barbs as two mesh2, the barbs' transparency fading to their tips.
-  void feathers(const Scene& scene) override;
-  // Fur as explicit strands (hirsute/hairs/fur/fur_strands.h): per fur surface one mesh2 of
-  // ribbons facing the camera, each vertex coloured by the shells' own shading (Kajiya-Kay times
-  // the shadow factor, Eq. 6) so that the still matches the preview, emitted rather than lit.
-  void fur(const Scene& scene) override;
+  // Closes the run of primitives and hands the writer to the organ (organ_writer.h).
+  void organ(const OrganWriter& organ, const Scene& scene) override;
   void endScene() override;
-
-  // Sides of a hair's tube, and the step of the radius/length buckets: a hair's tube radius is
-  // within 1% of its own radius.
-  static constexpr int kHairTubeSides = 5;
-  static constexpr double kHairBucketStep = 1.02;
 
   // Declared objects and their instances: a mesh is written once as `#declare NAME=mesh2{…}`
   // and placed by `object{NAME …}` as often as needed, each placement with its own material and
-  // transform (hairs: one mesh per template, one instance per hair). Returns NAME. Both are
+  // transform (an organ's template, placed once an instance). Returns NAME. Both are
   // called between beginScene() and endScene().
   std::string declareMesh(const TriangleMesh& mesh);
   // `transform` null: in place. Otherwise the affine map of the instance (its last row unused).
@@ -91,7 +79,16 @@ class PovWriter : public ScenePrinter {
   float worldPerPixel() const { return worldPerPixel_; }
   const PovExportStats& stats() const { return stats_; }
 
- private:
+  // What the organs' writers draw with (organ_writer.h), between beginScene() and endScene().
+  const PovOptions& options() const { return options_; }
+  ExportFile& out() { return out_; }
+  // The format of positions: the scene's, which a writer may change for a mesh in other units
+  // and must set back.
+  NumberFormat& positionFormat() { return position_; }
+  void number(double value, NumberFormat format) { out_.putFixed(value, format); }
+  // Adds `count` to what the organ's writers wrote of `what` (PovExportStats::organs), and
+  // `triangles` to the triangles written.
+  void count(std::string_view what, std::size_t count, std::size_t triangles = 0);
   // A colour and an opacity per vertex, quantized so that a mesh2's texture_list stays short.
   struct Shade {
     int r, g, b, a;  // colour in 1/255, alpha in 1/kShadeAlphaLevels
@@ -104,13 +101,17 @@ class PovWriter : public ScenePrinter {
   void writeShadedMesh(std::string_view comment, const std::vector<glm::vec3>& points,
                        const std::vector<Shade>& shades, const std::vector<std::uint32_t>& faces,
                        std::string_view finish);
+  // `#declare NAME=mesh2{…}` of `mesh` at the present position format.
   void writeMesh2(std::string_view name, const TriangleMesh& mesh);
-  void writeHeader(const Scene& scene);
+  // The declared texture of a material (and texture image), declared on first use.
+  const std::string& useTexture(int material, int texture);
+
+ private:
+  void writeHeader(const Scene& scene, std::span<const OrganWriter* const> organs);
   void writeCamera();
   void writeLights(const Bounds& bounds);
   void writeMaterial(std::string_view name, const Material& material, int texture);
   std::string textureName(int material, int texture) const;
-  const std::string& useTexture(int material, int texture);
   // A line, sphere or disc, held back while it may be the only member of a union.
   struct Primitive {
     enum Kind { Cylinder, Cone, Sphere, Disc } kind;
@@ -121,7 +122,6 @@ class PovWriter : public ScenePrinter {
   void closeRun();
   void writePrimitive(const Primitive& primitive, const std::string* texture);
   void vector(const glm::vec3& v, NumberFormat format);
-  void number(double value, NumberFormat format) { out_.putFixed(value, format); }
 
   std::filesystem::path target_;
   PovOptions options_;

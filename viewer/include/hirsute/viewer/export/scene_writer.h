@@ -5,10 +5,12 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
-#include "hirsute/interpreter/scene.h"
 #include "hirsute/core/progress.h"
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/viewer/export/organ_writer.h"
 
 namespace hirsute {
 
@@ -18,31 +20,22 @@ class ScenePrinter {
 
   // Before any element: the whole scene, for what a format declares up front (materials used,
   // bounds, precision).
-  virtual void beginScene(const Scene& scene) = 0;
+  // `organs` are the organs' writers printScene() visits after the scene's own elements.
+  virtual void beginScene(const Scene& scene, std::span<const OrganWriter* const> organs) = 0;
   virtual void mesh(const TriangleMesh& mesh) = 0;
   // Lines come in scene order; `style` says how their widths are meant (Scene::lineStyle).
   virtual void line(const LineSegment& line, LineStyle style) = 0;
   virtual void sphere(const Sphere& sphere) = 0;
   virtual void disc(const Disc& disc) = 0;
   virtual void label(const Label& label) = 0;
-  // Plant hairs, after the labels, once, when the scene has any: the templates and the placed
-  // hairs, which are instances of them (a hair's templateIndex may name no template: such a hair
-  // is left out). All of them at once, because formats group them (by template, material, size).
-  virtual void hairs(const std::vector<HairTemplate>& templates,
-                     const std::vector<Hair>& hairs) = 0;
-  // Feathers, after the hairs, once, when the scene has any: the whole scene, because each
-  // feather is built from its types (hirsute/hairs/feathers/feather_instances.h) and formats
-  // group them.
-  virtual void feathers(const Scene& scene) = 0;
-  // Fur, after the feathers, once, when the scene has fur surfaces: as explicit strands
-  // (hirsute/hairs/fur/fur_strands.h), since no format draws shells.
-  virtual void fur(const Scene& scene) = 0;
+  // After the labels, each organ of organWriters() that the scene has, once: the printer hands
+  // itself to the organ's writer for its format (organ_writer.h).
+  virtual void organ(const OrganWriter& organ, const Scene& scene) = 0;
   // After the last element: close what is open and commit the files.
   virtual void endScene() = 0;
 
- protected:
-  // A printer whose one call writes many items (hairs() a hair at a time) calls this after each,
-  // so that the progress line moves while it runs.
+  // A printer or an organ's writer whose one call writes many items (instance by instance)
+  // calls this after each, so that the progress line moves while it runs.
   void advance(double items = 1) {
     if (progress_ == nullptr) return;
     done_ += items;
@@ -57,12 +50,12 @@ class ScenePrinter {
  private:
   friend void printScene(const Scene&, ScenePrinter&, Progress*, const char*);
   Progress* progress_ = nullptr;
-  double done_ = 0;  // items written: triangles, lines, spheres, discs, labels, hairs, feathers
+  double done_ = 0;  // items written: triangles, lines, spheres, discs, labels, organs' items
 };
 
-// Visits meshes, lines, spheres, discs, labels, hairs and feathers, in that order and each in scene
-// order. Meshes without triangles are skipped. With `progress`, shows `STAGE: N%` of the items
-// written (a mesh counts its triangles).
+// Visits meshes, lines, spheres, discs and labels, in that order and each in scene order, then the
+// organs of organWriters() (in the export library, not the formats'). Meshes without triangles are
+// skipped. With `progress`, shows `STAGE: N%` of the items written (a mesh counts its triangles).
 void printScene(const Scene& scene, ScenePrinter& printer, Progress* progress = nullptr,
                 const char* stage = "writing");
 

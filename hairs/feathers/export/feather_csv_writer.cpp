@@ -1,10 +1,11 @@
-#include "hirsute/viewer/export/feather_csv_writer.h"
+#include "hirsute/hairs/feathers/feather_csv_writer.h"
 
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <string_view>
 
+#include "hirsute/hairs/feathers/feather_writer.h"
 #include "hirsute/viewer/export/export_file.h"
 
 namespace hirsute {
@@ -43,6 +44,26 @@ FeatherCsvStats writeFeatherCsv(const Scene& scene, const std::filesystem::path&
   out.commit();
   stats.bytes = out.bytesWritten();
   return stats;
+}
+
+std::optional<OrganTable> FeatherWriter::table() const {
+  return OrganTable{
+      "--feathers",
+      "Write the feathers to FILE (.csv): one row per feather (root, heading, up, types and "
+      "blends, age, size, single or coat)",
+      [](const Scene& scene, const std::filesystem::path& target, Progress* progress,
+         OutputGroup* group) {
+        if (progress != nullptr) {
+          progress->begin("writing feathers", Progress::Unit::None);
+          progress->update(0);
+        }
+        return writeFeatherCsv(scene, target, group).rows;
+      }};
+}
+
+const OrganWriter& featherWriter() {
+  static const FeatherWriter writer;
+  return writer;
 }
 
 }  // namespace hirsute

@@ -1,7 +1,7 @@
 // Plant hairs in the POV-Ray scene (DESIGN.md, "Plant hairs"; docs/export.md, "Hairs"): a tube
 // of the hair radius around each template polyline, declared once per template and radius/length
 // bucket, and each hair an `object` of it with its matrix, one union a material. The rest of the
-// scene is pov_writer.cpp; other organs add their own file beside this one.
+// scene is pov_writer.cpp.
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "hirsute/hairs/plant/plant_hair_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 
 namespace hirsute {
@@ -67,13 +68,16 @@ TriangleMesh hairTube(const HairTemplate& hair, float radius, int sides) {
 
 }  // namespace
 
-void PovWriter::hairs(const std::vector<HairTemplate>& templates, const std::vector<Hair>& hairs) {
-  closeRun();
+void PlantHairWriter::writePov(const Scene& scene, PovWriter& pov) const {
+  const std::vector<HairTemplate>& templates = scene.hairTemplates;
+  const std::vector<Hair>& hairs = scene.hairs;
+  ExportFile& out = pov.out();
+  std::size_t meshes = 0, skipped = 0, written = 0;
   // A hair's radius is constant while its length scales the template: its tube, in the
   // template's frame, has radius radius/length. The ratio is bucketed in steps of 2% (its
   // logarithm rounded), so that a tube's radius is within 1% of its hairs' and a model needs one
   // tube per ratio its hairs have (a hundred or so a template), declared once each.
-  const double logStep = std::log(kHairBucketStep);
+  const double logStep = std::log(kBucketStep);
   auto bucketOf = [&](const Hair& h) {
     return static_cast<int>(
         std::lround(std::log(static_cast<double>(h.radius) / h.length) / logStep));
@@ -95,18 +99,19 @@ void PovWriter::hairs(const std::vector<HairTemplate>& templates, const std::vec
   }
   for (auto& [key, name] : tubes) {
     const HairTemplate& hair = templates[static_cast<std::size_t>(key.first)];
-    auto radius = static_cast<float>(std::pow(kHairBucketStep, key.second));
-    TriangleMesh tube = hairTube(hair, radius, kHairTubeSides);
+    auto radius = static_cast<float>(std::pow(kBucketStep, key.second));
+    TriangleMesh tube = hairTube(hair, radius, kTubeSides);
     if (tube.triangleCount() == 0) continue;
     // Template units: resolve a hundredth of the tube's radius and a hundred-thousandth of the
     // template's size.
     double resolution = std::min(0.01 * radius, 1e-5 * std::max(hair.extent, 1e-30f));
-    NumberFormat scene = position_;
-    position_.decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(resolution))), 0, 12);
-    name = std::to_string(stats_.hairMeshes++);
+    NumberFormat& position = pov.positionFormat();
+    const NumberFormat sceneFormat = position;
+    position.decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(resolution))), 0, 12);
+    name = std::to_string(meshes++);
     name.insert(name.begin(), 'H');  // (GCC 12 warns falsely about "H" + std::to_string)
-    writeMesh2(name, tube);
-    position_ = scene;
+    pov.writeMesh2(name, tube);
+    position = sceneFormat;
   }
 
   // Instances, grouped by their template's material (in scene order within it), each material's
@@ -117,7 +122,7 @@ void PovWriter::hairs(const std::vector<HairTemplate>& templates, const std::vec
   for (std::size_t i = 0; i < hairs.size(); ++i) {
     const Hair& h = hairs[i];
     if (!valid(h) || tubes[{h.templateIndex, bucketOf(h)}].empty()) {
-      ++stats_.hairsSkipped;
+      ++skipped;
       continue;
     }
     byMaterial[templates[h.templateIndex].material].push_back(i);
@@ -126,48 +131,51 @@ void PovWriter::hairs(const std::vector<HairTemplate>& templates, const std::vec
   // written to the positions' resolution over that. Hair transforms resolve a hundred-thousandth
   // of the scene (a twenty-fifth of a pixel at 4K), one decimal less than other positions: their
   // text is most of the file, and POV-Ray's parse time follows the text.
-  NumberFormat root{std::max(position_.decimals - 1, 0), false};
+  NumberFormat root{std::max(pov.positionFormat().decimals - 1, 0), false};
   NumberFormat linear{
       std::clamp(root.decimals + static_cast<int>(std::ceil(std::log10(std::max(extent, 1e-6f)))),
                  0, 12),
       false};
   for (const auto& [material, members] : byMaterial) {
-    const std::string& texture = useTexture(material, -1);
+    const std::string& texture = pov.useTexture(material, -1);
     bool alone = members.size() == 1;  // POV-Ray warns about a union of one
-    if (!alone) out_.put("union{\n");
+    if (!alone) out.put("union{\n");
     for (std::size_t i : members) {
       const Hair& h = hairs[i];
       glm::mat3 m = glm::mat3_cast(h.rotation()) * h.length;
-      out_.put("object{");
-      out_.put(tubes[{h.templateIndex, bucketOf(h)}]);
+      out.put("object{");
+      out.put(tubes[{h.templateIndex, bucketOf(h)}]);
       if (alone) {
-        out_.put(" texture{");
-        out_.put(texture);
-        out_.put('}');
+        out.put(" texture{");
+        out.put(texture);
+        out.put('}');
       }
       // POV-Ray's matrix is row-vector: its rows are the images of x, y, z (glm's columns), then
       // the translation.
-      out_.put(" matrix<");
+      out.put(" matrix<");
       for (int column = 0; column < 3; ++column) {
         for (int row = 0; row < 3; ++row) {
-          if (column + row > 0) out_.put(',');
-          number(m[column][row], linear);
+          if (column + row > 0) out.put(',');
+          pov.number(m[column][row], linear);
         }
       }
       for (int k = 0; k < 3; ++k) {
-        out_.put(',');
-        number(h.root[k], root);
+        out.put(',');
+        pov.number(h.root[k], root);
       }
-      out_.put(">}\n");
-      ++stats_.hairs;
-      advance();
+      out.put(">}\n");
+      ++written;
+      pov.advance();
     }
     if (!alone) {
-      out_.put("texture{");
-      out_.put(texture);
-      out_.put("}}\n");
+      out.put("texture{");
+      out.put(texture);
+      out.put("}}\n");
     }
   }
+  pov.count("hairs", written);
+  pov.count("hair meshes", meshes);
+  pov.count("hairs skipped", skipped);
 }
 
 }  // namespace hirsute

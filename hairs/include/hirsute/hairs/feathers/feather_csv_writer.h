@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "hirsute/interpreter/scene.h"
 #include "hirsute/core/output_target.h"
+#include "hirsute/interpreter/scene.h"
 
 namespace hirsute {
 

@@ -9,6 +9,7 @@
 
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_strands.h"
+#include "hirsute/hairs/fur/fur_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/view/view_lighting.h"
 
@@ -35,12 +36,13 @@ glm::vec3 textureColour(const Texture& texture, const glm::vec2& uv) {
 
 }  // namespace
 
-void PovWriter::fur(const Scene& scene) {
-  closeRun();
-  const glm::vec3 towardsEye = -camera_.forward;
-  const glm::vec3 light =
-      glm::normalize(organLight(viewLighting(options_.view, options_.materialMode, towardsEye), towardsEye));
-  const bool perspective = camera_.projection == Projection::Perspective;
+void FurWriter::writePov(const Scene& scene, PovWriter& pov) const {
+  using Shade = PovWriter::Shade;
+  const Camera& camera = pov.camera();
+  const glm::vec3 towardsEye = -camera.forward;
+  const glm::vec3 light = glm::normalize(organLight(
+      viewLighting(pov.options().view, pov.options().materialMode, towardsEye), towardsEye));
+  const bool perspective = camera.projection == Projection::Perspective;
   for (std::size_t index = 0; index < scene.furSurfaces.size(); ++index) {
     const FurSurface& surface = scene.furSurfaces[index];
     if (surface.attributes < 0) continue;
@@ -63,15 +65,16 @@ void PovWriter::fur(const Scene& scene) {
       const std::size_t n = strand.points.size();
       for (std::size_t i = 0; i < n; ++i) {
         const glm::vec3 p = strand.points[i];
-        glm::vec3 tangent = strand.points[std::min(i + 1, n - 1)] - strand.points[i == 0 ? 0 : i - 1];
+        glm::vec3 tangent =
+            strand.points[std::min(i + 1, n - 1)] - strand.points[i == 0 ? 0 : i - 1];
         tangent = glm::length(tangent) > 0 ? glm::normalize(tangent) : strand.normal;
-        const glm::vec3 eye = perspective ? glm::normalize(camera_.eye - p) : towardsEye;
+        const glm::vec3 eye = perspective ? glm::normalize(camera.eye - p) : towardsEye;
         glm::vec3 across = glm::cross(tangent, eye);
-        if (glm::length(across) < 1e-12f) across = glm::cross(tangent, camera_.up);
+        if (glm::length(across) < 1e-12f) across = glm::cross(tangent, camera.up);
         across = strand.radius * glm::normalize(across);
         const float h = strand.reach * static_cast<float>(i) / static_cast<float>(n - 1);
-        const Shade shade =
-            shadeOf(fur::furShade(colour, tangent, light, eye, a.specular, a.phong, a.shadow, h), 1);
+        const Shade shade = PovWriter::shadeOf(
+            fur::furShade(colour, tangent, light, eye, a.specular, a.phong, a.shadow, h), 1);
         points.push_back(p - across);
         points.push_back(p + across);
         shades.push_back(shade);
@@ -84,9 +87,10 @@ void PovWriter::fur(const Scene& scene) {
       ++strands;
     });
     if (faces.empty()) continue;
-    writeShadedMesh("fur surface " + std::to_string(index + 1) + ": " + std::to_string(strands) + " strands",
-                    points, shades, faces, kEmittedFinish);
-    stats_.furStrands += strands;
+    pov.writeShadedMesh(
+        "fur surface " + std::to_string(index + 1) + ": " + std::to_string(strands) + " strands",
+        points, shades, faces, kEmittedFinish);
+    pov.count("fur strands", strands);
   }
 }
 

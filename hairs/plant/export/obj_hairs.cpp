@@ -1,16 +1,19 @@
 // Plant hairs in the OBJ file (DESIGN.md, "Plant hairs"): each polyline of a hair's template,
 // placed, one `l` element under `o hairs`, grouped by the template's material. The rest of the
-// file is obj_writer.cpp; other organs add their own file beside this one.
+// file is obj_writer.cpp.
 #include <algorithm>
 #include <glm/gtc/quaternion.hpp>
 #include <vector>
 
+#include "hirsute/hairs/plant/plant_hair_writer.h"
 #include "hirsute/viewer/export/obj_writer.h"
 
 namespace hirsute {
 
-void ObjWriter::hairs(const std::vector<HairTemplate>& templates, const std::vector<Hair>& hairs) {
-  finishPolyline();
+void PlantHairWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
+  const std::vector<HairTemplate>& templates = scene.hairTemplates;
+  const std::vector<Hair>& hairs = scene.hairs;
+  std::uint64_t written = 0;
   // Hairs by template (a counting sort), templates by material in order of first use: one
   // `usemtl` a material.
   std::vector<std::size_t> first(templates.size() + 1, 0);
@@ -35,24 +38,25 @@ void ObjWriter::hairs(const std::vector<HairTemplate>& templates, const std::vec
       const HairTemplate& shape = templates[t];
       if (shape.material != material || shape.segmentCount() == 0 || first[t] == first[t + 1])
         continue;
-      group("hairs");
-      useMaterial(material, -1);
+      obj.group("hairs");
+      obj.useMaterial(material, -1);
       for (std::size_t k = first[t]; k < first[t + 1]; ++k) {
         const Hair& h = hairs[order[k]];
         glm::mat3 rotation = glm::mat3_cast(h.rotation());
         for (const auto& polyline : shape.polylines) {
           if (polyline.size() < 2) continue;
           for (const glm::vec3& p : polyline) {
-            vertex(h.root + h.length * (rotation * p));
-            polyline_.push_back(stats_.vertices);
+            obj.vertex(h.root + h.length * (rotation * p));
+            obj.polyline().push_back(obj.stats().vertices);
           }
-          finishPolyline();
+          obj.finishPolyline();
         }
-        ++stats_.hairs;
-        advance();
+        ++written;
+        obj.advance();
       }
     }
   }
+  obj.count("hairs", written);
 }
 
 }  // namespace hirsute

@@ -10,6 +10,7 @@
 #include <map>
 #include <tuple>
 
+#include "hirsute/hairs/feathers/feather_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/view/feather_buffers.h"
 
@@ -21,11 +22,11 @@ constexpr char kLitFinish[] = "ambient 0.2 diffuse 0.7";
 
 }  // namespace
 
-void PovWriter::feathers(const Scene& scene) {
-  closeRun();
+void FeatherWriter::writePov(const Scene& scene, PovWriter& pov) const {
+  using Shade = PovWriter::Shade;
   if (scene.feathers.empty()) return;
   // A still is looked at closer than a preview: one level finer than the camera asks for.
-  std::vector<std::uint8_t> levels = featherDetailLevels(scene, camera_);
+  std::vector<std::uint8_t> levels = featherDetailLevels(scene, pov.camera());
   for (std::uint8_t& level : levels) level = static_cast<std::uint8_t>(std::min(level + 1, 7));
   FeatherBuffers b = buildFeatherBuffers(scene, levels);
 
@@ -62,70 +63,16 @@ void PovWriter::feathers(const Scene& scene) {
   if (!b.shaftIndices.empty()) {
     std::vector<Shade> shades;
     shades.reserve(b.shaftColors.size());
-    for (const glm::vec3& c : b.shaftColors) shades.push_back(shadeOf(c, 1));
-    writeShadedMesh("feather shafts", b.shaftPositions, shades, b.shaftIndices, kLitFinish);
+    for (const glm::vec3& c : b.shaftColors) shades.push_back(PovWriter::shadeOf(c, 1));
+    pov.writeShadedMesh("feather shafts", b.shaftPositions, shades, b.shaftIndices, kLitFinish);
   }
   if (!triangles.empty()) {
     std::vector<Shade> shades;
     shades.reserve(colours.size());
-    for (const glm::vec4& c : colours) shades.push_back(shadeOf(glm::vec3(c), c.a));
-    writeShadedMesh("feather barbs", positions, shades, triangles, kLitFinish);
+    for (const glm::vec4& c : colours) shades.push_back(PovWriter::shadeOf(glm::vec3(c), c.a));
+    pov.writeShadedMesh("feather barbs", positions, shades, triangles, kLitFinish);
   }
-  stats_.feathers += scene.feathers.size();
-}
-
-PovWriter::Shade PovWriter::shadeOf(const glm::vec3& c, float alpha) {
-  auto q = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
-  return {q(c.r), q(c.g), q(c.b),
-          static_cast<int>(std::lround(std::clamp(alpha, 0.0f, 1.0f) * kShadeAlphaLevels))};
-}
-
-void PovWriter::writeShadedMesh(std::string_view comment, const std::vector<glm::vec3>& points,
-                                const std::vector<Shade>& shades,
-                                const std::vector<std::uint32_t>& faces, std::string_view finish) {
-  std::map<Shade, int> textureOf;
-  for (const Shade& s : shades) textureOf.emplace(s, 0);
-  int n = 0;
-  for (auto& [shade, index] : textureOf) index = n++;
-  out_.put("\n// ");
-  out_.put(comment);
-  out_.put("\nmesh2{\nvertex_vectors{");
-  out_.putInteger(static_cast<std::int64_t>(points.size()));
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    out_.put(i % 4 == 0 ? ",\n" : ",");
-    vector(points[i], position_);
-  }
-  out_.put("}\ntexture_list{");
-  out_.putInteger(n);
-  for (const auto& [shade, index] : textureOf) {
-    out_.put(",\ntexture{pigment{rgbt<");
-    number(shade.r / 255.0, colour_);
-    out_.put(',');
-    number(shade.g / 255.0, colour_);
-    out_.put(',');
-    number(shade.b / 255.0, colour_);
-    out_.put(',');
-    number(1.0 - static_cast<double>(shade.a) / kShadeAlphaLevels, colour_);
-    out_.put(">}finish{");
-    out_.put(finish);
-    out_.put("}}");
-  }
-  out_.put("}\nface_indices{");
-  out_.putInteger(static_cast<std::int64_t>(faces.size() / 3));
-  for (std::size_t t = 0; t + 2 < faces.size(); t += 3) {
-    out_.put(t % 12 == 0 ? ",\n<" : ",<");
-    for (int c = 0; c < 3; ++c) {
-      if (c > 0) out_.put(',');
-      out_.putInteger(faces[t + static_cast<std::size_t>(c)]);
-    }
-    out_.put('>');
-    for (int c = 0; c < 3; ++c) {
-      out_.put(',');
-      out_.putInteger(textureOf[shades[faces[t + static_cast<std::size_t>(c)]]]);
-    }
-  }
-  out_.put("}\n}\n");
-  stats_.triangles += faces.size() / 3;
+  pov.count("feathers", scene.feathers.size());
 }
 
 }  // namespace hirsute
