@@ -111,11 +111,11 @@ int main(int argc, char** argv) {
                       reinterpret_cast<const void*>(run.first * sizeof(std::uint32_t)));
     }
   };
-  renderer.setFeathersVisible(false);
+  renderer.setOrganVisible("feathers", false);
   auto drawHidden = [&] { renderer.draw(camera); };
-  renderer.setFeathersVisible(true);
+  renderer.setOrganVisible("feathers", true);
   const std::vector<double> t = frameSeconds(gl, frames, {drawScene, drawRaw});
-  renderer.setFeathersVisible(false);
+  renderer.setOrganVisible("feathers", false);
   const std::vector<double> hidden = frameSeconds(gl, frames, {drawHidden});
 
   std::printf(

@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
 
   // The same segments, placed: two world positions a segment, in one buffer.
   std::vector<glm::vec3> ends;
-  ends.reserve(renderer.hairSegmentCount() * 2);
+  ends.reserve(renderer.organPrimitives("hairs") * 2);
   // In the Scene's order, or shuffled (--shuffled-raw), as the renderer orders them for its
   // fractions: the order changes how many fragments the depth test passes.
   std::vector<hirsute::Hair> order(scene.hairs);
@@ -145,8 +145,8 @@ int main(int argc, char** argv) {
 
   auto drawScene = [&](bool visible, float fraction) {
     return [&renderer, &camera, visible, fraction] {
-      renderer.setHairsVisible(visible);
-      renderer.setHairFraction(fraction);
+      renderer.setOrganVisible("hairs", visible);
+      renderer.setDetail(fraction);
       renderer.draw(camera);
     };
   };
@@ -163,10 +163,11 @@ int main(int argc, char** argv) {
   std::vector<double> t = frameSeconds(
       gl, frames, {drawScene(true, 1.0f), drawRaw, drawScene(false, 1.0f), drawScene(true, 0.25f)});
   double withHairs = t[0], raw = t[1], without = t[2], quarter = t[3];
-  std::size_t segments = renderer.hairSegmentCount();
+  std::size_t segments = renderer.organPrimitives("hairs");
 
   std::printf("hairs: %zu instances, %zu segments (%.1f MB of instances, %.1f MB as raw lines)\n",
-              renderer.hairCount(), segments, static_cast<double>(renderer.hairCount()) * 24 / 1e6,
+              renderer.organInstances("hairs"), segments,
+              static_cast<double>(renderer.organInstances("hairs")) * 24 / 1e6,
               static_cast<double>(ends.size() * sizeof(glm::vec3)) / 1e6);
   std::printf("  %-32s %9.1f ms   %7.2f M segments/s\n", "renderer frame:", withHairs * 1e3,
               static_cast<double>(segments) / withHairs / 1e6);

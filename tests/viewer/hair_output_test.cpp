@@ -27,6 +27,7 @@
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
+#include "hirsute/viewer/gl/organ_drawing.h"
 #include "hirsute/viewer/gl/offscreen.h"
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/view/png_image.h"
@@ -114,9 +115,28 @@ Frame renderHairs(const Scene& scene, int width, int height,
   frame.camera = fitCamera(ViewSettings{}, scene.bounds(), {width, height});
   renderer.draw(frame.camera);
   frame.image = framebuffer.read();
-  frame.hairs = renderer.hairCount();
-  frame.segments = renderer.hairSegmentCount();
+  frame.hairs = renderer.organInstances("hairs");
+  frame.segments = renderer.organPrimitives("hairs");
   return frame;
+}
+
+// The renderer reaches each organ's drawing by the name it registers (organ_drawing.h), in the
+// registered order; a name no organ registers is a mistake of the caller, not a silent no-op.
+TEST(OrganDrawings, TheRendererReachesEachOrganByItsName) {
+  std::vector<std::string> names;
+  for (const OrganDrawingType* type : organDrawings()) names.emplace_back(type->name());
+  EXPECT_EQ(names, (std::vector<std::string>{"hairs", "feathers", "fur"}));
+  OsMesaContext context;
+  GlRenderer renderer(context.gl());
+  renderer.upload(Scene{}, ViewSettings{}, false);
+  for (const std::string& name : names) {
+    EXPECT_TRUE(renderer.organVisible(name));
+    renderer.setOrganVisible(name, false);
+    EXPECT_FALSE(renderer.organVisible(name));
+    EXPECT_EQ(renderer.organInstances(name), 0u);
+  }
+  EXPECT_THROW(renderer.setOrganVisible("petals", false), std::invalid_argument);
+  EXPECT_THROW(renderer.updateOrgan("petals", Scene{}), std::invalid_argument);
 }
 
 bool isRed(glm::u8vec4 p) {
@@ -160,7 +180,8 @@ TEST(HairRenderTest, HairsChangeThePixelsWhereTheyLieAndNoOthers) {
                  hair({1, -2.5f, 0}, pointing({0, 1, 0}), 3, 0.01f, 0),
                  hair({-2, 1, 0}, pointing({1, 0, 0}), 2, 0.01f, 1)};
   Frame with = renderHairs(scene, 120, 120);
-  Frame without = renderHairs(scene, 120, 120, [](GlRenderer& r) { r.setHairsVisible(false); });
+  Frame without =
+      renderHairs(scene, 120, 120, [](GlRenderer& r) { r.setOrganVisible("hairs", false); });
   EXPECT_EQ(with.hairs, 3u);
   EXPECT_EQ(with.segments, 2u + 2u + 3u);
 
@@ -201,7 +222,7 @@ TEST(HairRenderTest, HairsChangeThePixelsWhereTheyLieAndNoOthers) {
     }
   }
   // Hidden, or drawn at fraction 0, no pixel is a hair's.
-  Frame zero = renderHairs(scene, 120, 120, [](GlRenderer& r) { r.setHairFraction(0); });
+  Frame zero = renderHairs(scene, 120, 120, [](GlRenderer& r) { r.setDetail(0); });
   EXPECT_EQ(zero.image.rgba, without.image.rgba);
   for (int y = 0; y < 120; ++y) {
     for (int x = 0; x < 120; ++x) EXPECT_FALSE(isRed(without.image.pixel(x, y))) << x << "," << y;
@@ -252,8 +273,8 @@ Scene hairGrid() {
 // Which hairs of the grid are drawn: the middle of each hair shows red.
 std::vector<bool> drawnHairs(const Scene& scene, float fraction, bool visible = true) {
   Frame frame = renderHairs(scene, 400, 250, [&](GlRenderer& r) {
-    r.setHairFraction(fraction);
-    r.setHairsVisible(visible);
+    r.setDetail(fraction);
+    r.setOrganVisible("hairs", visible);
   });
   std::vector<bool> drawn;
   for (const Hair& h : scene.hairs) {

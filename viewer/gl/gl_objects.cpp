@@ -1,5 +1,5 @@
 // Making the GL objects the renderer's drawings share.
-#include "gl_objects.h"
+#include "hirsute/viewer/gl/gl_objects.h"
 
 #include <cstdio>
 #include <stdexcept>

@@ -13,11 +13,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "feather_drawing.h"
-#include "fur_drawing.h"
-#include "gl_objects.h"
-#include "gl_shaders.h"
-#include "hair_drawing.h"
+#include "hirsute/viewer/gl/gl_objects.h"
+#include "hirsute/viewer/gl/gl_shaders.h"
+#include "hirsute/viewer/gl/organ_drawing.h"
 #include "label_overlay.h"
 
 namespace hirsute {
@@ -53,9 +51,7 @@ struct GlRenderer::Mesh {
 struct GlRenderer::Resources {
   std::map<int, Program> surfacePrograms;  // by surfaceProgramKey
   Program thinLineProgram, wideLineProgram;
-  std::unique_ptr<HairDrawing> hairs;        // hair_drawing.cpp
-  std::unique_ptr<FeatherDrawing> feathers;  // feather_drawing.cpp
-  std::unique_ptr<FurDrawing> fur;           // fur_drawing.cpp
+  std::vector<std::unique_ptr<OrganDrawing>> organs;  // one a type of organDrawings()
   GLuint materialBuffer = 0, materialTexture = 0;
   int materialCount = 0;
   std::vector<Mesh> meshes;
@@ -171,7 +167,8 @@ int sphereSides(int contourSides) {
   return sides;
 }
 
-GlRenderer::GlRenderer(const GlFunctions& gl) : gl_(gl), resources_(std::make_unique<Resources>()) {
+GlRenderer::GlRenderer(const GlFunctions& gl)
+    : gl_(gl), resources_(std::make_unique<Resources>()), hidden_(organDrawings().size(), false) {
   Resources& r = *resources_;
   try {
     r.thinLineProgram.id = linkProgram(gl_,
@@ -182,9 +179,7 @@ GlRenderer::GlRenderer(const GlFunctions& gl) : gl_(gl), resources_(std::make_un
                                        {shaders::kVersion, shaders::kMaterialAndLighting,
                                         shaders::kLineVertexCommon, shaders::kWideLineVertexMain},
                                        {shaders::kVersion, shaders::kLineFragmentMain});
-    r.hairs = std::make_unique<HairDrawing>(gl_);
-    r.feathers = std::make_unique<FeatherDrawing>(gl_);
-    r.fur = std::make_unique<FurDrawing>(gl_);
+    for (const OrganDrawingType* type : organDrawings()) r.organs.push_back(type->make(gl_));
     // The other programs are built on first use; building the plainest now finds a context
     // that cannot compile them at once.
     surfaceProgram(static_cast<int>(Geometry::Mesh), 0, false);
@@ -201,9 +196,7 @@ GlRenderer::~GlRenderer() {
   release();
   gl_.DeleteProgram(resources_->thinLineProgram.id);
   gl_.DeleteProgram(resources_->wideLineProgram.id);
-  resources_->hairs.reset();
-  resources_->feathers.reset();
-  resources_->fur.reset();
+  resources_->organs.clear();
   for (auto& [key, program] : resources_->surfacePrograms) gl_.DeleteProgram(program.id);
 }
 
@@ -243,9 +236,7 @@ void GlRenderer::release() {
   releaseMesh(r.unitDisc);
   if (r.lineArray) gl_.DeleteVertexArrays(1, &r.lineArray);
   r.lineArray = 0;
-  if (r.hairs) r.hairs->release();
-  if (r.feathers) r.feathers->release();
-  if (r.fur) r.fur->release();
+  for (const auto& organ : r.organs) organ->release();
   for (GLuint* b : {&r.sphereInstances, &r.discInstances, &r.lineBuffer, &r.materialBuffer}) {
     if (*b) gl_.DeleteBuffers(1, b);
     *b = 0;
@@ -260,12 +251,39 @@ void GlRenderer::release() {
   r.textures.clear();
   r.sphereCount = r.discCount = r.thinLineCount = r.wideLineCount = 0;
   triangles_ = lines_ = 0;
-  hairs_ = hairSegments_ = 0;
-  feathers_ = 0;
 }
 
-void GlRenderer::setHairFraction(float fraction) {
-  hairFraction_ = std::isnan(fraction) ? 1.0f : std::clamp(fraction, 0.0f, 1.0f);
+void GlRenderer::setDetail(float fraction) {
+  detail_ = std::isnan(fraction) ? 1.0f : std::clamp(fraction, 0.0f, 1.0f);
+}
+
+std::size_t GlRenderer::organIndex(std::string_view organ) const {
+  const std::span<const OrganDrawingType* const> types = organDrawings();
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    if (organ == types[k]->name()) return k;
+  }
+  throw std::invalid_argument("no organ draws as '" + std::string(organ) + "'");
+}
+
+void GlRenderer::setOrganVisible(std::string_view organ, bool visible) {
+  hidden_[organIndex(organ)] = !visible;
+}
+
+bool GlRenderer::organVisible(std::string_view organ) const {
+  return !hidden_[organIndex(organ)];
+}
+
+void GlRenderer::updateOrgan(std::string_view organ, const Scene& scene) {
+  resources_->organs[organIndex(organ)]->update(scene, resources_->textures);
+  checkErrors(gl_, "organ update");
+}
+
+std::size_t GlRenderer::organInstances(std::string_view organ) const {
+  return resources_->organs[organIndex(organ)]->instances();
+}
+
+std::size_t GlRenderer::organPrimitives(std::string_view organ) const {
+  return resources_->organs[organIndex(organ)]->primitives();
 }
 
 void GlRenderer::upload(const Scene& scene, const ViewSettings& view, bool materialMode) {
@@ -410,27 +428,10 @@ void GlRenderer::upload(const Scene& scene, const ViewSettings& view, bool mater
     r.wideLineCount = static_cast<GLsizei>(scene.lines.size() - thinCount);
     lines_ = scene.lines.size();
   }
-  r.hairs->upload(scene, palette);
-  hairs_ = r.hairs->hairCount();
-  hairSegments_ = r.hairs->segmentCount();
-  r.feathers->upload(scene, r.textures);
-  feathers_ = r.feathers->featherCount();
-  r.fur->upload(scene, view, r.textures, palette);
+  for (const auto& organ : r.organs) organ->upload(OrganUpload{scene, view, r.textures, palette});
   gl_.BindVertexArray(0);
   checkErrors(gl_, "upload");
 }
-
-void GlRenderer::updateFeathers(const Scene& scene) {
-  resources_->feathers->upload(scene, resources_->textures);
-  feathers_ = resources_->feathers->featherCount();
-}
-
-void GlRenderer::updateFur(const Scene& scene) {
-  resources_->fur->update(scene);
-  checkErrors(gl_, "fur update");
-}
-
-std::size_t GlRenderer::furSurfaceCount() const { return resources_->fur->surfaceCount(); }
 
 void GlRenderer::useSurfaceProgram(const Program& program, const Camera& camera) {
   const Resources& r = *resources_;
@@ -589,12 +590,12 @@ void GlRenderer::draw(const Camera& camera) {
     // The quads follow the thin segments in the buffer: gl_VertexID / 6 counts on from them.
     gl_.DrawArrays(GL_TRIANGLES, 6 * r.thinLineCount, 6 * r.wideLineCount);
   }
-  if (hairsVisible_) r.hairs->draw(camera, hairFraction_);
-  // Feather shafts and fur take the light the surfaces have: the eye's, the first light's, or
-  // the colour map's light direction.
+  // The organs take the light the surfaces have: the eye's, the first light's, or the colour
+  // map's light direction.
   const glm::vec3 light = organLight(r.lighting, -camera.forward);
-  if (feathersVisible_) r.feathers->draw(camera, light);
-  if (furVisible_) r.fur->draw(camera, light);
+  for (std::size_t k = 0; k < r.organs.size(); ++k) {
+    if (!hidden_[k]) r.organs[k]->draw(camera, light, detail_);
+  }
 
   if (opaqueEnd != r.meshes.end()) {
     gl_.PolygonMode(GL_FRONT_AND_BACK, meshMode);

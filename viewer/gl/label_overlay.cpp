@@ -3,7 +3,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "gl_objects.h"
+#include "hirsute/viewer/gl/gl_objects.h"
 
 #define STB_EASY_FONT_IMPLEMENTATION  // a header of static functions; this is its one user
 #include <stb/stb_easy_font.h>

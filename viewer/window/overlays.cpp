@@ -29,12 +29,13 @@ void drawStatusOverlay(const LiveModel& live, const GlRenderer& renderer,
     ImGui::Text("%s  step %d / %d%s   %.1f ms   F1: help", modelName.c_str(),
                 model ? model->steps : 0, live.derivationLength(),
                 live.animating() ? "  (animating)" : "", frameMs);
-    if (model && renderer.hairCount() > 0) {
-      ImGui::Text("hairs %zu%s%s", renderer.hairCount(), shown.hairs ? "" : " (hidden)",
+    if (model && renderer.organInstances("hairs") > 0) {
+      ImGui::Text("hairs %zu%s%s", renderer.organInstances("hairs"), shown.hairs ? "" : " (hidden)",
                   fewerHairs ? "  (fewer while moving)" : "");
     }
-    if (model && renderer.featherCount() > 0) {
-      ImGui::Text("feathers %zu%s", renderer.featherCount(), shown.feathers ? "" : " (hidden)");
+    if (model && renderer.organInstances("feathers") > 0) {
+      ImGui::Text("feathers %zu%s", renderer.organInstances("feathers"),
+                  shown.feathers ? "" : " (hidden)");
       if (const dynamics::CoatMotion* coat = live.coat()) {
         ImGui::Text("dynamics %s: %.1f s simulated, %.0f frames/s, %llu steps retried",
                     live.simulating() ? "running" : "paused (D)", coat->simulation().time(),

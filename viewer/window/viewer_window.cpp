@@ -50,8 +50,10 @@ class Viewer final : public LiveModelView {
   void upload(const ViewerModel& model) override {
     renderer_->upload(model.scene, model.view, model.materialMode);
   }
-  void updateFur(const Scene& fur) override { renderer_->updateFur(fur); }
-  void updateFeathers(const Scene& feathers) override { renderer_->updateFeathers(feathers); }
+  void updateFur(const Scene& fur) override { renderer_->updateOrgan("fur", fur); }
+  void updateFeathers(const Scene& feathers) override {
+    renderer_->updateOrgan("feathers", feathers);
+  }
   bool screenshot(const std::filesystem::path& file, bool withUi) override;
   void measure(int frames) override;
 
@@ -171,16 +173,16 @@ void Viewer::drawScene(bool moving) {
     return;
   }
   const ShownParts& shown = live_->shown();
-  renderer_->setHairsVisible(shown.hairs);
-  renderer_->setFeathersVisible(shown.feathers);
-  renderer_->setFurVisible(shown.fur);
+  renderer_->setOrganVisible("hairs", shown.hairs);
+  renderer_->setOrganVisible("feathers", shown.feathers);
+  renderer_->setOrganVisible("fur", shown.fur);
   renderer_->setWireframe(shown.wireframe);
   float fraction = 1;
-  std::size_t hairCount = renderer_->hairCount();
+  std::size_t hairCount = renderer_->organInstances("hairs");
   if (moving && hairCount > options_.movingHairBudget) {
     fraction = static_cast<float>(options_.movingHairBudget) / static_cast<float>(hairCount);
   }
-  renderer_->setHairFraction(fraction);
+  renderer_->setDetail(fraction);
   renderer_->draw(live_->camera(size));
   drawnMoving_ = moving;
   if (multisampled) multisample_->resolve();
@@ -191,7 +193,7 @@ void Viewer::drawUi() {
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
   drawStatusOverlay(*live_, *renderer_, options_.lsystemFile.filename().string(), frameMs_,
-                    drawnMoving_ && renderer_->hairFraction() < 1);
+                    drawnMoving_ && renderer_->detail() < 1);
   drawErrorOverlay(live_->error());
   drawHelpOverlay(&live_->shown().help);
   if (live_->shown().panel && !live_->constants().empty()) {
@@ -254,9 +256,9 @@ void Viewer::measure(int frames) {
     return ms;
   };
   double still = timeFrames(false);
-  std::size_t hairs = renderer_->hairCount();
+  std::size_t hairs = renderer_->organInstances("hairs");
   double movingMs = timeFrames(true);
-  float fraction = renderer_->hairFraction();
+  float fraction = renderer_->detail();
   std::cout << "frame time: still " << still << " ms, moving " << movingMs << " ms (" << frames
             << " frames each, " << renderer_->triangleCount() << " triangles, "
             << renderer_->lineCount() << " lines, " << hairs << " hairs, "

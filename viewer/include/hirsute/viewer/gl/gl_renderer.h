@@ -7,18 +7,20 @@
 // reflection:`); with materials it lights them with the view's `light:` lines, or without any
 // with OpenGL's default light 0, which shines from the eye (view_lighting.h, shared with the
 // exporters). Polygons are lit on both sides when
-// their mesh is two-sided. Lines and hairs are drawn in their colour, unlit.
+// their mesh is two-sided. Lines are drawn in their colour, unlit; each organ draws itself
+// (organ_drawing.h).
 #pragma once
 
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
-#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_functions.h"
+#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/view/view_lighting.h"  // backgroundColor, the lights of a view
 
 namespace hirsute {
@@ -49,36 +51,20 @@ class GlRenderer {
   std::size_t triangleCount() const { return triangles_; }
   std::size_t lineCount() const { return lines_; }
 
-  // Plant hairs (DESIGN.md, "Plant hairs"): instances of their template's segments, drawn as
-  // antialiased (multisampled) GL lines in the template material's colour, unlit, one instanced
-  // draw per template. Each template's hairs are ordered at upload by a hash of their index (dealt
-  // into 64 random levels, each kept in placement order), so that any prefix of them is a
-  // spatially uniform subset: the fraction draws that prefix of every template (level of detail
-  // while the camera moves). Both settings outlast upload().
-  void setHairsVisible(bool visible) { hairsVisible_ = visible; }
-  void setHairFraction(float fraction);  // clamped to 0..1
-  bool hairsVisible() const { return hairsVisible_; }
-  float hairFraction() const { return hairFraction_; }
-  // Hairs uploaded (those whose template has segments), and their segments, at fraction 1.
-  std::size_t hairCount() const { return hairs_; }
-  std::size_t hairSegmentCount() const { return hairSegments_; }
-
-  // Feathers (DESIGN.md, "Feathers"; docs/feathers.md): shafts lit, barbs blended in the order
-  // the camera asks for, each feather at the level of detail of its size on the screen. The
-  // setting outlasts upload(); updateFeathers() takes the feathers (and their poses, bent by the
-  // dynamics) of `scene` again, the rest of the model as it was uploaded.
-  void setFeathersVisible(bool visible) { feathersVisible_ = visible; }
-  void updateFeathers(const Scene& scene);
-  bool feathersVisible() const { return feathersVisible_; }
-  std::size_t featherCount() const { return feathers_; }
-
-  // Shell fur (DESIGN.md, "Fur"; docs/fur.md): the fur surfaces as layers over their base
-  // surface. The setting outlasts upload(); updateFur() uploads the strands' particles and the
-  // wetness masks again after the viewer moved or wetted them.
-  void setFurVisible(bool visible) { furVisible_ = visible; }
-  bool furVisible() const { return furVisible_; }
-  void updateFur(const Scene& scene);
-  std::size_t furSurfaceCount() const;
+  // The organs' drawings (organ_drawing.h), by the name each registers; an unknown name throws
+  // std::invalid_argument. Whether an organ is drawn outlasts upload(); updateOrgan() takes
+  // again from `scene` what the viewer moves (poses, strands, wetness), the rest of the model as
+  // it was uploaded.
+  void setOrganVisible(std::string_view organ, bool visible);
+  bool organVisible(std::string_view organ) const;
+  void updateOrgan(std::string_view organ, const Scene& scene);
+  // Instances uploaded, and the primitives they are drawn with.
+  std::size_t organInstances(std::string_view organ) const;
+  std::size_t organPrimitives(std::string_view organ) const;
+  // The share of each organ's instances drawn, 0 to 1 (level of detail while the camera
+  // moves; an organ that cannot draw part of itself draws all). Outlasts upload().
+  void setDetail(float fraction);
+  float detail() const { return detail_; }
 
   // The viewer's wireframe switch: every polygon drawn as its edges, whatever the render mode
   // (as cpfg's `render mode: wireframe`). Outlasts upload().
@@ -91,6 +77,7 @@ class GlRenderer {
   struct Resources;
 
   void release();
+  std::size_t organIndex(std::string_view organ) const;
   const Program& surfaceProgram(int geometry, int shading, bool textured);
   void useSurfaceProgram(const Program& program, const Camera& camera);
   void useLineProgram(const Program& program, const Camera& camera);
@@ -101,12 +88,8 @@ class GlRenderer {
   const GlFunctions& gl_;
   std::unique_ptr<Resources> resources_;
   std::size_t triangles_ = 0, lines_ = 0;
-  std::size_t hairs_ = 0, hairSegments_ = 0;
-  bool hairsVisible_ = true;
-  bool feathersVisible_ = true;
-  bool furVisible_ = true;
-  std::size_t feathers_ = 0;
-  float hairFraction_ = 1.0f;
+  std::vector<bool> hidden_;  // by organDrawings()
+  float detail_ = 1.0f;
   bool wireframe_ = false;
 };
 

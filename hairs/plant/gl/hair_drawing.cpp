@@ -1,5 +1,5 @@
 // Plant hairs in the GL renderer: instanced template segments (DESIGN.md, "Plant hairs").
-#include "hair_drawing.h"
+#include "hirsute/hairs/plant/hair_drawing.h"
 
 #include <algorithm>
 #include <array>
@@ -9,8 +9,8 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <utility>
 
-#include "gl_objects.h"
-#include "gl_shaders.h"
+#include "hirsute/viewer/gl/gl_objects.h"
+#include "hirsute/viewer/gl/gl_shaders.h"
 
 namespace hirsute {
 
@@ -52,13 +52,36 @@ std::uint32_t hairHash(std::uint32_t x) {
   return x;
 }
 
+// Plant hairs (Fuhrer et al. 2004, Sec. 3.2: template hairs instanced and drawn as antialiased
+// lines): one draw per template, its segments as GL_LINES pairs in the hair's own frame
+// (attribute 0), each instance a hair's root, orientation (a unit quaternion from normalized
+// shorts) and length; template vertex p lands at root + length · (orientation · p), as
+// Hair::place. The colour is the template material's, unlit, set once a draw.
+constexpr char kHairVertexMain[] = R"(
+layout(location = 0) in vec3 aTemplate;
+layout(location = 3) in vec3 aRoot;
+layout(location = 4) in vec4 aOrientation;  // (x, y, z, w)
+layout(location = 5) in float aLength;
+uniform mat4 uViewProjection;
+uniform vec4 uColor;
+flat out vec4 vColor;
+void main() {
+  vec4 q = normalize(aOrientation);
+  // q · p · q* for a unit quaternion: p + 2w (v × p) + 2 v × (v × p), v = q.xyz.
+  vec3 t = 2.0 * cross(q.xyz, aTemplate);
+  vec3 rotated = aTemplate + q.w * t + cross(q.xyz, t);
+  vColor = uColor;
+  gl_Position = uViewProjection * vec4(aRoot + aLength * rotated, 1.0);
+}
+)";
+
 constexpr int kHairLevelBits = 6;
 constexpr std::size_t kHairLevels = std::size_t{1} << kHairLevelBits;
 
 }  // namespace
 
 HairDrawing::HairDrawing(const GlFunctions& gl) : gl_(gl) {
-  program_ = linkProgram(gl_, {shaders::kVersion, shaders::kHairVertexMain},
+  program_ = linkProgram(gl_, {shaders::kVersion, kHairVertexMain},
                          {shaders::kVersion, shaders::kLineFragmentMain});
   viewProjection_ = gl_.GetUniformLocation(program_, "uViewProjection");
   color_ = gl_.GetUniformLocation(program_, "uColor");
@@ -87,7 +110,9 @@ void HairDrawing::release() {
 // segments go up once, and the hairs, grouped by template with a counting sort, go up as 24-byte
 // instances, once ordered within their template into levels by hairHash and once in placement
 // order.
-void HairDrawing::upload(const Scene& scene, const std::vector<Material>& palette) {
+void HairDrawing::upload(const OrganUpload& upload) {
+  const Scene& scene = upload.scene;
+  const std::vector<Material>& palette = upload.palette;
   release();
   const int materialCount = static_cast<int>(palette.size());
   const std::size_t templates = scene.hairTemplates.size();
@@ -176,7 +201,7 @@ void HairDrawing::upload(const Scene& scene, const std::vector<Material>& palett
   }
 }
 
-void HairDrawing::draw(const Camera& camera, float fraction) const {
+void HairDrawing::draw(const Camera& camera, const glm::vec3& /*light*/, float fraction) {
   if (fraction <= 0 || batches_.empty()) return;
   gl_.UseProgram(program_);
   gl_.UniformMatrix4fv(viewProjection_, 1, GL_FALSE, glm::value_ptr(camera.viewProjection()));
@@ -190,6 +215,11 @@ void HairDrawing::draw(const Camera& camera, float fraction) const {
                                                          : batch.levelVertexArray);
     gl_.DrawArraysInstanced(GL_LINES, 0, batch.vertexCount, instances);
   }
+}
+
+const OrganDrawingType& plantHairDrawing() {
+  static const OrganDrawingTypeOf<HairDrawing> type("hairs");
+  return type;
 }
 
 }  // namespace hirsute

@@ -1,7 +1,8 @@
 // Feathers in the GL renderer (Streit & Heidrich 2002, Sec. 4.3): the shafts as lit tubes, the
 // barbs as alpha-blended lines or strips fading to their tips, textured in the type's mapping,
 // each feather at the level of detail of its size on the screen and its vanes in the order the
-// camera asks for (feather_buffers.h). GlRenderer owns one.
+// camera asks for (feather_buffers.h). The renderer makes one by featherDrawing()
+// (organ_drawing.h).
 #pragma once
 
 #include <cstddef>
@@ -9,33 +10,41 @@
 #include <vector>
 
 #include "hirsute/interpreter/scene.h"
+#include "hirsute/viewer/gl/gl_functions.h"
+#include "hirsute/viewer/gl/organ_drawing.h"
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/view/feather_buffers.h"
-#include "hirsute/viewer/gl/gl_functions.h"
 
 namespace hirsute {
 
-class FeatherDrawing {
+class FeatherDrawing : public OrganDrawing {
  public:
   // Compiles the feather programs; the renderer's context must be current.
   explicit FeatherDrawing(const GlFunctions& gl);
-  ~FeatherDrawing();
+  ~FeatherDrawing() override;
   FeatherDrawing(const FeatherDrawing&) = delete;
   FeatherDrawing& operator=(const FeatherDrawing&) = delete;
 
   // Keeps what the feathers are made of; the geometry is built on the first draw, for its camera.
   // `textures` are the renderer's GL textures by Scene texture index (0: none).
-  void upload(const Scene& scene, const std::vector<GLuint>& textures);
-  void release();
+  void upload(const OrganUpload& upload) override { take(upload.scene, upload.textures); }
+  // The feathers and their poses again, as upload() takes them.
+  void update(const Scene& scene, const std::vector<GLuint>& textures) override {
+    take(scene, textures);
+  }
+  void release() override;
   // Draws the shafts (opaque) and then the barbs (blended, without depth writes), rebuilding the
   // geometry when the camera asks for other levels of detail. `light` is the direction towards
   // the light the shafts are lit by.
-  void draw(const Camera& camera, const glm::vec3& light);
+  void draw(const Camera& camera, const glm::vec3& light, float detail) override;
 
-  std::size_t featherCount() const { return scene_.feathers.size(); }
+  std::size_t instances() const override { return scene_.feathers.size(); }
+  // The barb and shaft triangles and segments built for the last camera.
+  std::size_t primitives() const override;
   const FeatherBuffers& buffers() const { return buffers_; }
 
  private:
+  void take(const Scene& scene, const std::vector<GLuint>& textures);
   void build(const std::vector<std::uint8_t>& levels);
 
   const GlFunctions& gl_;
@@ -54,5 +63,8 @@ class FeatherDrawing {
   std::vector<FeatherDrawRun> runs_;
   std::vector<char> nearSides_;  // the vane order the barb indices were last built for
 };
+
+// The feathers' drawing, registered as "feathers".
+const OrganDrawingType& featherDrawing();
 
 }  // namespace hirsute

@@ -279,29 +279,7 @@ void main() {
 }
 )";
 
-// Plant hairs (Fuhrer et al. 2004, Sec. 3.2: template hairs instanced and drawn as antialiased
-// lines): one draw per template, its segments as GL_LINES pairs in the hair's own frame
-// (attribute 0), each instance a hair's root, orientation (a unit quaternion from normalized
-// shorts) and length; template vertex p lands at root + length · (orientation · p), as
-// Hair::place. The colour is the template material's, unlit, set once a draw.
-inline constexpr char kHairVertexMain[] = R"(
-layout(location = 0) in vec3 aTemplate;
-layout(location = 3) in vec3 aRoot;
-layout(location = 4) in vec4 aOrientation;  // (x, y, z, w)
-layout(location = 5) in float aLength;
-uniform mat4 uViewProjection;
-uniform vec4 uColor;
-flat out vec4 vColor;
-void main() {
-  vec4 q = normalize(aOrientation);
-  // q · p · q* for a unit quaternion: p + 2w (v × p) + 2 v × (v × p), v = q.xyz.
-  vec3 t = 2.0 * cross(q.xyz, aTemplate);
-  vec3 rotated = aTemplate + q.w * t + cross(q.xyz, t);
-  vColor = uColor;
-  gl_Position = uViewProjection * vec4(aRoot + aLength * rotated, 1.0);
-}
-)";
-
+// Lines and line-like instances in a colour of their own, unlit.
 inline constexpr char kLineFragmentMain[] = R"(
 flat in vec4 vColor;
 out vec4 fragColor;

@@ -1,9 +1,9 @@
-#include "fur_drawing.h"
+#include "hirsute/hairs/fur/fur_drawing.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "gl_objects.h"
 #include "hirsute/hairs/fur/fur_strand.h"
+#include "hirsute/viewer/gl/gl_objects.h"
 
 namespace hirsute {
 namespace {
@@ -157,8 +157,11 @@ void FurDrawing::release() {
   furTextures_.clear();
 }
 
-void FurDrawing::upload(const Scene& scene, const ViewSettings& view,
-                        const std::vector<GLuint>& textures, const std::vector<Material>& palette) {
+void FurDrawing::upload(const OrganUpload& upload) {
+  const Scene& scene = upload.scene;
+  const ViewSettings& view = upload.view;
+  const std::vector<GLuint>& textures = upload.textures;
+  const std::vector<Material>& palette = upload.palette;
   release();
   layers_ = view.furLayers;
   for (const FurTexture& fur : scene.furTextures) {
@@ -184,7 +187,8 @@ void FurDrawing::upload(const Scene& scene, const ViewSettings& view,
     s.wrapsU = fur.wrapsU;
     const std::size_t material = static_cast<std::size_t>(fur.material);
     s.color = material < palette.size() ? palette[material].diffuse : glm::vec3(0.8f);
-    if (s.attributes.texture > 0 && static_cast<std::size_t>(s.attributes.texture) < textures.size())
+    if (s.attributes.texture > 0 &&
+        static_cast<std::size_t>(s.attributes.texture) < textures.size())
       s.colorTexture = textures[static_cast<std::size_t>(s.attributes.texture)];
     gl_.GenVertexArrays(1, &s.vertexArray);
     gl_.BindVertexArray(s.vertexArray);
@@ -213,7 +217,7 @@ void FurDrawing::upload(const Scene& scene, const ViewSettings& view,
   gl_.BindVertexArray(0);
 }
 
-void FurDrawing::update(const Scene& scene) {
+void FurDrawing::update(const Scene& scene, const std::vector<GLuint>& /*textures*/) {
   std::size_t next = 0;
   for (const FurSurface& fur : scene.furSurfaces) {
     if (fur.attributes < 0 || fur.indices.empty()) continue;
@@ -226,7 +230,9 @@ void FurDrawing::update(const Scene& scene) {
   }
 }
 
-std::size_t FurDrawing::surfaceCount() const { return surfaces_.size(); }
+std::size_t FurDrawing::instances() const {
+  return surfaces_.size();
+}
 
 std::size_t FurDrawing::shellTriangles() const {
   std::size_t n = 0;
@@ -234,7 +240,7 @@ std::size_t FurDrawing::shellTriangles() const {
   return n * static_cast<std::size_t>(layers_);
 }
 
-void FurDrawing::draw(const Camera& camera, const glm::vec3& light) {
+void FurDrawing::draw(const Camera& camera, const glm::vec3& light, float /*detail*/) {
   if (surfaces_.empty()) return;
   gl_.UseProgram(program_);
   auto uniform = [this](const char* name) { return gl_.GetUniformLocation(program_, name); };
@@ -273,6 +279,11 @@ void FurDrawing::draw(const Camera& camera, const glm::vec3& light) {
   }
   gl_.ActiveTexture(GL_TEXTURE0);
   gl_.BindVertexArray(0);
+}
+
+const OrganDrawingType& furDrawing() {
+  static const OrganDrawingTypeOf<FurDrawing> type("fur");
+  return type;
 }
 
 }  // namespace hirsute

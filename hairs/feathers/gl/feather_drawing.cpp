@@ -1,8 +1,8 @@
-#include "feather_drawing.h"
+#include "hirsute/hairs/feathers/feather_drawing.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "gl_objects.h"
+#include "hirsute/viewer/gl/gl_objects.h"
 
 namespace hirsute {
 namespace {
@@ -99,7 +99,7 @@ void FeatherDrawing::release() {
   nearSides_.clear();
 }
 
-void FeatherDrawing::upload(const Scene& scene, const std::vector<GLuint>& textures) {
+void FeatherDrawing::take(const Scene& scene, const std::vector<GLuint>& textures) {
   release();
   scene_ = Scene{};
   scene_.featherTypes = scene.featherTypes;
@@ -141,7 +141,7 @@ void FeatherDrawing::build(const std::vector<std::uint8_t>& levels) {
   built_ = true;
 }
 
-void FeatherDrawing::draw(const Camera& camera, const glm::vec3& light) {
+void FeatherDrawing::draw(const Camera& camera, const glm::vec3& light, float /*detail*/) {
   if (scene_.feathers.empty()) return;
   const std::vector<std::uint8_t> levels = featherDetailLevels(scene_, camera);
   if (!built_ || levels != buffers_.levels) build(levels);
@@ -199,6 +199,21 @@ void FeatherDrawing::draw(const Camera& camera, const glm::vec3& light) {
   }
   gl_.DepthMask(GL_TRUE);
   gl_.Disable(GL_BLEND);
+}
+
+std::size_t FeatherDrawing::primitives() const {
+  std::size_t n = buffers_.shaftIndices.size() / 3;
+  for (const FeatherBuffers::Part& part : buffers_.parts) {
+    for (const FeatherBuffers::Vane& vane : part.vanes) {
+      if (vane.primitiveSize > 0) n += vane.count / static_cast<std::size_t>(vane.primitiveSize);
+    }
+  }
+  return n;
+}
+
+const OrganDrawingType& featherDrawing() {
+  static const OrganDrawingTypeOf<FeatherDrawing> type("feathers");
+  return type;
 }
 
 }  // namespace hirsute
