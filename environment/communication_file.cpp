@@ -2,8 +2,8 @@
 
 #include <cctype>
 #include <cstdlib>
-#include <cstring>
 
+#include "hirsute/core/characters.h"
 #include "hirsute/environment/keyword_file.h"
 
 namespace hirsute {
@@ -27,14 +27,14 @@ int checkFormat(const KeywordLine& line, const std::string& format, int values,
     }
     const std::size_t start = i;
     std::size_t j = i + 1;
-    while (j < format.size() && std::strchr("-+ #0'", format[j]) != nullptr) ++j;
+    while (j < format.size() && isOneOf(format[j], "-+ #0'")) ++j;
     while (j < format.size() && std::isdigit(static_cast<unsigned char>(format[j]))) ++j;
     if (j < format.size() && format[j] == '.') {
       ++j;
       while (j < format.size() && std::isdigit(static_cast<unsigned char>(format[j]))) ++j;
     }
     if (j < format.size() && format[j] == 'l') ++j;
-    if (j >= format.size() || std::strchr("fFeEgGaA", format[j]) == nullptr) {
+    if (j >= format.size() || !isOneOf(format[j], "fFeEgGaA")) {
       throw DiagnosticError(line.at(base + static_cast<int>(start)),
                             "the format's conversion must be one for a floating value (%f, %e, "
                             "%g or %a, with flags, width and precision)");

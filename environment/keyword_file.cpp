@@ -2,10 +2,11 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
+
+#include "hirsute/core/characters.h"
 
 namespace hirsute {
 
@@ -13,9 +14,9 @@ std::vector<KeywordToken> KeywordLine::tokens(const char* separators) const {
   std::vector<KeywordToken> out;
   std::size_t i = rest;
   while (i < text.size()) {
-    while (i < text.size() && std::strchr(separators, text[i]) != nullptr) ++i;
+    while (i < text.size() && isOneOf(text[i], separators)) ++i;
     const std::size_t from = i;
-    while (i < text.size() && std::strchr(separators, text[i]) == nullptr) ++i;
+    while (i < text.size() && !isOneOf(text[i], separators)) ++i;
     if (i > from)
       out.push_back(KeywordToken{text.substr(from, i - from), static_cast<int>(from) + 1});
   }

@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 
 #include <fmt/format.h>
 
 #include "cpfg_numbers.h"
 #include "cylinder_mesh.h"
+#include "hirsute/core/characters.h"
 #include "hirsute/interpreter/generalized_cylinder.h"
 #include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/lsys/derivation.h"
@@ -148,8 +148,7 @@ void Turtle::dispatch(char symbol, const float* p, std::size_t count) {
     // belong to the last one (`@Gc(4)` is `@`, `G`, `c(4)`).
     const std::string prefix = prefix_;
     if (prefix == "@") {
-      if (count == 0 &&
-          (std::strchr("PTGmDb", symbol) != nullptr || organModuleTableIndex(symbol) >= 0)) {
+      if (count == 0 && (isOneOf(symbol, "PTGmDb") || organModuleTableIndex(symbol) >= 0)) {
         prefix_ = {'@', symbol};
         return;
       }

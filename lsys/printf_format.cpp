@@ -4,7 +4,8 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
+
+#include "hirsute/core/characters.h"
 
 namespace hirsute {
 namespace {
@@ -46,9 +47,9 @@ PrintfResult formatPrintf(const std::string& fmt, const double* values, int coun
       continue;
     }
     std::size_t end = pos + 1;
-    while (end < fmt.size() && std::strchr("-+ #0123456789.", fmt[end])) ++end;
+    while (end < fmt.size() && isOneOf(fmt[end], "-+ #0123456789.")) ++end;
     std::string flags = fmt.substr(pos, end - pos);
-    while (end < fmt.size() && std::strchr("hlLqjzt", fmt[end])) ++end;  // length modifiers are ignored
+    while (end < fmt.size() && isOneOf(fmt[end], "hlLqjzt")) ++end;  // length modifiers are ignored
     if (end >= fmt.size() || flags.size() > 20) {
       out += fmt.substr(pos);
       break;
@@ -61,7 +62,7 @@ PrintfResult formatPrintf(const std::string& fmt, const double* values, int coun
       continue;
     }
     char conversion = fmt[end];
-    if (!std::strchr("diouxXcfFeEgGaA", conversion)) {
+    if (!isOneOf(conversion, "diouxXcfFeEgGaA")) {
       out += fmt.substr(pos, end + 1 - pos);
       pos = end + 1;
       continue;
@@ -73,7 +74,7 @@ PrintfResult formatPrintf(const std::string& fmt, const double* values, int coun
       continue;
     }
     double v = values[next++];
-    if (std::strchr("diouxXc", conversion)) {
+    if (isOneOf(conversion, "diouxXc")) {
       long long i = std::isfinite(v) && std::fabs(v) < 9e18 ? static_cast<long long>(v) : 0;
       std::string spec = flags + "ll" + conversion;
       if (conversion == 'c') spec = flags + "c";

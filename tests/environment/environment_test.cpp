@@ -110,6 +110,10 @@ TEST_F(EnvironmentTest, UnsafeFormatsAndUnsupportedExchangesAreErrors) {
   EXPECT_NE(errorOf("turtle line width: %f %f\n").find("more conversions than the 1 value"),
             std::string::npos);
   EXPECT_NE(errorOf("turtle position: %s\n").find("floating"), std::string::npos);
+  // A NUL byte ends a C string: "%." then NUL is no conversion, whatever follows it.
+  EXPECT_NE(
+      errorOf(std::string("turtle position:P:%.\0\0\1\0004f %.4f %.4f\n", 37)).find("floating"),
+      std::string::npos);
   EXPECT_NE(errorOf("strings only: on\n").find("not supported"), std::string::npos);
   EXPECT_NE(errorOf("following module: perhaps\n").find("'yes' or 'no'"), std::string::npos);
   EXPECT_EQ(errorOf("interpreted modules: F(2) Fish\n").substr(0, 5), "1:27:");
