@@ -1,5 +1,5 @@
-// The list of organ tables and the readers of the parameter forms they share (DESIGN.md,
-// "Organs"; the value form is Fuhrer et al. 2004, Table 1).
+// The list of organ tables, the list of the organs' view-file lines, and the readers of the
+// parameter forms they share (DESIGN.md, "Organs"; the value form is Fuhrer et al. 2004, Table 1).
 #include "hirsute/interpreter/organ_modules.h"
 
 #include <algorithm>
@@ -9,6 +9,10 @@
 #include <vector>
 
 #include "cpfg_numbers.h"
+#include "hirsute/interpreter/feather_attributes.h"
+#include "hirsute/interpreter/fur_attributes.h"
+#include "hirsute/interpreter/hair_attributes.h"
+#include "hirsute/interpreter/view_lines.h"
 
 namespace hirsute {
 
@@ -20,6 +24,16 @@ std::span<const OrganModuleTable* const> organModuleTables() {
       &furModuleTable(),
   };
   return tables;
+}
+
+std::span<const std::span<const ViewLineCommand>> organViewLines() {
+  // One entry per organ, in the order of organModuleTables().
+  static const std::array<std::span<const ViewLineCommand>, 3> lines{
+      hairViewLines(),
+      featherViewLines(),
+      furViewLines(),
+  };
+  return lines;
 }
 
 int organModuleTableIndex(char organ) {

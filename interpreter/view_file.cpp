@@ -15,10 +15,12 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <initializer_list>
 #include <cstdio>
+#include <initializer_list>
 #include <limits>
 #include <optional>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -28,120 +30,17 @@
 #include "hirsute/core/model_folder.h"
 #include "hirsute/interpreter/contour.h"
 #include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/view_lines.h"
 #include "hirsute/lsys/view_file_lines.h"
 
 namespace hirsute {
 namespace {
 
-std::string inQuotes(std::string_view text) {
-  return "'" + std::string(text) + "'";
-}
-
-bool isBlank(char c) {
-  return c == ' ' || c == '\t' || c == '\r';
-}
-
-// A number at the front of `text` as sscanf's %f reads it: an optional sign, digits, a fraction,
-// an exponent. Returns the value and the characters used; nothing when no number starts there.
-// Infinite and NaN values are refused: no view setting means them.
-std::optional<std::pair<double, std::size_t>> numberAtFront(std::string_view text) {
-  std::size_t skip = 0;
-  if (!text.empty() && text[0] == '+' && text.size() > 1 && text[1] != '-') skip = 1;
-  const char* begin = text.data() + skip;
-  const char* end = text.data() + text.size();
-  if (begin == end ||
-      !(std::isdigit(static_cast<unsigned char>(*begin)) || *begin == '-' || *begin == '.')) {
-    return std::nullopt;
-  }
-  double value = 0.0;
-  const auto [stop, error] = std::from_chars(begin, end, value, std::chars_format::general);
-  if (error != std::errc() || !std::isfinite(value)) return std::nullopt;
-  return std::make_pair(value, static_cast<std::size_t>(stop - text.data()));
-}
-
-// An integer at the front of `text`, as %d reads it.
-std::optional<std::pair<long, std::size_t>> integerAtFront(std::string_view text) {
-  std::size_t skip = 0;
-  if (!text.empty() && text[0] == '+' && text.size() > 1 && text[1] != '-') skip = 1;
-  long value = 0;
-  const char* begin = text.data() + skip;
-  const auto [stop, error] = std::from_chars(begin, text.data() + text.size(), value);
-  if (error != std::errc() || stop == begin) return std::nullopt;
-  return std::make_pair(value, static_cast<std::size_t>(stop - text.data()));
-}
-
-// A whole word as a number; used where words are separated first (light, texture, tropism).
-std::optional<double> wholeNumber(std::string_view word) {
-  const auto number = numberAtFront(word);
-  if (!number || number->second != word.size()) return std::nullopt;
-  return number->first;
-}
-
-// The arguments of one command, read front to back as sscanf reads them.
-class ArgumentReader {
- public:
-  explicit ArgumentReader(const ViewFileLine& line) : line_(line), text_(line.rest) {}
-
-  void skipBlanks() {
-    while (position_ < text_.size() && isBlank(text_[position_])) ++position_;
-  }
-  bool atEnd() {
-    skipBlanks();
-    return position_ >= text_.size();
-  }
-  // Where the next argument starts (after blanks).
-  SourceLocation here() {
-    skipBlanks();
-    return line_.at(position_);
-  }
-  // The next blank-separated word, without consuming it ("" at the end).
-  std::string_view peekWord() {
-    skipBlanks();
-    std::size_t end = position_;
-    while (end < text_.size() && !isBlank(text_[end])) ++end;
-    return text_.substr(position_, end - position_);
-  }
-  std::optional<std::string_view> word() {
-    const std::string_view next = peekWord();
-    if (next.empty()) return std::nullopt;
-    position_ += next.size();
-    return next;
-  }
-  std::optional<double> number() {
-    skipBlanks();
-    const auto number = numberAtFront(text_.substr(position_));
-    if (!number) return std::nullopt;
-    position_ += number->second;
-    return number->first;
-  }
-  std::optional<long> integer() {
-    skipBlanks();
-    const auto number = integerAtFront(text_.substr(position_));
-    if (!number) return std::nullopt;
-    position_ += number->second;
-    return number->first;
-  }
-  // A literal such as ',' or "x:"; blanks before it are allowed (sscanf would not skip them
-  // before a comma; accepting `0 , 1` costs nothing).
-  bool literal(std::string_view expected) {
-    skipBlanks();
-    if (text_.substr(position_, expected.size()) != expected) return false;
-    position_ += expected.size();
-    return true;
-  }
-  void skipAll() { position_ = text_.size(); }
-  std::string_view remaining() {
-    skipBlanks();
-    std::string_view rest = text_.substr(position_);
-    while (!rest.empty() && isBlank(rest.back())) rest.remove_suffix(1);
-    return rest;
-  }
-
- private:
-  const ViewFileLine& line_;
-  std::string_view text_;
-  std::size_t position_ = 0;
-};
+using view_text::inQuotes;
+using view_text::integerAtFront;
+using view_text::isBlank;
+using view_text::numberAtFront;
+using view_text::wholeNumber;
 
 // A word of a subcommand list (light, texture, tropism, shadow map): words are separated by
 // blanks and commas (`tropism: T: 0,1,0`), and `V:5.0` is the key `V:` and the value `5.0`.
@@ -179,167 +78,8 @@ char subcommandKey(std::string_view token) {
   return 0;
 }
 
-class Command;
-using Handler = void (*)(Command&);
-
-// One view-file line being read: its arguments, the settings it changes, and how it reports.
-class Command {
- public:
-  Command(const ViewFileLine& line, ViewSettings& view, Diagnostics& diagnostics,
-          const std::filesystem::path& folder)
-      : args(line), view(view), line_(line), diagnostics_(diagnostics), folder_(folder) {}
-
-  const ViewFileLine& line() const { return line_; }
-  std::string_view label() const { return line_.label; }
-  // Where the label starts: messages about the whole line point there.
-  SourceLocation labelAt() const {
-    SourceLocation where = line_.where;
-    where.column = line_.restColumn - static_cast<int>(line_.label.size());
-    return where;
-  }
-
-  [[noreturn]] void fail(const SourceLocation& where, const std::string& message) const {
-    throw DiagnosticError(where, message);
-  }
-  void warn(const SourceLocation& where, const std::string& message) {
-    diagnostics_.warn(where, message);
-  }
-
-  // A setting that cannot be read: a warning, and the setting keeps its value (cpfg).
-  void ignoreLine(const SourceLocation& where, const std::string& expected) {
-    const std::string found = std::string(args.peekWord());
-    warn(where, "expected " + expected + " after " + inQuotes(label()) + ", found " +
-                    (found.empty() ? std::string("nothing") : inQuotes(found)) +
-                    "; the line is ignored");
-    args.skipAll();
-    ignored_ = true;
-  }
-  bool ignored() const { return ignored_; }
-
-  // Settings: nothing is returned (and a warning given) when the value cannot be read.
-  std::optional<double> settingNumber() {
-    const SourceLocation where = args.here();
-    const std::optional<double> value = args.number();
-    if (!value) ignoreLine(where, "a number");
-    return value;
-  }
-  std::optional<int> settingInteger() {
-    const SourceLocation where = args.here();
-    const std::optional<long> value = args.integer();
-    if (!value || *value < std::numeric_limits<int>::min() ||
-        *value > std::numeric_limits<int>::max()) {
-      ignoreLine(where, "an integer");
-      return std::nullopt;
-    }
-    return static_cast<int>(*value);
-  }
-  // `x,y,z`.
-  std::optional<glm::vec3> settingTriple() {
-    glm::vec3 out;
-    for (int k = 0; k < 3; ++k) {
-      const SourceLocation where = args.here();
-      if (k > 0 && !args.literal(",")) {
-        ignoreLine(where, "three numbers separated by commas (x,y,z)");
-        return std::nullopt;
-      }
-      const SourceLocation numberAt = args.here();
-      const std::optional<double> value = args.number();
-      if (!value) {
-        ignoreLine(numberAt, "three numbers separated by commas (x,y,z)");
-        return std::nullopt;
-      }
-      out[k] = static_cast<float>(*value);
-    }
-    return out;
-  }
-  // One of `words`; the index of the word found.
-  std::optional<std::size_t> settingWord(std::initializer_list<std::string_view> words,
-                                         const std::string& expected) {
-    const SourceLocation where = args.here();
-    const std::string_view word = args.peekWord();
-    std::size_t index = 0;
-    for (std::string_view candidate : words) {
-      if (word == candidate) {
-        args.word();
-        return index;
-      }
-      ++index;
-    }
-    ignoreLine(where, expected);
-    return std::nullopt;
-  }
-  std::optional<bool> settingFlag() {
-    const std::optional<std::size_t> word = settingWord({"on", "off"}, "on or off");
-    if (!word) return std::nullopt;
-    return *word == 0;
-  }
-
-  // Declarations: an error when the value cannot be read.
-  std::string_view requiredWord(const std::string& what) {
-    const SourceLocation where = args.here();
-    const std::optional<std::string_view> word = args.word();
-    if (!word) fail(where, "expected " + what + " after " + inQuotes(label()));
-    return *word;
-  }
-  long requiredInteger(const std::string& what, long min, long max) {
-    const SourceLocation where = args.here();
-    const std::string_view word = args.peekWord();
-    const auto number = integerAtFront(word);
-    if (!number || number->second != word.size()) {
-      fail(where, "expected " + what + " after " + inQuotes(label()) + ", found " +
-                      (word.empty() ? std::string("nothing") : inQuotes(word)));
-    }
-    if (number->first < min || number->first > max) {
-      fail(where, what + " must be from " + std::to_string(min) + " to " + std::to_string(max) +
-                      ", found " + std::to_string(number->first));
-    }
-    args.word();
-    return number->first;
-  }
-  double requiredNumber(const std::string& what) {
-    const SourceLocation where = args.here();
-    const std::string_view word = args.peekWord();
-    const std::optional<double> value = wholeNumber(word);
-    if (!value) {
-      fail(where, "expected " + what + " after " + inQuotes(label()) + ", found " +
-                      (word.empty() ? std::string("nothing") : inQuotes(word)));
-    }
-    args.word();
-    return *value;
-  }
-
-  // Text left after the arguments: cpfg's sscanf ignores it; Hirsute says so.
-  void finish() {
-    if (ignored_) return;
-    const SourceLocation where = args.here();
-    const std::string_view rest = args.remaining();
-    if (!rest.empty()) {
-      warn(where, inQuotes(rest) + " after the arguments of " + inQuotes(label()) + " is ignored");
-    }
-  }
-
-  // A file name of the view file, resolved against its folder. The name must stay beneath that
-  // folder (model_folder.h): an absolute name, a `..`, a link out of the folder, a FIFO or a
-  // device is an error here, at the reference; a missing file is for its reader to report.
-  std::string resolve(std::string_view name, const SourceLocation& where) const {
-    const ModelFolder folder(folder_);
-    const std::string refused = folder.refusal(std::string(name));
-    if (!refused.empty()) fail(where, "cannot open " + inQuotes(name) + ": " + refused);
-    return folder.pathOf(std::string(name)).string();
-  }
-
-  ArgumentReader args;
-  ViewSettings& view;
-
- private:
-  const ViewFileLine& line_;
-  Diagnostics& diagnostics_;
-  const std::filesystem::path& folder_;
-  bool ignored_ = false;
-};
-
 // The numbers after a subcommand key; an error when there are fewer or they are no numbers.
-std::vector<double> subcommandNumbers(const Command& c, const std::vector<Token>& tokens,
+std::vector<double> subcommandNumbers(const ViewLine& c, const std::vector<Token>& tokens,
                                       std::size_t& i, std::size_t count, const std::string& what) {
   const Token& key = tokens[i];
   std::vector<double> values;
@@ -364,7 +104,7 @@ glm::vec3 asVector(const std::vector<double>& v) {
 }
 
 // The word after a subcommand key (texture file names and modes).
-std::string_view subcommandWord(const Command& c, const std::vector<Token>& tokens, std::size_t& i,
+std::string_view subcommandWord(const ViewLine& c, const std::vector<Token>& tokens, std::size_t& i,
                                 const std::string& what) {
   if (i + 1 >= tokens.size()) {
     c.fail(tokens[i].where, "expected " + what + " after " + inQuotes(tokens[i].text) + " in " +
@@ -378,7 +118,7 @@ std::string_view subcommandWord(const Command& c, const std::vector<Token>& toke
 
 // `initial line width: w [unit]`. cpfg: the unit word also sets the line style — none: polygon
 // (world units), a word starting with p: pixel, s: cylinder.
-void initialLineWidth(Command& c) {
+void initialLineWidth(ViewLine& c) {
   const std::optional<double> width = c.settingNumber();
   if (!width) return;
   LineStyle style = LineStyle::Polygon;
@@ -398,7 +138,7 @@ void initialLineWidth(Command& c) {
   c.view.lineWidthInPixels = style == LineStyle::Pixel;
 }
 
-void lineStyle(Command& c) {
+void lineStyle(ViewLine& c) {
   const std::string_view word = c.args.peekWord();
   static constexpr LineStyle kStyles[] = {LineStyle::Pixel, LineStyle::Polygon,
                                           LineStyle::Cylinder};
@@ -417,7 +157,7 @@ void lineStyle(Command& c) {
 }
 
 // `render mode:` a word, or its number 1–7 in the same order.
-void renderMode(Command& c) {
+void renderMode(ViewLine& c) {
   static constexpr std::string_view kWords[] = {"wireframe", "filled", "flat",   "interpolated",
                                                 "shaded",    "fast",   "shadows"};
   const std::string_view word = c.args.peekWord();
@@ -435,7 +175,7 @@ void renderMode(Command& c) {
 // The legacy `shade mode:` (manual §8.1.10): 1 simple fill, 2 interpolated fill, 3 Gouraud
 // shading, 4 B-spline, 5 closed B-spline, 6 two-sided, 7 wireframe. Modes 4–6 chose smooth
 // surface variants on the old SGI machines; Hirsute shades them.
-void shadeMode(Command& c) {
+void shadeMode(ViewLine& c) {
   const SourceLocation where = c.args.here();
   const std::optional<int> mode = c.settingInteger();
   if (!mode) return;
@@ -451,7 +191,7 @@ void shadeMode(Command& c) {
 }
 
 // `box: x: a,b y: c,d z: e,f`.
-void box(Command& c) {
+void box(ViewLine& c) {
   Bounds bounds;
   for (std::string_view axis : {"x:", "y:", "z:"}) {
     const SourceLocation where = c.args.here();
@@ -478,7 +218,7 @@ void box(Command& c) {
 // square depth texture: no GL takes one wider than 16384 texels (llvmpipe's limit).
 constexpr int kMaxShadowMapSize = 16384;
 
-void shadowMap(Command& c) {
+void shadowMap(ViewLine& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   c.args.skipAll();
   ShadowMap map = c.view.shadowMap;
@@ -525,7 +265,7 @@ void shadowMap(Command& c) {
 // `light: O: x y z  V: x y z  A: r g b  D: r g b  S: r g b  P: x y z e c  T: c l q`
 // (manual §8.1.3). Each line adds a light. The colon after a key may be missing (tools-FernLeaf
 // writes `D 0.6 0.6 0.6`) and numbers may be separated by commas (`V: 1.0, 0.5, 0.5`).
-void light(Command& c) {
+void light(ViewLine& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   LightSource light;
   light.ambient = glm::vec3(kLightLineAmbient);
@@ -573,7 +313,7 @@ void light(Command& c) {
 
 // `tropism:` / `torque:` with `T: x y z` (mandatory), `A: angle`, `I: intensity`,
 // `E: elasticity`, `S: step` (manual §8.1.8). cpfg ignores A: for torques.
-void tropismOrTorque(Command& c, bool torque) {
+void tropismOrTorque(ViewLine& c, bool torque) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   Tropism tropism;
   tropism.torque = torque;
@@ -616,7 +356,7 @@ void tropismOrTorque(Command& c, bool torque) {
 
 // `texture: F: file E: m|d|b S: R: ratio H: n|l L: n|l|m|mnn|mln|mnl|mll` (manual §8.1.7); ids
 // are the order of the lines, from 1.
-void texture(Command& c) {
+void texture(ViewLine& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   TextureDeclaration texture;
   bool hasFile = false;
@@ -693,7 +433,7 @@ void texture(Command& c) {
 }
 
 // `contour: id file.con`.
-void contour(Command& c) {
+void contour(ViewLine& c) {
   ContourDeclaration contour;
   contour.id = static_cast<int>(c.requiredInteger("a contour id", 1, 1000000));
   contour.where = c.args.here();
@@ -712,7 +452,7 @@ void contour(Command& c) {
 
 // `surface: X file.s size [s_prec t_prec] [texture]`. cpfg reads a texture id; the manual names
 // a texture file there, which Hirsute also accepts (it becomes the next texture).
-void surface(Command& c) {
+void surface(ViewLine& c) {
   SurfaceDeclaration surface;
   const SourceLocation idAt = c.args.here();
   const std::string_view id = c.requiredWord("a one-character surface id");
@@ -755,51 +495,15 @@ void surface(Command& c) {
   surfaces.push_back(surface);
 }
 
-void backgroundScene(Command& c) {
+void backgroundScene(ViewLine& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   if (tokens.empty()) c.fail(c.labelAt(), "expected a file name after 'background scene:'");
   for (const Token& token : tokens) c.view.backgroundScenes.push_back(c.resolve(token.text, token.where));
   c.args.skipAll();
 }
 
-// `hair texture: SIZE SEED [FILL]` (DESIGN.md): the point-diffusion texture is SIZE×SIZE cells
-// with FILL points per cell (0.02 to 0.3 measured; default 0.1).
-void hairTexture(Command& c) {
-  c.view.hairTextureSize = static_cast<int>(c.requiredInteger("the texture size", 4, 4096));
-  c.view.hairTextureSeed =
-      static_cast<unsigned>(c.requiredInteger("the seed", 0, std::numeric_limits<unsigned>::max()));
-  if (!c.args.atEnd()) {
-    const SourceLocation where = c.args.here();
-    const double fill = c.requiredNumber("the fill (points per cell)");
-    if (!(fill >= 0.02 && fill <= 0.3)) c.fail(where, "the fill must be from 0.02 to 0.3 points per cell");
-    c.view.hairTextureFill = fill;
-  }
-}
-
-void hairInterpolation(Command& c) {
-  const SourceLocation where = c.args.here();
-  const std::string_view word = c.requiredWord("on or off");
-  if (word != "on" && word != "off") c.fail(where, "expected on or off, found " + inQuotes(word));
-  c.view.hairInterpolation = word == "on";
-}
-
-// `fur texture: SIZE SEED [TEXELS]` (docs/fur.md): SIZE² texels from SEED, TEXELS texels along
-// the length of a strand (default 40: strands are a fortieth of their length thick).
-void furTexture(Command& c) {
-  c.view.furTextureSize =
-      static_cast<int>(c.requiredInteger("the texture size", 16, kMaxFurTextureSize));
-  c.view.furTextureSeed =
-      static_cast<unsigned>(c.requiredInteger("the seed", 0, std::numeric_limits<unsigned>::max()));
-  if (!c.args.atEnd()) {
-    const SourceLocation where = c.args.here();
-    const double texels = c.requiredNumber("the texels along a strand's length");
-    if (!(texels >= 1 && texels <= 4096)) c.fail(where, "the texels per length must be from 1 to 4096");
-    c.view.furTexelsPerLength = static_cast<float>(texels);
-  }
-}
-
 // A number of a `dynamics …:` line that must lie in [lo, hi].
-double dynamicsNumber(Command& c, const std::string& what, double lo, double hi) {
+double dynamicsNumber(ViewLine& c, const std::string& what, double lo, double hi) {
   const SourceLocation where = c.args.here();
   const double value = c.requiredNumber(what);
   if (!(value >= lo && value <= hi)) {
@@ -810,7 +514,7 @@ double dynamicsNumber(Command& c, const std::string& what, double lo, double hi)
   return value;
 }
 
-glm::vec3 dynamicsVector(Command& c, const std::string& what) {
+glm::vec3 dynamicsVector(ViewLine& c, const std::string& what) {
   glm::vec3 v;
   for (int i = 0; i < 3; ++i)
     v[i] = static_cast<float>(dynamicsNumber(c, what + "'s x, y and z", -1e6, 1e6));
@@ -818,7 +522,7 @@ glm::vec3 dynamicsVector(Command& c, const std::string& what) {
 }
 
 // `dynamics gusts: strength scale period [seed]` (docs/dynamics.md).
-void dynamicsGusts(Command& c) {
+void dynamicsGusts(ViewLine& c) {
   FeatherDynamicsSettings& d = c.view.dynamics;
   d.gustStrength = static_cast<float>(dynamicsNumber(c, "the gusts' strength", 0, 1e6));
   d.gustScale = static_cast<float>(dynamicsNumber(c, "the gusts' scale", 1e-6, 1e6));
@@ -828,379 +532,312 @@ void dynamicsGusts(Command& c) {
         c.requiredInteger("the gusts' seed", 0, std::numeric_limits<unsigned>::max()));
 }
 
-// `droplet: u v r rho [surface]` (docs/fur.md).
-void droplet(Command& c) {
-  Droplet d;
-  d.where = c.labelAt();
-  const SourceLocation uAt = c.args.here();
-  const double u = c.requiredNumber("the droplet's u");
-  const SourceLocation vAt = c.args.here();
-  const double v = c.requiredNumber("the droplet's v");
-  if (!(u >= 0 && u <= 1)) c.fail(uAt, "the droplet's u must be in [0, 1] (the fur surface's parametrization)");
-  if (!(v >= 0 && v <= 1)) c.fail(vAt, "the droplet's v must be in [0, 1] (the fur surface's parametrization)");
-  const SourceLocation rAt = c.args.here();
-  const double r = c.requiredNumber("the droplet's radius");
-  if (!(r > 0 && r <= 1)) c.fail(rAt, "the droplet's radius must be in (0, 1]");
-  const SourceLocation rhoAt = c.args.here();
-  const double rho = c.requiredNumber("the droplet's wetness");
-  if (!(rho >= 0 && rho <= 1)) c.fail(rhoAt, "the droplet's wetness must be in [0, 1]");
-  if (!c.args.atEnd())
-    d.surface = static_cast<int>(c.requiredInteger("the fur surface (1-based, 0: all)", 0, 1 << 30));
-  d.centre = glm::vec2(static_cast<float>(u), static_cast<float>(v));
-  d.radius = static_cast<float>(r);
-  d.wetness = static_cast<float>(rho);
-  c.view.droplets.push_back(d);
-}
-
 // A command Hirsute reads and has no use for: the rest of the line is skipped.
-void ignoreArguments(Command& c) {
+void ignoreArguments(ViewLine& c) {
   c.args.skipAll();
 }
 
 // A command whose effect Hirsute does not provide: a warning, so that the user knows.
-void unsupported(Command& c, const std::string& what) {
+void unsupported(ViewLine& c, const std::string& what) {
   c.warn(c.labelAt(), inQuotes(c.label()) + " is not supported: " + what);
   c.args.skipAll();
 }
 
-const std::unordered_map<std::string_view, Handler>& commandTable() {
-  // Immutable after its first use: the registry of view-file commands.
-  static const std::unordered_map<std::string_view, Handler> kCommands = {
-      // Turtle (manual §8.1.1).
-      {"angle factor:",
-       [](Command& c) {
-         const SourceLocation where = c.args.here();
-         if (const auto n = c.settingNumber()) {
-           if (*n == 0) {
-             c.warn(where, "'angle factor:' divides 360 and cannot be 0; the line is ignored");
-           } else {
-             c.view.angleIncrement = static_cast<float>(360.0 / *n);
-           }
-         }
-       }},
-      {"angle increment:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.angleIncrement = static_cast<float>(*v);
-       }},
-      {"initial color:",
-       [](Command& c) {
-         const SourceLocation where = c.args.here();
-         const std::optional<int> front = c.settingInteger();
-         if (!front) return;
-         std::optional<int> back;
-         if (!c.args.atEnd()) {
-           back = c.settingInteger();
-           if (!back) return;
-         }
-         if (*front < 0 || back.value_or(0) < 0) {
-           c.warn(where, "colour indices are 0 or more; the line is ignored");
-           return;
-         }
-         c.view.initialColor = *front;
-         if (back) c.view.initialBackColor = *back;
-       }},
-      {"color increment:",
-       [](Command& c) {
-         const std::optional<int> front = c.settingInteger();
-         if (!front) return;
-         std::optional<int> back;
-         if (!c.args.atEnd()) {
-           back = c.settingInteger();
-           if (!back) return;
-         }
-         c.view.colorIncrement = *front;
-         c.view.backColorIncrement = back.value_or(*front);
-       }},
-      {"initial line width:", &initialLineWidth},
-      {"line width increment:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.lineWidthIncrement = static_cast<float>(*v);
-       }},
-      {"initial scale:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.initialScale = static_cast<float>(*v);
-       }},
-      {"scale multiplier:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.scaleMultiplier = static_cast<float>(*v);
-       }},
-      {"interpretation past %:",
-       [](Command& c) {
-         if (const auto on = c.settingFlag()) c.view.interpretationPastCut = *on;
-       }},
-
-      // View (§8.1.2).
-      {"viewpoint:",
-       [](Command& c) {
-         if (const auto v = c.settingTriple()) c.view.viewpoint = *v;
-       }},
-      {"view reference point:",
-       [](Command& c) {
-         if (const auto v = c.settingTriple()) c.view.viewReference = *v;
-       }},
-      {"twist:",
-       [](Command& c) {
-         // Tenths of a degree, read as an integer.
-         if (const auto v = c.settingInteger()) c.view.twistDegrees = static_cast<float>(*v) / 10;
-       }},
-      {"projection:",
-       [](Command& c) {
-         if (const auto w = c.settingWord({"parallel", "perspective"}, "parallel or perspective")) {
-           c.view.projection = *w == 0 ? Projection::Parallel : Projection::Perspective;
-         }
-       }},
-      {"viewing angle:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.viewingAngle = static_cast<float>(*v);
-       }},
-      {"front distance:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.frontDistance = static_cast<float>(*v);
-       }},
-      {"back distance:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.backDistance = static_cast<float>(*v);
-       }},
-      {"scale factor:",
-       [](Command& c) {
-         // cpfg: 0 means full size.
-         if (const auto v = c.settingNumber())
-           c.view.scaleFactor = *v == 0 ? 1.0f : static_cast<float>(*v);
-       }},
-      {"box:", &box},
-      {"min zoom:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.minZoom = static_cast<float>(*v);
-       }},
-      {"max zoom:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.maxZoom = static_cast<float>(*v);
-       }},
-      {"generate on view change:",
-       [](Command& c) {
-         if (c.args.peekWord() == "off") {
-           c.args.word();
-           return;
-         }
-         unsupported(c, "Hirsute does not derive the string again when the view changes");
-       }},
-
-      // Rendering (§8.1.4).
-      {"z buffer:",
-       [](Command& c) {
-         if (const auto on = c.settingFlag()) c.view.zBuffer = *on;
-       }},
-      {"render mode:", &renderMode},
-      {"shade mode:", &shadeMode},
-      {"shadow map:", &shadowMap},
-      {"antialiasing:",
-       [](Command& c) {
-         if (const auto on = c.settingFlag()) c.view.antialiasing = *on;
-       }},
-      {"concave polygons:",
-       [](Command& c) {
-         if (const auto on = c.settingFlag()) c.view.concavePolygons = *on;
-       }},
-      {"background scene:", &backgroundScene},
-
-      // Lights (§8.1.3).
-      {"light direction:",
-       [](Command& c) {
-         if (const auto v = c.settingTriple()) c.view.lightDirection = *v;
-       }},
-      {"diffuse reflection:",
-       [](Command& c) {
-         if (const auto v = c.settingInteger()) c.view.diffuseReflection = *v;
-       }},
-      {"surface ambient:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.surfaceAmbient = static_cast<float>(*v);
-       }},
-      {"surface diffuse:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.surfaceDiffuse = static_cast<float>(*v);
-       }},
-      {"light:", &light},
-
-      // Lines, contours and surfaces (§8.1.5).
-      {"line style:", &lineStyle},
-      {"tapered lines:",
-       [](Command& c) {
-         if (const auto on = c.settingFlag()) c.view.taperedLines = *on;
-       }},
-      {"contour sides:",
-       [](Command& c) {
-         const SourceLocation where = c.args.here();
-         const auto sides = c.settingInteger();
-         if (!sides) return;
-         if (*sides > kMaxContourSides) {
-           c.warn(where, "at most " + std::to_string(kMaxContourSides) + " contour sides; using " +
-                             std::to_string(kMaxContourSides));
-         }
-         // cpfg: fewer than 3 sides read as 3.
-         c.view.contourSides = std::clamp(*sides, 3, kMaxContourSides);
-       }},
-      {"polygonization level:",
-       [](Command& c) {
-         // Legacy: 2^(level+1) sides.
-         const SourceLocation where = c.args.here();
-         const auto level = c.settingInteger();
-         if (!level) return;
-         constexpr int kMaxLevel = 11;  // 2^12 = kMaxContourSides
-         if (*level > kMaxLevel) {
-           c.warn(where, "'polygonization level:' above " + std::to_string(kMaxLevel) +
-                             " gives more than " + std::to_string(kMaxContourSides) +
-                             " sides; using " + std::to_string(kMaxContourSides));
-         }
-         c.view.contourSides = std::max(3, 1 << (std::clamp(*level, 0, kMaxLevel) + 1));
-       }},
-      {"contour:", &contour},
-      {"twist of cylinders:",
-       [](Command& c) {
-         if (const auto on = c.settingFlag()) c.view.twistOfCylinders = *on;
-       }},
-      {"surface:", &surface},
-      {"tsurface:", [](Command& c) { unsupported(c, "triangle-list surfaces are not drawn"); }},
-      // Obsolete: a surface used as a line segment, which cpfg's GL drawing ignores too.
-      {"line:", &ignoreArguments},
-
-      // User functions (§8.1.6): lsys reads these lines (readViewFunctions).
-      {"function:", &ignoreArguments},
-      {"function set:", &ignoreArguments},
-      {"curve:", &ignoreArguments},
-
-      // Textures (§8.1.7).
-      {"texture:", &texture},
-
-      // Tropisms (§8.1.8) and the deprecated single tropism for `_` (§8.1.10).
-      {"tropism:", [](Command& c) { tropismOrTorque(c, false); }},
-      {"torque:", [](Command& c) { tropismOrTorque(c, true); }},
-      {"tropism direction:",
-       [](Command& c) {
-         if (const auto v = c.settingTriple()) c.view.tropismDirection = *v;
-       }},
-      {"initial elasticity:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.initialElasticity = static_cast<float>(*v);
-       }},
-      {"elasticity increment:",
-       [](Command& c) {
-         if (const auto v = c.settingNumber()) c.view.elasticityIncrement = static_cast<float>(*v);
-       }},
-
-      // Read and without effect, in cpfg too or for Hirsute's outputs.
-      {"cue range:", &ignoreArguments},
-      {"font:", &ignoreArguments},
-      {"winfont:", &ignoreArguments},
-      {"interpretation step:", &ignoreArguments},
-      {"rayshade objects:", &ignoreArguments},
-      {"rayshade scale:", &ignoreArguments},
-      {"PS linecap:", &ignoreArguments},
-      {"environment display:",
-       [](Command& c) { unsupported(c, "environmental programs are not run"); }},
-      {"blob:", [](Command& c) { unsupported(c, "blob fields are not read"); }},
-      {"background color:",
-       [](Command& c) {
-         unsupported(c,
-                     "cpfg ignores it too; the background is colour 0 of the colour map, or "
-                     "the emission of material 0");
-       }},
-      {"ambient light:",
-       [](Command& c) {
-         unsupported(c, "cpfg ignores it too; use 'surface ambient:' or the A: of 'light:'");
-       }},
-
-      // Hairs (DESIGN.md).
-      {"hair:",
-       [](Command& c) {
-         const SourceLocation where = c.args.here();
-         const std::string file = c.resolve(c.requiredWord("a template L-system file"), where);
-         if (c.view.hairTemplates.size() >= static_cast<std::size_t>(kMaxHairTemplates)) {
-           c.fail(where, "at most " + std::to_string(kMaxHairTemplates) + " template hairs per model");
-         }
-         c.view.hairTemplates.push_back(HairTemplateDeclaration{file, where});
-       }},
-      {"hair texture:", &hairTexture},
-      {"hair interpolation:", &hairInterpolation},
-
-      // Feathers (DESIGN.md, docs/feathers.md).
-      {"feather:",
-       [](Command& c) {
-         const SourceLocation where = c.args.here();
-         const std::string file = c.resolve(c.requiredWord("a feather type file (.fea)"), where);
-         if (c.view.featherTypes.size() >= static_cast<std::size_t>(kMaxFeatherTypes)) {
-           c.fail(where, "at most " + std::to_string(kMaxFeatherTypes) + " feather types per model");
-         }
-         c.view.featherTypes.push_back(FeatherTypeDeclaration{file, where});
-       }},
-      {"feather follicles:",
-       [](Command& c) {
-         const SourceLocation where = c.args.here();
-         const std::string_view word = c.requiredWord("diffusion or hexagonal");
-         if (word != "diffusion" && word != "hexagonal")
-           c.fail(where, "expected diffusion or hexagonal, found " + inQuotes(word));
-         c.view.follicleLayout =
-             word == "hexagonal" ? FollicleLayout::Hexagonal : FollicleLayout::Diffusion;
-       }},
-
-      // Fur (DESIGN.md, docs/fur.md).
-      {"fur layers:",
-       [](Command& c) {
-         c.view.furLayers = static_cast<int>(c.requiredInteger("the number of layers", 1, kMaxFurLayers));
-       }},
-      {"fur texture:", &furTexture},
-      {"wetness mask:",
-       [](Command& c) {
-         c.view.wetnessMaskSize =
-             static_cast<int>(c.requiredInteger("the mask size", 8, kMaxFurTextureSize));
-       }},
-      {"droplet:", &droplet},
-      {"fur force:",
-       [](Command& c) {
-         glm::vec3 force;
-         for (int i = 0; i < 3; ++i) {
+const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
+  // Immutable after its first use: the registry of view-file commands, the view file's own and
+  // then each organ's (organViewLines()).
+  static const std::unordered_map<std::string_view, ViewLineReader> kCommands = [] {
+    std::unordered_map<std::string_view, ViewLineReader> commands = {
+        // Turtle (manual §8.1.1).
+        {"angle factor:",
+         [](ViewLine& c) {
            const SourceLocation where = c.args.here();
-           const double value = c.requiredNumber("the force's x, y and z");
-           if (!std::isfinite(value) || std::abs(value) > 1e6) c.fail(where, "a fur force component must be finite, at most 1e6");
-           force[i] = static_cast<float>(value);
-         }
-         c.view.furForce = force;
-       }},
+           if (const auto n = c.settingNumber()) {
+             if (*n == 0) {
+               c.warn(where, "'angle factor:' divides 360 and cannot be 0; the line is ignored");
+             } else {
+               c.view.angleIncrement = static_cast<float>(360.0 / *n);
+             }
+           }
+         }},
+        {"angle increment:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.angleIncrement = static_cast<float>(*v);
+         }},
+        {"initial color:",
+         [](ViewLine& c) {
+           const SourceLocation where = c.args.here();
+           const std::optional<int> front = c.settingInteger();
+           if (!front) return;
+           std::optional<int> back;
+           if (!c.args.atEnd()) {
+             back = c.settingInteger();
+             if (!back) return;
+           }
+           if (*front < 0 || back.value_or(0) < 0) {
+             c.warn(where, "colour indices are 0 or more; the line is ignored");
+             return;
+           }
+           c.view.initialColor = *front;
+           if (back) c.view.initialBackColor = *back;
+         }},
+        {"color increment:",
+         [](ViewLine& c) {
+           const std::optional<int> front = c.settingInteger();
+           if (!front) return;
+           std::optional<int> back;
+           if (!c.args.atEnd()) {
+             back = c.settingInteger();
+             if (!back) return;
+           }
+           c.view.colorIncrement = *front;
+           c.view.backColorIncrement = back.value_or(*front);
+         }},
+        {"initial line width:", &initialLineWidth},
+        {"line width increment:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.lineWidthIncrement = static_cast<float>(*v);
+         }},
+        {"initial scale:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.initialScale = static_cast<float>(*v);
+         }},
+        {"scale multiplier:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.scaleMultiplier = static_cast<float>(*v);
+         }},
+        {"interpretation past %:",
+         [](ViewLine& c) {
+           if (const auto on = c.settingFlag()) c.view.interpretationPastCut = *on;
+         }},
 
-      // Feather-coat dynamics (docs/dynamics.md).
-      {"dynamics gravity:",
-       [](Command& c) { c.view.dynamics.gravity = dynamicsVector(c, "the gravity"); }},
-      {"dynamics wind:", [](Command& c) { c.view.dynamics.wind = dynamicsVector(c, "the wind"); }},
-      {"dynamics gusts:", &dynamicsGusts},
-      {"dynamics drag:",
-       [](Command& c) {
-         c.view.dynamics.drag = static_cast<float>(dynamicsNumber(c, "the drag", 0, 1e6));
-       }},
-      {"dynamics springs:",
-       [](Command& c) {
-         c.view.dynamics.stiffness =
-             static_cast<float>(dynamicsNumber(c, "the springs' stiffness", 0, 1e9));
-         c.view.dynamics.damping =
-             static_cast<float>(dynamicsNumber(c, "the springs' damping", 0, 1e9));
-       }},
-      {"dynamics thickness:",
-       [](Command& c) {
-         FeatherDynamicsSettings& d = c.view.dynamics;
-         d.thickness = static_cast<float>(dynamicsNumber(c, "the thickness", 1e-9, 1e6));
-         d.separation = static_cast<float>(
-             dynamicsNumber(c, "the minimum separation", 1e-9, static_cast<double>(d.thickness)));
-       }},
-      {"dynamics segments:",
-       [](Command& c) {
-         c.view.dynamics.segments =
-             static_cast<int>(c.requiredInteger("the segments of a stem", 1, 64));
-       }},
-      {"dynamics substeps:",
-       [](Command& c) {
-         c.view.dynamics.substeps =
-             static_cast<int>(c.requiredInteger("the steps per frame", 1, 1000));
-       }},
-  };
+        // View (§8.1.2).
+        {"viewpoint:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingTriple()) c.view.viewpoint = *v;
+         }},
+        {"view reference point:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingTriple()) c.view.viewReference = *v;
+         }},
+        {"twist:",
+         [](ViewLine& c) {
+           // Tenths of a degree, read as an integer.
+           if (const auto v = c.settingInteger()) c.view.twistDegrees = static_cast<float>(*v) / 10;
+         }},
+        {"projection:",
+         [](ViewLine& c) {
+           if (const auto w =
+                   c.settingWord({"parallel", "perspective"}, "parallel or perspective")) {
+             c.view.projection = *w == 0 ? Projection::Parallel : Projection::Perspective;
+           }
+         }},
+        {"viewing angle:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.viewingAngle = static_cast<float>(*v);
+         }},
+        {"front distance:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.frontDistance = static_cast<float>(*v);
+         }},
+        {"back distance:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.backDistance = static_cast<float>(*v);
+         }},
+        {"scale factor:",
+         [](ViewLine& c) {
+           // cpfg: 0 means full size.
+           if (const auto v = c.settingNumber())
+             c.view.scaleFactor = *v == 0 ? 1.0f : static_cast<float>(*v);
+         }},
+        {"box:", &box},
+        {"min zoom:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.minZoom = static_cast<float>(*v);
+         }},
+        {"max zoom:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.maxZoom = static_cast<float>(*v);
+         }},
+        {"generate on view change:",
+         [](ViewLine& c) {
+           if (c.args.peekWord() == "off") {
+             c.args.word();
+             return;
+           }
+           unsupported(c, "Hirsute does not derive the string again when the view changes");
+         }},
+
+        // Rendering (§8.1.4).
+        {"z buffer:",
+         [](ViewLine& c) {
+           if (const auto on = c.settingFlag()) c.view.zBuffer = *on;
+         }},
+        {"render mode:", &renderMode},
+        {"shade mode:", &shadeMode},
+        {"shadow map:", &shadowMap},
+        {"antialiasing:",
+         [](ViewLine& c) {
+           if (const auto on = c.settingFlag()) c.view.antialiasing = *on;
+         }},
+        {"concave polygons:",
+         [](ViewLine& c) {
+           if (const auto on = c.settingFlag()) c.view.concavePolygons = *on;
+         }},
+        {"background scene:", &backgroundScene},
+
+        // Lights (§8.1.3).
+        {"light direction:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingTriple()) c.view.lightDirection = *v;
+         }},
+        {"diffuse reflection:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingInteger()) c.view.diffuseReflection = *v;
+         }},
+        {"surface ambient:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.surfaceAmbient = static_cast<float>(*v);
+         }},
+        {"surface diffuse:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.surfaceDiffuse = static_cast<float>(*v);
+         }},
+        {"light:", &light},
+
+        // Lines, contours and surfaces (§8.1.5).
+        {"line style:", &lineStyle},
+        {"tapered lines:",
+         [](ViewLine& c) {
+           if (const auto on = c.settingFlag()) c.view.taperedLines = *on;
+         }},
+        {"contour sides:",
+         [](ViewLine& c) {
+           const SourceLocation where = c.args.here();
+           const auto sides = c.settingInteger();
+           if (!sides) return;
+           if (*sides > kMaxContourSides) {
+             c.warn(where, "at most " + std::to_string(kMaxContourSides) +
+                               " contour sides; using " + std::to_string(kMaxContourSides));
+           }
+           // cpfg: fewer than 3 sides read as 3.
+           c.view.contourSides = std::clamp(*sides, 3, kMaxContourSides);
+         }},
+        {"polygonization level:",
+         [](ViewLine& c) {
+           // Legacy: 2^(level+1) sides.
+           const SourceLocation where = c.args.here();
+           const auto level = c.settingInteger();
+           if (!level) return;
+           constexpr int kMaxLevel = 11;  // 2^12 = kMaxContourSides
+           if (*level > kMaxLevel) {
+             c.warn(where, "'polygonization level:' above " + std::to_string(kMaxLevel) +
+                               " gives more than " + std::to_string(kMaxContourSides) +
+                               " sides; using " + std::to_string(kMaxContourSides));
+           }
+           c.view.contourSides = std::max(3, 1 << (std::clamp(*level, 0, kMaxLevel) + 1));
+         }},
+        {"contour:", &contour},
+        {"twist of cylinders:",
+         [](ViewLine& c) {
+           if (const auto on = c.settingFlag()) c.view.twistOfCylinders = *on;
+         }},
+        {"surface:", &surface},
+        {"tsurface:", [](ViewLine& c) { unsupported(c, "triangle-list surfaces are not drawn"); }},
+        // Obsolete: a surface used as a line segment, which cpfg's GL drawing ignores too.
+        {"line:", &ignoreArguments},
+
+        // User functions (§8.1.6): lsys reads these lines (readViewFunctions).
+        {"function:", &ignoreArguments},
+        {"function set:", &ignoreArguments},
+        {"curve:", &ignoreArguments},
+
+        // Textures (§8.1.7).
+        {"texture:", &texture},
+
+        // Tropisms (§8.1.8) and the deprecated single tropism for `_` (§8.1.10).
+        {"tropism:", [](ViewLine& c) { tropismOrTorque(c, false); }},
+        {"torque:", [](ViewLine& c) { tropismOrTorque(c, true); }},
+        {"tropism direction:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingTriple()) c.view.tropismDirection = *v;
+         }},
+        {"initial elasticity:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber()) c.view.initialElasticity = static_cast<float>(*v);
+         }},
+        {"elasticity increment:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingNumber())
+             c.view.elasticityIncrement = static_cast<float>(*v);
+         }},
+
+        // Read and without effect, in cpfg too or for Hirsute's outputs.
+        {"cue range:", &ignoreArguments},
+        {"font:", &ignoreArguments},
+        {"winfont:", &ignoreArguments},
+        {"interpretation step:", &ignoreArguments},
+        {"rayshade objects:", &ignoreArguments},
+        {"rayshade scale:", &ignoreArguments},
+        {"PS linecap:", &ignoreArguments},
+        {"environment display:",
+         [](ViewLine& c) { unsupported(c, "environmental programs are not run"); }},
+        {"blob:", [](ViewLine& c) { unsupported(c, "blob fields are not read"); }},
+        {"background color:",
+         [](ViewLine& c) {
+           unsupported(c,
+                       "cpfg ignores it too; the background is colour 0 of the colour map, or "
+                       "the emission of material 0");
+         }},
+        {"ambient light:",
+         [](ViewLine& c) {
+           unsupported(c, "cpfg ignores it too; use 'surface ambient:' or the A: of 'light:'");
+         }},
+
+        // Feather-coat dynamics (docs/dynamics.md).
+        {"dynamics gravity:",
+         [](ViewLine& c) { c.view.dynamics.gravity = dynamicsVector(c, "the gravity"); }},
+        {"dynamics wind:",
+         [](ViewLine& c) { c.view.dynamics.wind = dynamicsVector(c, "the wind"); }},
+        {"dynamics gusts:", &dynamicsGusts},
+        {"dynamics drag:",
+         [](ViewLine& c) {
+           c.view.dynamics.drag = static_cast<float>(dynamicsNumber(c, "the drag", 0, 1e6));
+         }},
+        {"dynamics springs:",
+         [](ViewLine& c) {
+           c.view.dynamics.stiffness =
+               static_cast<float>(dynamicsNumber(c, "the springs' stiffness", 0, 1e9));
+           c.view.dynamics.damping =
+               static_cast<float>(dynamicsNumber(c, "the springs' damping", 0, 1e9));
+         }},
+        {"dynamics thickness:",
+         [](ViewLine& c) {
+           FeatherDynamicsSettings& d = c.view.dynamics;
+           d.thickness = static_cast<float>(dynamicsNumber(c, "the thickness", 1e-9, 1e6));
+           d.separation = static_cast<float>(
+               dynamicsNumber(c, "the minimum separation", 1e-9, static_cast<double>(d.thickness)));
+         }},
+        {"dynamics segments:",
+         [](ViewLine& c) {
+           c.view.dynamics.segments =
+               static_cast<int>(c.requiredInteger("the segments of a stem", 1, 64));
+         }},
+        {"dynamics substeps:",
+         [](ViewLine& c) {
+           c.view.dynamics.substeps =
+               static_cast<int>(c.requiredInteger("the steps per frame", 1, 1000));
+         }},
+    };
+    for (std::span<const ViewLineCommand> lines : organViewLines()) {
+      for (const ViewLineCommand& line : lines) {
+        if (!commands.emplace(line.label, line.read).second)
+          throw std::logic_error("two view-file commands are labelled '" + std::string(line.label) +
+                                 "'");
+      }
+    }
+    return commands;
+  }();
   return kCommands;
 }
 
@@ -1258,7 +895,7 @@ ViewSettings parseViewFile(const std::string& preprocessedText,
       warnUnknown(line, diagnostics);
       continue;
     }
-    Command command(line, view, diagnostics, folder);
+    ViewLine command(line, view, diagnostics, folder);
     found->second(command);
     command.finish();
   }

@@ -4,10 +4,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <sstream>
 #include <string>
 
 #include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/organ_modules.h"
+#include "hirsute/interpreter/view_lines.h"
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/core/diagnostic.h"
 #include "support/diagnostic_of.h"
@@ -287,6 +290,30 @@ TEST(ViewFileTest, LabelsMustBeSpelledExactly) {
   const Diagnostic& noColon = diagnostics.warnings()[4];
   EXPECT_EQ(noColon.where.line, 6);
   EXPECT_NE(noColon.message.find("expected a command"), std::string::npos) << noColon.message;
+}
+
+TEST(ViewFileTest, EachOrgansLinesAreCommandsOfTheViewFile) {
+  // One table of lines an organ, in the order of the module tables; every label is a command
+  // of the view file: written without arguments it is read (a warning or an error about its
+  // arguments), never "unknown".
+  ASSERT_EQ(organViewLines().size(), organModuleTables().size());
+  std::size_t labels = 0;
+  for (std::span<const ViewLineCommand> lines : organViewLines()) {
+    EXPECT_FALSE(lines.empty());
+    for (const ViewLineCommand& line : lines) {
+      ++labels;
+      EXPECT_EQ(line.label.back(), ':') << line.label;
+      Diagnostics diagnostics;
+      const std::filesystem::path file = "organ.v";
+      try {
+        parseViewFile(std::string(line.label) + "\n", file, diagnostics);
+      } catch (const DiagnosticError&) {
+      }
+      for (const Diagnostic& warning : diagnostics.warnings())
+        EXPECT_EQ(warning.message.find("unknown command"), std::string::npos) << warning.message;
+    }
+  }
+  EXPECT_GE(labels, 3u);
 }
 
 TEST(ViewFileTest, BrokenSettingIsAWarningAndKeepsTheValue) {

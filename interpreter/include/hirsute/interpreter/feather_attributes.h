@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include "hirsute/interpreter/organ_attributes.h"
@@ -52,5 +53,10 @@ struct FeatherAttributes {
 
   bool operator==(const FeatherAttributes&) const = default;
 };
+
+// The feathers' lines of the view file (feather_view_lines.cpp), for organViewLines()
+// (view_lines.h).
+struct ViewLineCommand;
+std::span<const ViewLineCommand> featherViewLines();
 
 }  // namespace hirsute

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <string_view>
 
 namespace hirsute {
@@ -38,5 +39,9 @@ struct FurAttributes {
 
   bool operator==(const FurAttributes&) const = default;
 };
+
+// The fur's lines of the view file (fur_view_lines.cpp), for organViewLines() (view_lines.h).
+struct ViewLineCommand;
+std::span<const ViewLineCommand> furViewLines();
 
 }  // namespace hirsute

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include "hirsute/interpreter/organ_attributes.h"
@@ -58,5 +59,10 @@ struct HairAttributes {
 
   bool operator==(const HairAttributes&) const = default;
 };
+
+// The plant hairs' lines of the view file (hair_view_lines.cpp), for organViewLines()
+// (view_lines.h).
+struct ViewLineCommand;
+std::span<const ViewLineCommand> hairViewLines();
 
 }  // namespace hirsute
