@@ -24,6 +24,7 @@
 #include <string>
 
 #include "hirsute/hairs/fur/fur_strands.h"
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
 #include "model_pipeline.h"
@@ -61,7 +62,7 @@ double ownPeakMebibytes() {
 
 std::size_t strandCount(const hirsute::Scene& scene) {
   std::size_t strands = 0;
-  for (const hirsute::FurSurface& surface : scene.furSurfaces)
+  for (const hirsute::FurSurface& surface : scene.organ<hirsute::FurPart>().surfaces)
     strands += hirsute::fur::countStrands(scene, surface);
   return strands;
 }
@@ -144,8 +145,8 @@ int main(int argc, char** argv) {
     std::printf(
         "scene: %zu fur surfaces, %zu triangles, %zu strands; built (derived, "
         "interpreted, fur stage) in %.2f s\n",
-        built.scene.furSurfaces.size(), built.scene.triangleCount(), strandCount(built.scene),
-        buildSeconds);
+        built.scene.organ<hirsute::FurPart>().surfaces.size(), built.scene.triangleCount(),
+        strandCount(built.scene), buildSeconds);
 
     PovOptions options;
     options.view = built.resources.view;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
 #include "model_pipeline.h"
@@ -79,7 +80,7 @@ int main(int argc, char** argv) {
         return 2;
       }
       const Scene& scene = built.scene;
-      const FurSurface& fur = scene.furSurfaces.at(0);
+      const FurSurface& fur = scene.organ<FurPart>().surfaces.at(0);
       for (const std::string& size : sizes) {
         const int width = std::stoi(size.substr(0, size.find('x')));
         const int height = std::stoi(size.substr(size.find('x') + 1));

@@ -98,7 +98,9 @@ FeatherRow keyFeather(char letter) {
 
 const OrganModuleTable& featherModuleTable() {
   static const AttributeModuleTable<FeatherAttributes> table(
-      'F', "feather", &Scene::featherAttributes, &OrganAttributeIndices::feather,
+      'F', "feather",
+      [](Scene& scene) -> std::vector<FeatherAttributes>& { return scene.featherAttributes; },
+      &OrganAttributeIndices::feather,
       {
           action('e', false),
           action('i', true),

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "cpfg_numbers.h"
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/interpreter/organ_modules.h"
 
 namespace hirsute {
@@ -128,7 +129,9 @@ FurRow colourTexture(char letter) {
 
 const OrganModuleTable& furModuleTable() {
   static const AttributeModuleTable<FurAttributes> table(
-      'U', "fur", &Scene::furAttributes, &OrganAttributeIndices::fur,
+      'U', "fur",
+      [](Scene& scene) -> std::vector<FurAttributes>& { return scene.organ<FurPart>().attributes; },
+      &OrganAttributeIndices::fur,
       {
           switchRow<FurAttributes>('f', 1, &FurSideAttributes::enabled),
           numbers<kLength>('l'),

@@ -40,7 +40,9 @@ HairRow templateProbabilities(char letter) {
 
 const OrganModuleTable& hairModuleTable() {
   static const AttributeModuleTable<HairAttributes> table(
-      'H', "hair", &Scene::hairAttributes, &OrganAttributeIndices::hair,
+      'H', "hair",
+      [](Scene& scene) -> std::vector<HairAttributes>& { return scene.hairAttributes; },
+      &OrganAttributeIndices::hair,
       {
           sideSwitch('f', HairSide::Front),
           sideSwitch('b', HairSide::Back),

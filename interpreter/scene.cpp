@@ -38,14 +38,7 @@ Bounds Scene::bounds() const {
     b.add(h.root + glm::vec3(reach));
   }
   b.add(featherBounds);
-  for (const FurSurface& fur : furSurfaces) {
-    const float length =
-        fur.attributes >= 0 ? furAttributes[static_cast<std::size_t>(fur.attributes)].length : 0.0f;
-    for (const glm::vec3& p : fur.positions) {
-      b.add(p - glm::vec3(length));
-      b.add(p + glm::vec3(length));
-    }
-  }
+  organs_.addBounds(b);
   return b;
 }
 
@@ -77,9 +70,7 @@ void Scene::clear() {
   feathers.clear();
   featherPoses.clear();
   featherBounds = Bounds{};
-  furAttributes.clear();
-  furSurfaces.clear();
-  furTextures.clear();
+  organs_.clear();
   meshIndex_.clear();
 }
 

@@ -5,18 +5,21 @@
 
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
+#include "hirsute/interpreter/fur_part.h"
 
 namespace hirsute::fur {
 
-void FurMotion::reset(Scene& fur, const Scene* previous) {
-  const bool carry = previous != nullptr && previous->furSurfaces.size() == fur.furSurfaces.size() &&
-                     velocities_.size() == fur.furSurfaces.size();
-  std::vector<std::vector<glm::vec3>> velocities(fur.furSurfaces.size());
-  for (std::size_t s = 0; s < fur.furSurfaces.size(); ++s) {
-    FurSurface& surface = fur.furSurfaces[s];
+void FurMotion::reset(Scene& scene, const Scene* previousScene) {
+  FurPart& fur = scene.organ<FurPart>();
+  const FurPart* previous = previousScene ? &previousScene->organ<FurPart>() : nullptr;
+  const bool carry = previous != nullptr && previous->surfaces.size() == fur.surfaces.size() &&
+                     velocities_.size() == fur.surfaces.size();
+  std::vector<std::vector<glm::vec3>> velocities(fur.surfaces.size());
+  for (std::size_t s = 0; s < fur.surfaces.size(); ++s) {
+    FurSurface& surface = fur.surfaces[s];
     velocities[s].assign(surface.positions.size(), glm::vec3(0.0f));
     if (!carry) continue;
-    const FurSurface& before = previous->furSurfaces[s];
+    const FurSurface& before = previous->surfaces[s];
     if (before.positions.size() == surface.positions.size() &&
         velocities_[s].size() == surface.positions.size()) {
       for (std::size_t i = 0; i < surface.positions.size(); ++i) {
@@ -30,15 +33,16 @@ void FurMotion::reset(Scene& fur, const Scene* previous) {
   velocities_ = std::move(velocities);
 }
 
-bool FurMotion::step(Scene& fur, float seconds, const glm::vec3& force) {
-  if (velocities_.size() != fur.furSurfaces.size()) reset(fur);
+bool FurMotion::step(Scene& scene, float seconds, const glm::vec3& force) {
+  FurPart& fur = scene.organ<FurPart>();
+  if (velocities_.size() != fur.surfaces.size()) reset(scene);
   seconds = std::clamp(seconds, 0.0f, 0.1f);  // a stalled frame does not throw the fur
   const int steps = std::max(1, static_cast<int>(std::ceil(seconds / kMaxStep)));
   const float dt = seconds / static_cast<float>(steps);
-  for (std::size_t s = 0; s < fur.furSurfaces.size(); ++s) {
-    FurSurface& surface = fur.furSurfaces[s];
+  for (std::size_t s = 0; s < fur.surfaces.size(); ++s) {
+    FurSurface& surface = fur.surfaces[s];
     if (surface.attributes < 0) continue;
-    const FurAttributes& a = fur.furAttributes[static_cast<std::size_t>(surface.attributes)];
+    const FurAttributes& a = fur.attributes[static_cast<std::size_t>(surface.attributes)];
     for (std::size_t i = 0; i < surface.positions.size(); ++i) {
       const StrandRoot strand{surface.positions[i], surface.normals[i], a.length};
       StrandState state{surface.tips[i], velocities_[s][i]};
@@ -47,14 +51,15 @@ bool FurMotion::step(Scene& fur, float seconds, const glm::vec3& force) {
       velocities_[s][i] = state.velocity;
     }
   }
-  return moving(fur);
+  return moving(scene);
 }
 
-bool FurMotion::moving(const Scene& fur, float speed) const {
-  for (std::size_t s = 0; s < fur.furSurfaces.size() && s < velocities_.size(); ++s) {
-    const FurSurface& surface = fur.furSurfaces[s];
+bool FurMotion::moving(const Scene& scene, float speed) const {
+  const FurPart& fur = scene.organ<FurPart>();
+  for (std::size_t s = 0; s < fur.surfaces.size() && s < velocities_.size(); ++s) {
+    const FurSurface& surface = fur.surfaces[s];
     if (surface.attributes < 0) continue;
-    const float length = fur.furAttributes[static_cast<std::size_t>(surface.attributes)].length;
+    const float length = fur.attributes[static_cast<std::size_t>(surface.attributes)].length;
     for (const glm::vec3& v : velocities_[s]) {
       if (glm::length(v) > speed * length) return true;
     }
@@ -62,16 +67,19 @@ bool FurMotion::moving(const Scene& fur, float speed) const {
   return false;
 }
 
-bool dryFur(Scene& fur, float rate, float seconds) {
+bool dryFur(Scene& scene, float rate, float seconds) {
+  FurPart& fur = scene.organ<FurPart>();
   bool wet = false;
-  for (FurSurface& surface : fur.furSurfaces) wet = dry(surface, rate * seconds) || wet;
+  for (FurSurface& surface : fur.surfaces) wet = dry(surface, rate * seconds) || wet;
   return wet;
 }
 
-std::optional<FurHit> pickFur(const Scene& fur, const glm::vec3& origin, const glm::vec3& direction) {
+std::optional<FurHit> pickFur(const Scene& scene, const glm::vec3& origin,
+                              const glm::vec3& direction) {
+  const FurPart& fur = scene.organ<FurPart>();
   std::optional<FurHit> best;
-  for (std::size_t s = 0; s < fur.furSurfaces.size(); ++s) {
-    const FurSurface& surface = fur.furSurfaces[s];
+  for (std::size_t s = 0; s < fur.surfaces.size(); ++s) {
+    const FurSurface& surface = fur.surfaces[s];
     for (std::size_t t = 0; t + 2 < surface.indices.size(); t += 3) {
       const std::uint32_t a = surface.indices[t], b = surface.indices[t + 1], c = surface.indices[t + 2];
       // Möller-Trumbore.

@@ -13,6 +13,7 @@
 #include "hirsute/hairs/fur/fur_texture.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
 #include "hirsute/hairs/placement/patch_unfolding.h"
+#include "hirsute/interpreter/fur_part.h"
 
 namespace hirsute {
 namespace {
@@ -21,8 +22,9 @@ namespace {
 // modules before the @Gc that closes a segment apply to it); -1 when the fur there is off.
 int furRecordOf(const Scene& scene, const CylinderSegment& segment) {
   const int record = segment.organEnd.fur;
-  if (record < 0 || !scene.furAttributes[static_cast<std::size_t>(record)].enabled()) return -1;
-  if (scene.furAttributes[static_cast<std::size_t>(record)].length <= 0) return -1;
+  if (record < 0) return -1;
+  const FurAttributes& fur = scene.organ<FurPart>().attributes[static_cast<std::size_t>(record)];
+  if (!fur.enabled() || fur.length <= 0) return -1;
   return record;
 }
 
@@ -74,14 +76,15 @@ class DropletCosts {
 // sprayDroplets, its costs counted with those of the droplets before.
 std::size_t spray(Scene& scene, std::size_t count, float radius, float wetness, std::uint32_t seed,
                   DropletCosts& costs) {
-  if (count == 0 || scene.furSurfaces.empty()) return 0;
+  FurPart& part = scene.organ<FurPart>();
+  if (count == 0 || part.surfaces.empty()) return 0;
   const std::string what = fmt::format("{} random droplets (--droplets)", count);
   int largest = 0;
-  for (const FurSurface& s : scene.furSurfaces) largest = std::max(largest, s.wetnessSize);
+  for (const FurSurface& s : part.surfaces) largest = std::max(largest, s.wetnessSize);
   costs.chargeTexels(largest, radius, count, SourceLocation{}, what);
   std::vector<double> cumulative;
   double total = 0;
-  for (const FurSurface& s : scene.furSurfaces) cumulative.push_back(total += s.area);
+  for (const FurSurface& s : part.surfaces) cumulative.push_back(total += s.area);
   if (!(total > 0)) return 0;
   std::mt19937 random(seed);
   auto unit = [&random] { return random() / 4294967296.0; };
@@ -89,8 +92,8 @@ std::size_t spray(Scene& scene, std::size_t count, float radius, float wetness, 
     const double pick = unit() * total;
     const auto at = static_cast<std::size_t>(
         std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
-    const std::size_t index = std::min(at, scene.furSurfaces.size() - 1);
-    FurSurface& s = scene.furSurfaces[index];
+    const std::size_t index = std::min(at, part.surfaces.size() - 1);
+    FurSurface& s = part.surfaces[index];
     const glm::vec2 centre(static_cast<float>(unit()), static_cast<float>(unit()));
     costs.chargeMask(index, s, SourceLocation{}, what);
     fur::blendDroplet(s, centre, radius, wetness);
@@ -191,7 +194,7 @@ void completeSurface(FurSurface&& s, const FurAttributes& fur, const ViewSetting
   s.strandRadius = 0.5f * tile / static_cast<float>(view.furTextureSize);
   fur::clearWetness(s, view.wetnessMaskSize);
   s.furTexture = textureIndex;
-  scene.furSurfaces.push_back(std::move(s));
+  scene.organ<FurPart>().surfaces.push_back(std::move(s));
 }
 
 void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const ViewSettings& view,
@@ -223,7 +226,7 @@ void addOrganSurface(Scene& scene, const OrganSurface& organ, int record, const 
                      int textureIndex) {
   const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(organ.mesh)];
   const PatchUnfolding unfolding(organ, mesh);
-  const FurAttributes& fur = scene.furAttributes[static_cast<std::size_t>(record)];
+  const FurAttributes& fur = scene.organ<FurPart>().attributes[static_cast<std::size_t>(record)];
   FurSurface s;
   s.attributes = record;
   s.material = mesh.material;
@@ -284,7 +287,7 @@ void addOrganSurface(Scene& scene, const OrganSurface& organ, int record, const 
 }  // namespace
 
 bool hasFur(const Scene& scene) {
-  for (const FurAttributes& fur : scene.furAttributes) {
+  for (const FurAttributes& fur : scene.organ<FurPart>().attributes) {
     if (fur.enabled()) return true;
   }
   return false;
@@ -292,16 +295,17 @@ bool hasFur(const Scene& scene) {
 
 FurStageReport growFur(Scene& scene, const ModelResources& resources,
                        const FurStageOptions& options, Diagnostics& diagnostics) {
+  FurPart& part = scene.organ<FurPart>();
   const ViewSettings& view = resources.view;
   FurStageReport report;
-  scene.furSurfaces.clear();
-  scene.furTextures.clear();
+  part.surfaces.clear();
+  part.textures.clear();
   std::map<float, int> textureForDensity;
   auto textureFor = [&](float density) {
     const auto found = textureForDensity.find(density);
     if (found != textureForDensity.end()) return found->second;
-    scene.furTextures.push_back(fur::makeFurTexture(view.furTextureSize, view.furTextureSeed, density));
-    const int index = static_cast<int>(scene.furTextures.size() - 1);
+    part.textures.push_back(fur::makeFurTexture(view.furTextureSize, view.furTextureSeed, density));
+    const int index = static_cast<int>(part.textures.size() - 1);
     textureForDensity.emplace(density, index);
     return index;
   };
@@ -310,10 +314,10 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
   int openRecord = -1, openTube = -1;
   auto close = [&] {
     if (openRecord >= 0 && !builder.surface.indices.empty()) {
-      if (scene.furSurfaces.size() >= options.maxSurfaces)
+      if (part.surfaces.size() >= options.maxSurfaces)
         throw DiagnosticError(SourceLocation{}, "more than " + std::to_string(options.maxSurfaces) +
                                                     " fur surfaces (each run of furry cylinder segments is one)");
-      const FurAttributes& fur = scene.furAttributes[static_cast<std::size_t>(openRecord)];
+      const FurAttributes& fur = part.attributes[static_cast<std::size_t>(openRecord)];
       builder.surface.attributes = openRecord;
       finishSurface(builder, fur, view, textureFor(fur.density), scene);
     }
@@ -339,43 +343,44 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
   for (const OrganSurface& organ : scene.organSurfaces) {
     const int record = organ.organs.fur;
     if (record < 0 || organ.mesh < 0) continue;
-    const FurAttributes& fur = scene.furAttributes[static_cast<std::size_t>(record)];
+    const FurAttributes& fur = part.attributes[static_cast<std::size_t>(record)];
     if (!fur.enabled() || fur.length <= 0) continue;
-    if (scene.furSurfaces.size() >= options.maxSurfaces)
+    if (part.surfaces.size() >= options.maxSurfaces)
       throw DiagnosticError(SourceLocation{}, "more than " + std::to_string(options.maxSurfaces) + " fur surfaces");
     addOrganSurface(scene, organ, record, view, textureFor(fur.density));
   }
 
   // The view file's droplets: counted first, each on the surfaces it falls on, then blended.
-  DropletCosts costs(options.dropletLimits, scene.furSurfaces.size());
-  const auto fallsOn = [&scene](const Droplet& d, std::size_t i) {
-    return i < scene.furSurfaces.size() &&
+  DropletCosts costs(options.dropletLimits, part.surfaces.size());
+  const auto fallsOn = [&part](const Droplet& d, std::size_t i) {
+    return i < part.surfaces.size() &&
            (d.surface == 0 || static_cast<std::size_t>(d.surface - 1) == i);
   };
   for (const Droplet& d : view.droplets) {
-    if (d.surface > static_cast<int>(scene.furSurfaces.size())) {
-      throw DiagnosticError(d.where, "no fur surface " + std::to_string(d.surface) + " (the model has " +
-                                         std::to_string(scene.furSurfaces.size()) + ")");
+    if (d.surface > static_cast<int>(part.surfaces.size())) {
+      throw DiagnosticError(d.where, "no fur surface " + std::to_string(d.surface) +
+                                         " (the model has " + std::to_string(part.surfaces.size()) +
+                                         ")");
     }
-    for (std::size_t i = 0; i < scene.furSurfaces.size(); ++i) {
+    for (std::size_t i = 0; i < part.surfaces.size(); ++i) {
       if (!fallsOn(d, i)) continue;
-      const FurSurface& surface = scene.furSurfaces[i];
+      const FurSurface& surface = part.surfaces[i];
       costs.chargeTexels(surface.wetnessSize, d.radius, 1, d.where, "the view file's droplets");
       costs.chargeMask(i, surface, d.where, "the view file's droplets");
     }
   }
   for (const Droplet& d : view.droplets) {
-    for (std::size_t i = 0; i < scene.furSurfaces.size(); ++i) {
-      if (fallsOn(d, i)) fur::blendDroplet(scene.furSurfaces[i], d.centre, d.radius, d.wetness);
+    for (std::size_t i = 0; i < part.surfaces.size(); ++i) {
+      if (fallsOn(d, i)) fur::blendDroplet(part.surfaces[i], d.centre, d.radius, d.wetness);
     }
     ++report.droplets;
   }
-  if (!view.droplets.empty() && scene.furSurfaces.empty())
+  if (!view.droplets.empty() && part.surfaces.empty())
     diagnostics.warn(view.droplets.front().where, "the model has no fur for the droplets to fall on");
   report.droplets += spray(scene, options.droplets, options.dropletRadius, options.dropletWetness,
                            options.dropletSeed, costs);
-  report.surfaces = scene.furSurfaces.size();
-  for (const FurSurface& s : scene.furSurfaces) {
+  report.surfaces = part.surfaces.size();
+  for (const FurSurface& s : part.surfaces) {
     report.triangles += s.triangleCount();
     report.area += s.area;
   }
@@ -384,7 +389,7 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
 
 std::size_t sprayDroplets(Scene& scene, std::size_t count, float radius, float wetness,
                           std::uint32_t seed, const DropletLimits& limits) {
-  DropletCosts costs(limits, scene.furSurfaces.size());
+  DropletCosts costs(limits, scene.organ<FurPart>().surfaces.size());
   return spray(scene, count, radius, wetness, seed, costs);
 }
 

@@ -7,6 +7,7 @@
 
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
+#include "hirsute/interpreter/fur_part.h"
 
 namespace hirsute::fur {
 namespace {
@@ -28,7 +29,8 @@ bool barycentric(const glm::vec2& p, const glm::vec2& a, const glm::vec2& b, con
 // triangle beyond it), with the triangle and the barycentric weights.
 template <class Visit>
 void visitTexels(const Scene& scene, const FurSurface& surface, Visit&& visit) {
-  const FurTexture& texture = scene.furTextures[static_cast<std::size_t>(surface.furTexture)];
+  const FurTexture& texture =
+      scene.organ<FurPart>().textures[static_cast<std::size_t>(surface.furTexture)];
   const int n = texture.size;
   if (n <= 0) return;
   const float texel = 1.0f / static_cast<float>(n);
@@ -65,7 +67,8 @@ std::size_t countStrands(const Scene& scene, const FurSurface& surface) {
 void forEachStrand(const Scene& scene, const FurSurface& surface, int samples,
                    const std::function<void(const FurStrandView&)>& emit) {
   if (surface.attributes < 0) return;
-  const FurAttributes& fur = scene.furAttributes[static_cast<std::size_t>(surface.attributes)];
+  const FurAttributes& fur =
+      scene.organ<FurPart>().attributes[static_cast<std::size_t>(surface.attributes)];
   samples = std::max(2, samples);
   const int layers = surface.layers;
   const float radius = surface.strandRadius;

@@ -13,6 +13,8 @@
 
 #include "model_pipeline.h"
 
+#include "hirsute/interpreter/fur_part.h"
+
 namespace hirsute {
 namespace {
 
@@ -404,10 +406,10 @@ TEST(LiveModelTest, DropletsWetTheFurAndItDriesOnTheClock) {
   HandClock clock;
   LiveModel live(options, shipped.builder(), view, {}, clock.now());
   settle(live);
-  ASSERT_FALSE(live.fur().furSurfaces.empty());
+  ASSERT_FALSE(live.fur().organ<FurPart>().surfaces.empty());
   auto wetness = [&] {
     double sum = 0;
-    for (const FurSurface& s : live.fur().furSurfaces) {
+    for (const FurSurface& s : live.fur().organ<FurPart>().surfaces) {
       for (const glm::vec4& texel : s.wetness) sum += texel.w;
     }
     return sum;

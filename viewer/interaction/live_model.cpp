@@ -9,6 +9,7 @@
 
 #include "hirsute/hairs/fur/fur_stage.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
+#include "hirsute/interpreter/fur_part.h"
 
 namespace hirsute {
 namespace {
@@ -330,18 +331,16 @@ bool LiveModel::stepDynamics() {
 void LiveModel::takeFur() {
   Scene previous = std::move(fur_);
   fur_ = Scene{};
-  fur_.furAttributes = model_->scene.furAttributes;
-  fur_.furSurfaces = model_->scene.furSurfaces;
-  fur_.furTextures = model_->scene.furTextures;
+  fur_.organ<FurPart>() = std::as_const(model_->scene).organ<FurPart>();
   // The frame before's particles and wetness carry over (an animation keeps its wet patches
   // and drags its fur); the view gets them at once.
-  furMotion_.reset(fur_, previous.furSurfaces.empty() ? nullptr : &previous);
-  if (!previous.furSurfaces.empty()) view_.updateFur(fur_);
+  furMotion_.reset(fur_, previous.organ<FurPart>().surfaces.empty() ? nullptr : &previous);
+  if (!previous.organ<FurPart>().surfaces.empty()) view_.updateFur(fur_);
   lastFurStep_ = now_();
 }
 
 bool LiveModel::stepFur() {
-  if (fur_.furSurfaces.empty()) return false;
+  if (fur_.organ<FurPart>().surfaces.empty()) return false;
   const auto now = now_();
   const float seconds =
       static_cast<float>(std::chrono::duration<double>(now - lastFurStep_).count());
@@ -374,7 +373,7 @@ void LiveModel::sprayDroplets(std::size_t count) {
 }
 
 void LiveModel::dropletAt(glm::vec2 point, glm::ivec2 viewport) {
-  if (!model_ || fur_.furSurfaces.empty()) return;
+  if (!model_ || fur_.organ<FurPart>().surfaces.empty()) return;
   const Camera c = camera(viewport);
   glm::vec3 origin, direction;
   if (c.projection == Projection::Perspective) {
@@ -388,7 +387,7 @@ void LiveModel::dropletAt(glm::vec2 point, glm::ivec2 viewport) {
     origin = c.eye + point.x * c.halfWidth * c.right + point.y * c.halfHeight * c.up;
   }
   if (const auto hit = fur::pickFur(fur_, origin, direction)) {
-    fur::blendDroplet(fur_.furSurfaces[hit->surface], hit->uv, 0.05f, 1.0f);
+    fur::blendDroplet(fur_.organ<FurPart>().surfaces[hit->surface], hit->uv, 0.05f, 1.0f);
     view_.updateFur(fur_);
     changed_ = true;
   }

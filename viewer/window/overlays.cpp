@@ -6,6 +6,7 @@
 #include <span>
 
 #include "hirsute/hairs/organ_stage.h"
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/window/key_map.h"
 
 namespace hirsute {
@@ -44,9 +45,9 @@ void drawStatusOverlay(const LiveModel& live, const GlRenderer& renderer,
       }
     }
     const Scene& fur = live.fur();
-    if (model && !fur.furSurfaces.empty()) {
-      ImGui::Text("fur: %zu surfaces, %d layers%s%s%s", fur.furSurfaces.size(),
-                  fur.furSurfaces.front().layers, shown.fur ? "" : " (hidden)",
+    if (model && !fur.organ<FurPart>().surfaces.empty()) {
+      ImGui::Text("fur: %zu surfaces, %d layers%s%s%s", fur.organ<FurPart>().surfaces.size(),
+                  fur.organ<FurPart>().surfaces.front().layers, shown.fur ? "" : " (hidden)",
                   live.drying() ? "  drying" : "", live.furMoving() ? "  moving" : "");
     }
     // Builds that end within a quarter of a second show no progress (no flicker).

@@ -3,6 +3,7 @@
 // polyline, under `o fur`, in the surface's material.
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/fur_writer.h"
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 
 namespace hirsute {
@@ -13,7 +14,7 @@ constexpr int kStrandPoints = 7;  // the POV-Ray ribbons' points (pov_fur.cpp)
 void FurWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
   obj.group("fur");
   std::uint64_t strands = 0;
-  for (const FurSurface& surface : scene.furSurfaces) {
+  for (const FurSurface& surface : scene.organ<FurPart>().surfaces) {
     obj.useMaterial(surface.material, -1);
     fur::forEachStrand(scene, surface, kStrandPoints, [&](const fur::FurStrandView& strand) {
       const std::uint64_t first = obj.stats().vertices + 1;

@@ -10,6 +10,7 @@
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/fur_writer.h"
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/view/view_lighting.h"
 
@@ -43,10 +44,11 @@ void FurWriter::writePov(const Scene& scene, PovWriter& pov) const {
   const glm::vec3 light = glm::normalize(organLight(
       viewLighting(pov.options().view, pov.options().materialMode, towardsEye), towardsEye));
   const bool perspective = camera.projection == Projection::Perspective;
-  for (std::size_t index = 0; index < scene.furSurfaces.size(); ++index) {
-    const FurSurface& surface = scene.furSurfaces[index];
+  for (std::size_t index = 0; index < scene.organ<FurPart>().surfaces.size(); ++index) {
+    const FurSurface& surface = scene.organ<FurPart>().surfaces[index];
     if (surface.attributes < 0) continue;
-    const FurAttributes& a = scene.furAttributes[static_cast<std::size_t>(surface.attributes)];
+    const FurAttributes& a =
+        scene.organ<FurPart>().attributes[static_cast<std::size_t>(surface.attributes)];
     const Material material = static_cast<std::size_t>(surface.material) < scene.materials.size()
                                   ? scene.materials[static_cast<std::size_t>(surface.material)]
                                   : Material{};

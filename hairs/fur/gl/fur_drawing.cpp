@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "hirsute/hairs/fur/fur_strand.h"
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/gl/gl_objects.h"
 
 namespace hirsute {
@@ -164,7 +165,7 @@ void FurDrawing::upload(const OrganUpload& upload) {
   const std::vector<Material>& palette = upload.palette;
   release();
   layers_ = view.furLayers;
-  for (const FurTexture& fur : scene.furTextures) {
+  for (const FurTexture& fur : scene.organ<FurPart>().textures) {
     GLuint texture = 0;
     gl_.GenTextures(1, &texture);
     gl_.BindTexture(GL_TEXTURE_2D, texture);
@@ -178,10 +179,10 @@ void FurDrawing::upload(const OrganUpload& upload) {
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     furTextures_.push_back(texture);
   }
-  for (const FurSurface& fur : scene.furSurfaces) {
+  for (const FurSurface& fur : scene.organ<FurPart>().surfaces) {
     if (fur.attributes < 0 || fur.indices.empty()) continue;
     Surface s;
-    s.attributes = scene.furAttributes[static_cast<std::size_t>(fur.attributes)];
+    s.attributes = scene.organ<FurPart>().attributes[static_cast<std::size_t>(fur.attributes)];
     s.furTexture = fur.furTexture;
     s.texcoordsPerUv = fur.texcoordsPerUv;
     s.wrapsU = fur.wrapsU;
@@ -219,7 +220,7 @@ void FurDrawing::upload(const OrganUpload& upload) {
 
 void FurDrawing::update(const Scene& scene, const std::vector<GLuint>& /*textures*/) {
   std::size_t next = 0;
-  for (const FurSurface& fur : scene.furSurfaces) {
+  for (const FurSurface& fur : scene.organ<FurPart>().surfaces) {
     if (fur.attributes < 0 || fur.indices.empty()) continue;
     if (next >= surfaces_.size()) break;
     Surface& s = surfaces_[next++];

@@ -14,6 +14,7 @@
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -60,8 +61,8 @@ glm::dvec3 tangential(const glm::dvec3& offset, const glm::dvec3& n) { return of
 TEST(FurStage, TorusIsOneSurfaceOfThePapersTriangles) {
   Built b;
   buildTorus(b);
-  ASSERT_EQ(b.scene.furSurfaces.size(), 1u);
-  const FurSurface& s = b.scene.furSurfaces[0];
+  ASSERT_EQ(b.scene.organ<FurPart>().surfaces.size(), 1u);
+  const FurSurface& s = b.scene.organ<FurPart>().surfaces[0];
   EXPECT_EQ(s.triangleCount(), 9360u);
   EXPECT_TRUE(s.wrapsU);
   // A ring of radius 3 around a tube of radius 1: 4 pi² R r, less the polygons' shortfall.
@@ -94,8 +95,9 @@ TEST(FurStage, TorusIsOneSurfaceOfThePapersTriangles) {
 TEST(FurStage, ExportedStrandCountIsTheFillTimesTheArea) {
   Built b;
   buildTorus(b);
-  const FurSurface& s = b.scene.furSurfaces[0];
-  const FurAttributes& fur = b.scene.furAttributes[static_cast<std::size_t>(s.attributes)];
+  const FurSurface& s = b.scene.organ<FurPart>().surfaces[0];
+  const FurAttributes& fur =
+      b.scene.organ<FurPart>().attributes[static_cast<std::size_t>(s.attributes)];
   const double texel = fur.length / b.resources.view.furTexelsPerLength;  // world units
   const double expected = fur.density * s.area / (texel * texel);
   const std::size_t strands = fur::countStrands(b.scene, s);
@@ -126,39 +128,44 @@ double turn(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& n) {
 TEST(FurStage, CurlOfExportedStrandsHasItsRadiusAndFrequency) {
   Built b;
   buildTorus(b);
-  FurAttributes& fur = b.scene.furAttributes[static_cast<std::size_t>(b.scene.furSurfaces[0].attributes)];
+  FurAttributes& fur =
+      b.scene.organ<FurPart>()
+          .attributes[static_cast<std::size_t>(b.scene.organ<FurPart>().surfaces[0].attributes)];
   fur.curlRadius = 0.3f;
   fur.curlFrequency = static_cast<float>(4 * kPi);  // two turns over the length
   const int samples = 41;
   std::size_t measured = 0;
-  fur::forEachStrand(b.scene, b.scene.furSurfaces[0], samples,
-                     [&](const fur::FurStrandView& strand) {
-    if (measured++ >= 300) return;
-    const std::vector<glm::dvec3> side = across(strand);
-    double winding = 0;
-    for (int i = 1; i < samples; ++i) {
-      const double h = strand.reach * i / (samples - 1.0);
-      // alpha(h) = K_alpha L h: the radius grows linearly along the strand.
-      ASSERT_NEAR(glm::length(side[static_cast<std::size_t>(i)]), 0.3 * 0.35 * h, 1e-4);
-      // The rise along the normal is the rest strand's, (2h - h²) L.
-      const double rise = glm::dot(glm::dvec3(strand.points[static_cast<std::size_t>(i)]) -
-                                       glm::dvec3(strand.points[0]), glm::dvec3(strand.normal));
-      ASSERT_NEAR(rise, (2 * h - h * h) * 0.35, 1e-4);
-      if (i > 1) winding += turn(side[static_cast<std::size_t>(i - 1)], side[static_cast<std::size_t>(i)],
-                                 glm::dvec3(strand.normal));
-    }
-    // omega radians per unit h, whichever way round the surface's frame winds.
-    const double expected = 4 * kPi * strand.reach * (samples - 2.0) / (samples - 1.0);
-    EXPECT_NEAR(std::abs(winding), expected, 1e-3 * expected);
-  });
+  fur::forEachStrand(
+      b.scene, b.scene.organ<FurPart>().surfaces[0], samples,
+      [&](const fur::FurStrandView& strand) {
+        if (measured++ >= 300) return;
+        const std::vector<glm::dvec3> side = across(strand);
+        double winding = 0;
+        for (int i = 1; i < samples; ++i) {
+          const double h = strand.reach * i / (samples - 1.0);
+          // alpha(h) = K_alpha L h: the radius grows linearly along the strand.
+          ASSERT_NEAR(glm::length(side[static_cast<std::size_t>(i)]), 0.3 * 0.35 * h, 1e-4);
+          // The rise along the normal is the rest strand's, (2h - h²) L.
+          const double rise = glm::dot(
+              glm::dvec3(strand.points[static_cast<std::size_t>(i)]) - glm::dvec3(strand.points[0]),
+              glm::dvec3(strand.normal));
+          ASSERT_NEAR(rise, (2 * h - h * h) * 0.35, 1e-4);
+          if (i > 1)
+            winding += turn(side[static_cast<std::size_t>(i - 1)],
+                            side[static_cast<std::size_t>(i)], glm::dvec3(strand.normal));
+        }
+        // omega radians per unit h, whichever way round the surface's frame winds.
+        const double expected = 4 * kPi * strand.reach * (samples - 2.0) / (samples - 1.0);
+        EXPECT_NEAR(std::abs(winding), expected, 1e-3 * expected);
+      });
   EXPECT_GT(measured, 300u);
 }
 
 TEST(FurStage, WetStrandsDoNotCurlAndLeanTowardsTheirClump) {
   Built b;
   buildTorus(b);
-  FurSurface& s = b.scene.furSurfaces[0];
-  FurAttributes& fur = b.scene.furAttributes[static_cast<std::size_t>(s.attributes)];
+  FurSurface& s = b.scene.organ<FurPart>().surfaces[0];
+  FurAttributes& fur = b.scene.organ<FurPart>().attributes[static_cast<std::size_t>(s.attributes)];
   fur.curlRadius = 0.3f;
   fur.curlFrequency = static_cast<float>(4 * kPi);
   fur::blendDroplet(s, glm::vec2(0.5f, 0.5f), 0.1f, 1.0f);
@@ -191,7 +198,7 @@ TEST(FurStage, ViewFileDropletsLandInTheMask) {
   Built b;
   buildTorus(b, "wet.v");
   ASSERT_EQ(b.report.droplets, 5u);
-  const FurSurface& s = b.scene.furSurfaces[0];
+  const FurSurface& s = b.scene.organ<FurPart>().surfaces[0];
   EXPECT_EQ(s.wetnessSize, 256);
   // wet.v's first droplet: (0.2, 0.1), radius 0.08, wetness 1.
   EXPECT_EQ(fur::wetnessAt(s, glm::vec2(0.2f, 0.1f)).w, 1.0f);
@@ -204,9 +211,11 @@ TEST(FurStage, ViewFileDropletsLandInTheMask) {
   build(sprayed, kModels / "fur-torus" / "torus.l", kModels / "fur-torus" / "torus.v", options);
   build(again, kModels / "fur-torus" / "torus.l", kModels / "fur-torus" / "torus.v", options);
   EXPECT_EQ(sprayed.report.droplets, 40u);
-  EXPECT_EQ(sprayed.scene.furSurfaces[0].wetness, again.scene.furSurfaces[0].wetness);
+  EXPECT_EQ(sprayed.scene.organ<FurPart>().surfaces[0].wetness,
+            again.scene.organ<FurPart>().surfaces[0].wetness);
   std::size_t wetTexels = 0;
-  for (const glm::vec4& t : sprayed.scene.furSurfaces[0].wetness) wetTexels += t.w > 0;
+  for (const glm::vec4& t : sprayed.scene.organ<FurPart>().surfaces[0].wetness)
+    wetTexels += t.w > 0;
   EXPECT_GT(wetTexels, 0u);
 }
 

@@ -24,7 +24,7 @@ struct OrganValue {
 struct OrganAttributeIndices {
   int hair = -1;     // Scene::hairAttributes
   int feather = -1;  // Scene::featherAttributes
-  int fur = -1;      // Scene::furAttributes
+  int fur = -1;      // FurPart::attributes (fur_part.h)
 
   bool operator==(const OrganAttributeIndices&) const = default;
 };

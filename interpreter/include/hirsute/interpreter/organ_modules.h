@@ -163,9 +163,12 @@ class AttributeModuleTable : public OrganModuleTable {
  public:
   using Row = OrganModuleRow<Record>;
 
+  // The organ's records in a Scene (in its part, organ_part.h).
+  using Records = std::vector<Record>& (*)(Scene&);
+
   // `noun` names the organ in the warning for an unknown module ("hair": "@Hx is not a hair
   // module (…)").
-  AttributeModuleTable(char organ, std::string_view noun, std::vector<Record> Scene::*records,
+  AttributeModuleTable(char organ, std::string_view noun, Records records,
                        int OrganAttributeIndices::*index, std::vector<Row> rows)
       : organ_(organ), noun_(noun), records_(records), index_(index), rows_(std::move(rows)) {}
 
@@ -193,7 +196,7 @@ class AttributeModuleTable : public OrganModuleTable {
       row->action(call, name);
       return;
     }
-    std::vector<Record>& records = (*call.scene).*records_;
+    std::vector<Record>& records = records_(*call.scene);
     int& index = call.state.organs.*index_;
     const bool scratch =
         index >= 0 && index == call.scratchRecord && call.modulesSeen == call.scratchModule + 3;
@@ -268,7 +271,7 @@ class AttributeModuleTable : public OrganModuleTable {
 
   char organ_;
   std::string_view noun_;
-  std::vector<Record> Scene::*records_;
+  Records records_;
   int OrganAttributeIndices::*index_;
   std::vector<Row> rows_;
 };

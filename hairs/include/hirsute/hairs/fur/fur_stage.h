@@ -10,6 +10,7 @@
 #include <string>
 
 #include "hirsute/hairs/organ_stage.h"
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
@@ -44,8 +45,8 @@ struct FurStageReport {
 // Whether the turtle put fur on anything.
 bool hasFur(const Scene& scene);
 
-// Builds scene.furSurfaces and scene.furTextures. Throws DiagnosticError for a `droplet:` line
-// naming a fur surface the model does not have (at that line) and for more surfaces than the
+// Builds the surfaces and textures of the scene's FurPart. Throws DiagnosticError for a `droplet:`
+// line naming a fur surface the model does not have (at that line) and for more surfaces than the
 // limit.
 FurStageReport growFur(Scene& scene, const ModelResources& resources,
                        const FurStageOptions& options, Diagnostics& diagnostics);

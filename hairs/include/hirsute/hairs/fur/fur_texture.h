@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::fur {

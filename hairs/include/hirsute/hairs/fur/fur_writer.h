@@ -2,6 +2,7 @@
 // both as explicit strands (fur_strands.h), since no format draws shells.
 #pragma once
 
+#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/export/organ_writer.h"
 
 namespace hirsute {
@@ -9,7 +10,9 @@ namespace hirsute {
 class FurWriter : public OrganWriter {
  public:
   // The fur surfaces (the strands are not counted ahead).
-  std::size_t items(const Scene& scene) const override { return scene.furSurfaces.size(); }
+  std::size_t items(const Scene& scene) const override {
+    return scene.organ<FurPart>().surfaces.size();
+  }
   // Per fur surface one mesh2 of ribbons facing the camera, each vertex coloured by the shells'
   // own shading (Kajiya-Kay times the shadow factor, Eq. 6) so that the still matches the
   // preview, emitted rather than lit. Counts "fur strands".

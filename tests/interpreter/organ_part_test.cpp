@@ -1,0 +1,68 @@
+// Organs' parts of the Scene (organ_part.h): one of each type, made on first use, copied with
+// the Scene, emptied in place, and counted in its bounds.
+#include "hirsute/interpreter/organ_part.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/interpreter/scene.h"
+
+namespace hirsute {
+namespace {
+
+// A part of a test organ: a list of points it draws.
+struct PointsPart : OrganPartOf<PointsPart> {
+  std::vector<glm::vec3> points;
+  void addBounds(Bounds& box) const override {
+    for (const glm::vec3& p : points) box.add(p);
+  }
+};
+
+TEST(OrganParts, APartIsMadeOnFirstUseAndReachedByItsType) {
+  Scene scene;
+  const Scene& reading = scene;
+  // Reading a part the scene does not have makes none: it reads as empty.
+  EXPECT_TRUE(reading.organ<PointsPart>().points.empty());
+  EXPECT_TRUE(reading.bounds().empty());
+  scene.organ<PointsPart>().points.push_back({1, 2, 3});
+  scene.organ<FurPart>().attributes.emplace_back();
+  EXPECT_EQ(&scene.organ<PointsPart>(), &reading.organ<PointsPart>());
+  ASSERT_EQ(reading.organ<PointsPart>().points.size(), 1u);
+  EXPECT_EQ(reading.organ<FurPart>().attributes.size(), 1u);
+  EXPECT_EQ(reading.bounds().max, glm::vec3(1, 2, 3));
+}
+
+TEST(OrganParts, CopiesAreDeepAndClearingKeepsThePart) {
+  Scene scene;
+  scene.organ<PointsPart>().points.push_back({1, 0, 0});
+  Scene copy = scene;
+  copy.organ<PointsPart>().points.push_back({2, 0, 0});
+  EXPECT_EQ(scene.organ<PointsPart>().points.size(), 1u);
+  EXPECT_EQ(copy.organ<PointsPart>().points.size(), 2u);
+  copy = scene;
+  EXPECT_EQ(copy.organ<PointsPart>().points.size(), 1u);
+
+  PointsPart* before = &scene.organ<PointsPart>();
+  scene.clear();
+  EXPECT_EQ(&scene.organ<PointsPart>(), before);
+  EXPECT_TRUE(scene.organ<PointsPart>().points.empty());
+  EXPECT_TRUE(scene.bounds().empty());
+}
+
+TEST(OrganParts, FurBoundsReachTheFurLength) {
+  Scene scene;
+  FurPart& fur = scene.organ<FurPart>();
+  fur.attributes.emplace_back().length = 0.5f;
+  FurSurface surface;
+  surface.attributes = 0;
+  surface.positions = {glm::vec3(0), glm::vec3(1, 0, 0)};
+  fur.surfaces.push_back(surface);
+  const Bounds b = scene.bounds();
+  EXPECT_EQ(b.min, glm::vec3(-0.5f));
+  EXPECT_EQ(b.max, glm::vec3(1.5f, 0.5f, 0.5f));
+}
+
+}  // namespace
+}  // namespace hirsute
