@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/view/feather_buffers.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
@@ -121,10 +122,10 @@ int main(int argc, char** argv) {
   std::printf(
       "scene: %s, %zu feathers (%zu in coats), %zu barbs, %zu barb segments, %zu shaft "
       "triangles, %zu barb index entries\n",
-      model.c_str(), scene.feathers.size(),
-      static_cast<std::size_t>(
-          std::count_if(scene.feathers.begin(), scene.feathers.end(),
-                        [](const Feather& f) { return f.origin == FeatherOrigin::Coat; })),
+      model.c_str(), scene.organ<FeatherPart>().feathers.size(),
+      static_cast<std::size_t>(std::count_if(
+          scene.organ<FeatherPart>().feathers.begin(), scene.organ<FeatherPart>().feathers.end(),
+          [](const Feather& f) { return f.origin == FeatherOrigin::Coat; })),
       buffers.barbCount, buffers.barbSegments, buffers.shaftTriangles(), barbIndices.size());
   std::printf("  %-34s %9.1f ms\n", "first frame (builds the feathers):", firstFrame * 1e3);
   std::printf("  %-34s %9.1f ms\n", "renderer frame:", t[0] * 1e3);

@@ -19,6 +19,7 @@
 #include "command.h"
 #include "hirsute/hairs/dynamics/coat_motion.h"
 #include "hirsute/core/output_target.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/interaction/animation_file.h"
@@ -167,7 +168,7 @@ int runSimulate(SimulateOptions o) {
     std::cerr << e.what() << '\n';
     return kExitIoError;
   }
-  if (first.scene.feathers.empty()) {
+  if (first.scene.organ<FeatherPart>().feathers.empty()) {
     return badInput(progress, o.model.lsystemFile +
                                   ": error: the model has no feathers to simulate (@Fe, @Fi or "
                                   "a feather coat; docs/dynamics.md)");

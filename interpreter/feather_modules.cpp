@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cpfg_numbers.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/organ_modules.h"
 
 namespace hirsute {
@@ -60,7 +61,7 @@ void emitFeather(const OrganModuleCall& call, const std::string& name, bool blen
   feather.size = call.count > rest + 1 ? std::max(0.0f, p[rest + 1]) : 1.0f;
   if (!std::isfinite(feather.size)) feather.size = 0;
   if (feather.size <= 0) return;
-  call.scene->feathers.push_back(feather);
+  call.scene->organ<FeatherPart>().feathers.push_back(feather);
 }
 
 FeatherRow action(char letter, bool blended) {
@@ -99,7 +100,9 @@ FeatherRow keyFeather(char letter) {
 const OrganModuleTable& featherModuleTable() {
   static const AttributeModuleTable<FeatherAttributes> table(
       'F', "feather",
-      [](Scene& scene) -> std::vector<FeatherAttributes>& { return scene.featherAttributes; },
+      [](Scene& scene) -> std::vector<FeatherAttributes>& {
+        return scene.organ<FeatherPart>().attributes;
+      },
       &OrganAttributeIndices::feather,
       {
           action('e', false),

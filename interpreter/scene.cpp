@@ -37,7 +37,6 @@ Bounds Scene::bounds() const {
     b.add(h.root - glm::vec3(reach));
     b.add(h.root + glm::vec3(reach));
   }
-  b.add(featherBounds);
   organs_.addBounds(b);
   return b;
 }
@@ -65,11 +64,6 @@ void Scene::clear() {
   hairAttributes.clear();
   hairTemplates.clear();
   hairs.clear();
-  featherTypes.clear();
-  featherAttributes.clear();
-  feathers.clear();
-  featherPoses.clear();
-  featherBounds = Bounds{};
   organs_.clear();
   meshIndex_.clear();
 }

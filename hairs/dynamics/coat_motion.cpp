@@ -7,6 +7,7 @@
 #include <string>
 
 #include "hirsute/hairs/dynamics/feather_stem.h"
+#include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute::dynamics {
 namespace {
@@ -64,8 +65,8 @@ SimulationParameters simulationParametersOf(const FeatherDynamicsSettings& view)
 CoatMotion::CoatMotion(const Scene& first, const SimulationParameters& parameters)
     : simulation_(FeatherCoatSimulation::fromScene(first, parameters)),
       bound_(bindRoots(simulation_)),
-      feathers_(first.feathers),
-      featherBounds_(first.featherBounds) {}
+      feathers_(first.organ<FeatherPart>().feathers),
+      featherBounds_(first.organ<FeatherPart>().bounds) {}
 
 std::size_t CoatMotion::boundRoots() const {
   std::size_t n = 0;
@@ -85,11 +86,12 @@ void CoatMotion::advance(double seconds, int steps, const Scene* next) {
   std::vector<StemFrame> toAnchors = fromAnchors;
   std::vector<Vector3d> toBody = fromBody;
   if (next) {
-    if (boundRoots() < bound_.size() && next->feathers.size() != simulation_.stems().size()) {
-      throw FrameMismatch("the frame has " + std::to_string(next->feathers.size()) +
-                          " feathers where the simulation has " +
-                          std::to_string(simulation_.stems().size()) +
-                          ": a simulation needs the same feathers in every frame");
+    if (boundRoots() < bound_.size() &&
+        next->organ<FeatherPart>().feathers.size() != simulation_.stems().size()) {
+      throw FrameMismatch(
+          "the frame has " + std::to_string(next->organ<FeatherPart>().feathers.size()) +
+          " feathers where the simulation has " + std::to_string(simulation_.stems().size()) +
+          ": a simulation needs the same feathers in every frame");
     }
     BodyMesh body = bodyMeshOf(*next);
     if (body.vertices.size() != fromBody.size() ||
@@ -104,8 +106,9 @@ void CoatMotion::advance(double seconds, int steps, const Scene* next) {
     toBody = body.vertices;
     const std::vector<Vector3d> normals = vertexNormals(body);
     for (std::size_t s = 0; s < toAnchors.size(); ++s)
-      toAnchors[s] = bound_[s].triangle >= 0 ? anchorOnBody(body, normals, bound_[s])
-                                             : anchorFrameOf(next->feathers[s]);
+      toAnchors[s] = bound_[s].triangle >= 0
+                         ? anchorOnBody(body, normals, bound_[s])
+                         : anchorFrameOf(next->organ<FeatherPart>().feathers[s]);
   }
   const double stable = simulation_.stableTimeStep();
   if (seconds / steps > stable)
@@ -123,16 +126,17 @@ void CoatMotion::advance(double seconds, int steps, const Scene* next) {
 }
 
 void CoatMotion::pose(Scene& scene) const {
+  FeatherPart& part = scene.organ<FeatherPart>();
   const auto& stems = simulation_.stems();
-  scene.feathers = feathers_;
-  scene.featherBounds = featherBounds_;
-  scene.featherPoses.clear();
-  scene.featherPoses.reserve(stems.size());
+  part.feathers = feathers_;
+  part.bounds = featherBounds_;
+  part.poses.clear();
+  part.poses.reserve(stems.size());
   const SimulationParameters& p = simulation_.parameters();
   for (std::size_t s = 0; s < stems.size(); ++s) {
-    const Feather& feather = scene.feathers[s];
+    const Feather& feather = part.feathers[s];
     const FeatherStem rest = buildFeatherStem(scene, feather, p.segmentsPerFeather, p.stem);
-    scene.featherPoses.push_back(featherPoseOf(feather, rest, stems[s]));
+    part.poses.push_back(featherPoseOf(feather, rest, stems[s]));
   }
 }
 

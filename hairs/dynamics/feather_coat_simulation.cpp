@@ -18,6 +18,7 @@
 #include "hirsute/hairs/dynamics/collision_grid.h"
 #include "hirsute/hairs/dynamics/continuous_collision.h"
 #include "hirsute/hairs/dynamics/static_intersection.h"
+#include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute::dynamics {
 namespace {
@@ -423,7 +424,7 @@ FeatherCoatSimulation::FeatherCoatSimulation(std::vector<FeatherStem> stems, Bod
 FeatherCoatSimulation FeatherCoatSimulation::fromScene(const Scene& scene,
                                                        const SimulationParameters& parameters) {
   std::vector<FeatherStem> stems;
-  for (const Feather& feather : scene.feathers)
+  for (const Feather& feather : scene.organ<FeatherPart>().feathers)
     stems.push_back(
         buildFeatherStem(scene, feather, parameters.segmentsPerFeather, parameters.stem));
   return FeatherCoatSimulation(std::move(stems), bodyMeshOf(scene), parameters);

@@ -8,6 +8,7 @@
 #include "hirsute/hairs/placement/placement_random.h"
 #include "hirsute/hairs/placement/segment_unfolding.h"
 #include "hirsute/hairs/placement/surface_sampler.h"
+#include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute {
 namespace {
@@ -79,7 +80,7 @@ class SideCoat : public AttachmentVisitor {
   }
   void place(AttachmentPoint& point, const AttachmentFrame& frame) override {
     Scene& scene = placer_.scene;
-    if (scene.feathers.size() >= placer_.settings.maxFeathers) {
+    if (scene.organ<FeatherPart>().feathers.size() >= placer_.settings.maxFeathers) {
       throw FeatherLimitError("more than " + std::to_string(placer_.settings.maxFeathers) +
                               " coat feathers (lower @Fd)");
     }
@@ -112,7 +113,7 @@ class SideCoat : public AttachmentVisitor {
     keyAt(endKey_, placer_.settings.function, s, a1, b1, feather.across[1]);
     feather.types = {a0, b0, a1, b1};
     feather.along = tau;
-    scene.feathers.push_back(feather);
+    scene.organ<FeatherPart>().feathers.push_back(feather);
     // Bottom to top (Sec. 4.4): a feather lies over those its rachis points to, so those are
     // drawn first.
     const float v = axisStart_ + tau * axisLength_;
@@ -133,8 +134,8 @@ void CoatPlacer::segment(std::size_t index, SurfaceSampler& sampler) {
   const CylinderSegment& seg = scene.cylinderSegments[index];
   static const FeatherAttributes kNone{};
   auto attributesAt = [&](int i) -> const FeatherAttributes& {
-    return i >= 0 && static_cast<std::size_t>(i) < scene.featherAttributes.size()
-               ? scene.featherAttributes[static_cast<std::size_t>(i)]
+    return i >= 0 && static_cast<std::size_t>(i) < scene.organ<FeatherPart>().attributes.size()
+               ? scene.organ<FeatherPart>().attributes[static_cast<std::size_t>(i)]
                : kNone;
   };
   if (seg.organStart.feather < 0 && seg.organEnd.feather < 0) return;
@@ -189,14 +190,15 @@ std::vector<TexturePoint> hexagonalFollicles(int columns, int rows) {
 
 FeatherCoatReport placeFeatherCoats(Scene& scene, const FeatherCoatSettings& settings) {
   bool any = false;
-  for (const FeatherAttributes& a : scene.featherAttributes) any = any || a.anyEnabled();
+  for (const FeatherAttributes& a : scene.organ<FeatherPart>().attributes)
+    any = any || a.anyEnabled();
   if (!any) return {};
   const int hexColumns = 26, hexRows = 30;
   SurfaceSampler sampler = settings.layout == FollicleLayout::Hexagonal
                                ? SurfaceSampler(hexagonalFollicles(hexColumns, hexRows), hexRows)
                                : SurfaceSampler(PointDiffusionTexture::generate(settings.texture));
   CoatPlacer placer{scene, settings, {}, {}};
-  const std::size_t first = scene.feathers.size();
+  const std::size_t first = scene.organ<FeatherPart>().feathers.size();
   if (settings.progress) settings.progress->begin("placing feather coats", Progress::Unit::Count);
   for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) {
     placer.segment(i, sampler);
@@ -211,8 +213,9 @@ FeatherCoatReport placeFeatherCoats(Scene& scene, const FeatherCoatSettings& set
   });
   std::vector<Feather> coat;
   coat.reserve(byOrder.size());
-  for (std::size_t i : byOrder) coat.push_back(scene.feathers[first + i]);
-  std::copy(coat.begin(), coat.end(), scene.feathers.begin() + static_cast<std::ptrdiff_t>(first));
+  for (std::size_t i : byOrder) coat.push_back(scene.organ<FeatherPart>().feathers[first + i]);
+  std::copy(coat.begin(), coat.end(),
+            scene.organ<FeatherPart>().feathers.begin() + static_cast<std::ptrdiff_t>(first));
   return placer.report;
 }
 

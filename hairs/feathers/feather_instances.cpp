@@ -7,11 +7,12 @@
 #include <glm/matrix.hpp>
 
 #include "hirsute/hairs/feathers/feather_blend.h"
+#include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute {
 
 bool hasFeatherTypes(const Scene& scene, const Feather& feather) {
-  const std::size_t n = scene.featherTypes.size();
+  const std::size_t n = scene.organ<FeatherPart>().types.size();
   return std::all_of(feather.types.begin(), feather.types.end(),
                      [n](std::uint16_t type) { return type >= 1 && type <= n; });
 }
@@ -20,9 +21,9 @@ namespace {
 
 // Types a and b (1-based) blended by t, without blending when there is nothing to blend.
 FeatherType blendOf(const Scene& scene, std::uint16_t a, std::uint16_t b, float t) {
-  const FeatherType& first = scene.featherTypes[a - 1u];
+  const FeatherType& first = scene.organ<FeatherPart>().types[a - 1u];
   if (a == b || t <= 0) return first;
-  const FeatherType& second = scene.featherTypes[b - 1u];
+  const FeatherType& second = scene.organ<FeatherPart>().types[b - 1u];
   if (t >= 1) return second;
   return blendFeatherTypes(first, second, t);
 }
@@ -58,9 +59,10 @@ FeatherMap::FeatherMap(const FeatherPose& pose) : pose_(&pose) {
 }
 
 FeatherMap FeatherMap::of(const Scene& scene, std::size_t feather) {
-  if (feather < scene.featherPoses.size() && !scene.featherPoses[feather].heights.empty())
-    return FeatherMap(scene.featherPoses[feather]);
-  return FeatherMap(featherToWorld(scene.feathers[feather]));
+  if (feather < scene.organ<FeatherPart>().poses.size() &&
+      !scene.organ<FeatherPart>().poses[feather].heights.empty())
+    return FeatherMap(scene.organ<FeatherPart>().poses[feather]);
+  return FeatherMap(featherToWorld(scene.organ<FeatherPart>().feathers[feather]));
 }
 
 FeatherMap::Blend FeatherMap::blendAt(const glm::vec3& local) const {

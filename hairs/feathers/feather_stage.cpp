@@ -13,6 +13,7 @@
 #include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/feather_instances.h"
 #include "hirsute/hairs/placement/placement_random.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/texture_image.h"
 
 namespace hirsute {
@@ -53,36 +54,37 @@ void attachTextures(FeatherType& type, Scene& scene, std::map<std::string, int>&
 }  // namespace
 
 bool hasFeathers(const Scene& scene, const ModelResources& resources) {
-  return !scene.feathers.empty() || !resources.view.featherTypes.empty();
+  return !scene.organ<FeatherPart>().feathers.empty() || !resources.view.featherTypes.empty();
 }
 
 FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
                                 const ViewFunctions& functions, const FeatherStageOptions& options,
                                 Diagnostics& diagnostics) {
+  FeatherPart& part = scene.organ<FeatherPart>();
   FeatherStageReport report;
-  scene.featherTypes.clear();
+  part.types.clear();
   for (const FeatherTypeDeclaration& declaration : resources.view.featherTypes) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(declaration.file, error)) {
       throw DiagnosticError(declaration.where,
                             "cannot read the feather type file '" + declaration.file + "'");
     }
-    scene.featherTypes.push_back(loadFeatherType(declaration.file, diagnostics));
+    part.types.push_back(loadFeatherType(declaration.file, diagnostics));
   }
   // The turtle's feathers (@Fe, @Fi) count against the limit before any coat is placed; the
   // coats count on from them.
-  if (scene.feathers.size() > options.maxFeathers) {
+  if (part.feathers.size() > options.maxFeathers) {
     throw DiagnosticError(
         SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
         fmt::format("{} feathers at the turtle (@Fe, @Fi), more than {} (raise the limit with "
                     "--max-feathers)",
-                    scene.feathers.size(), options.maxFeathers));
+                    part.feathers.size(), options.maxFeathers));
   }
   std::map<std::string, int> textures;
-  for (FeatherType& type : scene.featherTypes) attachTextures(type, scene, textures);
-  report.types = scene.featherTypes.size();
+  for (FeatherType& type : part.types) attachTextures(type, scene, textures);
+  report.types = part.types.size();
 
-  if (!scene.featherTypes.empty()) {
+  if (!part.types.empty()) {
     const ViewSettings& view = resources.view;
     FeatherCoatSettings coats;
     coats.layout = view.follicleLayout;
@@ -117,11 +119,11 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
     }
   }
 
-  const std::size_t before = scene.feathers.size();
-  std::erase_if(scene.feathers,
+  const std::size_t before = part.feathers.size();
+  std::erase_if(part.feathers,
                 [&](const Feather& feather) { return !hasFeatherTypes(scene, feather); });
-  report.dropped = before - scene.feathers.size();
-  report.feathers = scene.feathers.size();
+  report.dropped = before - part.feathers.size();
+  report.feathers = part.feathers.size();
   if (report.dropped > 0) {
     diagnostics.warn(
         SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
@@ -134,10 +136,10 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
   // each is bounded by the box of its key types in its frame (blends interpolate the types'
   // lengths and angles, so they stay near the union of their boxes, and growing feathers are
   // smaller, their barbs along the rachis within the rachis and barb lengths).
-  scene.featherBounds = Bounds{};
-  std::vector<Bounds> typeBoxes(scene.featherTypes.size());
-  for (std::size_t t = 0; t < scene.featherTypes.size(); ++t) {
-    const FeatherType& type = scene.featherTypes[t];
+  part.bounds = Bounds{};
+  std::vector<Bounds> typeBoxes(part.types.size());
+  for (std::size_t t = 0; t < part.types.size(); ++t) {
+    const FeatherType& type = part.types[t];
     addBounds(buildFeatherGeometry(type, kBoundsDetail), glm::mat4(1.0f), typeBoxes[t]);
     // Barbs inside the sheath lie along the rachis (Sec. 4.2.4): as far as the tip plus a barb.
     float barb = std::max(type.left.barbLength, type.right.barbLength);
@@ -146,10 +148,10 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
     }
     typeBoxes[t].add(glm::vec3(0, 0, type.calamusLength + type.rachisLength + barb));
   }
-  for (const Feather& feather : scene.feathers) {
+  for (const Feather& feather : part.feathers) {
     const glm::mat4 toWorld = featherToWorld(feather);
     if (feather.origin == FeatherOrigin::Single) {
-      addBounds(featherGeometryOf(scene, feather, kBoundsDetail), toWorld, scene.featherBounds);
+      addBounds(featherGeometryOf(scene, feather, kBoundsDetail), toWorld, part.bounds);
       continue;
     }
     Bounds local;
@@ -158,7 +160,7 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
       const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
                         (corner & 2) ? local.max.y : local.min.y,
                         (corner & 4) ? local.max.z : local.min.z);
-      scene.featherBounds.add(glm::vec3(toWorld * glm::vec4(p, 1)));
+      part.bounds.add(glm::vec3(toWorld * glm::vec4(p, 1)));
     }
   }
   return report;
@@ -199,7 +201,7 @@ class FeatherStage : public OrganStageOf<FeatherSettings> {
                        report.types);
   }
   // The turtle's @Fe and @Fi feathers go with the rest.
-  void leaveOut(Scene& scene) const override { scene.feathers.clear(); }
+  void leaveOut(Scene& scene) const override { scene.organ<FeatherPart>().feathers.clear(); }
 };
 
 }  // namespace

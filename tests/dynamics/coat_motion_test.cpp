@@ -11,6 +11,7 @@
 #include "hirsute/hairs/dynamics/coat_motion.h"
 #include "hirsute/hairs/dynamics/feather_poses.h"
 #include "hirsute/hairs/feathers/feather_instances.h"
+#include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute::dynamics {
 namespace {
@@ -167,21 +168,21 @@ Scene oneFeather() {
   type.calamusLength = 0.2f;
   type.rachisLength = 0.8f;
   type.rachisFrontCurvature = 0.1f;
-  scene.featherTypes.push_back(type);
+  scene.organ<FeatherPart>().types.push_back(type);
   Feather f;
   f.position = {0.5f, 0.2f, -0.5f};
   f.heading = glm::normalize(glm::vec3(0, 1, 0.3f));
   f.up = glm::normalize(glm::cross(f.heading, glm::vec3(1, 0, 0)));
   f.size = 2;
-  scene.feathers.push_back(f);
+  scene.organ<FeatherPart>().feathers.push_back(f);
   return scene;
 }
 
 TEST(FeatherPoses, AFeatherAtRestIsDrawnByItsFrame) {
   const Scene scene = oneFeather();
-  const FeatherStem rest = buildFeatherStem(scene, scene.feathers[0], 8);
-  const FeatherPose pose = featherPoseOf(scene.feathers[0], rest, rest);
-  const FeatherMap posed(pose), rigid(featherToWorld(scene.feathers[0]));
+  const FeatherStem rest = buildFeatherStem(scene, scene.organ<FeatherPart>().feathers[0], 8);
+  const FeatherPose pose = featherPoseOf(scene.organ<FeatherPart>().feathers[0], rest, rest);
+  const FeatherMap posed(pose), rigid(featherToWorld(scene.organ<FeatherPart>().feathers[0]));
   for (const glm::vec3 local : {glm::vec3(0), glm::vec3(0.1f, 0.3f, 0.5f),
                                 glm::vec3(-0.2f, -0.4f, 0.95f), glm::vec3(0, 0.1f, 1.2f)}) {
     EXPECT_LT(glm::distance(posed.point(local), rigid.point(local)), 1e-5f);
@@ -192,7 +193,7 @@ TEST(FeatherPoses, AFeatherAtRestIsDrawnByItsFrame) {
 
 TEST(FeatherPoses, ABentFeatherFollowsItsStem) {
   const Scene scene = oneFeather();
-  const FeatherStem rest = buildFeatherStem(scene, scene.feathers[0], 8);
+  const FeatherStem rest = buildFeatherStem(scene, scene.organ<FeatherPart>().feathers[0], 8);
   // The stem bent: each node turned about the root by an angle growing along it.
   FeatherStem moved = rest;
   const Vector3d root = rest.positions[0];
@@ -201,10 +202,10 @@ TEST(FeatherPoses, ABentFeatherFollowsItsStem) {
     moved.positions[i] = root + turn * (rest.positions[i] - root);
   }
   rebuildFrames(moved, rest.frames[0]);
-  const FeatherPose pose = featherPoseOf(scene.feathers[0], rest, moved);
+  const FeatherPose pose = featherPoseOf(scene.organ<FeatherPart>().feathers[0], rest, moved);
   const FeatherMap posed(pose);
   // Every point of the rachis on a node lands on the moved node.
-  const glm::mat4 toLocal = glm::inverse(featherToWorld(scene.feathers[0]));
+  const glm::mat4 toLocal = glm::inverse(featherToWorld(scene.organ<FeatherPart>().feathers[0]));
   for (std::size_t i = 0; i < rest.nodeCount(); ++i) {
     const Vector3d& r = rest.positions[i];
     const glm::vec3 local(toLocal * glm::vec4(r.x(), r.y(), r.z(), 1));
@@ -228,18 +229,18 @@ TEST(CoatMotion, AFrameWithOtherFeathersOrAnotherBodyIsRefused) {
   CoatMotion motion(first, SimulationParameters{});
   ASSERT_EQ(motion.boundRoots(), 0u);  // the feather stands off the triangle
   Scene next = first;
-  next.feathers.push_back(next.feathers[0]);
+  next.organ<FeatherPart>().feathers.push_back(next.organ<FeatherPart>().feathers[0]);
   EXPECT_THROW(motion.advance(0.04, 2, &next), FrameMismatch);
   Scene fewer = first;
   fewer.meshes.clear();
   EXPECT_THROW(motion.advance(0.04, 2, &fewer), FrameMismatch);
   motion.advance(0.04, 2, &first);
   Scene drawn = first;
-  drawn.feathers.clear();
+  drawn.organ<FeatherPart>().feathers.clear();
   motion.pose(drawn);
-  ASSERT_EQ(drawn.feathers.size(), 1u);
-  ASSERT_EQ(drawn.featherPoses.size(), 1u);
-  EXPECT_EQ(drawn.featherPoses[0].heights.size(), 9u);
+  ASSERT_EQ(drawn.organ<FeatherPart>().feathers.size(), 1u);
+  ASSERT_EQ(drawn.organ<FeatherPart>().poses.size(), 1u);
+  EXPECT_EQ(drawn.organ<FeatherPart>().poses[0].heights.size(), 9u);
 }
 
 }  // namespace

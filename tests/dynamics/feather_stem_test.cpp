@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "hirsute/hairs/dynamics/feather_coat_simulation.h"
+#include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute::dynamics {
 namespace {
@@ -32,7 +33,7 @@ TEST(FeatherStem, FollowsTheFeathersRachisInWorldSpace) {
   FeatherType type;
   type.calamusLength = 0.1f;
   type.rachisLength = 1.0f;
-  scene.featherTypes.push_back(type);
+  scene.organ<FeatherPart>().types.push_back(type);
   Feather feather;
   feather.position = glm::vec3(1, 2, 3);
   feather.heading = glm::vec3(0, 0, 1);

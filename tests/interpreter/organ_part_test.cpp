@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/fur_part.h"
 #include "hirsute/interpreter/scene.h"
 
@@ -62,6 +63,16 @@ TEST(OrganParts, FurBoundsReachTheFurLength) {
   const Bounds b = scene.bounds();
   EXPECT_EQ(b.min, glm::vec3(-0.5f));
   EXPECT_EQ(b.max, glm::vec3(1.5f, 0.5f, 0.5f));
+}
+
+TEST(OrganParts, FeatherBoundsAreTheBoxTheStageMeasured) {
+  Scene scene;
+  scene.organ<FeatherPart>().bounds.add(glm::vec3(-1, 0, 2));
+  scene.organ<FeatherPart>().bounds.add(glm::vec3(3, 1, 2));
+  scene.lines.push_back({glm::vec3(0), glm::vec3(0, 4, 0)});
+  const Bounds b = scene.bounds();
+  EXPECT_EQ(b.min, glm::vec3(-1, 0, 0));
+  EXPECT_EQ(b.max, glm::vec3(3, 4, 2));
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "model_pipeline.h"
 
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/fur_part.h"
 
 namespace hirsute {
@@ -372,7 +373,7 @@ TEST(LiveModelTest, TheFeathersDynamicsStepsOnTheClockAndPauses) {
   HandClock clock;
   LiveModel live(options, shipped.builder(), view, {}, clock.now());
   settle(live);
-  const std::size_t feathers = live.model()->scene.feathers.size();
+  const std::size_t feathers = live.model()->scene.organ<FeatherPart>().feathers.size();
   ASSERT_GT(feathers, 0u);
 
   live.toggleDynamics();
@@ -383,7 +384,7 @@ TEST(LiveModelTest, TheFeathersDynamicsStepsOnTheClockAndPauses) {
   clock.advance(1.0 / 60);
   live.update();
   EXPECT_EQ(view.featherUpdates, 1);
-  EXPECT_EQ(view.lastFeathers.featherPoses.size(), feathers);
+  EXPECT_EQ(view.lastFeathers.organ<FeatherPart>().poses.size(), feathers);
   EXPECT_NEAR(live.coat()->simulation().time(), 1.0 / 60, 1e-9);
   // A slow frame is simulated as a 30th of a second, no more.
   clock.advance(1.0);

@@ -9,6 +9,7 @@
 
 #include "hirsute/hairs/fur/fur_stage.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/fur_part.h"
 
 namespace hirsute {
@@ -107,7 +108,7 @@ void LiveModel::applyBuild(ModelBuild build) {
   takeFur();
   if (coat_) {
     bodyMoved_ = true;
-    coatScene_.featherTypes = model_->scene.featherTypes;
+    coatScene_.organ<FeatherPart>().types = model_->scene.organ<FeatherPart>().types;
     coatScene_.materials = model_->scene.materials;
     view_.updateFeathers(coatScene_);
   }
@@ -274,7 +275,7 @@ void LiveModel::toggleDynamics() {
     simulating_ = false;
     return;
   }
-  if (!model_ || model_->scene.feathers.empty()) return;
+  if (!model_ || model_->scene.organ<FeatherPart>().feathers.empty()) return;
   if (!coat_) {
     try {
       coat_.emplace(model_->scene, dynamics::simulationParametersOf(model_->view.dynamics));
@@ -287,7 +288,7 @@ void LiveModel::toggleDynamics() {
       return;
     }
     coatScene_ = Scene{};
-    coatScene_.featherTypes = model_->scene.featherTypes;
+    coatScene_.organ<FeatherPart>().types = model_->scene.organ<FeatherPart>().types;
     coatScene_.materials = model_->scene.materials;
     bodyMoved_ = false;
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "hirsute/hairs/feathers/feather_instances.h"
+#include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute {
 namespace {
@@ -118,7 +119,7 @@ int featherDetailLevel(float pixels) {
 float featherScreenLength(const Scene& scene, const Feather& feather, const Camera& camera) {
   float length = 0;
   for (std::uint16_t type : feather.types) {
-    const FeatherType& t = scene.featherTypes[type - 1u];
+    const FeatherType& t = scene.organ<FeatherPart>().types[type - 1u];
     length = std::max(length, t.calamusLength + t.rachisLength);
   }
   length *= feather.size;
@@ -131,8 +132,8 @@ float featherScreenLength(const Scene& scene, const Feather& feather, const Came
 
 std::vector<std::uint8_t> featherDetailLevels(const Scene& scene, const Camera& camera) {
   std::vector<std::uint8_t> levels;
-  levels.reserve(scene.feathers.size());
-  for (const Feather& feather : scene.feathers) {
+  levels.reserve(scene.organ<FeatherPart>().feathers.size());
+  for (const Feather& feather : scene.organ<FeatherPart>().feathers) {
     levels.push_back(
         static_cast<std::uint8_t>(featherDetailLevel(featherScreenLength(scene, feather, camera))));
   }
@@ -142,8 +143,8 @@ std::vector<std::uint8_t> featherDetailLevels(const Scene& scene, const Camera& 
 FeatherBuffers buildFeatherBuffers(const Scene& scene, const std::vector<std::uint8_t>& levels) {
   FeatherBuffers out;
   out.levels = levels;
-  for (std::size_t i = 0; i < scene.feathers.size(); ++i) {
-    const Feather& feather = scene.feathers[i];
+  for (std::size_t i = 0; i < scene.organ<FeatherPart>().feathers.size(); ++i) {
+    const Feather& feather = scene.organ<FeatherPart>().feathers[i];
     const int level = i < levels.size() ? levels[i] : kMaxDetailLevel;
     const FeatherDetail detail =
         featherDetailForProjectedLength(kLevelZeroPixels * std::exp2(static_cast<float>(level)));

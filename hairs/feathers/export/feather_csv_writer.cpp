@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "hirsute/hairs/feathers/feather_writer.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/export_file.h"
 
 namespace hirsute {
@@ -24,7 +25,7 @@ FeatherCsvStats writeFeatherCsv(const Scene& scene, const std::filesystem::path&
   out.put(kFeatherCsvHeader);
   out.put('\n');
   FeatherCsvStats stats;
-  for (const Feather& f : scene.feathers) {
+  for (const Feather& f : scene.organ<FeatherPart>().feathers) {
     for (const glm::vec3& v : {f.position, f.heading, f.up}) {
       for (int k = 0; k < 3; ++k) number(v[k]);
     }

@@ -4,6 +4,7 @@
 // `o feathers`. OBJ has no per-vertex transparency: the barbs' fading is left out, and they take
 // the scene's material 0 (the colour of a feather type is in its .fea file).
 #include "hirsute/hairs/feathers/feather_writer.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/view/feather_buffers.h"
 
@@ -13,8 +14,8 @@ constexpr int kStillLevel = 5;  // a still's detail: featherDetailLevel's 512 pi
 }  // namespace
 
 void FeatherWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
-  const FeatherBuffers b =
-      buildFeatherBuffers(scene, std::vector<std::uint8_t>(scene.feathers.size(), kStillLevel));
+  const FeatherBuffers b = buildFeatherBuffers(
+      scene, std::vector<std::uint8_t>(scene.organ<FeatherPart>().feathers.size(), kStillLevel));
   obj.group("feathers");
   obj.useMaterial(0, -1);
   // The faces of `indices` from `from`, `count` of them, numbered from `first`; with normals,
@@ -59,7 +60,7 @@ void FeatherWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
       obj.finishPolyline();
     }
   }
-  obj.count("feathers", scene.feathers.size());
+  obj.count("feathers", scene.organ<FeatherPart>().feathers.size());
 }
 
 }  // namespace hirsute

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "hirsute/hairs/feathers/feather_writer.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/view/feather_buffers.h"
 
@@ -24,7 +25,7 @@ constexpr char kLitFinish[] = "ambient 0.2 diffuse 0.7";
 
 void FeatherWriter::writePov(const Scene& scene, PovWriter& pov) const {
   using Shade = PovWriter::Shade;
-  if (scene.feathers.empty()) return;
+  if (scene.organ<FeatherPart>().feathers.empty()) return;
   // A still is looked at closer than a preview: one level finer than the camera asks for.
   std::vector<std::uint8_t> levels = featherDetailLevels(scene, pov.camera());
   for (std::uint8_t& level : levels) level = static_cast<std::uint8_t>(std::min(level + 1, 7));
@@ -72,7 +73,7 @@ void FeatherWriter::writePov(const Scene& scene, PovWriter& pov) const {
     for (const glm::vec4& c : colours) shades.push_back(PovWriter::shadeOf(glm::vec3(c), c.a));
     pov.writeShadedMesh("feather barbs", positions, shades, triangles, kLitFinish);
   }
-  pov.count("feathers", scene.feathers.size());
+  pov.count("feathers", scene.organ<FeatherPart>().feathers.size());
 }
 
 }  // namespace hirsute

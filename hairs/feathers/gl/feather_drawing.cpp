@@ -2,6 +2,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/gl/gl_objects.h"
 
 namespace hirsute {
@@ -102,9 +103,9 @@ void FeatherDrawing::release() {
 void FeatherDrawing::take(const Scene& scene, const std::vector<GLuint>& textures) {
   release();
   scene_ = Scene{};
-  scene_.featherTypes = scene.featherTypes;
-  scene_.feathers = scene.feathers;
-  scene_.featherPoses = scene.featherPoses;
+  scene_.organ<FeatherPart>().types = scene.organ<FeatherPart>().types;
+  scene_.organ<FeatherPart>().feathers = scene.organ<FeatherPart>().feathers;
+  scene_.organ<FeatherPart>().poses = scene.organ<FeatherPart>().poses;
   scene_.materials = scene.materials;
   textures_ = textures;
   buffers_ = FeatherBuffers{};
@@ -142,7 +143,7 @@ void FeatherDrawing::build(const std::vector<std::uint8_t>& levels) {
 }
 
 void FeatherDrawing::draw(const Camera& camera, const glm::vec3& light, float /*detail*/) {
-  if (scene_.feathers.empty()) return;
+  if (scene_.organ<FeatherPart>().feathers.empty()) return;
   const std::vector<std::uint8_t> levels = featherDetailLevels(scene_, camera);
   if (!built_ || levels != buffers_.levels) build(levels);
 

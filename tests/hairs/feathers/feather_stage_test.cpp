@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -63,9 +64,9 @@ TEST(FeatherStage, SingleFeatherStandsInTheTurtlesFrame) {
   Built b;
   build(b, kModels / "feather-types" / "feather-types.l", kModels / "feather-types" / "feather-types.v");
   ASSERT_EQ(b.report.types, 8u);
-  ASSERT_EQ(b.scene.feathers.size(), 8u);
-  for (std::size_t i = 0; i < b.scene.feathers.size(); ++i) {
-    const Feather& f = b.scene.feathers[i];
+  ASSERT_EQ(b.scene.organ<FeatherPart>().feathers.size(), 8u);
+  for (std::size_t i = 0; i < b.scene.organ<FeatherPart>().feathers.size(); ++i) {
+    const Feather& f = b.scene.organ<FeatherPart>().feathers[i];
     EXPECT_EQ(f.types[0], i + 1);
     EXPECT_EQ(f.origin, FeatherOrigin::Single);
     // The turtle's initial heading (+y) and the row along x, GAP apart.
@@ -73,8 +74,8 @@ TEST(FeatherStage, SingleFeatherStandsInTheTurtlesFrame) {
     EXPECT_NEAR(std::abs(f.position.x), 5.5 * static_cast<double>(i), 1e-4);
     EXPECT_NEAR(glm::dot(f.heading, f.up), 0.0, 1e-6);
   }
-  EXPECT_FLOAT_EQ(b.scene.feathers[1].size, 0.42f);
-  EXPECT_FALSE(b.scene.featherBounds.empty());
+  EXPECT_FLOAT_EQ(b.scene.organ<FeatherPart>().feathers[1].size, 0.42f);
+  EXPECT_FALSE(b.scene.organ<FeatherPart>().bounds.empty());
 }
 
 TEST(FeatherStage, CoatFollicleCountFollowsDensityTimesArea) {
@@ -87,14 +88,15 @@ TEST(FeatherStage, CoatFollicleCountFollowsDensityTimesArea) {
     RecordProperty(std::string(layout) + "_feathers", static_cast<int>(b.report.coat));
     EXPECT_NEAR(placed, expected, 0.1 * expected) << layout << ": " << placed << " of " << expected;
     EXPECT_GE(b.report.coat, 56u) << layout;
-    for (const Feather& f : b.scene.feathers) EXPECT_EQ(f.origin, FeatherOrigin::Coat);
+    for (const Feather& f : b.scene.organ<FeatherPart>().feathers)
+      EXPECT_EQ(f.origin, FeatherOrigin::Coat);
   }
 }
 
 TEST(FeatherStage, HexagonalFolliclesSitAtTheLatticeSpacing) {
   Built b;
   build(b, kModels / "feather-coat" / "hexagonal.l", kModels / "feather-coat" / "hexagonal.v");
-  const std::vector<Feather>& f = b.scene.feathers;
+  const std::vector<Feather>& f = b.scene.organ<FeatherPart>().feathers;
   ASSERT_GE(f.size(), 32u);
   // Nearest-neighbour distances on the flat patch: a regular lattice of density ρ has spacing
   // sqrt(2 / (√3 ρ)); the tile is stretched to a whole number around the contour, a few %.
@@ -118,15 +120,21 @@ TEST(FeatherStage, SameSeedSameCoatOtherSeedOtherCoat) {
   build(a, l, v, 7);
   build(b, l, v, 7);
   build(c, l, v, 8);
-  ASSERT_EQ(a.scene.feathers.size(), b.scene.feathers.size());
-  for (std::size_t i = 0; i < a.scene.feathers.size(); ++i) {
-    EXPECT_EQ(a.scene.feathers[i].position, b.scene.feathers[i].position);
-    EXPECT_EQ(a.scene.feathers[i].across, b.scene.feathers[i].across);
+  ASSERT_EQ(a.scene.organ<FeatherPart>().feathers.size(),
+            b.scene.organ<FeatherPart>().feathers.size());
+  for (std::size_t i = 0; i < a.scene.organ<FeatherPart>().feathers.size(); ++i) {
+    EXPECT_EQ(a.scene.organ<FeatherPart>().feathers[i].position,
+              b.scene.organ<FeatherPart>().feathers[i].position);
+    EXPECT_EQ(a.scene.organ<FeatherPart>().feathers[i].across,
+              b.scene.organ<FeatherPart>().feathers[i].across);
   }
-  bool differs = a.scene.feathers.size() != c.scene.feathers.size();
-  for (std::size_t i = 0; !differs && i < a.scene.feathers.size(); ++i)
-    differs = a.scene.feathers[i].size != c.scene.feathers[i].size ||
-              a.scene.feathers[i].position != c.scene.feathers[i].position;
+  bool differs =
+      a.scene.organ<FeatherPart>().feathers.size() != c.scene.organ<FeatherPart>().feathers.size();
+  for (std::size_t i = 0; !differs && i < a.scene.organ<FeatherPart>().feathers.size(); ++i)
+    differs = a.scene.organ<FeatherPart>().feathers[i].size !=
+                  c.scene.organ<FeatherPart>().feathers[i].size ||
+              a.scene.organ<FeatherPart>().feathers[i].position !=
+                  c.scene.organ<FeatherPart>().feathers[i].position;
   EXPECT_TRUE(differs);
 }
 
@@ -135,7 +143,7 @@ TEST(FeatherStage, CoatIsDrawnFromItsBottomFeatherToItsTop) {
   build(b, kModels / "feather-coat" / "random.l", kModels / "feather-coat" / "random.v");
   // The feathers point along the patch: those further along lie under the ones before them and
   // come first.
-  const std::vector<Feather>& f = b.scene.feathers;
+  const std::vector<Feather>& f = b.scene.organ<FeatherPart>().feathers;
   ASSERT_GE(f.size(), 2u);
   ASSERT_EQ(b.scene.cylinderSegments.size(), 1u);
   const CylinderSegment& patch = b.scene.cylinderSegments.front();
@@ -149,7 +157,7 @@ TEST(FeatherStage, KeyFeathersBlendBilinearly) {
   Built b;
   build(b, kModels / "feather-coat" / "random.l", kModels / "feather-coat" / "random.v");
   float lowest = 1, highest = 0;
-  for (const Feather& f : b.scene.feathers) {
+  for (const Feather& f : b.scene.organ<FeatherPart>().feathers) {
     EXPECT_EQ(f.types, (std::array<std::uint16_t, 4>{1, 2, 3, 4}));
     EXPECT_FLOAT_EQ(f.across[0], f.across[1]);  // both key feathers blend linearly across
     lowest = std::min(lowest, f.along);

@@ -4,8 +4,9 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <glm/glm.hpp>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "hirsute/interpreter/fur_attributes.h"
 #include "hirsute/interpreter/organ_part.h"

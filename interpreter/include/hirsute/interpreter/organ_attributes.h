@@ -23,7 +23,7 @@ struct OrganValue {
 // list in organ_modules.cpp.
 struct OrganAttributeIndices {
   int hair = -1;     // Scene::hairAttributes
-  int feather = -1;  // Scene::featherAttributes
+  int feather = -1;  // FeatherPart::attributes (feather_part.h)
   int fur = -1;      // FurPart::attributes (fur_part.h)
 
   bool operator==(const OrganAttributeIndices&) const = default;

@@ -12,6 +12,7 @@
 
 #include "hirsute/hairs/dynamics/feather_coat_simulation.h"
 #include "hirsute/hairs/dynamics/feather_poses.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
 
@@ -39,7 +40,7 @@ class CoatMotion {
   void advance(double seconds, int steps, const Scene* next = nullptr);
 
   // Gives `scene` (the frame drawn) the first frame's feathers, each bent as its stem is now
-  // (Scene::featherPoses).
+  // (FeatherPart::poses).
   void pose(Scene& scene) const;
 
   const FeatherCoatSimulation& simulation() const { return simulation_; }

@@ -1,12 +1,13 @@
 // Between the simulator and the model (docs/dynamics.md, "hirsute simulate"): the roots bound to
 // the body they grow on, so that they follow it as it moves (the study's Sec. 3.2.1), and the
-// pose that bends a drawn feather as its simulated stem is (Scene::featherPoses).
+// pose that bends a drawn feather as its simulated stem is (FeatherPart::poses).
 #pragma once
 #include <Eigen/Core>
 #include <vector>
 
 #include "hirsute/hairs/dynamics/feather_coat_simulation.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::dynamics {

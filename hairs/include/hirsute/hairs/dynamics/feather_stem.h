@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::dynamics {

@@ -11,6 +11,7 @@
 
 #include "hirsute/hairs/placement/point_diffusion.h"
 #include "hirsute/hairs/placement/segment_values.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/core/progress.h"
@@ -42,7 +43,8 @@ struct FeatherLimitError : std::runtime_error {
 // regular within 0.1%).
 std::vector<TexturePoint> hexagonalFollicles(int columns = 26, int rows = 30);
 
-// Appends the coat feathers to scene.feathers, each coat from its bottom feather to its top one.
+// Appends the coat feathers to scene.organ<FeatherPart>().feathers, each coat from its bottom
+// feather to its top one.
 FeatherCoatReport placeFeatherCoats(Scene& scene, const FeatherCoatSettings& settings);
 
 }  // namespace hirsute

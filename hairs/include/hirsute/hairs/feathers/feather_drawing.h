@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/viewer/gl/gl_functions.h"
 #include "hirsute/viewer/gl/organ_drawing.h"
@@ -38,7 +39,7 @@ class FeatherDrawing : public OrganDrawing {
   // the light the shafts are lit by.
   void draw(const Camera& camera, const glm::vec3& light, float detail) override;
 
-  std::size_t instances() const override { return scene_.feathers.size(); }
+  std::size_t instances() const override { return scene_.organ<FeatherPart>().feathers.size(); }
   // The barb and shaft triangles and segments built for the last camera.
   std::size_t primitives() const override;
   const FeatherBuffers& buffers() const { return buffers_; }

@@ -6,6 +6,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "hirsute/hairs/feathers/feather_geometry.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute {
@@ -22,7 +23,7 @@ FeatherType featherTypeOf(const Scene& scene, const Feather& feather);
 glm::mat4 featherToWorld(const Feather& feather);
 
 // The map of a feather's local geometry to the world: its frame (featherToWorld), or the pose the
-// dynamics bent it into (Scene::featherPoses, FeatherPose), node maps blended by height.
+// dynamics bent it into (FeatherPart::poses, FeatherPose), node maps blended by height.
 class FeatherMap {
  public:
   explicit FeatherMap(const glm::mat4& rigid);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "hirsute/hairs/organ_stage.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
@@ -32,9 +33,10 @@ struct FeatherStageReport {
 // Whether the scene has feathers, or the view file feather types, for the stage to handle.
 bool hasFeathers(const Scene& scene, const ModelResources& resources);
 
-// Reads the types into scene.featherTypes, places the coats (feather_coats.h) and measures
-// scene.featherBounds. Throws DiagnosticError for a broken .fea file (at its own line:col), a
-// missing one (at the view file's `feather:` line) and more feathers than maxFeathers.
+// Reads the types into scene.organ<FeatherPart>().types, places the coats (feather_coats.h) and
+// measures scene.organ<FeatherPart>().bounds. Throws DiagnosticError for a broken .fea file (at its
+// own line:col), a missing one (at the view file's `feather:` line) and more feathers than
+// maxFeathers.
 FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
                                 const ViewFunctions& functions, const FeatherStageOptions& options,
                                 Diagnostics& diagnostics);

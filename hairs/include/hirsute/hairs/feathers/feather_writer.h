@@ -2,13 +2,16 @@
 // (export/obj_feathers.cpp) and the table of `export --feathers` (export/feather_csv_writer.cpp).
 #pragma once
 
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/organ_writer.h"
 
 namespace hirsute {
 
 class FeatherWriter : public OrganWriter {
  public:
-  std::size_t items(const Scene& scene) const override { return scene.feathers.size(); }
+  std::size_t items(const Scene& scene) const override {
+    return scene.organ<FeatherPart>().feathers.size();
+  }
   // Shafts and barbs as two mesh2, the barbs' transparency fading to their tips. Counts
   // "feathers".
   void writePov(const Scene& scene, PovWriter& pov) const override;
