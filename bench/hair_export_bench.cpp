@@ -17,6 +17,7 @@
 #include <string>
 
 #include "hirsute/hairs/plant/hair_csv_writer.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
@@ -71,9 +72,10 @@ int main(int argc, char** argv) {
   fs::create_directories(folder);
   try {
     hirsute::Scene scene = hirsute::bench::syntheticHairScene(hairCount, 20240522);
-    std::printf("scene: %zu hairs of %zu templates (4 segments each)\n", scene.hairs.size(),
-                scene.hairTemplates.size());
-    double million = static_cast<double>(scene.hairs.size()) / 1e6;
+    std::printf("scene: %zu hairs of %zu templates (4 segments each)\n",
+                scene.organ<hirsute::HairPart>().hairs.size(),
+                scene.organ<hirsute::HairPart>().templates.size());
+    double million = static_cast<double>(scene.organ<hirsute::HairPart>().hairs.size()) / 1e6;
 
     hirsute::PovOptions options;
     options.width = width;

@@ -21,6 +21,7 @@
 #include <string>
 
 #include "hirsute/hairs/plant/plant_hairs.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
@@ -91,7 +92,7 @@ int main(int argc, char** argv) {
       best = std::min(best, seconds);
       hairs = report.hairs;
       kept = after - before;
-      capacity = scene.hairs.capacity();
+      capacity = scene.organ<hirsute::HairPart>().hairs.capacity();
     }
     std::printf("hairs placed          %zu\n", hairs);
     std::printf("hair stage (best of %d) %.3f s   %.3g hairs/s   %.3f s per million hairs\n",

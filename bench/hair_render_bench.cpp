@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
@@ -77,8 +78,9 @@ int main(int argc, char** argv) {
       if (hairsOnly) {
         hirsute::Scene hairs;
         hairs.materials = std::move(scene.materials);
-        hairs.hairTemplates = std::move(scene.hairTemplates);
-        hairs.hairs = std::move(scene.hairs);
+        hairs.organ<hirsute::HairPart>().templates =
+            std::move(scene.organ<hirsute::HairPart>().templates);
+        hairs.organ<hirsute::HairPart>().hairs = std::move(scene.organ<hirsute::HairPart>().hairs);
         scene = std::move(hairs);
       }
     } catch (const hirsute::DiagnosticError& e) {
@@ -98,9 +100,10 @@ int main(int argc, char** argv) {
   std::printf(
       "image %dx%d, %d samples, %u hardware threads (llvmpipe uses LP_NUM_THREADS or all)\n", width,
       height, framebuffer.samples(), std::thread::hardware_concurrency());
-  std::printf("scene: %s, %zu hairs of %zu templates, %zu triangles, %zu line segments\n\n",
-              model.empty() ? "synthetic" : model.c_str(), scene.hairs.size(),
-              scene.hairTemplates.size(), scene.triangleCount(), scene.lines.size());
+  std::printf(
+      "scene: %s, %zu hairs of %zu templates, %zu triangles, %zu line segments\n\n",
+      model.empty() ? "synthetic" : model.c_str(), scene.organ<hirsute::HairPart>().hairs.size(),
+      scene.organ<hirsute::HairPart>().templates.size(), scene.triangleCount(), scene.lines.size());
 
   hirsute::GlRenderer renderer(gl);
   auto uploadStart = std::chrono::steady_clock::now();
@@ -115,15 +118,16 @@ int main(int argc, char** argv) {
   ends.reserve(renderer.organPrimitives("hairs") * 2);
   // In the Scene's order, or shuffled (--shuffled-raw), as the renderer orders them for its
   // fractions: the order changes how many fragments the depth test passes.
-  std::vector<hirsute::Hair> order(scene.hairs);
+  std::vector<hirsute::Hair> order(scene.organ<hirsute::HairPart>().hairs);
   if (shuffledRaw) {
     std::mt19937 random(7);
     std::shuffle(order.begin(), order.end(), random);
   }
   for (const hirsute::Hair& h : order) {
-    if (h.templateIndex >= scene.hairTemplates.size()) continue;
+    if (h.templateIndex >= scene.organ<hirsute::HairPart>().templates.size()) continue;
     glm::mat3 rotation = glm::mat3_cast(h.rotation());
-    for (const auto& polyline : scene.hairTemplates[h.templateIndex].polylines) {
+    for (const auto& polyline :
+         scene.organ<hirsute::HairPart>().templates[h.templateIndex].polylines) {
       for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
         ends.push_back(h.root + h.length * (rotation * polyline[i]));
         ends.push_back(h.root + h.length * (rotation * polyline[i + 1]));

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::bench {
@@ -49,10 +50,11 @@ inline Scene syntheticHairScene(std::size_t count, unsigned seed) {
     m.diffuse = m.ambient = glm::vec3(0.2f + 0.2f * static_cast<float>(i), 0.8f, 0.5f);
     scene.materials.push_back(m);
   }
-  scene.hairTemplates = syntheticHairTemplates();
+  HairPart& part = scene.organ<HairPart>();
+  part.templates = syntheticHairTemplates();
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   constexpr int kStems = 24;
-  scene.hairs.reserve(count);
+  part.hairs.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     int stem = static_cast<int>(i * kStems / count);
     float fan = glm::radians(-60.0f + 120.0f * static_cast<float>(stem) / (kStems - 1));
@@ -73,7 +75,7 @@ inline Scene syntheticHairScene(std::size_t count, unsigned seed) {
     hair.length = 0.15f + 0.1f * unit(random);
     hair.radius = 0.004f;
     hair.templateIndex = static_cast<std::uint8_t>(i % 3);
-    scene.hairs.push_back(hair);
+    part.hairs.push_back(hair);
   }
   return scene;
 }

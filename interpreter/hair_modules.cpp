@@ -2,6 +2,7 @@
 // hairs: the @H modules"): one row each, read by the turtle through organ_modules.h.
 #include <algorithm>
 
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/organ_modules.h"
 
 namespace hirsute {
@@ -41,7 +42,9 @@ HairRow templateProbabilities(char letter) {
 const OrganModuleTable& hairModuleTable() {
   static const AttributeModuleTable<HairAttributes> table(
       'H', "hair",
-      [](Scene& scene) -> std::vector<HairAttributes>& { return scene.hairAttributes; },
+      [](Scene& scene) -> std::vector<HairAttributes>& {
+        return scene.organ<HairPart>().attributes;
+      },
       &OrganAttributeIndices::hair,
       {
           sideSwitch('f', HairSide::Front),

@@ -31,12 +31,6 @@ Bounds Scene::bounds() const {
     b.add(d.center + glm::vec3(d.radius));
   }
   for (const Label& l : labels) b.add(l.position);
-  for (const Hair& h : hairs) {
-    if (h.templateIndex >= hairTemplates.size()) continue;
-    const float reach = h.length * hairTemplates[h.templateIndex].extent;
-    b.add(h.root - glm::vec3(reach));
-    b.add(h.root + glm::vec3(reach));
-  }
   organs_.addBounds(b);
   return b;
 }
@@ -61,9 +55,6 @@ void Scene::clear() {
   labels.clear();
   cylinderSegments.clear();
   organSurfaces.clear();
-  hairAttributes.clear();
-  hairTemplates.clear();
-  hairs.clear();
   organs_.clear();
   meshIndex_.clear();
 }

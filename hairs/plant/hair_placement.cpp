@@ -14,6 +14,7 @@
 #include "hirsute/hairs/placement/segment_unfolding.h"
 #include "hirsute/hairs/placement/segment_values.h"
 #include "hirsute/hairs/placement/surface_sampler.h"
+#include "hirsute/interpreter/hair_part.h"
 
 namespace hirsute {
 namespace {
@@ -68,6 +69,7 @@ class SideValues : public SegmentValues<HairSideAttributes> {
 
 struct Placer {
   Scene& scene;
+  HairPart& part;  // the scene's
   const HairPlacementSettings& settings;
   SurfaceSampler& sampler;
   int templates = 1;
@@ -76,7 +78,7 @@ struct Placer {
   std::size_t candidates = 0;  // attachment points considered (thinning rejects some)
 
   void checkLimit() {
-    if (scene.hairs.size() >= settings.maxHairs) {
+    if (part.hairs.size() >= settings.maxHairs) {
       throw HairLimitError("more than " + std::to_string(settings.maxHairs) +
                            " hairs (raise the limit with --max-hairs, or lower @Hd)");
     }
@@ -132,14 +134,14 @@ struct Placer {
     hair.radius = radius;
     hair.templateIndex = static_cast<std::uint8_t>(chosen);
     hair.side = side;
-    scene.hairs.push_back(hair);
+    part.hairs.push_back(hair);
     ++report.hairs;
   }
 
   const HairAttributes& attributesAt(int i) const {
     static const HairAttributes kNone{};
-    return i >= 0 && static_cast<std::size_t>(i) < scene.hairAttributes.size()
-               ? scene.hairAttributes[static_cast<std::size_t>(i)]
+    return i >= 0 && static_cast<std::size_t>(i) < part.attributes.size()
+               ? part.attributes[static_cast<std::size_t>(i)]
                : kNone;
   }
   void segment(std::size_t index);
@@ -256,11 +258,12 @@ void Placer::surface(std::size_t index) {
 
 // The expected number of hairs, to reserve the vector once (bytes per hair stay near 32).
 std::size_t expectedHairs(const Scene& scene) {
+  const HairPart& part = scene.organ<HairPart>();
   double total = 0;
   for (const CylinderSegment& seg : scene.cylinderSegments) {
     const int end = seg.organEnd.hair;
-    if (end < 0 || static_cast<std::size_t>(end) >= scene.hairAttributes.size()) continue;
-    const HairAttributes& a = scene.hairAttributes[static_cast<std::size_t>(end)];
+    if (end < 0 || static_cast<std::size_t>(end) >= part.attributes.size()) continue;
+    const HairAttributes& a = part.attributes[static_cast<std::size_t>(end)];
     const double area = 0.5 * (seg.girthStart + seg.girthEnd) * seg.axisLength;
     // Only an estimate: terms that are not finite (a broken geometry or density) count nothing.
     auto add = [&](double term) {
@@ -276,8 +279,8 @@ std::size_t expectedHairs(const Scene& scene) {
   }
   for (const OrganSurface& record : scene.organSurfaces) {
     const int index = record.organs.hair;
-    if (index < 0 || static_cast<std::size_t>(index) >= scene.hairAttributes.size()) continue;
-    const HairAttributes& a = scene.hairAttributes[static_cast<std::size_t>(index)];
+    if (index < 0 || static_cast<std::size_t>(index) >= part.attributes.size()) continue;
+    const HairAttributes& a = part.attributes[static_cast<std::size_t>(index)];
     const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(record.mesh)];
     double area = 0;
     for (std::uint32_t i = record.firstIndex; i + 2 < record.firstIndex + record.indexCount;
@@ -307,12 +310,13 @@ HairTemplate straightHairTemplate() {
 }
 
 HairPlacementReport placeHairs(Scene& scene, const HairPlacementSettings& settings) {
-  if (scene.hairTemplates.empty()) scene.hairTemplates.push_back(straightHairTemplate());
+  HairPart& part = scene.organ<HairPart>();
+  if (part.templates.empty()) part.templates.push_back(straightHairTemplate());
   SurfaceSampler sampler(PointDiffusionTexture::generate(settings.texture));
-  Placer placer{scene, settings, sampler, 0, {}};
+  Placer placer{scene, part, settings, sampler, 0, {}};
   placer.templates =
-      static_cast<int>(std::min<std::size_t>(scene.hairTemplates.size(), kMaxHairTemplates));
-  scene.hairs.reserve(scene.hairs.size() + std::min(expectedHairs(scene), settings.maxHairs));
+      static_cast<int>(std::min<std::size_t>(part.templates.size(), kMaxHairTemplates));
+  part.hairs.reserve(part.hairs.size() + std::min(expectedHairs(scene), settings.maxHairs));
   if (settings.progress) settings.progress->begin("placing hairs", Progress::Unit::Count);
   for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) {
     placer.segment(i);

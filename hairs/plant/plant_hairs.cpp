@@ -8,22 +8,24 @@
 #include <memory>
 
 #include "hirsute/hairs/plant/hair_templates.h"
+#include "hirsute/interpreter/hair_part.h"
 
 namespace hirsute {
 
 bool hasHairs(const Scene& scene) {
+  const std::vector<HairAttributes>& records = scene.organ<HairPart>().attributes;
   for (const CylinderSegment& segment : scene.cylinderSegments) {
     for (int index : {segment.organStart.hair, segment.organEnd.hair}) {
-      if (index >= 0 && static_cast<std::size_t>(index) < scene.hairAttributes.size() &&
-          scene.hairAttributes[static_cast<std::size_t>(index)].anyEnabled()) {
+      if (index >= 0 && static_cast<std::size_t>(index) < records.size() &&
+          records[static_cast<std::size_t>(index)].anyEnabled()) {
         return true;
       }
     }
   }
   for (const OrganSurface& surface : scene.organSurfaces) {
     const int index = surface.organs.hair;
-    if (index >= 0 && static_cast<std::size_t>(index) < scene.hairAttributes.size() &&
-        scene.hairAttributes[static_cast<std::size_t>(index)].anyEnabled()) {
+    if (index >= 0 && static_cast<std::size_t>(index) < records.size() &&
+        records[static_cast<std::size_t>(index)].anyEnabled()) {
       return true;
     }
   }
@@ -33,7 +35,7 @@ bool hasHairs(const Scene& scene) {
 HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources,
                                    const ViewFunctions& functions, const PlantHairOptions& options,
                                    Diagnostics& diagnostics) {
-  scene.hairTemplates = loadHairTemplates(resources, diagnostics);
+  scene.organ<HairPart>().templates = loadHairTemplates(resources, diagnostics);
   const ViewSettings& view = resources.view;
   HairPlacementSettings settings;
   settings.texture.width = settings.texture.height = view.hairTextureSize;
@@ -96,7 +98,7 @@ class PlantHairStage : public OrganStageOf<PlantHairSettings> {
         growPlantHairs(run.scene, run.resources, run.functions, options, run.diagnostics);
     return fmt::format("placed {} hairs on {} segments and {} surfaces ({} templates)",
                        report.hairs, report.segments, report.surfaces,
-                       run.scene.hairTemplates.size());
+                       run.scene.organ<HairPart>().templates.size());
   }
 };
 

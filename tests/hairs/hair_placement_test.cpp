@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "hirsute/hairs/plant/plant_hairs.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -180,11 +181,11 @@ TEST(HairDensity, DensityGivesHairsPerUnitArea) {
   const Scene& scene = placed.scene;
   ASSERT_EQ(scene.cylinderSegments.size(), 4u);
   const double expected = 40 * sceneArea(scene);
-  const double count = static_cast<double>(scene.hairs.size());
+  const double count = static_cast<double>(scene.organ<HairPart>().hairs.size());
   measured("hairs", count);
   measured("expected", expected);
   EXPECT_NEAR(count, expected, 0.02 * expected) << "area " << sceneArea(scene);
-  EXPECT_EQ(placed.report.hairs, scene.hairs.size());
+  EXPECT_EQ(placed.report.hairs, scene.organ<HairPart>().hairs.size());
   EXPECT_EQ(placed.report.segments, 4u);
 
   // The same density on every segment (the texture continues from one to the next), and every
@@ -194,7 +195,7 @@ TEST(HairDensity, DensityGivesHairsPerUnitArea) {
     const CylinderSegment& seg = scene.cylinderSegments[i];
     const double from = seg.axisStart, to = seg.axisStart + seg.axisLength;
     const auto inSegment = std::count_if(
-        scene.hairs.begin(), scene.hairs.end(),
+        scene.organ<HairPart>().hairs.begin(), scene.organ<HairPart>().hairs.end(),
         [&](const Hair& h) { return axis.along(h.root) >= from && axis.along(h.root) < to; });
     const double segmentExpected = 40 * segmentArea(scene, seg);
     measured("segment" + std::to_string(i) + "_ratio",
@@ -202,7 +203,7 @@ TEST(HairDensity, DensityGivesHairsPerUnitArea) {
     EXPECT_NEAR(static_cast<double>(inSegment), segmentExpected, 0.05 * segmentExpected)
         << "segment " << i;
   }
-  for (const Hair& h : scene.hairs) {
+  for (const Hair& h : scene.organ<HairPart>().hairs) {
     const glm::dvec3 r = glm::dvec3(h.root) - axis.origin;
     const double distance = glm::length(r - axis.heading * glm::dot(r, axis.heading));
     ASSERT_GE(distance, std::cos(kPi / 32) - 1e-4);
@@ -229,7 +230,7 @@ TEST(HairDensity, TaperedTubeKeepsHairsPerUnitArea) {
     area[axis.along((a + b + c) / 3.0f) < 5 ? 0 : 1] +=
         glm::length(glm::cross(glm::dvec3(b - a), glm::dvec3(c - a))) / 2;
   }
-  for (const Hair& h : scene.hairs) ++count[axis.along(h.root) < 5 ? 0 : 1];
+  for (const Hair& h : scene.organ<HairPart>().hairs) ++count[axis.along(h.root) < 5 ? 0 : 1];
   // Thinning keeps each point at random: a count within 4 standard deviations of a Poisson
   // count, plus the texture's own 2% (point_diffusion.h).
   auto tolerance = [](double expected) { return 4 * std::sqrt(expected) + 0.02 * expected; };
@@ -274,7 +275,7 @@ TEST(HairDensity, InnerArcOfABentTubeIsDenserThanTheOuterArc) {
     }
   }
   double inner = 0, outer = 0;
-  for (const Hair& h : scene.hairs) {
+  for (const Hair& h : scene.organ<HairPart>().hairs) {
     const double r = rho(glm::dvec3(h.root));
     if (r < innerLimit) ++inner;
     if (r > outerLimit) ++outer;
@@ -452,7 +453,7 @@ struct TubeSpacing {
 TubeSpacing spacingOnTube(const Scene& scene, int tubeNumber, double density) {
   const UnrolledTube tube(scene, tubeNumber);
   std::vector<UnrolledTube::Point> points;
-  for (const Hair& h : scene.hairs) {
+  for (const Hair& h : scene.organ<HairPart>().hairs) {
     if (tube.contains(h.root)) points.push_back(tube.unroll(h.root));
   }
   TubeSpacing spacing;
@@ -587,7 +588,7 @@ TEST(HairSpacing, StripGoesOnAcrossADensityStep) {
   ASSERT_EQ(scene.cylinderSegments.size(), 2u);
   const UnrolledTube tube(scene, scene.cylinderSegments[0].tube);
   std::vector<UnrolledTube::Point> points;
-  for (const Hair& h : scene.hairs) points.push_back(tube.unroll(h.root));
+  for (const Hair& h : scene.organ<HairPart>().hairs) points.push_back(tube.unroll(h.root));
   const double boundary = scene.cylinderSegments[1].axisStart;
   const double densities[2] = {1000, 2000};
   for (int i = 0; i < 2; ++i) {
@@ -705,16 +706,19 @@ TEST(HairSurfaces, BicubicSurfaceGetsDensityTimesAreaOnItsFront) {
   ASSERT_EQ(placed.scene.organSurfaces.size(), 1u);
   EXPECT_EQ(placed.scene.organSurfaces[0].kind, OrganSurfaceKind::BicubicPatch);
   EXPECT_EQ(placed.report.surfaces, 1u);
-  expectOnSurface(placed.scene.hairs, organSurfaceTriangles(placed.scene), 4000, "bicubic", 1);
+  expectOnSurface(placed.scene.organ<HairPart>().hairs, organSurfaceTriangles(placed.scene), 4000,
+                  "bicubic", 1);
 }
 
 TEST(HairSurfaces, BicubicSurfaceHasAFrontAndABackAndNoEdges) {
   const PlacedHairs placed = place("surface_sides.l", "surface.v");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   const std::vector<SurfaceTriangle> triangles = organSurfaceTriangles(placed.scene);
-  EXPECT_TRUE(onSide(placed.scene.hairs, HairSide::Edge).empty());
-  expectOnSurface(onSide(placed.scene.hairs, HairSide::Front), triangles, 1000, "front", 1);
-  expectOnSurface(onSide(placed.scene.hairs, HairSide::Back), triangles, 500, "back", -1);
+  EXPECT_TRUE(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Edge).empty());
+  expectOnSurface(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Front), triangles, 1000,
+                  "front", 1);
+  expectOnSurface(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Back), triangles, 500,
+                  "back", -1);
 }
 
 TEST(HairSurfaces, ConcavePolygonHasAFrontAndABack) {
@@ -724,8 +728,10 @@ TEST(HairSurfaces, ConcavePolygonHasAFrontAndABack) {
   EXPECT_EQ(placed.scene.organSurfaces[0].kind, OrganSurfaceKind::Polygon);
   const std::vector<SurfaceTriangle> triangles = organSurfaceTriangles(placed.scene);
   EXPECT_NEAR(areaOf(triangles), 12, 1e-4);
-  expectOnSurface(onSide(placed.scene.hairs, HairSide::Front), triangles, 400, "front", 1);
-  expectOnSurface(onSide(placed.scene.hairs, HairSide::Back), triangles, 200, "back", -1);
+  expectOnSurface(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Front), triangles, 400,
+                  "front", 1);
+  expectOnSurface(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Back), triangles, 200,
+                  "back", -1);
 }
 
 // The turtle records a surface for the organs only where some organ's attributes are set, and a
@@ -734,7 +740,7 @@ TEST(HairSurfaces, SurfacesWithoutHairAttributesGetNoHairs) {
   const PlacedHairs placed = place("plain_surface.l", "surface.v");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   EXPECT_EQ(placed.scene.organSurfaces.size(), 1u);  // the last blade, @Hf(0) in force
-  EXPECT_TRUE(placed.scene.hairs.empty());
+  EXPECT_TRUE(placed.scene.organ<HairPart>().hairs.empty());
   EXPECT_EQ(placed.report.surfaces, 0u);
 }
 
@@ -744,10 +750,10 @@ TEST(HairSurfaces, FlatPolygonKeepsTheTexturesSpacing) {
   const PlacedHairs placed = place("square_polygon.l", "surface.v");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   const std::vector<SurfaceTriangle> triangles = organSurfaceTriangles(placed.scene);
-  expectOnSurface(placed.scene.hairs, triangles, 100, "square", 1);
+  expectOnSurface(placed.scene.organ<HairPart>().hairs, triangles, 100, "square", 1);
   // The square spans x in [-10, 0] or [0, 10] and y in [0, 10]; distances in that plane, found
   // through a bucket grid of unit cells.
-  const std::vector<Hair>& hairs = placed.scene.hairs;
+  const std::vector<Hair>& hairs = placed.scene.organ<HairPart>().hairs;
   ASSERT_GT(hairs.size(), 1000u);
   std::map<std::pair<int, int>, std::vector<std::size_t>> grid;
   auto cellOf = [](const glm::vec3& p) {
@@ -785,7 +791,7 @@ TEST(HairSurfaces, FlatPolygonKeepsTheTexturesSpacing) {
 TEST(HairSize, LengthAndRadiusStayWithinValuePlusMinusRangeAndUseIt) {
   const PlacedHairs placed = place("length_range.l");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
-  const std::vector<Hair>& hairs = placed.scene.hairs;
+  const std::vector<Hair>& hairs = placed.scene.organ<HairPart>().hairs;
   ASSERT_GT(hairs.size(), 1000u);
   const double n = static_cast<double>(hairs.size());
   // A uniform offset in [-rng, rng] has standard deviation rng/√3; the mean of n of them is
@@ -820,8 +826,8 @@ TEST(HairSize, LengthAndRadiusStayWithinValuePlusMinusRangeAndUseIt) {
 
 TEST(HairSize, DefaultsAreUnitLengthAndRadiusOneHundredth) {
   const PlacedHairs placed = place("plain.l");
-  ASSERT_FALSE(placed.scene.hairs.empty());
-  for (const Hair& h : placed.scene.hairs) {
+  ASSERT_FALSE(placed.scene.organ<HairPart>().hairs.empty());
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     ASSERT_EQ(h.length, 1.0f);
     ASSERT_FLOAT_EQ(h.radius, 0.01f);
   }
@@ -835,7 +841,7 @@ TEST(HairOrientation, WithoutAnglesTheHairFrameIsTheNormalFrame) {
   const PlacedHairs placed = place("plain.l");
   const StraightAxis axis(placed.scene);
   double worst = 0, worstFrame = 0;
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     const glm::dvec3 n = axis.radial(h.root);
     worst = std::max(worst, angleBetween(glm::dvec3(h.direction()), n));
     const glm::dvec3 y(h.rotation() * glm::vec3(0, 1, 0));
@@ -851,9 +857,9 @@ TEST(HairOrientation, InclineTiltsHairsTowardTheSegmentEndByTheAngle) {
   const PlacedHairs placed = place("incline.l");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   const StraightAxis axis(placed.scene);
-  ASSERT_GT(placed.scene.hairs.size(), 500u);
+  ASSERT_GT(placed.scene.organ<HairPart>().hairs.size(), 500u);
   double worst = 0, worstSideways = 0;
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     const glm::dvec3 d(h.direction()), n = axis.radial(h.root);
     worst = std::max(worst, std::abs(angleBetween(d, n) - 30));
     // Toward the end: the tilt is in the plane of n and h, toward +h.
@@ -869,7 +875,7 @@ TEST(HairOrientation, InclineTiltsHairsTowardTheSegmentEndByTheAngle) {
 TEST(HairOrientation, InclineRangeSpreadsTheAngleOverValuePlusMinusRange) {
   const PlacedHairs placed = place("incline_range.l");
   const StraightAxis axis(placed.scene);
-  const Spread angle = spreadOf(placed.scene.hairs, [&](const Hair& h) {
+  const Spread angle = spreadOf(placed.scene.organ<HairPart>().hairs, [&](const Hair& h) {
     return angleBetween(glm::dvec3(h.direction()), axis.radial(h.root));
   });
   measured("angle_min", angle.min);
@@ -879,8 +885,9 @@ TEST(HairOrientation, InclineRangeSpreadsTheAngleOverValuePlusMinusRange) {
   EXPECT_LE(angle.max, 40 + 0.2);
   EXPECT_LT(angle.min, 21);
   EXPECT_GT(angle.max, 39);
-  EXPECT_NEAR(angle.mean, 30,
-              4 * 10 / std::sqrt(3.0 * static_cast<double>(placed.scene.hairs.size())));
+  EXPECT_NEAR(
+      angle.mean, 30,
+      4 * 10 / std::sqrt(3.0 * static_cast<double>(placed.scene.organ<HairPart>().hairs.size())));
 }
 
 TEST(HairOrientation, WrapTiltsHairsAroundTheGirthByTheAngle) {
@@ -888,7 +895,7 @@ TEST(HairOrientation, WrapTiltsHairsAroundTheGirthByTheAngle) {
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   const StraightAxis axis(placed.scene);
   double worst = 0, worstAlong = 0;
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     const glm::dvec3 d(h.direction()), n = axis.radial(h.root);
     worst = std::max(worst, std::abs(angleBetween(d, n) - 40));
     // Around the girth, toward n × h; not along the axis.
@@ -905,12 +912,13 @@ TEST(HairOrientation, TwistRotatesTheHairFrameAboutItsDirection) {
   const PlacedHairs plain = place("plain.l");
   const PlacedHairs twisted = place("twist.l");
   ASSERT_TRUE(twisted.warnings.empty()) << warningsOf(twisted);
-  ASSERT_EQ(plain.scene.hairs.size(), twisted.scene.hairs.size());
-  ASSERT_GT(plain.scene.hairs.size(), 500u);
+  ASSERT_EQ(plain.scene.organ<HairPart>().hairs.size(),
+            twisted.scene.organ<HairPart>().hairs.size());
+  ASSERT_GT(plain.scene.organ<HairPart>().hairs.size(), 500u);
   double worstDirection = 0, worstTwist = 0;
-  for (std::size_t i = 0; i < plain.scene.hairs.size(); ++i) {
-    const Hair& a = plain.scene.hairs[i];
-    const Hair& b = twisted.scene.hairs[i];
+  for (std::size_t i = 0; i < plain.scene.organ<HairPart>().hairs.size(); ++i) {
+    const Hair& a = plain.scene.organ<HairPart>().hairs[i];
+    const Hair& b = twisted.scene.organ<HairPart>().hairs[i];
     ASSERT_EQ(a.root, b.root) << "hair " << i;
     const glm::dvec3 d(b.direction());
     worstDirection = std::max(worstDirection, angleBetween(glm::dvec3(a.direction()), d));
@@ -931,10 +939,10 @@ TEST(HairFunction, FunctionOfTheGirthPositionModulatesTheValue) {
   const PlacedHairs placed = place("girth_function.l");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   const StraightAxis axis(placed.scene);
-  ASSERT_GT(placed.scene.hairs.size(), 1000u);
+  ASSERT_GT(placed.scene.organ<HairPart>().hairs.size(), 1000u);
   double worst = 0, shortest = 1e9, longest = 0;
   std::size_t counted = 0;
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     const double s = axis.girth(h.root);
     if (s < 0.01 || s > 0.99) continue;  // at the seam, s = 0 and s = 1 meet
     // hairs.fset's ramp: 0.2 + 0.8 s (a B-spline over collinear points is that line).
@@ -960,7 +968,7 @@ TEST(HairFunction, FunctionOfTheGirthPositionModulatesTheDensity) {
   const StraightAxis axis(placed.scene);
   const double area = sceneArea(placed.scene);
   double count[4] = {0, 0, 0, 0};
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     ++count[std::min(3, static_cast<int>(axis.girth(h.root) * 4))];
   }
   for (int q = 0; q < 4; ++q) {
@@ -981,8 +989,8 @@ TEST(HairFunction, FunctionOfTheGirthPositionModulatesTheDensity) {
 TEST(HairProbability, TemplateFrequenciesFollowTheNormalisedProbabilities) {
   const PlacedHairs placed = place("probabilities.l", "three_templates.v");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
-  ASSERT_EQ(placed.scene.hairTemplates.size(), 3u);
-  const std::vector<Hair>& hairs = placed.scene.hairs;
+  ASSERT_EQ(placed.scene.organ<HairPart>().templates.size(), 3u);
+  const std::vector<Hair>& hairs = placed.scene.organ<HairPart>().hairs;
   const double n = static_cast<double>(hairs.size());
   ASSERT_GT(n, 3000);
   const double probability[] = {1.0 / 8, 2.0 / 8, 5.0 / 8};
@@ -999,15 +1007,15 @@ TEST(HairProbability, TemplateFrequenciesFollowTheNormalisedProbabilities) {
 TEST(HairProbability, AllZeroProbabilitiesPlaceNoHairs) {
   const PlacedHairs placed = place("zero_probabilities.l", "three_templates.v");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
-  EXPECT_TRUE(placed.scene.hairs.empty());
+  EXPECT_TRUE(placed.scene.organ<HairPart>().hairs.empty());
   EXPECT_EQ(placed.report.hairs, 0u);
 }
 
 TEST(HairProbability, WithoutTemplatesEveryHairIsTheStraightDefault) {
   const PlacedHairs placed = place("plain.l");
-  ASSERT_EQ(placed.scene.hairTemplates.size(), 1u);
-  EXPECT_EQ(placed.scene.hairTemplates[0].polylines.size(), 1u);
-  for (const Hair& h : placed.scene.hairs) ASSERT_EQ(h.templateIndex, 0);
+  ASSERT_EQ(placed.scene.organ<HairPart>().templates.size(), 1u);
+  EXPECT_EQ(placed.scene.organ<HairPart>().templates[0].polylines.size(), 1u);
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) ASSERT_EQ(h.templateIndex, 0);
 }
 
 // Interpolation mixes the probabilities, normalised at each end, linearly along the segment
@@ -1018,7 +1026,7 @@ TEST(HairProbability, InterpolatedProbabilitiesVaryLinearlyAlongTheSegment) {
   const StraightAxis axis(placed.scene);
   constexpr int kBins = 5;
   double total[kBins] = {}, first[kBins] = {}, second[kBins] = {};
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     const int bin = std::clamp(static_cast<int>(axis.along(h.root) / 10 * kBins), 0, kBins - 1);
     ++total[bin];
     first[bin] += h.templateIndex == 0;
@@ -1039,10 +1047,10 @@ TEST(HairProbability, InterpolatedProbabilitiesVaryLinearlyAlongTheSegment) {
 TEST(HairProbability, TrailingLocSetsOneSidesProbabilities) {
   const PlacedHairs placed = place("leaf_probabilities.l", "three_templates.v");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
-  ASSERT_FALSE(onSide(placed.scene.hairs, HairSide::Back).empty());
-  ASSERT_FALSE(onSide(placed.scene.hairs, HairSide::Front).empty());
-  ASSERT_FALSE(onSide(placed.scene.hairs, HairSide::Edge).empty());
-  for (const Hair& h : placed.scene.hairs) {
+  ASSERT_FALSE(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Back).empty());
+  ASSERT_FALSE(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Front).empty());
+  ASSERT_FALSE(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Edge).empty());
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     ASSERT_EQ(h.templateIndex, h.side == HairSide::Back ? 2 : 0);
   }
 }
@@ -1054,9 +1062,9 @@ TEST(HairLocation, LocChangesOnlyItsSide) {
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   ASSERT_EQ(placed.scene.cylinderSegments.size(), 1u);
   EXPECT_FALSE(placed.scene.cylinderSegments[0].closed);
-  const std::vector<Hair> front = onSide(placed.scene.hairs, HairSide::Front);
-  const std::vector<Hair> back = onSide(placed.scene.hairs, HairSide::Back);
-  const std::vector<Hair> edge = onSide(placed.scene.hairs, HairSide::Edge);
+  const std::vector<Hair> front = onSide(placed.scene.organ<HairPart>().hairs, HairSide::Front);
+  const std::vector<Hair> back = onSide(placed.scene.organ<HairPart>().hairs, HairSide::Back);
+  const std::vector<Hair> edge = onSide(placed.scene.organ<HairPart>().hairs, HairSide::Edge);
   ASSERT_GT(front.size(), 300u);
   ASSERT_GT(back.size(), 300u);
   ASSERT_GT(edge.size(), 50u);
@@ -1078,18 +1086,18 @@ TEST(HairLocation, LocChangesOnlyItsSide) {
 TEST(HairLocation, SwitchedOffSideGetsNoHairs) {
   const PlacedHairs placed = place("leaf_front_off.l");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
-  EXPECT_TRUE(onSide(placed.scene.hairs, HairSide::Front).empty());
-  EXPECT_GT(onSide(placed.scene.hairs, HairSide::Back).size(), 300u);
-  EXPECT_GT(onSide(placed.scene.hairs, HairSide::Edge).size(), 50u);
+  EXPECT_TRUE(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Front).empty());
+  EXPECT_GT(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Back).size(), 300u);
+  EXPECT_GT(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Edge).size(), 50u);
 }
 
 TEST(HairLocation, ClosedCylinderHasNoEdgeHairs) {
   const PlacedHairs placed = place("closed_edges.l");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   ASSERT_TRUE(placed.scene.cylinderSegments.at(0).closed);
-  EXPECT_GT(placed.scene.hairs.size(), 500u);
-  EXPECT_TRUE(onSide(placed.scene.hairs, HairSide::Edge).empty());
-  EXPECT_TRUE(onSide(placed.scene.hairs, HairSide::Back).empty());
+  EXPECT_GT(placed.scene.organ<HairPart>().hairs.size(), 500u);
+  EXPECT_TRUE(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Edge).empty());
+  EXPECT_TRUE(onSide(placed.scene.organ<HairPart>().hairs, HairSide::Back).empty());
 }
 
 // Sec. 3.2: edge hairs grow along the two outer edges of an open cylinder, along the edge
@@ -1097,10 +1105,10 @@ TEST(HairLocation, ClosedCylinderHasNoEdgeHairs) {
 TEST(HairLocation, OpenLeafHasEdgeHairsPointingAwayAtBothEdges) {
   const PlacedHairs placed = place("leaf.l");
   const StraightAxis axis(placed.scene);
-  const std::vector<Hair> edge = onSide(placed.scene.hairs, HairSide::Edge);
+  const std::vector<Hair> edge = onSide(placed.scene.organ<HairPart>().hairs, HairSide::Edge);
   // The leaf spans contour x in [-1, 1] (times the radius 1) along the frame's up.
   double halfWidth = 0;
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     halfWidth = std::max(halfWidth, std::abs(glm::dot(glm::dvec3(h.root) - axis.origin, axis.up)));
   }
   std::size_t atPlus = 0, atMinus = 0;
@@ -1129,7 +1137,7 @@ TEST(HairAttributeState, AttributesSetInsideABranchDoNotLeakPastItsEnd) {
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   ASSERT_EQ(placed.scene.cylinderSegments.size(), 2u);
   std::size_t inBranch = 0, afterBranch = 0;
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     if (h.root.x > 0) {  // the branch's tube, along +x
       ++inBranch;
       ASSERT_EQ(h.length, 3.0f);
@@ -1151,11 +1159,12 @@ TEST(HairAttributeState, BranchOfAForkedTubeKeepsItsOwnAttributes) {
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   const Scene& scene = placed.scene;
   ASSERT_EQ(scene.cylinderSegments.size(), 3u);
-  EXPECT_GT(scene.hairs.size(), 300u);
+  EXPECT_GT(scene.organ<HairPart>().hairs.size(), 300u);
   int branches = 0;
   for (const CylinderSegment& seg : scene.cylinderSegments) {
     ASSERT_GE(seg.organEnd.hair, 0);
-    const float length = scene.hairAttributes.at(static_cast<std::size_t>(seg.organEnd.hair))
+    const float length = scene.organ<HairPart>()
+                             .attributes.at(static_cast<std::size_t>(seg.organEnd.hair))
                              .side(HairSide::Front)
                              .length.value;
     // The branch ends heading along -x (a left turn from +y); the parent's segments along +y.
@@ -1166,9 +1175,9 @@ TEST(HairAttributeState, BranchOfAForkedTubeKeepsItsOwnAttributes) {
   }
   EXPECT_EQ(branches, 1);
   std::size_t three = 0;
-  for (const Hair& h : scene.hairs) three += h.length == 3.0f;
+  for (const Hair& h : scene.organ<HairPart>().hairs) three += h.length == 3.0f;
   EXPECT_GT(three, 50u);
-  EXPECT_LT(three, scene.hairs.size());
+  EXPECT_LT(three, scene.organ<HairPart>().hairs.size());
 }
 
 // The two segments (of length 4, along y) of a straight tube carry one hair length each, and
@@ -1177,7 +1186,7 @@ void expectSegmentLengths(const PlacedHairs& placed, float first, float second) 
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   const StraightAxis axis(placed.scene);
   std::size_t inFirst = 0, inSecond = 0;
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     const double y = axis.along(h.root);
     if (y < 4 - 1e-3) {
       ++inFirst;
@@ -1206,8 +1215,8 @@ bool sameHairs(const std::vector<Hair>& a, const std::vector<Hair>& b) {
 TEST(HairSeeding, SameSeedPlacesIdenticalHairs) {
   const PlacedHairs first = place("length_range.l");
   const PlacedHairs second = place("length_range.l");
-  ASSERT_FALSE(first.scene.hairs.empty());
-  EXPECT_TRUE(sameHairs(first.scene.hairs, second.scene.hairs));
+  ASSERT_FALSE(first.scene.organ<HairPart>().hairs.empty());
+  EXPECT_TRUE(sameHairs(first.scene.organ<HairPart>().hairs, second.scene.organ<HairPart>().hairs));
 }
 
 TEST(HairSeeding, AnotherSeedDrawsOtherValues) {
@@ -1216,30 +1225,33 @@ TEST(HairSeeding, AnotherSeedDrawsOtherValues) {
   reseed.seed = 2;  // as `--hair-seed 2`
   const PlacedHairs reseeded = place("length_range.l", "cylinder.v", reseed);
   // The attachment points are the texture's (same texture seed), the random offsets are not.
-  ASSERT_EQ(first.scene.hairs.size(), reseeded.scene.hairs.size());
+  ASSERT_EQ(first.scene.organ<HairPart>().hairs.size(),
+            reseeded.scene.organ<HairPart>().hairs.size());
   std::size_t sameRoot = 0, sameLength = 0;
-  for (std::size_t i = 0; i < first.scene.hairs.size(); ++i) {
-    sameRoot += first.scene.hairs[i].root == reseeded.scene.hairs[i].root;
-    sameLength += first.scene.hairs[i].length == reseeded.scene.hairs[i].length;
+  for (std::size_t i = 0; i < first.scene.organ<HairPart>().hairs.size(); ++i) {
+    sameRoot += first.scene.organ<HairPart>().hairs[i].root ==
+                reseeded.scene.organ<HairPart>().hairs[i].root;
+    sameLength += first.scene.organ<HairPart>().hairs[i].length ==
+                  reseeded.scene.organ<HairPart>().hairs[i].length;
   }
-  EXPECT_EQ(sameRoot, first.scene.hairs.size());
-  EXPECT_LT(sameLength, first.scene.hairs.size() / 100);
+  EXPECT_EQ(sameRoot, first.scene.organ<HairPart>().hairs.size());
+  EXPECT_LT(sameLength, first.scene.organ<HairPart>().hairs.size() / 100);
 }
 
 TEST(HairSeeding, AnotherTextureSeedPlacesOtherRoots) {
   const PlacedHairs first = place("length_range.l");
   const PlacedHairs other = place("length_range.l", "other_texture.v");
-  ASSERT_FALSE(other.scene.hairs.empty());
+  ASSERT_FALSE(other.scene.organ<HairPart>().hairs.empty());
   std::size_t shared = 0;
-  for (const Hair& a : first.scene.hairs) {
-    for (const Hair& b : other.scene.hairs) {
+  for (const Hair& a : first.scene.organ<HairPart>().hairs) {
+    for (const Hair& b : other.scene.organ<HairPart>().hairs) {
       if (glm::length(a.root - b.root) < 1e-4f) {
         ++shared;
         break;
       }
     }
   }
-  EXPECT_LT(shared, first.scene.hairs.size() / 100);
+  EXPECT_LT(shared, first.scene.organ<HairPart>().hairs.size() / 100);
 }
 
 // ---- interpolation (Sec. 4.1) --------------------------------------------------------------
@@ -1254,7 +1266,7 @@ TEST(HairInterpolation, WithInterpolationValuesVaryLinearlyAlongEachSegment) {
   const StraightAxis axis(placed.scene);
   double worst = 0;
   Spread first, second;
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     const double y = axis.along(h.root);
     // 1 at y = 0, 3 at y = 4, 2 at y = 8.
     const double expected = y < 4 ? 1 + 2 * y / 4 : 3 - (y - 4) / 4;
@@ -1276,7 +1288,7 @@ TEST(HairInterpolation, SideSwitchedOnAfterTheFirstControlPointTakesTheEndValues
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
   const StraightAxis axis(placed.scene);
   std::size_t first = 0;
-  for (const Hair& h : placed.scene.hairs) {
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
     const double y = axis.along(h.root);
     if (y < 4 - 1e-3) {
       ++first;
@@ -1291,7 +1303,7 @@ TEST(HairInterpolation, SideSwitchedOnAfterTheFirstControlPointTakesTheEndValues
 // ---- the hair limit ------------------------------------------------------------------------
 
 TEST(HairLimit, MoreThanMaxHairsThrows) {
-  const std::size_t n = place("plain.l").scene.hairs.size();
+  const std::size_t n = place("plain.l").scene.organ<HairPart>().hairs.size();
   ASSERT_GT(n, 100u);
   // placeHairs itself, with the settings the pipeline derives from cylinder.v.
   Interpreted interpreted;

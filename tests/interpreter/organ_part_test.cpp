@@ -8,6 +8,7 @@
 
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/fur_part.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute {
@@ -73,6 +74,24 @@ TEST(OrganParts, FeatherBoundsAreTheBoxTheStageMeasured) {
   const Bounds b = scene.bounds();
   EXPECT_EQ(b.min, glm::vec3(-1, 0, 0));
   EXPECT_EQ(b.max, glm::vec3(3, 4, 2));
+}
+
+TEST(OrganParts, HairBoundsReachEachHairsTemplate) {
+  Scene scene;
+  HairPart& hairs = scene.organ<HairPart>();
+  HairTemplate reach;
+  reach.extent = 2;
+  hairs.templates.push_back(reach);
+  Hair hair;
+  hair.root = glm::vec3(1, 0, 0);
+  hair.length = 0.5f;  // reaches 0.5 · 2 = 1 from its root
+  hairs.hairs.push_back(hair);
+  hair.templateIndex = 1;  // no such template: not drawn, not bounded
+  hair.root = glm::vec3(100, 0, 0);
+  hairs.hairs.push_back(hair);
+  const Bounds b = scene.bounds();
+  EXPECT_EQ(b.min, glm::vec3(0, -1, -1));
+  EXPECT_EQ(b.max, glm::vec3(2, 1, 1));
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "hirsute/hairs/plant/hair_csv_writer.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
@@ -175,10 +176,10 @@ TEST(HairRenderTest, HairsChangeThePixelsWhereTheyLieAndNoOthers) {
   quad.positions = {{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}};
   quad.normals.assign(4, {0, 0, 1});
   quad.indices = {0, 1, 2, 0, 2, 3};
-  scene.hairTemplates = {straightTemplate(kRed), branchedTemplate(kBlue)};
-  scene.hairs = {hair({-2, -2, 0}, pointing({1, 1, 0}), 2, 0.01f, 0),
-                 hair({1, -2.5f, 0}, pointing({0, 1, 0}), 3, 0.01f, 0),
-                 hair({-2, 1, 0}, pointing({1, 0, 0}), 2, 0.01f, 1)};
+  scene.organ<HairPart>().templates = {straightTemplate(kRed), branchedTemplate(kBlue)};
+  scene.organ<HairPart>().hairs = {hair({-2, -2, 0}, pointing({1, 1, 0}), 2, 0.01f, 0),
+                                   hair({1, -2.5f, 0}, pointing({0, 1, 0}), 3, 0.01f, 0),
+                                   hair({-2, 1, 0}, pointing({1, 0, 0}), 2, 0.01f, 1)};
   Frame with = renderHairs(scene, 120, 120);
   Frame without =
       renderHairs(scene, 120, 120, [](GlRenderer& r) { r.setOrganVisible("hairs", false); });
@@ -187,8 +188,8 @@ TEST(HairRenderTest, HairsChangeThePixelsWhereTheyLieAndNoOthers) {
 
   // The screen segments of every placed hair.
   std::vector<std::pair<glm::vec2, glm::vec2>> segments;
-  for (const Hair& h : scene.hairs) {
-    for (const auto& polyline : scene.hairTemplates[h.templateIndex].polylines) {
+  for (const Hair& h : scene.organ<HairPart>().hairs) {
+    for (const auto& polyline : scene.organ<HairPart>().templates[h.templateIndex].polylines) {
       for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
         segments.emplace_back(glm::vec2(with.camera.toPixels(h.place(polyline[i]))),
                               glm::vec2(with.camera.toPixels(h.place(polyline[i + 1]))));
@@ -207,8 +208,8 @@ TEST(HairRenderTest, HairsChangeThePixelsWhereTheyLieAndNoOthers) {
   }
   EXPECT_GT(changed, 50);
   // Every segment's middle is drawn, in its template's colour.
-  for (const Hair& h : scene.hairs) {
-    const HairTemplate& t = scene.hairTemplates[h.templateIndex];
+  for (const Hair& h : scene.organ<HairPart>().hairs) {
+    const HairTemplate& t = scene.organ<HairPart>().templates[h.templateIndex];
     for (const auto& polyline : t.polylines) {
       for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
         glm::ivec2 at = pixelOf(with.camera, h.place((polyline[i] + polyline[i + 1]) * 0.5f));
@@ -231,9 +232,9 @@ TEST(HairRenderTest, HairsChangeThePixelsWhereTheyLieAndNoOthers) {
 
 TEST(HairRenderTest, HairFollowsRootOrientationAndLength) {
   Scene scene = paletteScene();
-  scene.hairTemplates = {straightTemplate(kRed)};
+  scene.organ<HairPart>().templates = {straightTemplate(kRed)};
   // Rooted at (1, -1, 0), turned from +x to +y, two units long: the tip is at (1, 1, 0).
-  scene.hairs = {
+  scene.organ<HairPart>().hairs = {
       hair({1, -1, 0}, glm::angleAxis(glm::radians(90.0f), glm::vec3(0, 0, 1)), 2, 0.01f, 0)};
   Frame frame = renderHairs(scene, 100, 100);
   const Camera& camera = frame.camera;
@@ -260,11 +261,12 @@ TEST(HairRenderTest, HairFollowsRootOrientationAndLength) {
 // A grid of 40 × 25 short hairs, one unit apart, each along +x: none overlaps another.
 Scene hairGrid() {
   Scene scene = paletteScene();
-  scene.hairTemplates = {straightTemplate(kRed)};
+  scene.organ<HairPart>().templates = {straightTemplate(kRed)};
   for (int j = 0; j < 25; ++j) {
     for (int i = 0; i < 40; ++i) {
-      scene.hairs.push_back(hair({static_cast<float>(i), static_cast<float>(j), 0},
-                                 glm::quat(1, 0, 0, 0), 0.5f, 0.01f, 0));
+      scene.organ<HairPart>().hairs.push_back(
+          hair({static_cast<float>(i), static_cast<float>(j), 0}, glm::quat(1, 0, 0, 0), 0.5f,
+               0.01f, 0));
     }
   }
   return scene;
@@ -277,7 +279,7 @@ std::vector<bool> drawnHairs(const Scene& scene, float fraction, bool visible = 
     r.setOrganVisible("hairs", visible);
   });
   std::vector<bool> drawn;
-  for (const Hair& h : scene.hairs) {
+  for (const Hair& h : scene.organ<HairPart>().hairs) {
     drawn.push_back(anyNear(frame.image, pixelOf(frame.camera, h.place({0.5f, 0, 0})), 1, isRed));
   }
   return drawn;
@@ -302,7 +304,7 @@ TEST(HairRenderTest, AFractionDrawsThatShareSpreadOverThePlant) {
   for (int qy = 0; qy < 2; ++qy) {
     for (int qx = 0; qx < 2; ++qx) {
       int shown = 0, total = 0;
-      for (std::size_t k = 0; k < scene.hairs.size(); ++k) {
+      for (std::size_t k = 0; k < scene.organ<HairPart>().hairs.size(); ++k) {
         int i = static_cast<int>(k % 40), j = static_cast<int>(k / 40);
         if ((i < 20) == (qx == 0) && (j < 12) == (qy == 0)) {
           ++total;
@@ -340,14 +342,14 @@ using testing::readText;
 // one names a template that does not exist: both are left out of the POV-Ray scene.
 Scene exportScene() {
   Scene scene = paletteScene();
-  scene.hairTemplates = {straightTemplate(kRed), branchedTemplate(kGreen)};
-  scene.hairs = {hair({1, 2, 3}, glm::quat(1, 0, 0, 0), 2, 0.02f, 0),
-                 hair({0, 0, 0}, pointing({0, 1, 0}), 1, 0.01f, 0),
-                 hair({0.5f, 0, 0}, pointing({0, 1, 1}), 1.5f, 0.03f, 0),
-                 hair({0, 0, 1}, pointing({1, 1, 0}), 1, 0.05f, 1),
-                 hair({0, 1, 1}, pointing({-1, 1, 0}), 0.5f, 0.025f, 1),
-                 hair({0, 1, 2}, pointing({0, 1, 0}), 1, 0, 0),
-                 hair({0, 2, 2}, pointing({0, 1, 0}), 1, 0.01f, 7)};
+  scene.organ<HairPart>().templates = {straightTemplate(kRed), branchedTemplate(kGreen)};
+  scene.organ<HairPart>().hairs = {hair({1, 2, 3}, glm::quat(1, 0, 0, 0), 2, 0.02f, 0),
+                                   hair({0, 0, 0}, pointing({0, 1, 0}), 1, 0.01f, 0),
+                                   hair({0.5f, 0, 0}, pointing({0, 1, 1}), 1.5f, 0.03f, 0),
+                                   hair({0, 0, 1}, pointing({1, 1, 0}), 1, 0.05f, 1),
+                                   hair({0, 1, 1}, pointing({-1, 1, 0}), 0.5f, 0.025f, 1),
+                                   hair({0, 1, 2}, pointing({0, 1, 0}), 1, 0, 0),
+                                   hair({0, 2, 2}, pointing({0, 1, 0}), 1, 0.01f, 7)};
   return scene;
 }
 
@@ -390,8 +392,8 @@ TEST_F(HairExportTest, PovPlacesOneObjectPerHairInAUnionPerMaterial) {
 
 TEST_F(HairExportTest, PovLoneHairCarriesItsTexture) {
   Scene scene = paletteScene();
-  scene.hairTemplates = {straightTemplate(kRed)};
-  scene.hairs = {hair({0, 0, 0}, pointing({0, 1, 0}), 1, 0.01f, 0)};
+  scene.organ<HairPart>().templates = {straightTemplate(kRed)};
+  scene.organ<HairPart>().hairs = {hair({0, 0, 0}, pointing({0, 1, 0}), 1, 0.01f, 0)};
   writePov(scene, PovOptions{}, file("hair.pov"));
   std::string text = readText(file("hair.pov"));
   EXPECT_EQ(countOccurrences(text, "union{"), 0u) << "POV-Ray warns about a union of one";
@@ -404,13 +406,13 @@ TEST_F(HairExportTest, PovLoneHairCarriesItsTexture) {
 TEST_F(HairExportTest, PovrayRendersHairsWhereTheyStand) {
   SKIP_WITHOUT_POVRAY();
   Scene scene = paletteScene();
-  scene.hairTemplates = {straightTemplate(kRed), branchedTemplate(kGreen)};
+  scene.organ<HairPart>().templates = {straightTemplate(kRed), branchedTemplate(kGreen)};
   // Three thick red hairs standing up in a row, and green ones to the right.
   for (float x : {-1.0f, 0.0f, 1.0f}) {
-    scene.hairs.push_back(hair({x, -1, 0}, pointing({0, 1, 0}), 2, 0.15f, 0));
+    scene.organ<HairPart>().hairs.push_back(hair({x, -1, 0}, pointing({0, 1, 0}), 2, 0.15f, 0));
   }
-  scene.hairs.push_back(hair({2, -1, 0}, pointing({0, 1, 0}), 1.5f, 0.1f, 1));
-  scene.hairs.push_back(hair({2.5f, -1, 0}, pointing({0, 1, 0}), 1.5f, 0.1f, 1));
+  scene.organ<HairPart>().hairs.push_back(hair({2, -1, 0}, pointing({0, 1, 0}), 1.5f, 0.1f, 1));
+  scene.organ<HairPart>().hairs.push_back(hair({2.5f, -1, 0}, pointing({0, 1, 0}), 1.5f, 0.1f, 1));
   PovOptions options;
   options.width = 64;
   options.height = 48;
@@ -474,14 +476,14 @@ TEST_F(HairExportTest, ObjHasOnePolylinePerPlacedTemplatePolyline) {
 
 TEST_F(HairExportTest, CsvHasOneRowPerHairThatReadsBack) {
   Scene scene = paletteScene();
-  scene.hairTemplates = {straightTemplate(kRed), branchedTemplate(kGreen)};
+  scene.organ<HairPart>().templates = {straightTemplate(kRed), branchedTemplate(kGreen)};
   std::mt19937 random(7);
   std::uniform_real_distribution<float> unit(-1, 1);
   for (int i = 0; i < 500; ++i) {
-    scene.hairs.push_back(hair({unit(random) * 100, unit(random), unit(random) * 1e-3f},
-                               pointing({unit(random), unit(random), unit(random) + 1.5f}),
-                               1 + unit(random) * 0.5f, 0.01f * (2 + unit(random)), i % 2,
-                               static_cast<HairSide>(1 + i % 3)));
+    scene.organ<HairPart>().hairs.push_back(
+        hair({unit(random) * 100, unit(random), unit(random) * 1e-3f},
+             pointing({unit(random), unit(random), unit(random) + 1.5f}), 1 + unit(random) * 0.5f,
+             0.01f * (2 + unit(random)), i % 2, static_cast<HairSide>(1 + i % 3)));
   }
   HairCsvStats stats = writeHairCsv(scene, file("hairs.csv"));
   EXPECT_EQ(stats.rows, 500u);
@@ -491,8 +493,8 @@ TEST_F(HairExportTest, CsvHasOneRowPerHairThatReadsBack) {
   EXPECT_EQ(rows[0],
             "root_x,root_y,root_z,direction_x,direction_y,direction_z,template,length,radius,side");
   const char* sides[] = {"", "front", "back", "edge"};
-  for (std::size_t i = 0; i < scene.hairs.size(); ++i) {
-    const Hair& h = scene.hairs[i];
+  for (std::size_t i = 0; i < scene.organ<HairPart>().hairs.size(); ++i) {
+    const Hair& h = scene.organ<HairPart>().hairs[i];
     std::vector<std::string> cells;
     std::istringstream in(rows[i + 1]);
     for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);

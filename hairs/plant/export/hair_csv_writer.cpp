@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "hirsute/hairs/plant/plant_hair_writer.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/export/export_file.h"
 
 namespace hirsute {
@@ -35,12 +36,12 @@ HairCsvStats writeHairCsv(const Scene& scene, const std::filesystem::path& targe
   };
   if (progress != nullptr) {
     progress->begin("writing hairs", Progress::Unit::Percent,
-                    static_cast<double>(scene.hairs.size()));
+                    static_cast<double>(scene.organ<HairPart>().hairs.size()));
   }
   out.put(kHairCsvHeader);
   out.put('\n');
   HairCsvStats stats;
-  for (const Hair& h : scene.hairs) {
+  for (const Hair& h : scene.organ<HairPart>().hairs) {
     glm::vec3 direction = h.direction();
     for (int k = 0; k < 3; ++k) {
       number(h.root[k]);

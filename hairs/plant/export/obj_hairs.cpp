@@ -6,13 +6,14 @@
 #include <vector>
 
 #include "hirsute/hairs/plant/plant_hair_writer.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 
 namespace hirsute {
 
 void PlantHairWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
-  const std::vector<HairTemplate>& templates = scene.hairTemplates;
-  const std::vector<Hair>& hairs = scene.hairs;
+  const std::vector<HairTemplate>& templates = scene.organ<HairPart>().templates;
+  const std::vector<Hair>& hairs = scene.organ<HairPart>().hairs;
   std::uint64_t written = 0;
   // Hairs by template (a counting sort), templates by material in order of first use: one
   // `usemtl` a material.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "hirsute/hairs/plant/plant_hair_writer.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/export/pov_writer.h"
 
 namespace hirsute {
@@ -69,8 +70,8 @@ TriangleMesh hairTube(const HairTemplate& hair, float radius, int sides) {
 }  // namespace
 
 void PlantHairWriter::writePov(const Scene& scene, PovWriter& pov) const {
-  const std::vector<HairTemplate>& templates = scene.hairTemplates;
-  const std::vector<Hair>& hairs = scene.hairs;
+  const std::vector<HairTemplate>& templates = scene.organ<HairPart>().templates;
+  const std::vector<Hair>& hairs = scene.organ<HairPart>().hairs;
   ExportFile& out = pov.out();
   std::size_t meshes = 0, skipped = 0, written = 0;
   // A hair's radius is constant while its length scales the template: its tube, in the

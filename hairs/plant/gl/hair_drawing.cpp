@@ -9,6 +9,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <utility>
 
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/gl/gl_objects.h"
 #include "hirsute/viewer/gl/gl_shaders.h"
 
@@ -111,14 +112,14 @@ void HairDrawing::release() {
 // instances, once ordered within their template into levels by hairHash and once in placement
 // order.
 void HairDrawing::upload(const OrganUpload& upload) {
-  const Scene& scene = upload.scene;
+  const HairPart& part = upload.scene.organ<HairPart>();
   const std::vector<Material>& palette = upload.palette;
   release();
   const int materialCount = static_cast<int>(palette.size());
-  const std::size_t templates = scene.hairTemplates.size();
+  const std::size_t templates = part.templates.size();
   std::vector<std::vector<glm::vec3>> ends(templates);
   for (std::size_t t = 0; t < templates; ++t) {
-    for (const auto& polyline : scene.hairTemplates[t].polylines) {
+    for (const auto& polyline : part.templates[t].polylines) {
       for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
         ends[t].push_back(polyline[i]);
         ends[t].push_back(polyline[i + 1]);
@@ -136,15 +137,15 @@ void HairDrawing::upload(const OrganUpload& upload) {
   // --hairs-only). The copy costs 24 bytes a hair of GL memory.
   const std::size_t buckets = templates * kHairLevels;
   auto bucketOf = [&](std::size_t i) {
-    return scene.hairs[i].templateIndex * kHairLevels +
+    return part.hairs[i].templateIndex * kHairLevels +
            (hairHash(static_cast<std::uint32_t>(i)) >> (32 - kHairLevelBits));
   };
   auto drawn = [&](const Hair& hair) {
     return hair.templateIndex < templates && !ends[hair.templateIndex].empty();
   };
   std::vector<std::size_t> start(buckets + 1, 0);
-  for (std::size_t i = 0; i < scene.hairs.size(); ++i) {
-    if (drawn(scene.hairs[i])) ++start[bucketOf(i) + 1];
+  for (std::size_t i = 0; i < part.hairs.size(); ++i) {
+    if (drawn(part.hairs[i])) ++start[bucketOf(i) + 1];
   }
   for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
   const std::size_t count = start[buckets];
@@ -154,8 +155,8 @@ void HairDrawing::upload(const OrganUpload& upload) {
     std::vector<std::size_t> next(start.begin(), start.end() - 1);
     std::vector<std::size_t> nextInOrder(templates);
     for (std::size_t t = 0; t < templates; ++t) nextInOrder[t] = start[t * kHairLevels];
-    for (std::size_t i = 0; i < scene.hairs.size(); ++i) {
-      const Hair& hair = scene.hairs[i];
+    for (std::size_t i = 0; i < part.hairs.size(); ++i) {
+      const Hair& hair = part.hairs[i];
       if (!drawn(hair)) continue;
       const HairInstance instance{hair.root, hair.orientation, hair.length};
       instances[next[bucketOf(i)]++] = instance;
@@ -171,7 +172,7 @@ void HairDrawing::upload(const OrganUpload& upload) {
     std::size_t hairs = first[t + 1] - first[t];
     if (hairs == 0) continue;
     Batch batch;
-    int material = std::clamp(scene.hairTemplates[t].material, 0, materialCount - 1);
+    int material = std::clamp(part.templates[t].material, 0, materialCount - 1);
     const Material& m = palette[static_cast<std::size_t>(material)];
     batch.color = glm::vec4(m.diffuse, 1.0f - m.transparency);
     batch.vertexCount = static_cast<GLsizei>(ends[t].size());

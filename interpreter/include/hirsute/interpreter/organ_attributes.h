@@ -22,7 +22,7 @@ struct OrganValue {
 // (-1: the organ's defaults, switched off). An organ adds its field here and its table to the
 // list in organ_modules.cpp.
 struct OrganAttributeIndices {
-  int hair = -1;     // Scene::hairAttributes
+  int hair = -1;     // HairPart::attributes (hair_part.h)
   int feather = -1;  // FeatherPart::attributes (feather_part.h)
   int fur = -1;      // FurPart::attributes (fur_part.h)
 

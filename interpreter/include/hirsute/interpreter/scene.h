@@ -12,7 +12,6 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "hirsute/interpreter/hair_attributes.h"
 #include "hirsute/interpreter/organ_attributes.h"
 #include "hirsute/interpreter/organ_part.h"
 
@@ -119,7 +118,7 @@ struct CylinderSegment {
   std::uint32_t firstVertex = 0;
   std::uint32_t vertexCount = 0;
   // The organ attributes at the segment's two control points (per organ an index into its
-  // Scene vector, e.g. Scene::hairAttributes; -1: the defaults, none). Without `hair
+  // part of the Scene, e.g. HairPart::attributes; -1: the defaults, none). Without `hair
   // interpolation: on` the segment's hairs take the end's: values set between two @Gc apply to
   // the segment they close.
   OrganAttributeIndices organStart, organEnd;
@@ -145,49 +144,6 @@ struct OrganSurface {
   std::vector<glm::vec2> uv;  // one per vertex
   OrganAttributeIndices organs;
 };
-
-// A template hair (DESIGN.md, "Template hairs"): the turtle positions of a small L-system,
-// stored once, in the hair's own frame: x along its first segment (the hair direction), y the
-// second axis (the turtle's initial left, made orthogonal), z = x × y. The root is the origin.
-struct HairTemplate {
-  std::string file;                              // the `hair:` line's file
-  std::vector<std::vector<glm::vec3>> polylines; // connected runs of turtle positions
-  int material = 0;                              // the colour of the template's first segment
-  float extent = 0;                              // the largest distance of a vertex from the root
-
-  std::size_t segmentCount() const {
-    std::size_t n = 0;
-    for (const auto& p : polylines) n += p.size() > 1 ? p.size() - 1 : 0;
-    return n;
-  }
-};
-
-// A placed hair: an instance of a template, not a copy (32 bytes). The template's vertex p
-// lands at root + length · (orientation · p); the radius is constant along the hair.
-struct Hair {
-  glm::vec3 root{0.0f};
-  std::array<std::int16_t, 4> orientation{0, 0, 0, 32767};  // unit quaternion (x, y, z, w), snorm16
-  float length = 1;
-  float radius = 0;
-  std::uint8_t templateIndex = 0;
-  HairSide side = HairSide::Front;
-  std::uint16_t reserved = 0;
-
-  glm::quat rotation() const {
-    const glm::quat q(orientation[3] / 32767.0f, orientation[0] / 32767.0f,
-                      orientation[1] / 32767.0f, orientation[2] / 32767.0f);
-    return glm::normalize(q);
-  }
-  void setRotation(const glm::quat& q) {
-    const glm::quat n = glm::normalize(q);
-    auto pack = [](float c) { return static_cast<std::int16_t>(std::lround(glm::clamp(c, -1.0f, 1.0f) * 32767.0f)); };
-    orientation = {pack(n.x), pack(n.y), pack(n.z), pack(n.w)};
-  }
-  glm::vec3 direction() const { return rotation() * glm::vec3(1, 0, 0); }
-  // Where template vertex p of this hair lies.
-  glm::vec3 place(const glm::vec3& p) const { return root + length * (rotation() * p); }
-};
-static_assert(sizeof(Hair) == 32, "a placed hair stays 32 bytes (DESIGN.md: bytes per placed hair)");
 
 struct Texture {
   std::string file;     // as named by the view file, resolved against the model's folder
@@ -231,10 +187,6 @@ class Scene {
   std::vector<CylinderSegment> cylinderSegments;
   std::vector<OrganSurface> organSurfaces;  // surfaces and polygons with organ attributes
   std::vector<Texture> textures;
-  // Plant hairs (hairs/): the attribute sets segments refer to, the templates, the placed hairs.
-  std::vector<HairAttributes> hairAttributes;
-  std::vector<HairTemplate> hairTemplates;
-  std::vector<Hair> hairs;
 
   // An organ's part (organ_part.h; like FurPart of fur_part.h), made empty on first use.
   template <class Part>

@@ -1,7 +1,7 @@
 // Placing plant hairs on generalized-cylinder segments, `~` surfaces and polygons (Fuhrer, Jensen
 // & Prusinkiewicz 2004, Sec. 3 and 4; DESIGN.md, "Plant hairs") at the attachment points of the
 // shared placement engine (hairs/placement/surface_sampler.h). Reads the Scene's cylinder
-// segments and organ surfaces, their hair attributes and the templates; appends to Scene::hairs.
+// segments and organ surfaces, their hair attributes and the templates; appends to HairPart::hairs.
 #pragma once
 
 #include <cstddef>
@@ -10,6 +10,7 @@
 
 #include "hirsute/hairs/placement/point_diffusion.h"
 #include "hirsute/hairs/placement/segment_values.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/progress.h"
 
@@ -45,7 +46,7 @@ struct HairLimitError : std::runtime_error {
 };
 
 // Places the hairs of every segment, surface patch and polygon whose attributes enable a side.
-// Scene::hairTemplates must hold the templates (a scene without templates gets a single straight
+// HairPart::templates must hold the templates (a scene without templates gets a single straight
 // template).
 HairPlacementReport placeHairs(Scene& scene, const HairPlacementSettings& settings);
 

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/export/organ_writer.h"
 
 namespace hirsute {
@@ -15,7 +16,9 @@ class PlantHairWriter : public OrganWriter {
   static constexpr int kTubeSides = 5;
   static constexpr double kBucketStep = 1.02;
 
-  std::size_t items(const Scene& scene) const override { return scene.hairs.size(); }
+  std::size_t items(const Scene& scene) const override {
+    return scene.organ<HairPart>().hairs.size();
+  }
   // Hairs as instances (DESIGN.md, "Plant hairs"): a tube of the hair radius around each
   // template is declared once per template and bucket of radius/length (the tube is in the
   // template's frame, which length scales), and each hair is an `object` of it with its matrix;
@@ -28,7 +31,7 @@ class PlantHairWriter : public OrganWriter {
   void writeObj(const Scene& scene, ObjWriter& obj) const override;
   // "N hairs".
   std::string povSummary(const Scene& scene) const override {
-    return std::to_string(scene.hairs.size()) + " hairs";
+    return std::to_string(scene.organ<HairPart>().hairs.size()) + " hairs";
   }
   // `--hairs FILE`: writeHairCsv (hair_csv_writer.h).
   std::optional<OrganTable> table() const override;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "hirsute/hairs/plant/hair_placement.h"
+#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
@@ -26,7 +27,7 @@ struct PlantHairOptions {
 // Whether any segment of the scene has a side with hairs switched on.
 bool hasHairs(const Scene& scene);
 
-// Loads the templates into scene.hairTemplates and places the hairs. Throws DiagnosticError for
+// Loads the templates into the scene's HairPart and places the hairs. Throws DiagnosticError for
 // a broken template or more hairs than the limit; warns about hairy segments drawn as lines.
 HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources,
                                    const ViewFunctions& functions, const PlantHairOptions& options,
