@@ -37,7 +37,7 @@ struct ModelOptions {
   int threads = 0;  // --threads: of the derivation (0: one a core)
   std::size_t maxVertices = kDefaultMaxVertices;
   std::uint64_t placementSeed = 0;       // --hair-seed; 0: the view file's `hair texture:` seed
-  OrganSettingsSet organs;               // each organ's own options (organ_stage.h)
+  OrganOptionsSet organs;                // each organ's own options (organ_stage.h)
   bool verbose = false;                  // -v: counts and times on stderr
   // Called as the build goes on (`hirsute view` shows it while building off its render thread):
   // the stage (1 deriving, 2 interpreting, 3 + k the stage of organStages()[k]) and, while

@@ -6,6 +6,7 @@
 
 #include "cpfg_numbers.h"
 #include "hirsute/interpreter/feather_part.h"
+#include "hirsute/interpreter/feather_settings.h"
 #include "hirsute/interpreter/organ_modules.h"
 
 namespace hirsute {
@@ -25,7 +26,7 @@ FeatherRow value(char letter, OrganValue FeatherSideAttributes::*attribute) {
 // A feather type number of a module, 1 to the number of `feather:` lines; 0 after a warning.
 int featherType(const OrganModuleCall& call, const std::string& name, float parameter) {
   const int type = truncated(parameter);
-  const std::size_t declared = call.resources.view.featherTypes.size();
+  const std::size_t declared = call.resources.view.organ<FeatherSettings>().types.size();
   if (type < 1 || static_cast<std::size_t>(type) > declared) {
     call.warnOnce(name + " type " + std::to_string(type),
                   name + ": no feather type " + std::to_string(type) + " (the view file declares " +

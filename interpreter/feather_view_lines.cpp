@@ -5,10 +5,16 @@
 #include <string>
 
 #include "hirsute/interpreter/feather_attributes.h"
+#include "hirsute/interpreter/feather_settings.h"
 #include "hirsute/interpreter/view_lines.h"
 
 namespace hirsute {
 namespace {
+
+// The settings these lines set.
+FeatherSettings& feathers(ViewLine& c) {
+  return c.view.organ<FeatherSettings>();
+}
 
 using view_text::inQuotes;
 
@@ -17,10 +23,10 @@ const ViewLineCommand kLines[] = {
      [](ViewLine& c) {
        const SourceLocation where = c.args.here();
        const std::string file = c.resolve(c.requiredWord("a feather type file (.fea)"), where);
-       if (c.view.featherTypes.size() >= static_cast<std::size_t>(kMaxFeatherTypes)) {
+       if (feathers(c).types.size() >= static_cast<std::size_t>(kMaxFeatherTypes)) {
          c.fail(where, "at most " + std::to_string(kMaxFeatherTypes) + " feather types per model");
        }
-       c.view.featherTypes.push_back(FeatherTypeDeclaration{file, where});
+       feathers(c).types.push_back(FeatherTypeDeclaration{file, where});
      }},
     {"feather follicles:",
      [](ViewLine& c) {
@@ -28,7 +34,7 @@ const ViewLineCommand kLines[] = {
        const std::string_view word = c.requiredWord("diffusion or hexagonal");
        if (word != "diffusion" && word != "hexagonal")
          c.fail(where, "expected diffusion or hexagonal, found " + inQuotes(word));
-       c.view.follicleLayout =
+       feathers(c).follicleLayout =
            word == "hexagonal" ? FollicleLayout::Hexagonal : FollicleLayout::Diffusion;
      }},
 };

@@ -4,26 +4,32 @@
 #include <string>
 
 #include "hirsute/interpreter/fur_attributes.h"
+#include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/interpreter/view_lines.h"
 
 namespace hirsute {
 namespace {
+
+// The settings these lines set.
+FurSettings& fur(ViewLine& c) {
+  return c.view.organ<FurSettings>();
+}
 
 using view_text::inQuotes;
 
 // `fur texture: SIZE SEED [TEXELS]` (docs/fur.md): SIZE² texels from SEED, TEXELS texels along
 // the length of a strand (default 40: strands are a fortieth of their length thick).
 void furTexture(ViewLine& c) {
-  c.view.furTextureSize =
+  fur(c).textureSize =
       static_cast<int>(c.requiredInteger("the texture size", 16, kMaxFurTextureSize));
-  c.view.furTextureSeed =
+  fur(c).textureSeed =
       static_cast<unsigned>(c.requiredInteger("the seed", 0, std::numeric_limits<unsigned>::max()));
   if (!c.args.atEnd()) {
     const SourceLocation where = c.args.here();
     const double texels = c.requiredNumber("the texels along a strand's length");
     if (!(texels >= 1 && texels <= 4096))
       c.fail(where, "the texels per length must be from 1 to 4096");
-    c.view.furTexelsPerLength = static_cast<float>(texels);
+    fur(c).texelsPerLength = static_cast<float>(texels);
   }
 }
 
@@ -51,19 +57,19 @@ void droplet(ViewLine& c) {
   d.centre = glm::vec2(static_cast<float>(u), static_cast<float>(v));
   d.radius = static_cast<float>(r);
   d.wetness = static_cast<float>(rho);
-  c.view.droplets.push_back(d);
+  fur(c).droplets.push_back(d);
 }
 
 const ViewLineCommand kLines[] = {
     {"fur layers:",
      [](ViewLine& c) {
-       c.view.furLayers =
+       fur(c).layers =
            static_cast<int>(c.requiredInteger("the number of layers", 1, kMaxFurLayers));
      }},
     {"fur texture:", &furTexture},
     {"wetness mask:",
      [](ViewLine& c) {
-       c.view.wetnessMaskSize =
+       fur(c).wetnessMaskSize =
            static_cast<int>(c.requiredInteger("the mask size", 8, kMaxFurTextureSize));
      }},
     {"droplet:", &droplet},
@@ -77,7 +83,7 @@ const ViewLineCommand kLines[] = {
            c.fail(where, "a fur force component must be finite, at most 1e6");
          force[i] = static_cast<float>(value);
        }
-       c.view.furForce = force;
+       fur(c).force = force;
      }},
 };
 

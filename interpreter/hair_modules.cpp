@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "hirsute/interpreter/hair_part.h"
+#include "hirsute/interpreter/hair_settings.h"
 #include "hirsute/interpreter/organ_modules.h"
 
 namespace hirsute {
@@ -30,7 +31,7 @@ HairRow templateProbabilities(char letter) {
     side.probabilityCount = static_cast<int>(weights.size());
   };
   row.choices = [](const ModelResources& resources) {
-    return std::max<std::size_t>(1, resources.view.hairTemplates.size());
+    return std::max<std::size_t>(1, resources.view.organ<HairSettings>().templates.size());
   };
   row.capacity = kMaxHairTemplates;
   row.choiceNoun = "template hair(s)";

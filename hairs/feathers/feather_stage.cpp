@@ -1,19 +1,21 @@
 #include "hirsute/hairs/feathers/feather_stage.h"
 
-#include <CLI/CLI.hpp>
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <memory>
 
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
 #include "hirsute/hairs/feathers/feather_coats.h"
 #include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/feather_instances.h"
 #include "hirsute/hairs/placement/placement_random.h"
 #include "hirsute/interpreter/feather_part.h"
+#include "hirsute/interpreter/feather_settings.h"
+#include "hirsute/interpreter/hair_settings.h"
 #include "hirsute/interpreter/texture_image.h"
 
 namespace hirsute {
@@ -54,7 +56,8 @@ void attachTextures(FeatherType& type, Scene& scene, std::map<std::string, int>&
 }  // namespace
 
 bool hasFeathers(const Scene& scene, const ModelResources& resources) {
-  return !scene.organ<FeatherPart>().feathers.empty() || !resources.view.featherTypes.empty();
+  return !scene.organ<FeatherPart>().feathers.empty() ||
+         !resources.view.organ<FeatherSettings>().types.empty();
 }
 
 FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
@@ -63,7 +66,7 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
   FeatherPart& part = scene.organ<FeatherPart>();
   FeatherStageReport report;
   part.types.clear();
-  for (const FeatherTypeDeclaration& declaration : resources.view.featherTypes) {
+  for (const FeatherTypeDeclaration& declaration : resources.view.organ<FeatherSettings>().types) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(declaration.file, error)) {
       throw DiagnosticError(declaration.where,
@@ -87,12 +90,14 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
   if (!part.types.empty()) {
     const ViewSettings& view = resources.view;
     FeatherCoatSettings coats;
-    coats.layout = view.follicleLayout;
-    coats.texture.width = coats.texture.height = view.hairTextureSize;
-    coats.texture.fill = view.hairTextureFill;
+    coats.layout = view.organ<FeatherSettings>().follicleLayout;
+    // The coats lay their follicles out on the hairs' point-diffusion texture (`hair texture:`).
+    const HairSettings& hairs = view.organ<HairSettings>();
+    coats.texture.width = coats.texture.height = hairs.textureSize;
+    coats.texture.fill = hairs.textureFill;
     // Follicles are not the hairs' points: the texture and the offsets get seeds of their own,
     // from --hair-seed when given.
-    const std::uint64_t seed = options.seed != 0 ? options.seed : view.hairTextureSeed;
+    const std::uint64_t seed = options.seed != 0 ? options.seed : hairs.textureSeed;
     coats.texture.seed = placementKey(seed, 0x666f6c6cu);
     coats.seed = placementKey(seed, 0x636f6174u);
     coats.maxFeathers = options.maxFeathers;
@@ -171,11 +176,11 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
 namespace hirsute {
 namespace {
 
-struct FeatherSettings : OrganSettingsOf<FeatherSettings> {
+struct FeatherCommandOptions : OrganOptionsOf<FeatherCommandOptions> {
   std::size_t maxFeathers = FeatherStageOptions{}.maxFeathers;
 };
 
-class FeatherStage : public OrganStageOf<FeatherSettings> {
+class FeatherStage : public OrganStageOf<FeatherCommandOptions> {
  public:
   const char* activity() const override { return "growing feathers"; }
 
@@ -184,16 +189,17 @@ class FeatherStage : public OrganStageOf<FeatherSettings> {
   }
 
  protected:
-  void declareOptions(CLI::App& command, FeatherSettings& s) const override {
+  void declareOptions(CLI::App& command, FeatherCommandOptions& s) const override {
     command.add_flag("!--no-feathers", s.enabled, "Leave out the feathers (@F modules)");
     command.add_option("--max-feathers", s.maxFeathers,
                        "More feathers (@Fe, @Fi and coats) are an error (default 1000000)");
   }
-  std::string growFrom(const OrganStageRun& run, const FeatherSettings& settings) const override {
+  std::string growFrom(const OrganStageRun& run,
+                       const FeatherCommandOptions& chosen) const override {
     FeatherStageOptions options;
     options.lsystemFile = run.lsystemFile;
     options.seed = run.seed;
-    options.maxFeathers = settings.maxFeathers;
+    options.maxFeathers = chosen.maxFeathers;
     options.progress = run.progress;
     const FeatherStageReport report =
         growFeathers(run.scene, run.resources, run.functions, options, run.diagnostics);

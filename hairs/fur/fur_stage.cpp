@@ -14,6 +14,7 @@
 #include "hirsute/hairs/fur/wetness_mask.h"
 #include "hirsute/hairs/placement/patch_unfolding.h"
 #include "hirsute/interpreter/fur_part.h"
+#include "hirsute/interpreter/fur_settings.h"
 
 namespace hirsute {
 namespace {
@@ -182,22 +183,22 @@ bool rightHanded(const FurSurface& s, const std::vector<float>& axisDistance) {
 }
 
 // What every fur surface gets once its triangles and (u, v) are known: strands at rest under the
-// view's force, its layers and strand radius, a dry wetness mask and its fur texture.
-void completeSurface(FurSurface&& s, const FurAttributes& fur, const ViewSettings& view, float tile,
-                     int textureIndex, Scene& scene) {
+// settings' force, its layers and strand radius, a dry wetness mask and its fur texture.
+void completeSurface(FurSurface&& s, const FurAttributes& fur, const FurSettings& settings,
+                     float tile, int textureIndex, Scene& scene) {
   s.tips.resize(s.positions.size());
   for (std::size_t i = 0; i < s.positions.size(); ++i) {
     const fur::StrandRoot strand{s.positions[i], s.normals[i], fur.length};
-    s.tips[i] = fur::restingTip(strand, fur.stiffness, fur.mass, view.furForce);
+    s.tips[i] = fur::restingTip(strand, fur.stiffness, fur.mass, settings.force);
   }
-  s.layers = view.furLayers;
-  s.strandRadius = 0.5f * tile / static_cast<float>(view.furTextureSize);
-  fur::clearWetness(s, view.wetnessMaskSize);
+  s.layers = settings.layers;
+  s.strandRadius = 0.5f * tile / static_cast<float>(settings.textureSize);
+  fur::clearWetness(s, settings.wetnessMaskSize);
   s.furTexture = textureIndex;
   scene.organ<FurPart>().surfaces.push_back(std::move(s));
 }
 
-void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const ViewSettings& view,
+void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const FurSettings& settings,
                    int textureIndex, Scene& scene) {
   FurSurface& s = b.surface;
   if (!rightHanded(s, b.axisDistance)) {
@@ -208,7 +209,8 @@ void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const ViewSettin
   const float start = *lowest, span = std::max(*highest - *lowest, 1e-12f);
   // One tile of the fur texture is size / texelsPerLength fur lengths wide; around the girth
   // a whole number of tiles, so that u = 0 and u = 1 meet without a seam.
-  const float tile = static_cast<float>(view.furTextureSize) * fur.length / view.furTexelsPerLength;
+  const float tile =
+      static_cast<float>(settings.textureSize) * fur.length / settings.texelsPerLength;
   const double girth = b.rings > 0 ? b.girthSum / b.rings : 0.0;
   const float around = std::max(1.0f, std::round(static_cast<float>(girth) / tile));
   s.texcoordsPerUv = glm::vec2(around, span / tile);
@@ -216,14 +218,14 @@ void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const ViewSettin
     s.uv[i].y = (b.axisDistance[i] - start) / span;
     s.texcoords.emplace_back(s.uv[i].x * around, (b.axisDistance[i] - start) / tile);
   }
-  completeSurface(std::move(s), fur, view, tile, textureIndex, scene);
+  completeSurface(std::move(s), fur, settings, tile, textureIndex, scene);
 }
 
 // A `~` patch or a polygon with fur on (OrganSurface): (u, v) from its plane coordinates (the
 // placement engine's PatchUnfolding: lengths the surface's own on average), both divided by the
 // larger extent so that droplets stay round, the fur texture tiled over them in world units.
-void addOrganSurface(Scene& scene, const OrganSurface& organ, int record, const ViewSettings& view,
-                     int textureIndex) {
+void addOrganSurface(Scene& scene, const OrganSurface& organ, int record,
+                     const FurSettings& settings, int textureIndex) {
   const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(organ.mesh)];
   const PatchUnfolding unfolding(organ, mesh);
   const FurAttributes& fur = scene.organ<FurPart>().attributes[static_cast<std::size_t>(record)];
@@ -278,10 +280,11 @@ void addOrganSurface(Scene& scene, const OrganSurface& organ, int record, const 
     for (glm::vec2& uv : s.uv) uv.x = 1 - uv.x;
     for (glm::vec3& t : s.tangents) t = -t;
   }
-  const float tile = static_cast<float>(view.furTextureSize) * fur.length / view.furTexelsPerLength;
+  const float tile =
+      static_cast<float>(settings.textureSize) * fur.length / settings.texelsPerLength;
   s.texcoordsPerUv = glm::vec2(extent / tile);
   for (const glm::vec2& uv : s.uv) s.texcoords.push_back(uv * s.texcoordsPerUv);
-  completeSurface(std::move(s), fur, view, tile, textureIndex, scene);
+  completeSurface(std::move(s), fur, settings, tile, textureIndex, scene);
 }
 
 }  // namespace
@@ -296,7 +299,7 @@ bool hasFur(const Scene& scene) {
 FurStageReport growFur(Scene& scene, const ModelResources& resources,
                        const FurStageOptions& options, Diagnostics& diagnostics) {
   FurPart& part = scene.organ<FurPart>();
-  const ViewSettings& view = resources.view;
+  const FurSettings& settings = resources.view.organ<FurSettings>();
   FurStageReport report;
   part.surfaces.clear();
   part.textures.clear();
@@ -304,7 +307,8 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
   auto textureFor = [&](float density) {
     const auto found = textureForDensity.find(density);
     if (found != textureForDensity.end()) return found->second;
-    part.textures.push_back(fur::makeFurTexture(view.furTextureSize, view.furTextureSeed, density));
+    part.textures.push_back(
+        fur::makeFurTexture(settings.textureSize, settings.textureSeed, density));
     const int index = static_cast<int>(part.textures.size() - 1);
     textureForDensity.emplace(density, index);
     return index;
@@ -319,7 +323,7 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
                                                     " fur surfaces (each run of furry cylinder segments is one)");
       const FurAttributes& fur = part.attributes[static_cast<std::size_t>(openRecord)];
       builder.surface.attributes = openRecord;
-      finishSurface(builder, fur, view, textureFor(fur.density), scene);
+      finishSurface(builder, fur, settings, textureFor(fur.density), scene);
     }
     builder = SurfaceBuilder{};
     openRecord = -1;
@@ -347,7 +351,7 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
     if (!fur.enabled() || fur.length <= 0) continue;
     if (part.surfaces.size() >= options.maxSurfaces)
       throw DiagnosticError(SourceLocation{}, "more than " + std::to_string(options.maxSurfaces) + " fur surfaces");
-    addOrganSurface(scene, organ, record, view, textureFor(fur.density));
+    addOrganSurface(scene, organ, record, settings, textureFor(fur.density));
   }
 
   // The view file's droplets: counted first, each on the surfaces it falls on, then blended.
@@ -356,7 +360,7 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
     return i < part.surfaces.size() &&
            (d.surface == 0 || static_cast<std::size_t>(d.surface - 1) == i);
   };
-  for (const Droplet& d : view.droplets) {
+  for (const Droplet& d : settings.droplets) {
     if (d.surface > static_cast<int>(part.surfaces.size())) {
       throw DiagnosticError(d.where, "no fur surface " + std::to_string(d.surface) +
                                          " (the model has " + std::to_string(part.surfaces.size()) +
@@ -369,14 +373,15 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
       costs.chargeMask(i, surface, d.where, "the view file's droplets");
     }
   }
-  for (const Droplet& d : view.droplets) {
+  for (const Droplet& d : settings.droplets) {
     for (std::size_t i = 0; i < part.surfaces.size(); ++i) {
       if (fallsOn(d, i)) fur::blendDroplet(part.surfaces[i], d.centre, d.radius, d.wetness);
     }
     ++report.droplets;
   }
-  if (!view.droplets.empty() && part.surfaces.empty())
-    diagnostics.warn(view.droplets.front().where, "the model has no fur for the droplets to fall on");
+  if (!settings.droplets.empty() && part.surfaces.empty())
+    diagnostics.warn(settings.droplets.front().where,
+                     "the model has no fur for the droplets to fall on");
   report.droplets += spray(scene, options.droplets, options.dropletRadius, options.dropletWetness,
                            options.dropletSeed, costs);
   report.surfaces = part.surfaces.size();
@@ -398,18 +403,18 @@ std::size_t sprayDroplets(Scene& scene, std::size_t count, float radius, float w
 namespace hirsute {
 namespace {
 
-struct FurSettings : OrganSettingsOf<FurSettings> {
+struct FurCommandOptions : OrganOptionsOf<FurCommandOptions> {
   FurStageOptions stage;
 };
 
-class FurStage : public OrganStageOf<FurSettings> {
+class FurStage : public OrganStageOf<FurCommandOptions> {
  public:
   const char* activity() const override { return "growing fur"; }
 
   bool wanted(const Scene& scene, const ModelResources&) const override { return hasFur(scene); }
 
  protected:
-  void declareOptions(CLI::App& command, FurSettings& s) const override {
+  void declareOptions(CLI::App& command, FurCommandOptions& s) const override {
     command.add_flag("!--no-fur", s.enabled, "Leave out the fur (@U modules)");
     command
         .add_option("--droplets", s.stage.droplets,
@@ -427,9 +432,8 @@ class FurStage : public OrganStageOf<FurSettings> {
     command.add_option("--droplet-seed", s.stage.dropletSeed,
                        "Seed of the random droplets (default 1)");
   }
-  std::string growFrom(const OrganStageRun& run, const FurSettings& settings) const override {
-    const FurStageReport report =
-        growFur(run.scene, run.resources, settings.stage, run.diagnostics);
+  std::string growFrom(const OrganStageRun& run, const FurCommandOptions& options) const override {
+    const FurStageReport report = growFur(run.scene, run.resources, options.stage, run.diagnostics);
     return fmt::format("fur: {} surfaces, {} triangles, {:.4g} units², {} droplets",
                        report.surfaces, report.triangles, report.area, report.droplets);
   }

@@ -16,19 +16,19 @@ std::span<const OrganStage* const> organStages() {
   return stages;
 }
 
-OrganSettingsSet::OrganSettingsSet() {
-  for (const OrganStage* stage : organStages()) settings_.push_back(stage->defaultSettings());
+OrganOptionsSet::OrganOptionsSet() {
+  for (const OrganStage* stage : organStages()) options_.push_back(stage->defaultOptions());
 }
 
-OrganSettingsSet::OrganSettingsSet(const OrganSettingsSet& other) {
-  for (const auto& settings : other.settings_) settings_.push_back(settings->clone());
+OrganOptionsSet::OrganOptionsSet(const OrganOptionsSet& other) {
+  for (const auto& options : other.options_) options_.push_back(options->clone());
 }
 
-OrganSettingsSet& OrganSettingsSet::operator=(const OrganSettingsSet& other) {
-  if (this != &other) *this = OrganSettingsSet(other);
+OrganOptionsSet& OrganOptionsSet::operator=(const OrganOptionsSet& other) {
+  if (this != &other) *this = OrganOptionsSet(other);
   return *this;
 }
 
-OrganSettingsSet::~OrganSettingsSet() = default;
+OrganOptionsSet::~OrganOptionsSet() = default;
 
 }  // namespace hirsute

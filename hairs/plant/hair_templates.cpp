@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 
+#include "hirsute/interpreter/hair_settings.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
@@ -71,14 +72,16 @@ HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file,
 std::vector<HairTemplate> loadHairTemplates(const ModelResources& resources,
                                             Diagnostics& diagnostics) {
   std::vector<HairTemplate> templates;
-  if (resources.view.hairTemplates.empty()) return templates;
+  const std::vector<HairTemplateDeclaration>& declared =
+      resources.view.organ<HairSettings>().templates;
+  if (declared.empty()) return templates;
   // The plant's settings (angle increment, colours, contours), but lines drawn as lines: a hair
   // is its turtle's positions.
   ModelResources own = resources;
   own.view.lineStyle = LineStyle::Pixel;
-  own.view.hairTemplates.clear();
+  own.view.organ<HairSettings>().templates.clear();
   own.backgroundScenes.clear();
-  for (const HairTemplateDeclaration& declaration : resources.view.hairTemplates) {
+  for (const HairTemplateDeclaration& declaration : declared) {
     const std::string& file = declaration.file;
     std::error_code error;
     if (!std::filesystem::is_regular_file(file, error)) {

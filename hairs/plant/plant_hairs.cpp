@@ -1,14 +1,15 @@
 #include "hirsute/hairs/plant/plant_hairs.h"
 
-#include <CLI/CLI.hpp>
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
 
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
 #include "hirsute/hairs/plant/hair_templates.h"
 #include "hirsute/interpreter/hair_part.h"
+#include "hirsute/interpreter/hair_settings.h"
 
 namespace hirsute {
 
@@ -38,11 +39,12 @@ HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources
   scene.organ<HairPart>().templates = loadHairTemplates(resources, diagnostics);
   const ViewSettings& view = resources.view;
   HairPlacementSettings settings;
-  settings.texture.width = settings.texture.height = view.hairTextureSize;
-  settings.texture.seed = view.hairTextureSeed;
-  settings.texture.fill = view.hairTextureFill;
-  settings.seed = options.seed != 0 ? options.seed : view.hairTextureSeed;
-  settings.interpolation = view.hairInterpolation;
+  const HairSettings& hairs = view.organ<HairSettings>();
+  settings.texture.width = settings.texture.height = hairs.textureSize;
+  settings.texture.seed = hairs.textureSeed;
+  settings.texture.fill = hairs.textureFill;
+  settings.seed = options.seed != 0 ? options.seed : hairs.textureSeed;
+  settings.interpolation = hairs.interpolation;
   settings.maxHairs = options.maxHairs;
   settings.progress = options.progress;
   const std::vector<FunctionCurve>& curves = functions.functions;
@@ -73,25 +75,25 @@ HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources
 namespace hirsute {
 namespace {
 
-struct PlantHairSettings : OrganSettingsOf<PlantHairSettings> {
+struct HairCommandOptions : OrganOptionsOf<HairCommandOptions> {
   std::size_t maxHairs = PlantHairOptions{}.maxHairs;
 };
 
-class PlantHairStage : public OrganStageOf<PlantHairSettings> {
+class PlantHairStage : public OrganStageOf<HairCommandOptions> {
  public:
   const char* activity() const override { return "placing hairs"; }
 
   bool wanted(const Scene& scene, const ModelResources&) const override { return hasHairs(scene); }
 
  protected:
-  void declareOptions(CLI::App& command, PlantHairSettings& s) const override {
+  void declareOptions(CLI::App& command, HairCommandOptions& s) const override {
     command.add_flag("!--no-hairs", s.enabled, "Leave out the plant hairs (@H modules)");
     command.add_option("--max-hairs", s.maxHairs, "More hairs are an error (default 50000000)");
   }
-  std::string growFrom(const OrganStageRun& run, const PlantHairSettings& settings) const override {
+  std::string growFrom(const OrganStageRun& run, const HairCommandOptions& chosen) const override {
     PlantHairOptions options;
     options.seed = run.seed;
-    options.maxHairs = settings.maxHairs;
+    options.maxHairs = chosen.maxHairs;
     options.lsystemFile = run.lsystemFile;
     options.progress = run.progress;
     const HairPlacementReport report =

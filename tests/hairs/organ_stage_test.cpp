@@ -18,7 +18,7 @@ TEST(OrganStages, EachStageHasItsActivityAndItsSettings) {
   std::set<std::string> activities;
   for (const OrganStage* stage : stages) {
     activities.insert(stage->activity());
-    const auto settings = stage->defaultSettings();
+    const auto settings = stage->defaultOptions();
     ASSERT_NE(settings, nullptr);
     EXPECT_TRUE(settings->enabled);
   }
@@ -30,7 +30,7 @@ TEST(OrganStages, EachStageHasItsActivityAndItsSettings) {
 }
 
 TEST(OrganStages, OptionsSwitchEachOrganOffOnItsOwn) {
-  OrganSettingsSet settings;
+  OrganOptionsSet settings;
   ASSERT_EQ(settings.size(), organStages().size());
   CLI::App command;
   for (std::size_t k = 0; k < settings.size(); ++k)
@@ -43,8 +43,8 @@ TEST(OrganStages, OptionsSwitchEachOrganOffOnItsOwn) {
 }
 
 TEST(OrganStages, CopiedSettingsAreTheirOwn) {
-  OrganSettingsSet settings;
-  OrganSettingsSet copy = settings;
+  OrganOptionsSet settings;
+  OrganOptionsSet copy = settings;
   copy[1].enabled = false;
   EXPECT_TRUE(settings[1].enabled);
   EXPECT_FALSE(copy[1].enabled);
@@ -54,7 +54,7 @@ TEST(OrganStages, CopiedSettingsAreTheirOwn) {
 }
 
 TEST(OrganStages, ABadOptionValueIsRefused) {
-  OrganSettingsSet settings;
+  OrganOptionsSet settings;
   CLI::App command;
   for (std::size_t k = 0; k < settings.size(); ++k)
     organStages()[k]->addOptions(command, settings[k]);

@@ -1,5 +1,6 @@
 // Organs' parts of the Scene (organ_part.h): one of each type, made on first use, copied with
-// the Scene, emptied in place, and counted in its bounds.
+// the Scene, emptied in place, and counted in its bounds; and organs' settings of the view file
+// (organ_settings.h), reached the same way.
 #include "hirsute/interpreter/organ_part.h"
 
 #include <gtest/gtest.h>
@@ -8,8 +9,11 @@
 
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/fur_part.h"
+#include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/interpreter/hair_part.h"
+#include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
+#include "hirsute/interpreter/view_settings.h"
 
 namespace hirsute {
 namespace {
@@ -92,6 +96,46 @@ TEST(OrganParts, HairBoundsReachEachHairsTemplate) {
   const Bounds b = scene.bounds();
   EXPECT_EQ(b.min, glm::vec3(0, -1, -1));
   EXPECT_EQ(b.max, glm::vec3(2, 1, 1));
+}
+
+// A test organ's settings, with a default of its own.
+struct PointsSettings : OrganSettingsOf<PointsSettings> {
+  int count = 7;
+};
+
+TEST(OrganSettings, TheDefaultsUntilAViewFileLineSetsThem) {
+  ViewSettings view;
+  const ViewSettings& reading = view;
+  EXPECT_EQ(reading.organ<PointsSettings>().count, 7);
+  EXPECT_EQ(reading.organ<FurSettings>().layers, 16);
+  view.organ<PointsSettings>().count = 3;
+  EXPECT_EQ(reading.organ<PointsSettings>().count, 3);
+
+  // A copy of the view settings has its own copy of each organ's.
+  ViewSettings copy = view;
+  copy.organ<PointsSettings>().count = 4;
+  EXPECT_EQ(view.organ<PointsSettings>().count, 3);
+  copy = view;
+  EXPECT_EQ(copy.organ<PointsSettings>().count, 3);
+}
+
+TEST(OrganSettings, AnOrgansViewFileLinesSetItsSettings) {
+  Diagnostics diagnostics;
+  const ViewSettings view = parseViewFile(
+      "fur layers: 24\nfur texture: 64 9 20\nwetness mask: 32\nfur force: 0 -2 0.5\n"
+      "droplet: 0.25 0.75 0.1 0.5 2\n",
+      "organs.v", diagnostics);
+  const FurSettings& fur = view.organ<FurSettings>();
+  EXPECT_EQ(fur.layers, 24);
+  EXPECT_EQ(fur.textureSize, 64);
+  EXPECT_EQ(fur.textureSeed, 9u);
+  EXPECT_FLOAT_EQ(fur.texelsPerLength, 20);
+  EXPECT_EQ(fur.wetnessMaskSize, 32);
+  EXPECT_EQ(fur.force, glm::vec3(0, -2, 0.5f));
+  ASSERT_EQ(fur.droplets.size(), 1u);
+  EXPECT_EQ(fur.droplets[0].centre, glm::vec2(0.25f, 0.75f));
+  EXPECT_EQ(fur.droplets[0].surface, 2);
+  EXPECT_EQ(fur.droplets[0].where.line, 5);
 }
 
 }  // namespace

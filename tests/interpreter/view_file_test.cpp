@@ -8,11 +8,12 @@
 #include <sstream>
 #include <string>
 
+#include "hirsute/core/diagnostic.h"
+#include "hirsute/interpreter/hair_settings.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/interpreter/view_lines.h"
 #include "hirsute/interpreter/view_settings.h"
-#include "hirsute/core/diagnostic.h"
 #include "support/diagnostic_of.h"
 
 #ifndef HIRSUTE_SOURCE_DIR
@@ -81,8 +82,8 @@ TEST(ViewFileTest, EmptyFileGivesCpfgsDefaults) {
   expectVector(view.tropismDirection, 0, 1, 0);
   EXPECT_TRUE(view.lights.empty());
   EXPECT_TRUE(view.tropisms.empty());
-  EXPECT_EQ(view.hairTextureSize, 100);
-  EXPECT_FALSE(view.hairInterpolation);
+  EXPECT_EQ(view.organ<HairSettings>().textureSize, 100);
+  EXPECT_FALSE(view.organ<HairSettings>().interpolation);
   EXPECT_TRUE(diagnostics.warnings().empty());
 }
 
@@ -196,13 +197,14 @@ TEST(ViewFileTest, EveryCommandSetsItsField) {
   ASSERT_EQ(view.backgroundScenes.size(), 2u);
   EXPECT_EQ(view.backgroundScenes[1], (kFixtures / "sky.dat").string());
 
-  ASSERT_EQ(view.hairTemplates.size(), 2u);
-  EXPECT_EQ(view.hairTemplates[0].file, (kFixtures / "straight.l").string());
-  EXPECT_EQ(view.hairTemplates[1].file, (kFixtures / "curly.l").string());
-  EXPECT_GT(view.hairTemplates[1].where.line, view.hairTemplates[0].where.line);
-  EXPECT_EQ(view.hairTextureSize, 64);
-  EXPECT_EQ(view.hairTextureSeed, 7u);
-  EXPECT_TRUE(view.hairInterpolation);
+  ASSERT_EQ(view.organ<HairSettings>().templates.size(), 2u);
+  EXPECT_EQ(view.organ<HairSettings>().templates[0].file, (kFixtures / "straight.l").string());
+  EXPECT_EQ(view.organ<HairSettings>().templates[1].file, (kFixtures / "curly.l").string());
+  EXPECT_GT(view.organ<HairSettings>().templates[1].where.line,
+            view.organ<HairSettings>().templates[0].where.line);
+  EXPECT_EQ(view.organ<HairSettings>().textureSize, 64);
+  EXPECT_EQ(view.organ<HairSettings>().textureSeed, 7u);
+  EXPECT_TRUE(view.organ<HairSettings>().interpolation);
 }
 
 TEST(ViewFileTest, LegacyCommandsAreReadAsCpfgDoes) {

@@ -11,6 +11,7 @@
 #include "hirsute/hairs/fur/wetness_mask.h"
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/fur_part.h"
+#include "hirsute/interpreter/fur_settings.h"
 
 namespace hirsute {
 namespace {
@@ -346,7 +347,8 @@ bool LiveModel::stepFur() {
   const float seconds =
       static_cast<float>(std::chrono::duration<double>(now - lastFurStep_).count());
   lastFurStep_ = now;
-  const glm::vec3 force = model_->view.furForce + (gustLeft_ > 0 ? gust_ : glm::vec3(0.0f));
+  const glm::vec3 force =
+      model_->view.organ<FurSettings>().force + (gustLeft_ > 0 ? gust_ : glm::vec3(0.0f));
   const bool wasMoving = furMoving_;
   bool changed = false;
   if (furMoving_ || gustLeft_ > 0) {

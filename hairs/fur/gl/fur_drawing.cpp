@@ -4,6 +4,7 @@
 
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/interpreter/fur_part.h"
+#include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/viewer/gl/gl_objects.h"
 
 namespace hirsute {
@@ -164,7 +165,7 @@ void FurDrawing::upload(const OrganUpload& upload) {
   const std::vector<GLuint>& textures = upload.textures;
   const std::vector<Material>& palette = upload.palette;
   release();
-  layers_ = view.furLayers;
+  layers_ = view.organ<FurSettings>().layers;
   for (const FurTexture& fur : scene.organ<FurPart>().textures) {
     GLuint texture = 0;
     gl_.GenTextures(1, &texture);

@@ -15,6 +15,7 @@
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
 #include "hirsute/interpreter/fur_part.h"
+#include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -98,7 +99,8 @@ TEST(FurStage, ExportedStrandCountIsTheFillTimesTheArea) {
   const FurSurface& s = b.scene.organ<FurPart>().surfaces[0];
   const FurAttributes& fur =
       b.scene.organ<FurPart>().attributes[static_cast<std::size_t>(s.attributes)];
-  const double texel = fur.length / b.resources.view.furTexelsPerLength;  // world units
+  const double texel =
+      fur.length / b.resources.view.organ<FurSettings>().texelsPerLength;  // world units
   const double expected = fur.density * s.area / (texel * texel);
   const std::size_t strands = fur::countStrands(b.scene, s);
   EXPECT_NEAR(static_cast<double>(strands), expected, 0.03 * expected);

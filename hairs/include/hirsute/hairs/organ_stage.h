@@ -27,26 +27,26 @@ class App;
 
 namespace hirsute {
 
-// An organ's own settings, from its command-line options. The model's options hold one of each
-// stage's (OrganSettingsSet) and copy them with the rest.
-class OrganSettings {
+// An organ's command-line options (its view-file settings are organ_settings.h's). The model's
+// options hold one of each stage's (OrganOptionsSet) and copy them with the rest.
+class OrganOptions {
  public:
-  virtual ~OrganSettings() = default;
-  virtual std::unique_ptr<OrganSettings> clone() const = 0;
+  virtual ~OrganOptions() = default;
+  virtual std::unique_ptr<OrganOptions> clone() const = 0;
 
   bool enabled = true;  // the organ's --no-… option switches it off
 };
 
-// The clone every settings type writes the same way.
-template <class Settings>
-class OrganSettingsOf : public OrganSettings {
+// The clone every options type writes the same way.
+template <class Options>
+class OrganOptionsOf : public OrganOptions {
  public:
-  std::unique_ptr<OrganSettings> clone() const override {
-    return std::make_unique<Settings>(static_cast<const Settings&>(*this));
+  std::unique_ptr<OrganOptions> clone() const override {
+    return std::make_unique<Options>(static_cast<const Options&>(*this));
   }
 };
 
-// What a stage is given besides its settings.
+// What a stage is given besides its options.
 struct OrganStageRun {
   Scene& scene;
   const ModelResources& resources;
@@ -63,57 +63,55 @@ class OrganStage {
 
   // What the viewer shows while the stage runs ("placing hairs").
   virtual const char* activity() const = 0;
-  // The organ's settings at their defaults, and its options on a command that builds models.
-  virtual std::unique_ptr<OrganSettings> defaultSettings() const = 0;
-  virtual void addOptions(CLI::App& command, OrganSettings& settings) const = 0;
+  // The organ's options at their defaults, and their flags on a command that builds models.
+  virtual std::unique_ptr<OrganOptions> defaultOptions() const = 0;
+  virtual void addOptions(CLI::App& command, OrganOptions& options) const = 0;
   // Whether the interpreted scene (or the view file) gives the stage something to do.
   virtual bool wanted(const Scene& scene, const ModelResources& resources) const = 0;
   // Adds the organ's data to run.scene; returns what -v prints about it (without the time). Throws
   // DiagnosticError on bad input and past the organ's limits.
-  virtual std::string grow(const OrganStageRun& run, const OrganSettings& settings) const = 0;
+  virtual std::string grow(const OrganStageRun& run, const OrganOptions& options) const = 0;
   // What a switched-off organ takes out of the scene the turtle made (its instances).
   virtual void leaveOut(Scene& /*scene*/) const {}
 };
 
-// A stage over its own settings type: the casts and the defaults written once.
-template <class Settings>
+// A stage over its own options type: the casts and the defaults written once.
+template <class Options>
 class OrganStageOf : public OrganStage {
  public:
-  std::unique_ptr<OrganSettings> defaultSettings() const final {
-    return std::make_unique<Settings>();
+  std::unique_ptr<OrganOptions> defaultOptions() const final { return std::make_unique<Options>(); }
+  void addOptions(CLI::App& command, OrganOptions& options) const final {
+    declareOptions(command, static_cast<Options&>(options));
   }
-  void addOptions(CLI::App& command, OrganSettings& settings) const final {
-    declareOptions(command, static_cast<Settings&>(settings));
-  }
-  std::string grow(const OrganStageRun& run, const OrganSettings& settings) const final {
-    return growFrom(run, static_cast<const Settings&>(settings));
+  std::string grow(const OrganStageRun& run, const OrganOptions& options) const final {
+    return growFrom(run, static_cast<const Options&>(options));
   }
 
  protected:
-  virtual void declareOptions(CLI::App& command, Settings& settings) const = 0;
-  virtual std::string growFrom(const OrganStageRun& run, const Settings& settings) const = 0;
+  virtual void declareOptions(CLI::App& command, Options& options) const = 0;
+  virtual std::string growFrom(const OrganStageRun& run, const Options& options) const = 0;
 };
 
 // Every organ's stage, in the order they run (organ_stages.cpp).
 std::span<const OrganStage* const> organStages();
 
-// One settings object per stage of organStages(), copied deeply.
-class OrganSettingsSet {
+// One options object per stage of organStages(), copied deeply.
+class OrganOptionsSet {
  public:
-  OrganSettingsSet();
-  OrganSettingsSet(const OrganSettingsSet& other);
-  OrganSettingsSet& operator=(const OrganSettingsSet& other);
-  OrganSettingsSet(OrganSettingsSet&&) noexcept = default;
-  OrganSettingsSet& operator=(OrganSettingsSet&&) noexcept = default;
-  ~OrganSettingsSet();
+  OrganOptionsSet();
+  OrganOptionsSet(const OrganOptionsSet& other);
+  OrganOptionsSet& operator=(const OrganOptionsSet& other);
+  OrganOptionsSet(OrganOptionsSet&&) noexcept = default;
+  OrganOptionsSet& operator=(OrganOptionsSet&&) noexcept = default;
+  ~OrganOptionsSet();
 
-  // The settings of organStages()[stage].
-  OrganSettings& operator[](std::size_t stage) { return *settings_[stage]; }
-  const OrganSettings& operator[](std::size_t stage) const { return *settings_[stage]; }
-  std::size_t size() const { return settings_.size(); }
+  // The options of organStages()[stage].
+  OrganOptions& operator[](std::size_t stage) { return *options_[stage]; }
+  const OrganOptions& operator[](std::size_t stage) const { return *options_[stage]; }
+  std::size_t size() const { return options_.size(); }
 
  private:
-  std::vector<std::unique_ptr<OrganSettings>> settings_;
+  std::vector<std::unique_ptr<OrganOptions>> options_;
 };
 
 }  // namespace hirsute

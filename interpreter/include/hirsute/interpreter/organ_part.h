@@ -5,9 +5,8 @@
 #pragma once
 
 #include <memory>
-#include <typeindex>
-#include <utility>
-#include <vector>
+
+#include "hirsute/interpreter/by_type.h"
 
 namespace hirsute {
 
@@ -33,53 +32,15 @@ class OrganPartOf : public OrganPart {
   void clear() override { static_cast<Part&>(*this) = Part{}; }
 };
 
-// The organs' parts of one Scene, one of each type, in the order they were first asked for.
-// Copying the Scene copies them.
-class OrganParts {
+// The organs' parts of one Scene, one of each type (by_type.h). Copying the Scene copies them.
+class OrganParts : public ByType<OrganPart> {
  public:
-  OrganParts() = default;
-  OrganParts(const OrganParts& other) { *this = other; }
-  OrganParts& operator=(const OrganParts& other) {
-    if (this == &other) return *this;
-    parts_.clear();
-    parts_.reserve(other.parts_.size());
-    for (const auto& [type, part] : other.parts_) parts_.emplace_back(type, part->clone());
-    return *this;
-  }
-  OrganParts(OrganParts&&) noexcept = default;
-  OrganParts& operator=(OrganParts&&) noexcept = default;
-
-  // The part of type Part, made empty on first use.
-  template <class Part>
-  Part& get() {
-    if (OrganPart* found = find(typeid(Part))) return static_cast<Part&>(*found);
-    parts_.emplace_back(std::type_index(typeid(Part)), std::make_unique<Part>());
-    return static_cast<Part&>(*parts_.back().second);
-  }
-  // The part of type Part, or an empty one when the scene has none (nothing is made).
-  template <class Part>
-  const Part& get() const {
-    if (const OrganPart* found = find(typeid(Part))) return static_cast<const Part&>(*found);
-    static const Part empty;
-    return empty;
-  }
-
   void clear() {
-    for (auto& entry : parts_) entry.second->clear();
+    forEach([](OrganPart& part) { part.clear(); });
   }
   void addBounds(Bounds& box) const {
-    for (const auto& entry : parts_) entry.second->addBounds(box);
+    forEach([&box](const OrganPart& part) { part.addBounds(box); });
   }
-
- private:
-  OrganPart* find(std::type_index type) const {
-    for (const auto& [t, part] : parts_) {
-      if (t == type) return part.get();
-    }
-    return nullptr;
-  }
-
-  std::vector<std::pair<std::type_index, std::unique_ptr<OrganPart>>> parts_;
 };
 
 }  // namespace hirsute

@@ -2,14 +2,14 @@
 #pragma once
 
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-
-#include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/interpreter/organ_settings.h"
+#include "hirsute/interpreter/scene.h"
 
 namespace hirsute {
 
@@ -64,39 +64,6 @@ struct SurfaceDeclaration {
   int texture = 0;                     // 1-based, 0 none
   SourceLocation where;                // the file name on its view-file line
 };
-
-// A `hair:` line: a template hair's L-system.
-struct HairTemplateDeclaration {
-  std::string file;                    // resolved against the view file's folder
-  SourceLocation where;                // the file name on its view-file line
-};
-
-// A `feather:` line: a feather type file (.fea), type k of @Fe(k) for the k-th line.
-struct FeatherTypeDeclaration {
-  std::string file;                    // resolved against the view file's folder
-  SourceLocation where;                // the file name on its view-file line
-};
-
-// How coat follicles are laid out (`feather follicles:`, DESIGN.md "Feathers").
-enum class FollicleLayout { Diffusion, Hexagonal };
-
-// The most `feather:` lines a view file may have.
-inline constexpr int kMaxFeatherTypes = 1024;
-
-// A `droplet:` line (DESIGN.md, "Fur"): a drop of water blended into the wetness mask of fur
-// surface `surface` (1-based, in the order the fur stage makes them; 0: every fur surface) at
-// (u, v) of its [0, 1]² parametrization, with radius `radius` in those units and wetness rho.
-struct Droplet {
-  glm::vec2 centre{0.5f};
-  float radius = 0.1f;
-  float wetness = 1;
-  int surface = 0;
-  SourceLocation where;
-};
-
-// The limits of the fur lines: layers per shell stack and texture sizes.
-inline constexpr int kMaxFurLayers = 256;
-inline constexpr int kMaxFurTextureSize = 4096;
 
 struct ContourDeclaration {
   int id = 0;
@@ -176,29 +143,16 @@ struct ViewSettings {
   std::vector<TextureDeclaration> textures;
   std::vector<std::string> backgroundScenes;
 
-  // Hairs (DESIGN.md): template L-systems in order (resolved against the view file's folder),
-  // and the point-diffusion texture.
-  std::vector<HairTemplateDeclaration> hairTemplates;
-  int hairTextureSize = 100;
-  unsigned hairTextureSeed = 1;
-  double hairTextureFill = 0.1;  // points per cell
-  bool hairInterpolation = false;
-
-  // Feathers (DESIGN.md, docs/feathers.md): the feather types in order and the coats' follicle
-  // layout.
-  std::vector<FeatherTypeDeclaration> featherTypes;
-  FollicleLayout follicleLayout = FollicleLayout::Diffusion;
-
-  // Fur (DESIGN.md, docs/fur.md): the shells, the fur geometry texture (SIZE² texels from SEED,
-  // one strand a texel, `furTexelsPerLength` texels along a strand's length), the wetness mask,
-  // its droplets, and the force on every strand (gravity and wind, per unit mass).
-  int furLayers = 16;
-  int furTextureSize = 256;
-  unsigned furTextureSeed = 1;
-  float furTexelsPerLength = 40;
-  int wetnessMaskSize = 256;
-  std::vector<Droplet> droplets;
-  glm::vec3 furForce{0.0f};
+  // Each organ's settings (organ_settings.h), by type: view.organ<FurSettings>().
+  OrganSettingsSet organs;
+  template <class Settings>
+  Settings& organ() {
+    return organs.get<Settings>();
+  }
+  template <class Settings>
+  const Settings& organ() const {
+    return organs.get<Settings>();
+  }
 
   // Feather-coat dynamics (DESIGN.md; docs/dynamics.md, "hirsute simulate"): the `dynamics …:`
   // lines. Lengths are the model's units, times seconds.

@@ -9,12 +9,12 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "hirsute/core/progress.h"
 #include "hirsute/hairs/placement/point_diffusion.h"
 #include "hirsute/hairs/placement/segment_values.h"
 #include "hirsute/interpreter/feather_part.h"
+#include "hirsute/interpreter/feather_settings.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/interpreter/view_settings.h"
-#include "hirsute/core/progress.h"
 
 namespace hirsute {
 
