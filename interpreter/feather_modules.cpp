@@ -100,11 +100,10 @@ FeatherRow keyFeather(char letter) {
 
 const OrganModuleTable& featherModuleTable() {
   static const AttributeModuleTable<FeatherAttributes> table(
-      'F', "feather",
+      "feather",
       [](Scene& scene) -> std::vector<FeatherAttributes>& {
         return scene.organ<FeatherPart>().attributes;
       },
-      &OrganAttributeIndices::feather,
       {
           action('e', false),
           action('i', true),

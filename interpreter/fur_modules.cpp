@@ -129,9 +129,8 @@ FurRow colourTexture(char letter) {
 
 const OrganModuleTable& furModuleTable() {
   static const AttributeModuleTable<FurAttributes> table(
-      'U', "fur",
+      "fur",
       [](Scene& scene) -> std::vector<FurAttributes>& { return scene.organ<FurPart>().attributes; },
-      &OrganAttributeIndices::fur,
       {
           switchRow<FurAttributes>('f', 1, &FurSideAttributes::enabled),
           numbers<kLength>('l'),

@@ -42,11 +42,10 @@ HairRow templateProbabilities(char letter) {
 
 const OrganModuleTable& hairModuleTable() {
   static const AttributeModuleTable<HairAttributes> table(
-      'H', "hair",
+      "hair",
       [](Scene& scene) -> std::vector<HairAttributes>& {
         return scene.organ<HairPart>().attributes;
       },
-      &OrganAttributeIndices::hair,
       {
           sideSwitch('f', HairSide::Front),
           sideSwitch('b', HairSide::Back),

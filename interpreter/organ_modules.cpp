@@ -6,6 +6,9 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "cpfg_numbers.h"
@@ -23,6 +26,8 @@ std::span<const OrganModuleTable* const> organModuleTables() {
       &featherModuleTable(),
       &furModuleTable(),
   };
+  static_assert(std::tuple_size_v<decltype(tables)> <= kMaxOrganTypes,
+                "the turtle carries kMaxOrganTypes organs' records (organ_attributes.h)");
   return tables;
 }
 
@@ -42,6 +47,14 @@ int organModuleTableIndex(char organ) {
     if (tables[i]->organ() == organ) return static_cast<int>(i);
   }
   return -1;
+}
+
+std::size_t organSlot(char letter) {
+  const int index = organModuleTableIndex(letter);
+  if (index < 0) {
+    throw std::logic_error(std::string("no organ table has the letter ") + letter);
+  }
+  return static_cast<std::size_t>(index);
 }
 
 namespace {

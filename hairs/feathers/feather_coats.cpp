@@ -138,9 +138,10 @@ void CoatPlacer::segment(std::size_t index, SurfaceSampler& sampler) {
                ? scene.organ<FeatherPart>().attributes[static_cast<std::size_t>(i)]
                : kNone;
   };
-  if (seg.organStart.feather < 0 && seg.organEnd.feather < 0) return;
-  const FeatherAttributes& end = attributesAt(seg.organEnd.feather);
-  const FeatherAttributes& start = attributesAt(seg.organStart.feather);
+  if (seg.organStart.of<FeatherAttributes>() < 0 && seg.organEnd.of<FeatherAttributes>() < 0)
+    return;
+  const FeatherAttributes& end = attributesAt(seg.organEnd.of<FeatherAttributes>());
+  const FeatherAttributes& start = attributesAt(seg.organStart.of<FeatherAttributes>());
   const bool front = end.side(FeatherSide::Front).enabled;
   const bool back = !seg.closed && end.side(FeatherSide::Back).enabled;
   if (!front && !back) return;

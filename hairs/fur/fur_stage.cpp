@@ -22,7 +22,7 @@ namespace {
 // The fur record a segment's triangles take: its end's, as hairs do without interpolation (the
 // modules before the @Gc that closes a segment apply to it); -1 when the fur there is off.
 int furRecordOf(const Scene& scene, const CylinderSegment& segment) {
-  const int record = segment.organEnd.fur;
+  const int record = segment.organEnd.of<FurAttributes>();
   if (record < 0) return -1;
   const FurAttributes& fur = scene.organ<FurPart>().attributes[static_cast<std::size_t>(record)];
   if (!fur.enabled() || fur.length <= 0) return -1;
@@ -345,7 +345,7 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
   close();
   // Bicubic patches and polygons, each a fur surface of its own.
   for (const OrganSurface& organ : scene.organSurfaces) {
-    const int record = organ.organs.fur;
+    const int record = organ.organs.of<FurAttributes>();
     if (record < 0 || organ.mesh < 0) continue;
     const FurAttributes& fur = part.attributes[static_cast<std::size_t>(record)];
     if (!fur.enabled() || fur.length <= 0) continue;

@@ -192,9 +192,10 @@ class SideHairs : public AttachmentVisitor {
 
 void Placer::segment(std::size_t index) {
   const CylinderSegment& seg = scene.cylinderSegments[index];
-  if (seg.organEnd.hair < 0 && seg.organStart.hair < 0) return;
-  const HairAttributes& end = attributesAt(seg.organEnd.hair);
-  const HairAttributes& start = settings.interpolation ? attributesAt(seg.organStart.hair) : end;
+  if (seg.organEnd.of<HairAttributes>() < 0 && seg.organStart.of<HairAttributes>() < 0) return;
+  const HairAttributes& end = attributesAt(seg.organEnd.of<HairAttributes>());
+  const HairAttributes& start =
+      settings.interpolation ? attributesAt(seg.organStart.of<HairAttributes>()) : end;
   // Closed cylinders expose only their front (Sec. 2).
   const bool front = end.side(HairSide::Front).enabled;
   const bool back = !seg.closed && end.side(HairSide::Back).enabled;
@@ -238,8 +239,8 @@ void Placer::segment(std::size_t index) {
 // force where it was drawn (one record: nothing to interpolate). Edges are the cylinders' only.
 void Placer::surface(std::size_t index) {
   const OrganSurface& record = scene.organSurfaces[index];
-  if (record.organs.hair < 0 || record.mesh < 0 || record.indexCount < 3) return;
-  const HairAttributes& attributes = attributesAt(record.organs.hair);
+  if (record.organs.of<HairAttributes>() < 0 || record.mesh < 0 || record.indexCount < 3) return;
+  const HairAttributes& attributes = attributesAt(record.organs.of<HairAttributes>());
   const bool front = attributes.side(HairSide::Front).enabled;
   const bool back = attributes.side(HairSide::Back).enabled;
   if (!front && !back) return;
@@ -261,7 +262,7 @@ std::size_t expectedHairs(const Scene& scene) {
   const HairPart& part = scene.organ<HairPart>();
   double total = 0;
   for (const CylinderSegment& seg : scene.cylinderSegments) {
-    const int end = seg.organEnd.hair;
+    const int end = seg.organEnd.of<HairAttributes>();
     if (end < 0 || static_cast<std::size_t>(end) >= part.attributes.size()) continue;
     const HairAttributes& a = part.attributes[static_cast<std::size_t>(end)];
     const double area = 0.5 * (seg.girthStart + seg.girthEnd) * seg.axisLength;
@@ -278,7 +279,7 @@ std::size_t expectedHairs(const Scene& scene) {
     if (e.enabled && !seg.closed) add(2.0 * std::sqrt(std::abs(e.density.value)) * seg.axisLength);
   }
   for (const OrganSurface& record : scene.organSurfaces) {
-    const int index = record.organs.hair;
+    const int index = record.organs.of<HairAttributes>();
     if (index < 0 || static_cast<std::size_t>(index) >= part.attributes.size()) continue;
     const HairAttributes& a = part.attributes[static_cast<std::size_t>(index)];
     const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(record.mesh)];

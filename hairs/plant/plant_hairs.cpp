@@ -16,7 +16,8 @@ namespace hirsute {
 bool hasHairs(const Scene& scene) {
   const std::vector<HairAttributes>& records = scene.organ<HairPart>().attributes;
   for (const CylinderSegment& segment : scene.cylinderSegments) {
-    for (int index : {segment.organStart.hair, segment.organEnd.hair}) {
+    for (int index :
+         {segment.organStart.of<HairAttributes>(), segment.organEnd.of<HairAttributes>()}) {
       if (index >= 0 && static_cast<std::size_t>(index) < records.size() &&
           records[static_cast<std::size_t>(index)].anyEnabled()) {
         return true;
@@ -24,7 +25,7 @@ bool hasHairs(const Scene& scene) {
     }
   }
   for (const OrganSurface& surface : scene.organSurfaces) {
-    const int index = surface.organs.hair;
+    const int index = surface.organs.of<HairAttributes>();
     if (index >= 0 && static_cast<std::size_t>(index) < records.size() &&
         records[static_cast<std::size_t>(index)].anyEnabled()) {
       return true;

@@ -1162,11 +1162,12 @@ TEST(HairAttributeState, BranchOfAForkedTubeKeepsItsOwnAttributes) {
   EXPECT_GT(scene.organ<HairPart>().hairs.size(), 300u);
   int branches = 0;
   for (const CylinderSegment& seg : scene.cylinderSegments) {
-    ASSERT_GE(seg.organEnd.hair, 0);
-    const float length = scene.organ<HairPart>()
-                             .attributes.at(static_cast<std::size_t>(seg.organEnd.hair))
-                             .side(HairSide::Front)
-                             .length.value;
+    ASSERT_GE(seg.organEnd.of<HairAttributes>(), 0);
+    const float length =
+        scene.organ<HairPart>()
+            .attributes.at(static_cast<std::size_t>(seg.organEnd.of<HairAttributes>()))
+            .side(HairSide::Front)
+            .length.value;
     // The branch ends heading along -x (a left turn from +y); the parent's segments along +y.
     const bool branch = seg.end.heading.x < -0.9f;
     branches += branch;

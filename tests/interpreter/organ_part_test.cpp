@@ -1,10 +1,11 @@
 // Organs' parts of the Scene (organ_part.h): one of each type, made on first use, copied with
 // the Scene, emptied in place, and counted in its bounds; and organs' settings of the view file
-// (organ_settings.h), reached the same way.
+// (organ_settings.h), reached the same way; and the turtle's index into each organ's records.
 #include "hirsute/interpreter/organ_part.h"
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <vector>
 
 #include "hirsute/interpreter/feather_part.h"
@@ -12,6 +13,7 @@
 #include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
 
@@ -136,6 +138,25 @@ TEST(OrganSettings, AnOrgansViewFileLinesSetItsSettings) {
   EXPECT_EQ(fur.droplets[0].centre, glm::vec2(0.25f, 0.75f));
   EXPECT_EQ(fur.droplets[0].surface, 2);
   EXPECT_EQ(fur.droplets[0].where.line, 5);
+}
+
+TEST(OrganAttributeIndices, EachOrgansRecordHasASlotOfItsOwn) {
+  OrganAttributeIndices indices;
+  EXPECT_TRUE(indices.none());
+  indices.of<FurAttributes>() = 3;
+  EXPECT_FALSE(indices.none());
+  EXPECT_EQ(indices.of<HairAttributes>(), -1);
+  EXPECT_EQ(indices.of<FeatherAttributes>(), -1);
+  indices.of<HairAttributes>() = 1;
+  const OrganAttributeIndices& reading = indices;
+  EXPECT_EQ(reading.of<FurAttributes>(), 3);
+  EXPECT_EQ(reading.of<HairAttributes>(), 1);
+
+  // The slots are the organs' places in the table list, within the room the turtle keeps.
+  const auto tables = organModuleTables();
+  ASSERT_LE(tables.size(), kMaxOrganTypes);
+  for (std::size_t k = 0; k < tables.size(); ++k) EXPECT_EQ(organSlot(tables[k]->organ()), k);
+  EXPECT_THROW(organSlot('Q'), std::logic_error);
 }
 
 }  // namespace

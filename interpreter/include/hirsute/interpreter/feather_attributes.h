@@ -39,6 +39,7 @@ struct KeyFeather {
 };
 
 struct FeatherAttributes {
+  static constexpr char kOrgan = 'F';  // its modules are @F…
   // The @F modules' `loc` parameter picks sides by these names (organ_modules.h).
   using Side = FeatherSideAttributes;
   static constexpr int kSides = kFeatherSides;

@@ -17,6 +17,7 @@ struct FurSideAttributes {
 };
 
 struct FurAttributes {
+  static constexpr char kOrgan = 'U';  // its modules are @U…
   // The organ tables' shape (organ_modules.h): fur has one side.
   using Side = FurSideAttributes;
   static constexpr int kSides = 1;

@@ -46,6 +46,7 @@ struct HairSideAttributes {
 };
 
 struct HairAttributes {
+  static constexpr char kOrgan = 'H';  // its modules are @H…
   // The @H modules' `loc` parameter picks sides by these names (organ_modules.h).
   using Side = HairSideAttributes;
   static constexpr int kSides = kHairSides;

@@ -1,9 +1,12 @@
 // What every organ's attribute record shares (DESIGN.md, "Organs: one placement engine, one
 // Scene, several organ types"): the value form of its modules, and the indices by which the
-// turtle carries the records. Each organ keeps its records in a Scene vector of its own; the
-// turtle state holds an index into each, copied on write, so `[` and `]` save and restore them
+// turtle carries the records. Each organ keeps its records in its part of the Scene; the turtle
+// state holds an index into each, copied on write, so `[` and `]` save and restore them
 // and generalized-cylinder segments record them at their two ends.
 #pragma once
+
+#include <array>
+#include <cstddef>
 
 namespace hirsute {
 
@@ -18,15 +21,45 @@ struct OrganValue {
   bool operator==(const OrganValue&) const = default;
 };
 
-// The organs' attribute records where the turtle is: per organ, an index into its Scene vector
-// (-1: the organ's defaults, switched off). An organ adds its field here and its table to the
-// list in organ_modules.cpp.
-struct OrganAttributeIndices {
-  int hair = -1;     // HairPart::attributes (hair_part.h)
-  int feather = -1;  // FeatherPart::attributes (feather_part.h)
-  int fur = -1;      // FurPart::attributes (fur_part.h)
+// The most organ types with attribute records (organModuleTables(), organ_modules.cpp, checks
+// its list against it): the turtle carries one index for each, in every state and at both ends
+// of every cylinder segment, so the room is kept small. One more organ raises it.
+inline constexpr std::size_t kMaxOrganTypes = 4;
+
+// The place in organModuleTables() of the organ whose modules are @`letter`…: its index in
+// OrganAttributeIndices. Throws std::logic_error when no table has that letter.
+std::size_t organSlot(char letter);
+
+// The organs' attribute records where the turtle is: per organ, an index into the records of its
+// part of the Scene (-1: the organ's defaults, switched off), reached by the record's type,
+// which names its organ's letter (Record::kOrgan).
+class OrganAttributeIndices {
+ public:
+  template <class Record>
+  int& of() {
+    return indices_[slot<Record>()];
+  }
+  template <class Record>
+  int of() const {
+    return indices_[slot<Record>()];
+  }
+  // Whether no organ has a record here.
+  bool none() const { return *this == OrganAttributeIndices{}; }
 
   bool operator==(const OrganAttributeIndices&) const = default;
+
+ private:
+  template <class Record>
+  static std::size_t slot() {
+    static const std::size_t found = organSlot(Record::kOrgan);
+    return found;
+  }
+
+  std::array<int, kMaxOrganTypes> indices_ = [] {
+    std::array<int, kMaxOrganTypes> none{};
+    none.fill(-1);
+    return none;
+  }();
 };
 
 }  // namespace hirsute

@@ -1,12 +1,12 @@
 // Organ modules declared in tables (DESIGN.md, "Organs": a registry, not a growing switch).
-// Every organ (plant hairs `@H…`, later feathers `@F…` and fur `@U…`) is one table: the letter
-// after `@`, its attribute record kept in a Scene vector, and one row per module naming its
+// Every organ (plant hairs `@H…`, feathers `@F…`, fur `@U…`) is one table: the letter after
+// `@`, its attribute record kept in its part of the Scene, and one row per module naming its
 // parameter form and what it sets. The turtle looks `@XY` up by X and hands the module to the
 // table; it knows no organ's modules itself.
 //
-// Adding a module to an organ adds a row to its table; adding an organ adds its record (a Scene
-// vector and a field of OrganAttributeIndices), a file with its table, and one line to the list
-// in organ_modules.cpp.
+// Adding a module to an organ adds a row to its table; adding an organ adds its record (with its
+// letter, kOrgan), its part of the Scene, a file with its table, and one line to the list in
+// organ_modules.cpp.
 #pragma once
 
 #include <array>
@@ -166,11 +166,10 @@ class AttributeModuleTable : public OrganModuleTable {
   // The organ's records in a Scene (in its part, organ_part.h).
   using Records = std::vector<Record>& (*)(Scene&);
 
-  // `noun` names the organ in the warning for an unknown module ("hair": "@Hx is not a hair
-  // module (…)").
-  AttributeModuleTable(char organ, std::string_view noun, Records records,
-                       int OrganAttributeIndices::*index, std::vector<Row> rows)
-      : organ_(organ), noun_(noun), records_(records), index_(index), rows_(std::move(rows)) {}
+  // The table of the organ with letter Record::kOrgan. `noun` names the organ in the warning for
+  // an unknown module ("hair": "@Hx is not a hair module (…)").
+  AttributeModuleTable(std::string_view noun, Records records, std::vector<Row> rows)
+      : noun_(noun), records_(records), rows_(std::move(rows)) {}
 
   char organ() const override { return organ_; }
   const std::vector<Row>& rows() const { return rows_; }
@@ -197,7 +196,7 @@ class AttributeModuleTable : public OrganModuleTable {
       return;
     }
     std::vector<Record>& records = records_(*call.scene);
-    int& index = call.state.organs.*index_;
+    int& index = call.state.organs.of<Record>();
     const bool scratch =
         index >= 0 && index == call.scratchRecord && call.modulesSeen == call.scratchModule + 3;
     Record attributes = index >= 0 ? records[static_cast<std::size_t>(index)] : Record{};
@@ -269,10 +268,9 @@ class AttributeModuleTable : public OrganModuleTable {
     return false;
   }
 
-  char organ_;
+  static constexpr char organ_ = Record::kOrgan;
   std::string_view noun_;
   Records records_;
-  int OrganAttributeIndices::*index_;
   std::vector<Row> rows_;
 };
 
