@@ -1,6 +1,6 @@
 // libFuzzer target: arbitrary bytes as a view file (`.v`) as the C preprocessor hands it on
 // (with or without its `# n "file"` line markers), through both of its readers: parseViewFile
-// (every command, the organ lines hair:, feather:, fur …: and droplet:, the dynamics …: lines)
+// (every command, the organs' lines, the dynamics …: lines)
 // and readViewFunctions (function:, function set: and curve:, whose files are loaded).
 //
 // The text is read as models/herb/fuzz.v, so that its file names can name the model's real

@@ -13,6 +13,8 @@
 
 #include "model_pipeline.h"
 
+#include "hirsute/hairs/feathers/feather_live.h"
+#include "hirsute/hairs/fur/fur_live.h"
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/fur_part.h"
 
@@ -52,10 +54,12 @@ struct RecordingView : LiveModelView {
   std::vector<int> measures;
 
   void upload(const ViewerModel& model) override { uploadedSteps.push_back(model.steps); }
-  void updateFur(const Scene&) override { ++furUpdates; }
-  void updateFeathers(const Scene& feathers) override {
-    ++featherUpdates;
-    lastFeathers = feathers;
+  void updateOrgan(std::string_view organ, const Scene& scene) override {
+    if (organ == "fur") ++furUpdates;
+    if (organ == "feathers") {
+      ++featherUpdates;
+      lastFeathers = scene;
+    }
   }
   bool screenshot(const std::filesystem::path& file, bool withUi) override {
     screenshots.push_back({file, withUi, live && live->model() ? live->model()->steps : -1});
@@ -88,6 +92,16 @@ struct StepBuilder {
     return requests.back();
   }
 };
+
+// The place of the organ named `name` in liveOrgans().
+std::size_t organIndex(std::string_view name) {
+  const auto organs = liveOrgans();
+  for (std::size_t k = 0; k < organs.size(); ++k) {
+    if (organs[k]->name() == name) return k;
+  }
+  ADD_FAILURE() << "no organ " << name;
+  return 0;
+}
 
 // Turns of the window's loop until what was asked for is shown (the clock stands still).
 void settle(LiveModel& live) {
@@ -217,7 +231,7 @@ TEST(LiveModelTest, ScriptCommandsWaitForTheirBuildsAndAskTheWindowForPictures) 
   EXPECT_TRUE(view.screenshots[1].withUi);
   EXPECT_EQ(view.screenshots[1].step, 4);
   EXPECT_EQ(view.measures, std::vector<int>{5});
-  EXPECT_FALSE(live.shown().hairs);  // nothing runs after quit
+  EXPECT_FALSE(live.shown().organShown("hairs"));  // nothing runs after quit
   EXPECT_TRUE(live.shown().wireframe);
   EXPECT_FALSE(live.shown().panel);
 }
@@ -270,7 +284,7 @@ TEST(LiveModelTest, AScreenshotThatCannotBeWrittenFailsTheScript) {
   EXPECT_NE(errors.find("--commands:1:1: error: cannot write the screenshot a.png"),
             std::string::npos)
       << errors;
-  EXPECT_TRUE(live.shown().hairs);  // the script stopped there
+  EXPECT_TRUE(live.shown().organShown("hairs"));  // the script stopped there
 }
 
 TEST(LiveModelTest, WaitReloadFailsWhenNoFileChangesInTime) {
@@ -375,28 +389,33 @@ TEST(LiveModelTest, TheFeathersDynamicsStepsOnTheClockAndPauses) {
   settle(live);
   const std::size_t feathers = live.model()->scene.organ<FeatherPart>().feathers.size();
   ASSERT_GT(feathers, 0u);
+  auto& coat = dynamic_cast<LiveFeathers&>(*live.organ("feathers"));
+  const std::size_t organ = organIndex("feathers");
 
-  live.toggleDynamics();
-  ASSERT_TRUE(live.simulating());
-  ASSERT_NE(live.coat(), nullptr);
+  live.act(organ, 0, {400, 400});  // D
+  ASSERT_TRUE(coat.simulating());
+  ASSERT_TRUE(live.organsMoving());
+  ASSERT_NE(coat.coat(), nullptr);
   live.update();  // no time has passed: no step
   EXPECT_EQ(view.featherUpdates, 0);
   clock.advance(1.0 / 60);
   live.update();
   EXPECT_EQ(view.featherUpdates, 1);
   EXPECT_EQ(view.lastFeathers.organ<FeatherPart>().poses.size(), feathers);
-  EXPECT_NEAR(live.coat()->simulation().time(), 1.0 / 60, 1e-9);
+  EXPECT_NEAR(coat.coat()->simulation().time(), 1.0 / 60, 1e-9);
   // A slow frame is simulated as a 30th of a second, no more.
   clock.advance(1.0);
   live.update();
-  EXPECT_NEAR(live.coat()->simulation().time(), 1.0 / 60 + 1.0 / 30, 1e-9);
+  EXPECT_NEAR(coat.coat()->simulation().time(), 1.0 / 60 + 1.0 / 30, 1e-9);
+  EXPECT_NE(coat.status().find("dynamics running"), std::string::npos) << coat.status();
 
-  live.toggleDynamics();
-  EXPECT_FALSE(live.simulating());
+  live.act(organ, 0, {400, 400});
+  EXPECT_FALSE(coat.simulating());
+  EXPECT_FALSE(live.organsMoving());
   clock.advance(0.5);
   live.update();
   EXPECT_EQ(view.featherUpdates, 2);
-  EXPECT_NEAR(live.coat()->simulation().time(), 1.0 / 60 + 1.0 / 30, 1e-9);
+  EXPECT_NEAR(coat.coat()->simulation().time(), 1.0 / 60 + 1.0 / 30, 1e-9);
   EXPECT_TRUE(live.error().empty());
 }
 
@@ -407,29 +426,54 @@ TEST(LiveModelTest, DropletsWetTheFurAndItDriesOnTheClock) {
   HandClock clock;
   LiveModel live(options, shipped.builder(), view, {}, clock.now());
   settle(live);
-  ASSERT_FALSE(live.fur().organ<FurPart>().surfaces.empty());
+  auto& fur = dynamic_cast<LiveFur&>(*live.organ("fur"));
+  const std::size_t organ = organIndex("fur");
+  ASSERT_FALSE(fur.fur().organ<FurPart>().surfaces.empty());
   auto wetness = [&] {
     double sum = 0;
-    for (const FurSurface& s : live.fur().organ<FurPart>().surfaces) {
+    for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) {
       for (const glm::vec4& texel : s.wetness) sum += texel.w;
     }
     return sum;
   };
   const double dry = wetness();
-  live.sprayDroplets(20);
+  live.act(organ, 0, {400, 400});  // J: 20 droplets
   EXPECT_EQ(view.furUpdates, 1);
   const double wet = wetness();
   EXPECT_GT(wet, dry);
-  // A droplet straight down the line of sight onto the middle of the picture.
-  live.dropletAt({0, 0}, {400, 400});
+  // A droplet straight down the line of sight onto the middle of the picture (ctrl + click).
+  live.pointAt({0, 0}, {400, 400});
   EXPECT_EQ(view.furUpdates, 2);
   EXPECT_GT(wetness(), wet);
   const double wetter = wetness();
-  live.toggleDrying();
-  ASSERT_TRUE(live.drying());
+  live.act(organ, 1, {400, 400});  // Y
+  ASSERT_TRUE(fur.drying());
+  EXPECT_NE(fur.status().find("drying"), std::string::npos) << fur.status();
   clock.advance(2.0);
   live.update();
   EXPECT_LT(wetness(), wetter);
+}
+
+// The script's organ commands: `fur off` hides the fur, `droplets N` sprays N droplets.
+TEST(LiveModelTest, ScriptOrganCommandsShowHideAndAct) {
+  ShippedModel shipped("fur-square", "square");
+  LiveModelOptions options = shipped.liveOptions();
+  options.script = parseViewScript("fur off; droplets 30; hairs off; hairs on; quit", "--commands");
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, shipped.builder(), view, {}, clock.now());
+  runScript(live);
+  ASSERT_TRUE(live.closed());
+  EXPECT_EQ(live.exitCode(), 0);
+  EXPECT_FALSE(live.shown().organShown("fur"));
+  EXPECT_TRUE(live.shown().organShown("hairs"));
+  EXPECT_EQ(view.furUpdates, 1);
+  double wet = 0;
+  const auto& fur = dynamic_cast<const LiveFur&>(*live.organ("fur"));
+  for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) {
+    for (const glm::vec4& texel : s.wetness) wet += texel.w;
+  }
+  EXPECT_GT(wet, 0);
 }
 
 }  // namespace

@@ -286,6 +286,18 @@ std::size_t GlRenderer::organPrimitives(std::string_view organ) const {
   return resources_->organs[organIndex(organ)]->primitives();
 }
 
+bool GlRenderer::organThins(std::string_view organ) const {
+  return resources_->organs[organIndex(organ)]->thins();
+}
+
+std::size_t GlRenderer::thinnedInstances() const {
+  std::size_t n = 0;
+  for (const auto& organ : resources_->organs) {
+    if (organ->thins()) n += organ->instances();
+  }
+  return n;
+}
+
 void GlRenderer::upload(const Scene& scene, const ViewSettings& view, bool materialMode) {
   release();
   Resources& r = *resources_;

@@ -7,12 +7,6 @@
 #include <sstream>
 #include <utility>
 
-#include "hirsute/hairs/fur/fur_stage.h"
-#include "hirsute/hairs/fur/wetness_mask.h"
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/fur_part.h"
-#include "hirsute/interpreter/fur_settings.h"
-
 namespace hirsute {
 namespace {
 
@@ -34,10 +28,32 @@ std::string readText(const std::filesystem::path& file) {
 
 }  // namespace
 
+// What the live model lends one organ: the clock, the camera, its drawing and the error line.
+class LiveModel::OrganHost final : public LiveOrganHost {
+ public:
+  OrganHost(LiveModel& live, std::string_view name) : live_(live), name_(name) {}
+
+  Clock::time_point now() const override { return live_.now_(); }
+  Camera camera(glm::ivec2 viewport) const override { return live_.camera(viewport); }
+  void redraw(const Scene& scene) override { live_.view_.updateOrgan(name_, scene); }
+  void fail(const std::string& message) override {
+    live_.error_ = "hirsute: " + message;
+    std::cerr << live_.error_ << '\n';
+    live_.changed_ = true;
+  }
+
+ private:
+  LiveModel& live_;
+  std::string_view name_;
+};
+
 LiveModel::LiveModel(const LiveModelOptions& options, ModelBuilder builder, LiveModelView& view,
                      std::function<void()> wake, Now now)
     : options_(options), view_(view), now_(std::move(now)) {
-  lastFurStep_ = lastCoatStep_ = now_();
+  for (const LiveOrganType* type : liveOrgans()) {
+    hosts_.push_back(std::make_unique<OrganHost>(*this, type->name()));
+    organs_.push_back(type->make(*hosts_.back()));
+  }
   worker_ = std::make_unique<ModelWorker>(std::move(builder), std::move(wake));
   readAnimation();
   readConstants();
@@ -53,6 +69,8 @@ LiveModel::LiveModel(const LiveModelOptions& options, ModelBuilder builder, Live
   request();
 }
 
+LiveModel::~LiveModel() = default;
+
 double LiveModel::secondsSince(Clock::time_point t) const {
   return std::chrono::duration<double>(now_() - t).count();
 }
@@ -61,8 +79,11 @@ void LiveModel::update() {
   if (auto build = worker_->take()) applyBuild(std::move(*build));
   if (watcher_ && watcher_->poll()) reloadFiles();
   advanceAnimation();
-  if (stepFur()) changed_ = true;
-  if (stepDynamics()) changed_ = true;
+  if (model_) {
+    for (const auto& organ : organs_) {
+      if (organ->step()) changed_ = true;
+    }
+  }
   if (options_.script) runScript();
 }
 
@@ -106,13 +127,7 @@ void LiveModel::applyBuild(ModelBuild build) {
     for (const TextureDeclaration& texture : model_->view.textures) watcher_->watch(texture.file);
   }
   view_.upload(*model_);
-  takeFur();
-  if (coat_) {
-    bodyMoved_ = true;
-    coatScene_.organ<FeatherPart>().types = model_->scene.organ<FeatherPart>().types;
-    coatScene_.materials = model_->scene.materials;
-    view_.updateFeathers(coatScene_);
-  }
+  for (const auto& organ : organs_) organ->take(model_->scene, model_->view);
   bool newLength = derivationLength_ != model_->derivationLength;
   derivationLength_ = model_->derivationLength;
   if (newLength || frames_.empty()) frames_ = playedFrames(animation_, derivationLength_);
@@ -143,9 +158,7 @@ void LiveModel::readConstants() {
 }
 
 void LiveModel::reloadFiles() {
-  // Edited files may bring other feathers: the dynamics starts again from the new model.
-  coat_.reset();
-  simulating_ = false;
+  for (const auto& organ : organs_) organ->filesChanged();
   readAnimation();
   readConstants();
   reloadSerial_ = worker_->request(wanted_);
@@ -268,141 +281,37 @@ void LiveModel::resetView() {
   changed_ = true;
 }
 
-// ---- feather dynamics ----
+// ---- organs ----
 
-void LiveModel::toggleDynamics() {
+LiveOrgan* LiveModel::organ(std::string_view name) {
+  const auto types = liveOrgans();
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    if (types[k]->name() == name) return organs_[k].get();
+  }
+  return nullptr;
+}
+
+void LiveModel::act(std::size_t index, std::size_t action, glm::ivec2 viewport) {
   changed_ = true;
-  if (simulating_) {
-    simulating_ = false;
-    return;
-  }
-  if (!model_ || model_->scene.organ<FeatherPart>().feathers.empty()) return;
-  if (!coat_) {
-    try {
-      coat_.emplace(model_->scene, dynamics::simulationParametersOf(model_->view.dynamics));
-    } catch (const std::exception& e) {
-      stopDynamics(std::string("cannot simulate the feathers: ") + e.what());
-      return;
-    }
-    if (coat_->penetrations() > 0) {
-      stopDynamics("the feathers' stems already meet before the first step (docs/dynamics.md)");
-      return;
-    }
-    coatScene_ = Scene{};
-    coatScene_.organ<FeatherPart>().types = model_->scene.organ<FeatherPart>().types;
-    coatScene_.materials = model_->scene.materials;
-    bodyMoved_ = false;
-  }
-  simulating_ = true;
-  lastCoatStep_ = now_();
-}
-
-void LiveModel::stopDynamics(const std::string& why) {
-  simulating_ = false;
-  coat_.reset();
-  error_ = "hirsute: " + why;
-  std::cerr << error_ << '\n';
-  if (model_) view_.updateFeathers(model_->scene);
-}
-
-bool LiveModel::stepDynamics() {
-  if (!simulating_ || !coat_ || !model_) return false;
-  const auto now = now_();
-  // Real time, but no more than a 30th of a second a frame: a slow frame slows the motion down
-  // rather than taking a step the collisions would have to halve.
-  const double seconds =
-      std::min(std::chrono::duration<double>(now - lastCoatStep_).count(), 1.0 / 30);
-  lastCoatStep_ = now;
-  if (!(seconds > 0)) return false;
-  try {
-    coat_->advance(seconds, model_->view.dynamics.substeps, bodyMoved_ ? &model_->scene : nullptr);
-  } catch (const std::exception& e) {
-    stopDynamics(std::string("the feathers' dynamics stopped: ") + e.what());
-    return true;
-  }
-  bodyMoved_ = false;
-  coat_->pose(coatScene_);
-  view_.updateFeathers(coatScene_);
-  const double took = secondsSince(now);
-  simulatedFps_ = took > 0 ? 1 / took : 0;
-  return true;
-}
-
-// ---- fur ----
-
-void LiveModel::takeFur() {
-  Scene previous = std::move(fur_);
-  fur_ = Scene{};
-  fur_.organ<FurPart>() = std::as_const(model_->scene).organ<FurPart>();
-  // The frame before's particles and wetness carry over (an animation keeps its wet patches
-  // and drags its fur); the view gets them at once.
-  furMotion_.reset(fur_, previous.organ<FurPart>().surfaces.empty() ? nullptr : &previous);
-  if (!previous.organ<FurPart>().surfaces.empty()) view_.updateFur(fur_);
-  lastFurStep_ = now_();
-}
-
-bool LiveModel::stepFur() {
-  if (fur_.organ<FurPart>().surfaces.empty()) return false;
-  const auto now = now_();
-  const float seconds =
-      static_cast<float>(std::chrono::duration<double>(now - lastFurStep_).count());
-  lastFurStep_ = now;
-  const glm::vec3 force =
-      model_->view.organ<FurSettings>().force + (gustLeft_ > 0 ? gust_ : glm::vec3(0.0f));
-  const bool wasMoving = furMoving_;
-  bool changed = false;
-  if (furMoving_ || gustLeft_ > 0) {
-    furMoving_ = furMotion_.step(fur_, seconds, force) || gustLeft_ > 0;
-    gustLeft_ = std::max(0.0f, gustLeft_ - seconds);
-    changed = true;
-  }
-  if (drying_) {
-    drying_ = fur::dryFur(fur_, 0.1f, seconds);
-    changed = true;
-  }
-  if (changed || wasMoving != furMoving_) view_.updateFur(fur_);
-  return changed;
-}
-
-void LiveModel::toggleDrying() {
-  drying_ = !drying_;
-  lastFurStep_ = now_();
-  changed_ = true;
-}
-
-void LiveModel::sprayDroplets(std::size_t count) {
-  changed_ = true;
-  if (hirsute::sprayDroplets(fur_, count, 0.05f, 1.0f, spraySeed_++) > 0) view_.updateFur(fur_);
-}
-
-void LiveModel::dropletAt(glm::vec2 point, glm::ivec2 viewport) {
-  if (!model_ || fur_.organ<FurPart>().surfaces.empty()) return;
-  const Camera c = camera(viewport);
-  glm::vec3 origin, direction;
-  if (c.projection == Projection::Perspective) {
-    const float t = std::tan(glm::radians(c.fieldOfViewY) * 0.5f);
-    const float aspect =
-        static_cast<float>(c.viewport.x) / static_cast<float>(std::max(c.viewport.y, 1));
-    origin = c.eye;
-    direction = glm::normalize(c.forward + point.x * t * aspect * c.right + point.y * t * c.up);
-  } else {
-    direction = c.forward;
-    origin = c.eye + point.x * c.halfWidth * c.right + point.y * c.halfHeight * c.up;
-  }
-  if (const auto hit = fur::pickFur(fur_, origin, direction)) {
-    fur::blendDroplet(fur_.organ<FurPart>().surfaces[hit->surface], hit->uv, 0.05f, 1.0f);
-    view_.updateFur(fur_);
-    changed_ = true;
-  }
-}
-
-void LiveModel::gust(glm::ivec2 viewport) {
   if (!model_) return;
-  // A gust across the line of sight, from alternating sides, as strong as a strand's spring.
-  gust_ = (spraySeed_++ % 2 == 0 ? 1.0f : -1.0f) * 60.0f * camera(viewport).right;
-  gustLeft_ = 0.6f;
-  lastFurStep_ = now_();
-  changed_ = true;
+  LiveActionCall call;
+  call.viewport = viewport;
+  organs_[index]->act(action, call);
+}
+
+void LiveModel::pointAt(glm::vec2 point, glm::ivec2 viewport) {
+  if (!model_) return;
+  for (const auto& organ : organs_) {
+    if (organ->pointAt(point, viewport)) {
+      changed_ = true;
+      return;
+    }
+  }
+}
+
+bool LiveModel::organsMoving() const {
+  return std::any_of(organs_.begin(), organs_.end(),
+                     [](const auto& organ) { return organ->moving(); });
 }
 
 // ---- script ----
@@ -471,20 +380,16 @@ void LiveModel::runScript() {
       case Kind::Animate:
         runAnimation();
         break;
-      case Kind::Hairs:
-        shown_.hairs = c.words[0] == "on";
-        break;
-      case Kind::Feathers:
-        shown_.feathers = c.words[0] == "on";
-        break;
-      case Kind::Fur:
-        shown_.fur = c.words[0] == "on";
-        break;
-      case Kind::Droplets:
-        sprayDroplets(static_cast<std::size_t>(std::max(0.0, c.numbers[0])));
-        break;
-      case Kind::Dynamics:
-        if ((c.words[0] == "on") != simulating_) toggleDynamics();
+      case Kind::Organ:
+        if (c.action < 0) {
+          shown_.showOrgan(liveOrgans()[c.organ]->name(), c.words[0] == "on");
+        } else if (model_) {
+          LiveActionCall call;
+          call.byKey = false;
+          call.numbers = c.numbers;
+          call.words = c.words;
+          organs_[c.organ]->act(static_cast<std::size_t>(c.action), call);
+        }
         break;
       case Kind::Wireframe:
         shown_.wireframe = c.words[0] == "on";

@@ -4,6 +4,10 @@
 #include <cstdlib>
 #include <map>
 #include <memory>
+#include <stdexcept>
+#include <string_view>
+
+#include "hirsute/viewer/interaction/live_organ.h"
 
 namespace hirsute {
 namespace {
@@ -11,14 +15,18 @@ namespace {
 using Kind = ViewCommand::Kind;
 
 // What each command takes: its kind, and its arguments as a pattern: 'n' a number, 'w' a word,
-// lower case required, upper case optional (optional ones come last).
+// 'o' on or off, lower case required, upper case optional (optional ones come last); an organ's
+// command names the organ and its action (-1: showing or hiding it).
 struct Signature {
   Kind kind;
-  const char* arguments;
+  std::string_view arguments;
+  std::size_t organ = 0;
+  int action = -1;
 };
 
-const std::map<std::string, Signature>& signatures() {
-  static const std::map<std::string, Signature> table = {
+// The viewer's own commands, then each organ's (live_organ.h): `NAME on|off` and its actions'.
+std::map<std::string, Signature, std::less<>> makeSignatures() {
+  std::map<std::string, Signature, std::less<>> table = {
       {"rotate", {Kind::Rotate, "nN"}},
       {"roll", {Kind::Roll, "n"}},
       {"zoom", {Kind::Zoom, "n"}},
@@ -28,15 +36,10 @@ const std::map<std::string, Signature>& signatures() {
       {"back", {Kind::Back, "N"}},
       {"goto", {Kind::Goto, "n"}},
       {"animate", {Kind::Animate, ""}},
-      {"hairs", {Kind::Hairs, "w"}},
-      {"feathers", {Kind::Feathers, "w"}},
-      {"fur", {Kind::Fur, "w"}},
-      {"droplets", {Kind::Droplets, "n"}},
-      {"dynamics", {Kind::Dynamics, "w"}},
-      {"wireframe", {Kind::Wireframe, "w"}},
+      {"wireframe", {Kind::Wireframe, "o"}},
       {"define", {Kind::Define, "ww"}},
-      {"help", {Kind::Help, "w"}},
-      {"panel", {Kind::Panel, "w"}},
+      {"help", {Kind::Help, "o"}},
+      {"panel", {Kind::Panel, "o"}},
       {"save", {Kind::Save, ""}},
       {"wait-reload", {Kind::WaitReload, "N"}},
       {"sleep", {Kind::Sleep, "n"}},
@@ -44,6 +47,24 @@ const std::map<std::string, Signature>& signatures() {
       {"screenshot", {Kind::Screenshot, "wW"}},
       {"quit", {Kind::Quit, ""}},
   };
+  const auto organs = liveOrgans();
+  auto add = [&table](std::string_view name, const Signature& signature) {
+    if (!table.emplace(std::string(name), signature).second)
+      throw std::logic_error("two viewer commands are named " + std::string(name));
+  };
+  for (std::size_t k = 0; k < organs.size(); ++k) {
+    add(organs[k]->name(), {Kind::Organ, "o", k, -1});
+    const auto actions = organs[k]->actions();
+    for (std::size_t a = 0; a < actions.size(); ++a) {
+      if (!actions[a].command.empty())
+        add(actions[a].command, {Kind::Organ, actions[a].arguments, k, static_cast<int>(a)});
+    }
+  }
+  return table;
+}
+
+const std::map<std::string, Signature, std::less<>>& signatures() {
+  static const std::map<std::string, Signature, std::less<>> table = makeSignatures();
   return table;
 }
 
@@ -95,8 +116,10 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
     if (found == signatures().end()) {
       throw DiagnosticError(where, "unknown viewer command '" + head.text + "'");
     }
-    const std::string pattern = found->second.arguments;
+    const std::string pattern(found->second.arguments);
     ViewCommand command{found->second.kind, {}, {}, where};
+    command.organ = found->second.organ;
+    command.action = found->second.action;
     std::size_t required = 0;
     for (char p : pattern) required += std::islower(static_cast<unsigned char>(p)) ? 1 : 0;
     std::size_t given = tokens.size() - 1;
@@ -123,16 +146,13 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
         }
         command.numbers.push_back(value);
       } else {
+        if (std::tolower(static_cast<unsigned char>(pattern[a])) == 'o' && t.text != "on" &&
+            t.text != "off") {
+          throw DiagnosticError(SourceLocation{name, t.line, t.column},
+                                "expected on or off, found '" + t.text + "'");
+        }
         command.words.push_back(t.text);
       }
-    }
-    if ((command.kind == Kind::Hairs || command.kind == Kind::Feathers || command.kind == Kind::Fur ||
-         command.kind == Kind::Dynamics ||
-         command.kind == Kind::Wireframe || command.kind == Kind::Help ||
-         command.kind == Kind::Panel) &&
-        command.words[0] != "on" && command.words[0] != "off") {
-      throw DiagnosticError(SourceLocation{name, tokens[1].line, tokens[1].column},
-                            "expected on or off, found '" + command.words[0] + "'");
     }
     if (command.kind == Kind::Screenshot && command.words.size() == 2 && command.words[1] != "ui") {
       throw DiagnosticError(SourceLocation{name, tokens[2].line, tokens[2].column},

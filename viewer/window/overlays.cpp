@@ -6,7 +6,7 @@
 #include <span>
 
 #include "hirsute/hairs/organ_stage.h"
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/viewer/interaction/live_organ.h"
 #include "hirsute/viewer/window/key_map.h"
 
 namespace hirsute {
@@ -20,7 +20,7 @@ constexpr ImGuiWindowFlags kOverlay =
 }  // namespace
 
 void drawStatusOverlay(const LiveModel& live, const GlRenderer& renderer,
-                       const std::string& modelName, double frameMs, bool fewerHairs) {
+                       const std::string& modelName, double frameMs, bool thinned) {
   const ImVec2 size = ImGui::GetMainViewport()->WorkSize;
   const ViewerModel* model = live.model();
   const ShownParts& shown = live.shown();
@@ -30,25 +30,16 @@ void drawStatusOverlay(const LiveModel& live, const GlRenderer& renderer,
     ImGui::Text("%s  step %d / %d%s   %.1f ms   F1: help", modelName.c_str(),
                 model ? model->steps : 0, live.derivationLength(),
                 live.animating() ? "  (animating)" : "", frameMs);
-    if (model && renderer.organInstances("hairs") > 0) {
-      ImGui::Text("hairs %zu%s%s", renderer.organInstances("hairs"), shown.hairs ? "" : " (hidden)",
-                  fewerHairs ? "  (fewer while moving)" : "");
-    }
-    if (model && renderer.organInstances("feathers") > 0) {
-      ImGui::Text("feathers %zu%s", renderer.organInstances("feathers"),
-                  shown.feathers ? "" : " (hidden)");
-      if (const dynamics::CoatMotion* coat = live.coat()) {
-        ImGui::Text("dynamics %s: %.1f s simulated, %.0f frames/s, %llu steps retried",
-                    live.simulating() ? "running" : "paused (D)", coat->simulation().time(),
-                    live.simulatedFps(),
-                    static_cast<unsigned long long>(coat->simulation().counters().retries));
-      }
-    }
-    const Scene& fur = live.fur();
-    if (model && !fur.organ<FurPart>().surfaces.empty()) {
-      ImGui::Text("fur: %zu surfaces, %d layers%s%s%s", fur.organ<FurPart>().surfaces.size(),
-                  fur.organ<FurPart>().surfaces.front().layers, shown.fur ? "" : " (hidden)",
-                  live.drying() ? "  drying" : "", live.furMoving() ? "  moving" : "");
+    // A line per organ drawn: its name, its count and its own words (live_organ.h).
+    const std::span<const LiveOrganType* const> organs = liveOrgans();
+    for (std::size_t k = 0; model && k < organs.size(); ++k) {
+      const char* name = organs[k]->name();
+      const std::size_t count = renderer.organInstances(name);
+      if (count == 0) continue;
+      ImGui::Text("%s %zu%s%s", name, count, shown.organShown(name) ? "" : " (hidden)",
+                  thinned && renderer.organThins(name) ? "  (fewer while moving)" : "");
+      const std::string status = live.organ(k).status();
+      if (!status.empty()) ImGui::Text("  %s", status.c_str());
     }
     // Builds that end within a quarter of a second show no progress (no flicker).
     const ModelWorker& worker = live.worker();

@@ -12,9 +12,12 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <span>
+#include <string_view>
 
 #include "hirsute/viewer/gl/gl_functions.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
+#include "hirsute/viewer/interaction/live_organ.h"
 #include "hirsute/viewer/window/define_panel.h"
 #include "hirsute/viewer/window/glfw_window.h"
 #include "hirsute/viewer/window/multisample_target.h"
@@ -50,9 +53,8 @@ class Viewer final : public LiveModelView {
   void upload(const ViewerModel& model) override {
     renderer_->upload(model.scene, model.view, model.materialMode);
   }
-  void updateFur(const Scene& fur) override { renderer_->updateOrgan("fur", fur); }
-  void updateFeathers(const Scene& feathers) override {
-    renderer_->updateOrgan("feathers", feathers);
+  void updateOrgan(std::string_view organ, const Scene& scene) override {
+    renderer_->updateOrgan(organ, scene);
   }
   bool screenshot(const std::filesystem::path& file, bool withUi) override;
   void measure(int frames) override;
@@ -74,7 +76,8 @@ class Viewer final : public LiveModelView {
   void onButton(int button, int action, int mods);
   void onCursor(double x, double y);
   void onScroll(double dy);
-  void dropletAtCursor();
+  void organKey(int key);
+  void pointAtCursor();
 
   const ViewerOptions& options_;
   ModelBuilder builder_;
@@ -173,14 +176,14 @@ void Viewer::drawScene(bool moving) {
     return;
   }
   const ShownParts& shown = live_->shown();
-  renderer_->setOrganVisible("hairs", shown.hairs);
-  renderer_->setOrganVisible("feathers", shown.feathers);
-  renderer_->setOrganVisible("fur", shown.fur);
+  for (const LiveOrganType* organ : liveOrgans())
+    renderer_->setOrganVisible(organ->name(), shown.organShown(organ->name()));
   renderer_->setWireframe(shown.wireframe);
+  // While moving, the organs that can draw a part of their instances (hairs) draw the budget.
   float fraction = 1;
-  std::size_t hairCount = renderer_->organInstances("hairs");
-  if (moving && hairCount > options_.movingHairBudget) {
-    fraction = static_cast<float>(options_.movingHairBudget) / static_cast<float>(hairCount);
+  const std::size_t thinned = renderer_->thinnedInstances();
+  if (moving && thinned > options_.movingHairBudget) {
+    fraction = static_cast<float>(options_.movingHairBudget) / static_cast<float>(thinned);
   }
   renderer_->setDetail(fraction);
   renderer_->draw(live_->camera(size));
@@ -256,14 +259,22 @@ void Viewer::measure(int frames) {
     return ms;
   };
   double still = timeFrames(false);
-  std::size_t hairs = renderer_->organInstances("hairs");
+  const std::size_t thinned = renderer_->thinnedInstances();
   double movingMs = timeFrames(true);
   float fraction = renderer_->detail();
   std::cout << "frame time: still " << still << " ms, moving " << movingMs << " ms (" << frames
             << " frames each, " << renderer_->triangleCount() << " triangles, "
-            << renderer_->lineCount() << " lines, " << hairs << " hairs, "
-            << static_cast<std::size_t>(std::lround(fraction * static_cast<double>(hairs)))
-            << " drawn while moving)\n";
+            << renderer_->lineCount() << " lines";
+  for (const LiveOrganType* organ : liveOrgans()) {
+    const std::size_t n = renderer_->organInstances(organ->name());
+    if (n > 0) std::cout << ", " << n << ' ' << organ->name();
+  }
+  if (thinned > 0) {
+    std::cout << "; "
+              << static_cast<std::size_t>(std::lround(fraction * static_cast<double>(thinned)))
+              << " of " << thinned << " drawn while moving";
+  }
+  std::cout << ")\n";
   dirty_ = true;
 }
 
@@ -285,20 +296,13 @@ void Viewer::onKey(int key, int mods) {
     case GLFW_KEY_SPACE: case GLFW_KEY_A:
       live_->animating() ? live_->stopAnimation() : live_->runAnimation(); break;
     case GLFW_KEY_R: live_->resetView(); break;
-    case GLFW_KEY_H: shown.hairs = !shown.hairs; break;
-    case GLFW_KEY_E: shown.feathers = !shown.feathers; break;
-    case GLFW_KEY_U: shown.fur = !shown.fur; break;
-    case GLFW_KEY_J: live_->sprayDroplets(20); break;
-    case GLFW_KEY_Y: live_->toggleDrying(); break;
-    case GLFW_KEY_G: live_->gust(framebufferSize()); break;
-    case GLFW_KEY_D: live_->toggleDynamics(); break;
     case GLFW_KEY_W: shown.wireframe = !shown.wireframe; break;
     case GLFW_KEY_S: ++screenshots_; screenshot(screenshotFile, false); break;
     case GLFW_KEY_C: shown.panel = !shown.panel; break;
     case GLFW_KEY_F1: shown.help = !shown.help; break;
     case GLFW_KEY_SLASH: if (mods & GLFW_MOD_SHIFT) shown.help = !shown.help; break;
     case GLFW_KEY_Q: case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, GLFW_TRUE); break;
-    default: break;
+    default: organKey(key); break;
   }
   // clang-format on
   dirty_ = true;
@@ -311,7 +315,7 @@ void Viewer::onButton(int button, int action, int mods) {
     if (ImGui::GetIO().WantCaptureMouse || dragButton_ >= 0) return;
     glfwGetCursorPos(window_, &cursorX_, &cursorY_);
     if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_CONTROL) != 0) {
-      dropletAtCursor();
+      pointAtCursor();
       return;
     }
     dragButton_ = button;
@@ -321,12 +325,32 @@ void Viewer::onButton(int button, int action, int mods) {
   }
 }
 
-void Viewer::dropletAtCursor() {
+// The organs' keys (live_organ.h; letters, whose GLFW codes are their ASCII codes): the one that
+// shows and hides each, and those of its actions.
+void Viewer::organKey(int key) {
+  const std::span<const LiveOrganType* const> organs = liveOrgans();
+  for (std::size_t k = 0; k < organs.size(); ++k) {
+    if (key == organs[k]->showKey()) {
+      ShownParts& shown = live_->shown();
+      shown.showOrgan(organs[k]->name(), !shown.organShown(organs[k]->name()));
+      return;
+    }
+    const std::span<const LiveAction> actions = organs[k]->actions();
+    for (std::size_t a = 0; a < actions.size(); ++a) {
+      if (actions[a].key != 0 && key == actions[a].key) {
+        live_->act(k, a, framebufferSize());
+        return;
+      }
+    }
+  }
+}
+
+void Viewer::pointAtCursor() {
   int w = 1, h = 1;
   glfwGetWindowSize(window_, &w, &h);
   const float x = 2.0f * static_cast<float>(cursorX_) / static_cast<float>(std::max(w, 1)) - 1;
   const float y = 1 - 2.0f * static_cast<float>(cursorY_) / static_cast<float>(std::max(h, 1));
-  live_->dropletAt({x, y}, framebufferSize());
+  live_->pointAt({x, y}, framebufferSize());
 }
 
 void Viewer::onCursor(double x, double y) {
@@ -400,10 +424,10 @@ int Viewer::run() {
       if (uiFrames_ > 0) --uiFrames_;
     }
     // Wakes for input, for a finished build (glfwPostEmptyEvent), and to poll the files.
-    glfwWaitEventsTimeout(options_.script || live_->animating() || live_->furMoving() ? 0.005
-                          : isMoving                                                  ? 0.03
-                          : busy                                                      ? 0.1
-                                                                                      : 0.2);
+    glfwWaitEventsTimeout(options_.script || live_->animating() || live_->organsMoving() ? 0.005
+                          : isMoving                                                     ? 0.03
+                          : busy                                                         ? 0.1
+                                                                                         : 0.2);
   }
   int code = live_->exitCode();
   shutdown();

@@ -58,6 +58,11 @@ struct FeatherAttributes {
 // The feathers' lines of the view file (feather_view_lines.cpp), for organViewLines()
 // (view_lines.h).
 struct ViewLineCommand;
+class OrganModuleTable;
+
+// The feathers' module table (feather_modules.cpp, organ_modules.h): @Fe @Fi @Ff @Fb @Fd @Fk @Fa
+// @Fs @Fl @Ft.
+const OrganModuleTable& featherModuleTable();
 std::span<const ViewLineCommand> featherViewLines();
 
 }  // namespace hirsute

@@ -43,6 +43,10 @@ struct FurAttributes {
 
 // The fur's lines of the view file (fur_view_lines.cpp), for organViewLines() (view_lines.h).
 struct ViewLineCommand;
+class OrganModuleTable;
+
+// The fur's module table (fur_modules.cpp, organ_modules.h): @Uf @Ul @Ud @Uc @Us @Uh @Uw @Ut.
+const OrganModuleTable& furModuleTable();
 std::span<const ViewLineCommand> furViewLines();
 
 }  // namespace hirsute

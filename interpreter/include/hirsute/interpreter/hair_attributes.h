@@ -64,6 +64,11 @@ struct HairAttributes {
 // The plant hairs' lines of the view file (hair_view_lines.cpp), for organViewLines()
 // (view_lines.h).
 struct ViewLineCommand;
+class OrganModuleTable;
+
+// The plant hairs' module table (hair_modules.cpp, organ_modules.h): @Hf @Hb @He @Hd @Hl @Hr @Hi
+// @Ht @Hw @Hp.
+const OrganModuleTable& hairModuleTable();
 std::span<const ViewLineCommand> hairViewLines();
 
 }  // namespace hirsute

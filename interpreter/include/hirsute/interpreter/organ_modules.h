@@ -1,5 +1,5 @@
 // Organ modules declared in tables (DESIGN.md, "Organs": a registry, not a growing switch).
-// Every organ (plant hairs `@H…`, feathers `@F…`, fur `@U…`) is one table: the letter after
+// Every organ (plant hairs `@H…`, feathers `@F…`, …) is one table: the letter after
 // `@`, its attribute record kept in its part of the Scene, and one row per module naming its
 // parameter form and what it sets. The turtle looks `@XY` up by X and hands the module to the
 // table; it knows no organ's modules itself.
@@ -273,12 +273,5 @@ class AttributeModuleTable : public OrganModuleTable {
   Records records_;
   std::vector<Row> rows_;
 };
-
-// The plant hairs' table (hair_modules.cpp): @Hf @Hb @He @Hd @Hl @Hr @Hi @Ht @Hw @Hp.
-const OrganModuleTable& hairModuleTable();
-// The feathers' table (feather_modules.cpp): @Fe @Fi @Ff @Fb @Fd @Fk @Fa @Fs @Fl @Ft.
-const OrganModuleTable& featherModuleTable();
-// Fur's table (fur_modules.cpp): @Uf @Ul @Ud @Uc @Us @Uh @Uw @Ut.
-const OrganModuleTable& furModuleTable();
 
 }  // namespace hirsute

@@ -124,8 +124,8 @@ struct CylinderSegment {
   OrganAttributeIndices organStart, organEnd;
 };
 
-// A `~` surface patch or a `{ }` polygon as organs see it (DESIGN.md, "Organs": plant hairs and
-// fur grow on bicubic surfaces and polygons in their own (u, v)): its triangles, a range of one
+// A `~` surface patch or a `{ }` polygon as organs see it (DESIGN.md, "Organs": organs grow on
+// bicubic surfaces and polygons in their own (u, v)): its triangles, a range of one
 // mesh, the (u, v) of each of its vertices, and the organ attributes in force where the turtle
 // drew it. The turtle records one only where some organ's attributes are set.
 enum class OrganSurfaceKind : std::uint8_t {
@@ -188,7 +188,7 @@ class Scene {
   std::vector<OrganSurface> organSurfaces;  // surfaces and polygons with organ attributes
   std::vector<Texture> textures;
 
-  // An organ's part (organ_part.h; like FurPart of fur_part.h), made empty on first use.
+  // An organ's part (organ_part.h), made empty on first use.
   template <class Part>
   Part& organ() {
     return organs_.get<Part>();

@@ -262,7 +262,7 @@ class ViewLine {
 
 using ViewLineReader = void (*)(ViewLine&);
 
-// A line an organ adds to the view file: its label, spelled as users write it ("fur layers:"),
+// A line an organ adds to the view file: its label, spelled as users write it ("hair texture:"),
 // and what reads it.
 struct ViewLineCommand {
   std::string_view label;

@@ -1,6 +1,6 @@
 // The shared placement engine (DESIGN.md, "Organs: one placement engine"): candidate attachment
 // points on generalized-cylinder segments, for every organ placed on them (plant hairs, feather
-// follicles, fur strands). The sampler tiles a point pattern (Mitchell's point-diffusion texture,
+// follicles, …). The sampler tiles a point pattern (Mitchell's point-diffusion texture,
 // or any tile in scan-line order) over each segment unfolded into (u, v), maps every point to its
 // face and interpolates the corner frames there; the organ decides, point by point, whether to
 // keep it (density thinning) and what to place.

@@ -31,6 +31,7 @@ class HairDrawing : public OrganDrawing {
   void draw(const Camera& camera, const glm::vec3& light, float fraction) override;
 
   // Hairs uploaded (those whose template has segments), and their segments.
+  bool thins() const override { return true; }
   std::size_t instances() const override { return hairs_; }
   std::size_t primitives() const override { return segments_; }
 

@@ -61,6 +61,10 @@ class GlRenderer {
   // Instances uploaded, and the primitives they are drawn with.
   std::size_t organInstances(std::string_view organ) const;
   std::size_t organPrimitives(std::string_view organ) const;
+  // Whether the organ draws only the detail's share of its instances; the instances of all
+  // those that do (what a level of detail thins).
+  bool organThins(std::string_view organ) const;
+  std::size_t thinnedInstances() const;
   // The share of each organ's instances drawn, 0 to 1 (level of detail while the camera
   // moves; an organ that cannot draw part of itself draws all). Outlasts upload().
   void setDetail(float fraction);

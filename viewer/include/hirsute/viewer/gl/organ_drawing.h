@@ -44,6 +44,8 @@ class OrganDrawing {
   // Draws, lit by the directional light `light` (towards it); `detail` in [0, 1] is the share of
   // the instances drawn while the camera moves, for an organ that can draw a uniform part.
   virtual void draw(const Camera& camera, const glm::vec3& light, float detail) = 0;
+  // Whether it draws only `detail` of its instances (the others draw all whatever the detail).
+  virtual bool thins() const { return false; }
   // Instances uploaded, and the primitives they are drawn with (at detail 1).
   virtual std::size_t instances() const = 0;
   virtual std::size_t primitives() const = 0;

@@ -1,9 +1,9 @@
 // What `hirsute view` shows, without the window: the model built in the background and the step
-// asked for, the animation's clock (cpfg-manual §1.3.3, §8.2), the fur's motion, drying and
-// droplets (docs/fur.md), the feathers' dynamics (docs/dynamics.md), the `#define` values of the
-// panel, the files watched, the camera the mouse has moved, and the view script's commands
-// (view_script.h). No GL: what must be drawn or read back goes to a LiveModelView, which the
-// window implements. Time comes from a clock given to it, so that tests can move it by hand.
+// asked for, the animation's clock (cpfg-manual §1.3.3, §8.2), what the organs do between builds
+// (live_organ.h: what moves, their keys and commands), the `#define` values of the panel, the
+// files watched, the camera the mouse has moved, and the view script's commands (view_script.h). No
+// GL: what must be drawn or read back goes to a LiveModelView, which the window implements. Time
+// comes from a clock given to it, so that tests can move it by hand.
 #pragma once
 
 #include <chrono>
@@ -13,18 +13,19 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "hirsute/hairs/dynamics/coat_motion.h"
-#include "hirsute/hairs/fur/fur_motion.h"
-#include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/interaction/animation_file.h"
 #include "hirsute/viewer/interaction/define_editor.h"
 #include "hirsute/viewer/interaction/file_watcher.h"
+#include "hirsute/viewer/interaction/live_organ.h"
 #include "hirsute/viewer/interaction/model_worker.h"
 #include "hirsute/viewer/interaction/mouse_camera.h"
 #include "hirsute/viewer/interaction/view_script.h"
+#include "hirsute/viewer/view/camera.h"
 
 namespace hirsute {
 
@@ -44,8 +45,20 @@ struct LiveModelOptions {
 
 // What is drawn, as the keys and the script switch it.
 struct ShownParts {
-  bool hairs = true, feathers = true, fur = true, wireframe = false;
+  bool wireframe = false;
   bool help = false, panel = true;  // the key map overlay and the constants panel
+  // The organs hidden, by name (live_organ.h); every other one is shown.
+  std::set<std::string, std::less<>> hiddenOrgans;
+
+  bool organShown(std::string_view organ) const { return !hiddenOrgans.contains(organ); }
+  void showOrgan(std::string_view organ, bool shown) {
+    if (shown) {
+      if (auto found = hiddenOrgans.find(organ); found != hiddenOrgans.end())
+        hiddenOrgans.erase(found);
+    } else {
+      hiddenOrgans.emplace(organ);
+    }
+  }
 };
 
 // What shows the live model: the window, in the program. Each call is made when the live model
@@ -55,9 +68,8 @@ class LiveModelView {
   virtual ~LiveModelView() = default;
   // A new build to draw (its scene, view settings and material mode).
   virtual void upload(const ViewerModel& model) = 0;
-  // The fur moved, dried or took droplets; the feathers the dynamics bent (or the model's again).
-  virtual void updateFur(const Scene& fur) = 0;
-  virtual void updateFeathers(const Scene& feathers) = 0;
+  // The organ named `organ` moved (live_organ.h): its drawing takes what moves from `scene`.
+  virtual void updateOrgan(std::string_view organ, const Scene& scene) = 0;
   // The script's `screenshot FILE [ui]`: false when the file cannot be written.
   virtual bool screenshot(const std::filesystem::path& file, bool withUi) = 0;
   // The script's `measure N`: frame times printed over N frames.
@@ -70,14 +82,15 @@ class LiveModel {
   using Now = std::function<Clock::time_point()>;
 
   // Starts the first build at once. `wake` is called from the builder's thread when a build has
-  // finished; `now` is the clock of the animation, the fur, the dynamics and the script's waits.
+  // finished; `now` is the clock of the animation, the organs and the script's waits.
   LiveModel(const LiveModelOptions& options, ModelBuilder builder, LiveModelView& view,
             std::function<void()> wake = {}, Now now = &Clock::now);
+  ~LiveModel();
   LiveModel(const LiveModel&) = delete;
   LiveModel& operator=(const LiveModel&) = delete;
 
   // One turn of the window's loop, in this order: a finished build is shown, changed files are
-  // read again, the animation, the fur and the dynamics step, and the script goes on.
+  // read again, the animation and the organs step, and the script goes on.
   void update();
   // Something shown changed since the last call (the window draws a frame).
   bool takeChanged();
@@ -123,25 +136,19 @@ class LiveModel {
   ShownParts& shown() { return shown_; }
   const ShownParts& shown() const { return shown_; }
 
-  // Fur (docs/fur.md): a copy of the model's fur surfaces that moves, dries and takes droplets.
-  const Scene& fur() const { return fur_; }
-  bool furMoving() const { return furMoving_; }
-  bool drying() const { return drying_; }
-  void toggleDrying();
-  // `count` droplets at random, as the J key and the script's `droplets` spray them.
-  void sprayDroplets(std::size_t count);
-  // A droplet where the fur meets the ray through `point` of the picture of `viewport`'s camera
-  // (-1 to 1 from left to right and from bottom to top), as ctrl + click drops it.
-  void dropletAt(glm::vec2 point, glm::ivec2 viewport);
-  // A gust across the line of sight of `viewport`'s camera, from alternating sides.
-  void gust(glm::ivec2 viewport);
-
-  // Feather dynamics (docs/dynamics.md): the model's feathers simulated while shown, their roots
-  // carried by the body as the animation moves it.
-  void toggleDynamics();
-  bool simulating() const { return simulating_; }
-  const dynamics::CoatMotion* coat() const { return coat_ ? &*coat_ : nullptr; }
-  double simulatedFps() const { return simulatedFps_; }
+  // The organs (live_organ.h): one of each type of liveOrgans(), in its order.
+  LiveOrgan& organ(std::size_t index) { return *organs_[index]; }
+  const LiveOrgan& organ(std::size_t index) const { return *organs_[index]; }
+  // The organ of the type named `name`, or null.
+  LiveOrgan* organ(std::string_view name);
+  // Action `action` of organ `index` (its type's actions()), as its key asks for it, for a
+  // picture `viewport` pixels large.
+  void act(std::size_t index, std::size_t action, glm::ivec2 viewport);
+  // A ctrl + click at `point` of the picture of `viewport`'s camera (-1 to 1 from left to right
+  // and from bottom to top), handed to the organs in order until one takes it.
+  void pointAt(glm::vec2 point, glm::ivec2 viewport);
+  // Some organ moves on its own: the window keeps drawing.
+  bool organsMoving() const;
 
  private:
   void request();
@@ -150,10 +157,7 @@ class LiveModel {
   void readAnimation();
   void readConstants();
   void advanceAnimation();
-  void takeFur();
-  bool stepFur();
-  bool stepDynamics();
-  void stopDynamics(const std::string& why);
+  class OrganHost;
   void runScript();
   void scriptFailure(const ViewCommand& command, const std::string& message);
   double secondsSince(Clock::time_point t) const;
@@ -176,22 +180,9 @@ class LiveModel {
   MouseCamera mouse_;
   ShownParts shown_;
 
-  // Fur: a copy of the model's fur surfaces that moves, dries and takes droplets.
-  Scene fur_;
-  fur::FurMotion furMotion_;
-  bool drying_ = false, furMoving_ = false;
-  glm::vec3 gust_{0.0f};
-  float gustLeft_ = 0;  // seconds
-  std::uint32_t spraySeed_ = 1;
-  Clock::time_point lastFurStep_;
-
-  // Feather dynamics: the simulation, the feathers it bends (drawn over the model's), whether it
-  // runs, whether a new build moved the body, and the rate it keeps.
-  std::optional<dynamics::CoatMotion> coat_;
-  Scene coatScene_;
-  bool simulating_ = false, bodyMoved_ = false;
-  Clock::time_point lastCoatStep_;
-  double simulatedFps_ = 0;
+  // The organs, each with the host that lends it the clock, the camera and the view.
+  std::vector<std::unique_ptr<OrganHost>> hosts_;
+  std::vector<std::unique_ptr<LiveOrgan>> organs_;
 
   // Animation (cpfg-manual §1.3.3, §8.2)
   AnimationSettings animation_;

@@ -11,18 +11,19 @@
 //   back [N]         N steps back
 //   goto N           show derivation step N
 //   animate          play the animation (the .a file's frames) to its end
-//   hairs on|off     show or hide hairs;  wireframe on|off  polygons as their edges
+//   wireframe on|off polygons as their edges
 //   help on|off      the key map overlay;  panel on|off  the constants panel
 //   define NAME VAL  set a #define constant and re-derive;  save  write the constants to the .l
 //   wait-reload [S]  wait (up to S seconds, default 10) until a model file changes and is re-read
 //   sleep S          wait S seconds, drawing
-//   fur on|off       show or hide the fur
-//   droplets N       N droplets of water at random on the fur (the J key's spray)
+//   NAME on|off      show or hide the organ NAME (live_organ.h: hairs, feathers …), as its key
+//   …                each organ's own commands (its LiveOrganType's actions; docs/viewer.md)
 //   measure [N]      print the frame time over N frames still and N frames moving
 //   screenshot FILE [ui]  write the window's picture to a PNG (with ui: with the overlays)
 //   quit             close the window
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -41,11 +42,7 @@ struct ViewCommand {
     Back,
     Goto,
     Animate,
-    Hairs,
-    Feathers,
-    Fur,       // fur on|off
-    Droplets,  // droplets N: N droplets at random on the fur, as the J key sprays them
-    Dynamics,  // dynamics on|off: the feathers' dynamics runs or pauses, as the D key
+    Organ,  // an organ's: `NAME on|off` (action -1) or one of its actions (live_organ.h)
     Wireframe,
     Help,
     Panel,
@@ -61,6 +58,9 @@ struct ViewCommand {
   std::vector<double> numbers;
   std::vector<std::string> words;  // file names, define names and values, on/off
   SourceLocation where;
+  // Kind::Organ: the organ's place in liveOrgans() and its action (-1: show or hide it).
+  std::size_t organ = 0;
+  int action = -1;
 };
 
 // Parses a script; `fileName` names it in messages ("--commands" for the command line's text).

@@ -28,7 +28,7 @@ struct ViewLighting {
 // light's direction).
 ViewLighting viewLighting(const ViewSettings& view, bool materialMode, const glm::vec3& towardsEye);
 
-// The one light the organs that shade themselves (feather shafts, fur) take, as a direction
+// The one light the organs that shade themselves (organ_drawing.h) take, as a direction
 // towards it: the colour map's `light direction:`, the eye's with the default light, else the
 // first `light:` line's.
 glm::vec3 organLight(const ViewLighting& lighting, const glm::vec3& towardsEye);

@@ -1,6 +1,6 @@
 // `hirsute view`: the interactive window (GLFW, libGL), drawing with the same GlRenderer as the
 // headless path what a LiveModel (live_model.h) shows: the model built off the render thread,
-// re-derived when its files change, animated, its fur and feathers in motion, a script's
+// re-derived when its files change, animated, its organs in motion (live_organ.h), a script's
 // commands. The window keeps the window itself, the mouse and keys, which are cpfg's
 // (cpfg-manual §1.3), the drawing, and ImGui overlays for help, progress, errors and the
 // `#define` panel.

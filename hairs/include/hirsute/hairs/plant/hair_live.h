@@ -1,0 +1,11 @@
+// The plant hairs in the interactive viewer (live_organ.h): shown and hidden with H; nothing of
+// theirs moves between builds.
+#pragma once
+
+#include "hirsute/viewer/interaction/live_organ.h"
+
+namespace hirsute {
+
+const LiveOrganType& hairLive();
+
+}  // namespace hirsute
