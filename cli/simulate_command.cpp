@@ -20,6 +20,7 @@
 #include "hirsute/hairs/dynamics/coat_motion.h"
 #include "hirsute/core/output_target.h"
 #include "hirsute/interpreter/feather_part.h"
+#include "hirsute/interpreter/feather_settings.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/interaction/animation_file.h"
@@ -173,7 +174,7 @@ int runSimulate(SimulateOptions o) {
                                   ": error: the model has no feathers to simulate (@Fe, @Fi or "
                                   "a feather coat; docs/dynamics.md)");
   }
-  const FeatherDynamicsSettings& view = first.resources.view.dynamics;
+  const FeatherDynamicsSettings& view = first.resources.view.organ<FeatherSettings>().dynamics;
   const dynamics::SimulationParameters parameters = parametersFor(view, o);
   const int substeps = o.substeps.value_or(view.substeps);
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hirsute/interpreter/feather_part.h"
+#include "hirsute/interpreter/feather_settings.h"
 #include "hirsute/interpreter/fur_part.h"
 #include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/interpreter/hair_part.h"
@@ -138,6 +139,18 @@ TEST(OrganSettings, AnOrgansViewFileLinesSetItsSettings) {
   EXPECT_EQ(fur.droplets[0].centre, glm::vec2(0.25f, 0.75f));
   EXPECT_EQ(fur.droplets[0].surface, 2);
   EXPECT_EQ(fur.droplets[0].where.line, 5);
+}
+
+TEST(OrganSettings, TheCoatsDynamicsLinesAreTheFeathers) {
+  Diagnostics diagnostics;
+  const ViewSettings view = parseViewFile(
+      "feather follicles: hexagonal\ndynamics gravity: 0 -2 0\ndynamics substeps: 7\n",
+      "organs.v", diagnostics);
+  const FeatherSettings& feathers = view.organ<FeatherSettings>();
+  EXPECT_EQ(feathers.follicleLayout, FollicleLayout::Hexagonal);
+  EXPECT_EQ(feathers.dynamics.gravity, glm::vec3(0, -2, 0));
+  EXPECT_EQ(feathers.dynamics.substeps, 7);
+  EXPECT_FLOAT_EQ(feathers.dynamics.drag, FeatherDynamicsSettings{}.drag);
 }
 
 TEST(OrganAttributeIndices, EachOrgansRecordHasASlotOfItsOwn) {

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "hirsute/interpreter/feather_part.h"
+#include "hirsute/interpreter/feather_settings.h"
 
 namespace hirsute {
 namespace {
@@ -49,7 +50,7 @@ void LiveFeathers::toggleDynamics() {
   if (scene_ == nullptr || scene_->organ<FeatherPart>().feathers.empty()) return;
   if (!coat_) {
     try {
-      coat_.emplace(*scene_, dynamics::simulationParametersOf(view_->dynamics));
+      coat_.emplace(*scene_, dynamics::simulationParametersOf(view_->organ<FeatherSettings>().dynamics));
     } catch (const std::exception& e) {
       stop(std::string("cannot simulate the feathers: ") + e.what());
       return;
@@ -82,7 +83,7 @@ bool LiveFeathers::step() {
   lastStep_ = now;
   if (!(seconds > 0)) return false;
   try {
-    coat_->advance(seconds, view_->dynamics.substeps, bodyMoved_ ? scene_ : nullptr);
+    coat_->advance(seconds, view_->organ<FeatherSettings>().dynamics.substeps, bodyMoved_ ? scene_ : nullptr);
   } catch (const std::exception& e) {
     stop(std::string("the feathers' dynamics stopped: ") + e.what());
     return true;

@@ -78,24 +78,6 @@ struct ShadowMap {
   float offsetFactor = 5, offsetUnits = 10;
 };
 
-// The `dynamics …:` lines of a view file (docs/dynamics.md): the forces on simulated feathers,
-// their springs, and how near they may come. Command-line options override them.
-struct FeatherDynamicsSettings {
-  glm::vec3 gravity{0, -9.81f, 0};  // `dynamics gravity: x y z`: cpfg's world has +y up
-  float drag = 0.05f;               // `dynamics drag: c`, per unit length per unit speed
-  glm::vec3 wind{0.0f};             // `dynamics wind: x y z`, the steady wind
-  float gustStrength = 0;           // `dynamics gusts: strength scale period [seed]`
-  float gustScale = 1;
-  float gustPeriod = 1;
-  unsigned gustSeed = 1;
-  float stiffness = 200;            // `dynamics springs: k b`: the gold springs
-  float damping = 2;
-  float thickness = 0.01f;          // `dynamics thickness: t separation`
-  float separation = 0.002f;
-  int segments = 8;                 // `dynamics segments: n`: of each feather's stem
-  int substeps = 4;                 // `dynamics substeps: n`: steps per frame
-};
-
 struct ViewSettings {
   // Turtle.
   float angleIncrement = 45;
@@ -143,7 +125,7 @@ struct ViewSettings {
   std::vector<TextureDeclaration> textures;
   std::vector<std::string> backgroundScenes;
 
-  // Each organ's settings (organ_settings.h), by type: view.organ<FurSettings>().
+  // Each organ's settings (organ_settings.h), by type: view.organ<NAMESettings>().
   OrganSettingsSet organs;
   template <class Settings>
   Settings& organ() {
@@ -154,9 +136,6 @@ struct ViewSettings {
     return organs.get<Settings>();
   }
 
-  // Feather-coat dynamics (DESIGN.md; docs/dynamics.md, "hirsute simulate"): the `dynamics …:`
-  // lines. Lengths are the model's units, times seconds.
-  FeatherDynamicsSettings dynamics;
 };
 
 }  // namespace hirsute

@@ -14,7 +14,7 @@
 #include "hirsute/hairs/dynamics/feather_poses.h"
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/interpreter/view_settings.h"
+#include "hirsute/interpreter/feather_settings.h"
 
 namespace hirsute::dynamics {
 
