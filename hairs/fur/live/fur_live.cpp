@@ -136,7 +136,7 @@ void LiveFur::gust(glm::ivec2 viewport) {
 std::string LiveFur::status() const {
   const std::vector<FurSurface>& surfaces = fur_.organ<FurPart>().surfaces;
   if (surfaces.empty()) return {};
-  return fmt::format("{} surfaces, {} layers{}{}", surfaces.size(), surfaces.front().layers,
+  return fmt::format("{} layers a surface{}{}", surfaces.front().layers,
                      drying_ ? "  drying" : "", moving_ ? "  moving" : "");
 }
 
