@@ -69,7 +69,7 @@ struct BuiltScene {
 // Loads the model (loadResources, loadLsystem) and grows its Scene (growScene). Throws
 // DiagnosticError on bad input (including an organ's, and past an organ's limits).
 BuiltScene buildScene(const ModelOptions& options, Diagnostics& diagnostics);
-// The view file's resources (colours, contours, surfaces, functions, feather types, …).
+// The view file's resources (colours, contours, surfaces, functions, the organs' files, …).
 ModelResources loadResources(const ModelOptions& options, Diagnostics& diagnostics);
 // The .l through the preprocessor, compiled; constant organ parameters checked.
 Model loadLsystem(const ModelOptions& options, Diagnostics& diagnostics);

@@ -8,7 +8,7 @@
 // Errors and warnings follow one rule. A setting whose value cannot be read is a warning and the
 // setting keeps its value, as in cpfg, where sscanf fails and assigns nothing (the conformance
 // model 01-Introduction-02-snowflake-exercise has `angle increment: ?`). A line that declares
-// something — a light, a texture, a tropism, a contour, a surface, a hair template — is an error
+// something — a light, a texture, a tropism, a contour, a surface, an organ's file — is an error
 // when broken, because what it declares would otherwise be dropped or half-defined without the
 // user noticing.
 #include <algorithm>

@@ -1,6 +1,6 @@
-// The viewer's background builder: derivation, interpretation and hair placement run on a thread
-// of their own, so that the window keeps drawing (and the camera keeps moving) while a big plant
-// is built. Requests are coalesced: while one build runs, only the newest request waits, and the
+// The viewer's background builder: derivation, interpretation and the organs' stages run on a
+// thread of their own, so that the window keeps drawing (and the camera keeps moving) while a big
+// plant is built. Requests are coalesced: while one build runs, only the newest request waits, and the
 // ones before it are dropped. No GL here; the window uploads what comes back.
 #pragma once
 
