@@ -60,6 +60,19 @@ TEST_F(FileWatcherTest, IgnoredFilesAreNotChanges) {
   EXPECT_FALSE(watcher.poll(t + 1s));
 }
 
+// The viewer ignores its screenshot before and after writing it; an edit of the model made
+// meanwhile (a script's `wait-reload` waits for it) is still a change.
+TEST_F(FileWatcherTest, IgnoringAFileKeepsAChangeElsewhere) {
+  FileWatcher watcher({folder_ / "plant.l"}, {folder_});
+  auto t = FileWatcher::Clock::now();
+  watcher.ignore(folder_ / "shot.txt");
+  write("shot.txt", "written by the viewer");
+  write("plant.l", "axiom edited meanwhile");
+  watcher.ignore(folder_ / "shot.txt");
+  watcher.poll(t);
+  EXPECT_TRUE(watcher.poll(t + 1s));
+}
+
 TEST_F(FileWatcherTest, FilesWatchedByNameAreChangesWhateverTheirExtension) {
   write("bark.png", "image");
   FileWatcher watcher({folder_ / "plant.l"}, {folder_});

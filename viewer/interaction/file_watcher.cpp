@@ -50,8 +50,11 @@ void FileWatcher::watch(const std::filesystem::path& file) {
 }
 
 void FileWatcher::ignore(const std::filesystem::path& file) {
-  ignored_.insert(normal(file));
-  stamps_ = scan();
+  const std::filesystem::path n = normal(file);
+  ignored_.insert(n);
+  // Only the ignored file leaves the stamps: a model file edited while a screenshot is written
+  // is still a change.
+  stamps_.erase(n);
 }
 
 std::map<std::filesystem::path, FileWatcher::Stamp> FileWatcher::scan() const {
