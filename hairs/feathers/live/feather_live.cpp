@@ -103,22 +103,8 @@ std::string LiveFeathers::status() const {
                      simulatedFps_, coat_->simulation().counters().retries);
 }
 
-namespace {
-
-class FeatherLiveType final : public LiveOrganType {
- public:
-  const char* name() const override { return "feathers"; }
-  char showKey() const override { return 'E'; }
-  std::span<const LiveAction> actions() const override { return kActions; }
-  std::unique_ptr<LiveOrgan> make(LiveOrganHost& host) const override {
-    return std::make_unique<LiveFeathers>(host);
-  }
-};
-
-}  // namespace
-
 const LiveOrganType& featherLive() {
-  static const FeatherLiveType type;
+  static const LiveOrganTypeOf<LiveFeathers> type("feathers", 'E', kActions);
   return type;
 }
 

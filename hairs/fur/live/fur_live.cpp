@@ -77,8 +77,14 @@ bool LiveFur::step() {
 void LiveFur::act(std::size_t index, const LiveActionCall& call) {
   switch (index) {
     case kSpray:
-      spray(call.byKey ? kSprayedByKey
-                       : static_cast<std::size_t>(std::max(0.0, call.numbers.front())));
+      if (call.byKey) {
+        spray(kSprayedByKey);
+      } else {
+        // NaN and negative counts spray none; a count past every limit stays past them
+        // (sprayDroplets refuses it) without overflowing the conversion.
+        const double count = call.numbers.front();
+        spray(count > 0 ? static_cast<std::size_t>(std::min(count, 1e15)) : 0);
+      }
       break;
     case kDry:
       toggleDrying();
@@ -140,25 +146,9 @@ std::string LiveFur::status() const {
                      drying_ ? "  drying" : "", moving_ ? "  moving" : "");
 }
 
-namespace {
-
-class FurLiveType final : public LiveOrganType {
- public:
-  const char* name() const override { return "fur"; }
-  char showKey() const override { return 'U'; }
-  std::span<const LiveAction> actions() const override { return kActions; }
-  std::string_view pointHelp() const override {
-    return "a droplet of water on the fur where the mouse points";
-  }
-  std::unique_ptr<LiveOrgan> make(LiveOrganHost& host) const override {
-    return std::make_unique<LiveFur>(host);
-  }
-};
-
-}  // namespace
-
 const LiveOrganType& furLive() {
-  static const FurLiveType type;
+  static const LiveOrganTypeOf<LiveFur> type(
+      "fur", 'U', kActions, "a droplet of water on the fur where the mouse points");
   return type;
 }
 

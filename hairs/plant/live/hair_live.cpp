@@ -5,22 +5,14 @@ namespace {
 
 class LiveHairs final : public LiveOrgan {
  public:
+  explicit LiveHairs(LiveOrganHost&) {}
   void take(const Scene&, const ViewSettings&) override {}
-};
-
-class HairLiveType final : public LiveOrganType {
- public:
-  const char* name() const override { return "hairs"; }
-  char showKey() const override { return 'H'; }
-  std::unique_ptr<LiveOrgan> make(LiveOrganHost&) const override {
-    return std::make_unique<LiveHairs>();
-  }
 };
 
 }  // namespace
 
 const LiveOrganType& hairLive() {
-  static const HairLiveType type;
+  static const LiveOrganTypeOf<LiveHairs> type("hairs", 'H');
   return type;
 }
 

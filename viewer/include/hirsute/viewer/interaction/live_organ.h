@@ -6,7 +6,7 @@
 // names none; the window maps keys and the view script parses commands from the same list.
 //
 // Adding an organ's part in the viewer: a class derived from LiveOrgan and a LiveOrganType that
-// makes it, in the organ's `live/` folder (hairs/NAME/live/), and one line in
+// makes it (LiveOrganTypeOf), in the organ's `live/` folder (hairs/NAME/live/), and one line in
 // hairs/organs/organ_lives.cpp. No GL: what must be drawn again goes through the host.
 #pragma once
 
@@ -95,6 +95,29 @@ class LiveOrganType {
   // The key map's line for a ctrl + click (empty: the organ takes none).
   virtual std::string_view pointHelp() const { return {}; }
   virtual std::unique_ptr<LiveOrgan> make(LiveOrganHost& host) const = 0;
+};
+
+// The type of an organ class constructed from its host alone: its name, show key, actions and
+// ctrl + click line given as values.
+template <class Organ>
+class LiveOrganTypeOf final : public LiveOrganType {
+ public:
+  LiveOrganTypeOf(const char* name, char showKey, std::span<const LiveAction> actions = {},
+                  std::string_view pointHelp = {})
+      : name_(name), showKey_(showKey), actions_(actions), pointHelp_(pointHelp) {}
+  const char* name() const override { return name_; }
+  char showKey() const override { return showKey_; }
+  std::span<const LiveAction> actions() const override { return actions_; }
+  std::string_view pointHelp() const override { return pointHelp_; }
+  std::unique_ptr<LiveOrgan> make(LiveOrganHost& host) const override {
+    return std::make_unique<Organ>(host);
+  }
+
+ private:
+  const char* name_;
+  char showKey_;
+  std::span<const LiveAction> actions_;
+  std::string_view pointHelp_;
 };
 
 // Every organ's type in the viewer, in the order of organDrawings() (hairs/organs/organ_lives.cpp).
