@@ -33,6 +33,7 @@ struct DeriveOptions {
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
   std::uint64_t maxFileBytes = EvaluationLimits{}.maxWrittenBytes;
+  std::size_t maxSourceBytes = kDefaultMaxSourceBytes;
   int threads = 0;
 };
 
@@ -43,7 +44,9 @@ int runDerive(const DeriveOptions& o) {
   try {
     std::optional<std::filesystem::path> view;
     if (!o.viewFile.empty()) view = o.viewFile;
-    Model model = loadModel(o.lsystemFile, view, diagnostics);
+    hirsute::ModelOptions loading;
+    loading.maxSourceBytes = o.maxSourceBytes;
+    Model model = loadModel(o.lsystemFile, view, diagnostics, loading);
     EvaluationLimits limits;
     limits.maxLoopIterations = o.maxLoopIterations;
     limits.maxWrittenBytes = o.maxFileBytes;
@@ -158,6 +161,7 @@ void registerDeriveCommand(CLI::App& app, Action& action) {
   derive->add_option("--max-loop-iterations", options->maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
   addMaxFileBytesOption(*derive, options->maxFileBytes);
+  addMaxSourceBytesOption(*derive, options->maxSourceBytes);
   addThreadsOption(*derive, options->threads);
   derive->callback([options, &action] { action = [options] { return runDerive(*options); }; });
 }

@@ -70,6 +70,11 @@ int runExport(ExportOptions o) {
     // The model produced geometry no format can hold (a coordinate that is not a number).
     std::cerr << o.model.lsystemFile << ": error: cannot export: " << e.what() << '\n';
     return kExitBadInput;
+  } catch (const GeometryLimitError& e) {
+    // An organ's geometry, built at the picture's detail, passed --max-vertices.
+    progress.clear();
+    std::cerr << o.model.lsystemFile << ": error: " << e.what() << '\n';
+    return kExitBadInput;
   } catch (const std::runtime_error& e) {
     progress.clear();
     std::cerr << e.what() << '\n';

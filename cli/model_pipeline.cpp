@@ -52,6 +52,7 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   command.add_option("--max-loop-iterations", o.maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
   addMaxFileBytesOption(command, o.maxFileBytes);
+  addMaxSourceBytesOption(command, o.maxSourceBytes);
   addThreadsOption(command, o.threads);
   command.add_option("--max-vertices", o.maxVertices,
                      "More vertices in the geometry are an error (default 100000000)");
@@ -70,6 +71,13 @@ void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external,
   command.add_option("--environment-timeout", timeout,
                      "Seconds an external environmental program may take to answer (default 60)")
       ->check(CLI::Range(1, 86400));
+}
+
+void addMaxSourceBytesOption(CLI::App& command, std::size_t& bytes) {
+  command.add_option("--max-source-bytes", bytes,
+                     "Bytes of the .l and .v files after the C preprocessor, each (default "
+                     "16777216: 16 MiB)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 40));
 }
 
 void addMaxFileBytesOption(CLI::App& command, std::uint64_t& bytes) {
@@ -130,6 +138,7 @@ Model loadLsystem(const ModelOptions& o, Diagnostics& diagnostics) {
   if (!o.viewFile.empty()) view = o.viewFile;
   hirsute::ModelOptions loading;
   loading.lsystemText = o.lsystemText;
+  loading.maxSourceBytes = o.maxSourceBytes;
   Model model = loadModel(o.lsystemFile, view, diagnostics, loading);
   // `@Ul(-1)` is an error at its place in the file, not a warning after the derivation.
   checkConstantOrganModules(model.program);
@@ -217,7 +226,8 @@ Scene growScene(const ModelOptions& o, const Model& model, const ModelResources&
                             .diagnostics = diagnostics,
                             .lsystemFile = o.lsystemFile,
                             .seed = o.placementSeed,
-                            .progress = o.terminalProgress};
+                            .progress = o.terminalProgress,
+                            .maxVertices = o.maxVertices};
     const std::string report = stage.grow(run, o.organs[k]);
     if (o.verbose) say(fmt::format("{} in {:.3f} s\n", report, seconds(started)));
   }

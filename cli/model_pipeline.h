@@ -34,6 +34,7 @@ struct ModelOptions {
   std::size_t maxModules = 100'000'000;
   std::uint64_t maxLoopIterations = 10'000'000;
   std::uint64_t maxFileBytes = EvaluationLimits{}.maxWrittenBytes;  // --max-file-bytes
+  std::size_t maxSourceBytes = kDefaultMaxSourceBytes;               // --max-source-bytes
   int threads = 0;  // --threads: of the derivation (0: one a core)
   std::size_t maxVertices = kDefaultMaxVertices;
   std::uint64_t placementSeed = 0;       // --hair-seed; 0: the view file's `hair texture:` seed
@@ -59,6 +60,8 @@ void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external,
 void addThreadsOption(CLI::App& command, int& threads);
 // Adds --max-file-bytes, what the blocks may write through fprintf (derive has it too).
 void addMaxFileBytesOption(CLI::App& command, std::uint64_t& bytes);
+// Adds --max-source-bytes, the preprocessed text's limit (derive has it too).
+void addMaxSourceBytesOption(CLI::App& command, std::size_t& bytes);
 
 struct BuiltScene {
   Model model;

@@ -34,6 +34,11 @@ int runRender(const RenderOptions& o) {
   try {
     image =
         renderOffscreen(built.scene, built.resources.view, built.resources.materialMode, options);
+  } catch (const GeometryLimitError& e) {
+    // An organ's geometry, built at the picture's detail, passed --max-vertices.
+    progress.clear();
+    std::cerr << model.lsystemFile << ": error: " << e.what() << '\n';
+    return kExitBadInput;
   } catch (const std::runtime_error& e) {
     progress.clear();
     std::cerr << "hirsute: error: cannot render: " << e.what() << '\n';

@@ -13,6 +13,7 @@ Model loadModel(const std::filesystem::path& lsystemFile,
   model.viewFile = viewFile;
   model.folder = lsystemFile.parent_path().empty() ? std::filesystem::path(".") : lsystemFile.parent_path();
   PreprocessorOptions options;
+  options.maxOutputBytes = modelOptions.maxSourceBytes;
   if (viewFile) {
     std::string viewText = preprocessFile(*viewFile, options, diagnostics);
     model.functions = readViewFunctions(viewText, *viewFile);

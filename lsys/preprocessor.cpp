@@ -349,7 +349,8 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
       (full && !(WIFEXITED(status) && WEXITSTATUS(status) == 0))) {
     throw DiagnosticError(fileLocation, "the preprocessed text is larger than " +
                                             std::to_string(options.maxOutputBytes) +
-                                            " bytes (are #include files included again and again?)");
+                                            " bytes (--max-source-bytes; are #include files "
+                                            "included again and again?)");
   }
   bool failed = !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   reportCppMessages(errors.read(), failed, name, folder, diagnostics);

@@ -66,6 +66,7 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
   FeatherPart& part = scene.organ<FeatherPart>();
   FeatherStageReport report;
   part.types.clear();
+  part.maxVertices = options.maxVertices;
   for (const FeatherTypeDeclaration& declaration : resources.view.organ<FeatherSettings>().types) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(declaration.file, error)) {
@@ -200,6 +201,7 @@ class FeatherStage : public OrganStageOf<FeatherCommandOptions> {
     options.lsystemFile = run.lsystemFile;
     options.seed = run.seed;
     options.maxFeathers = chosen.maxFeathers;
+    options.maxVertices = run.maxVertices;
     options.progress = run.progress;
     const FeatherStageReport report =
         growFeathers(run.scene, run.resources, run.functions, options, run.diagnostics);

@@ -3,6 +3,7 @@
 // end through the program; a run past kKillAfter counts as the hang it used to be.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -141,6 +142,68 @@ TEST_F(InputCosts, FeathersAtTheTurtleCountAgainstTheFeatherLimit) {
               "4095 feathers at the turtle (@Fe, @Fi), more than 100 (raise the limit with "
               "--max-feathers)");
   EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
+}
+
+// The feathers' geometry, built by each output at the detail of the feathers' size in its
+// picture, counts against --max-vertices as it is built: 4 095 peacock feathers at one spot
+// once took 16 GB and 340 s to export, or ended in an allocation abort when rendered.
+TEST_F(InputCosts, FeathersGeometryAtThePicturesDetailHasALimit) {
+  const fs::path peacock = kModels / "peacock-feather";
+  for (const char* file : {"peacock.fea", "peacock-eye.png", "peacock-feather.v"})
+    fs::copy_file(peacock / file, folder_.path() / file);
+  const fs::path model = write(
+      "few.l", "Lsystem: 1\nderivation length: 0\nAxiom: @Fe(1)@Fe(1)@Fe(1)\nendlsystem\n");
+  const fs::path view = folder_.path() / "peacock-feather.v";
+  const std::string message =
+      "the feathers' geometry grew past 20000 vertices (--max-vertices) at feather ";
+  expectError(exportPov(model, view, {"--max-vertices", "20000"}), "few.l: error:", message);
+  EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
+  const fs::path picture = folder_.path() / "few.png";
+  expectError(runHirsute({"render", model.string(), view.string(), "-o", picture.string(),
+                          "--size", "320x240", "--max-vertices", "20000"}),
+              "few.l: error:", message);
+  EXPECT_FALSE(fs::exists(picture));
+  // Within the limit the same feathers export.
+  const RunResult within = exportPov(model, view);
+  EXPECT_EQ(within.exitCode, 0) << within.err;
+}
+
+// The preprocessed text has a limit of its own (--max-source-bytes): the parsed program takes
+// about a hundred bytes a byte of it (a 64 MiB axiom took some 7 GB).
+TEST_F(InputCosts, TheSourceTextHasALimit) {
+  std::string axiom;
+  for (int i = 0; i < 400; ++i) axiom += "F(1.5)+(2)";
+  const fs::path model =
+      write("long.l", "Lsystem: 1\nderivation length: 0\nAxiom: " + axiom + "\nendlsystem\n");
+  for (const char* command : {"derive", "export"}) {
+    std::vector<std::string> arguments{command, model.string(), "--max-source-bytes", "2000"};
+    if (std::string(command) == "export")
+      arguments.insert(arguments.end(), {"--pov", (folder_.path() / "out.pov").string()});
+    expectError(runHirsute(arguments), "long.l: error:",
+                "the preprocessed text is larger than 2000 bytes (--max-source-bytes");
+  }
+  const RunResult within = runHirsute({"derive", model.string()});
+  EXPECT_EQ(within.exitCode, 0) << within.err;
+}
+
+// A block of 50 000 assignments, each with a number of its own, runs and computes what it
+// says (its speed, which once grew with the square of the numbers, is in
+// scripts/bench-input-costs.sh).
+TEST_F(InputCosts, ABlockOfFiftyThousandAssignmentsRuns) {
+  std::string body;
+  double expected = 0;
+  for (int i = 0; i < 50000; ++i) {
+    body += "x = x + " + std::to_string(i) + ".5;\n";
+    expected += i + 0.5;
+  }
+  const fs::path model =
+      write("sum.l", "Lsystem: 1\nStart: { x = 0;\n" + body +
+                         "printf(\"sum %.1f\\n\", x); }\nderivation length: 0\nAxiom: A\nendlsystem\n");
+  const RunResult run = runHirsute({"derive", model.string()});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  char text[64];
+  std::snprintf(text, sizeof text, "sum %.1f", expected);
+  EXPECT_NE((run.out + run.err).find(text), std::string::npos) << run.out.substr(0, 200);
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "hirsute/hairs/feathers/feather_instances.h"
 #include "hirsute/interpreter/feather_part.h"
 
@@ -143,8 +145,18 @@ std::vector<std::uint8_t> featherDetailLevels(const Scene& scene, const Camera& 
 FeatherBuffers buildFeatherBuffers(const Scene& scene, const std::vector<std::uint8_t>& levels) {
   FeatherBuffers out;
   out.levels = levels;
-  for (std::size_t i = 0; i < scene.organ<FeatherPart>().feathers.size(); ++i) {
-    const Feather& feather = scene.organ<FeatherPart>().feathers[i];
+  const FeatherPart& part = scene.organ<FeatherPart>();
+  for (std::size_t i = 0; i < part.feathers.size(); ++i) {
+    const Feather& feather = part.feathers[i];
+    // The detail follows the picture, so the limit is checked as the feathers are built.
+    const std::size_t built = out.shaftPositions.size() + out.barbPositions.size();
+    if (built > part.maxVertices) {
+      throw GeometryLimitError(fmt::format(
+          "the feathers' geometry grew past {} vertices (--max-vertices) at feather {} of {}, "
+          "built at the detail of its size in the picture (a smaller picture, fewer feathers, "
+          "or a higher limit)",
+          part.maxVertices, i + 1, part.feathers.size()));
+    }
     const int level = i < levels.size() ? levels[i] : kMaxDetailLevel;
     const FeatherDetail detail =
         featherDetailForProjectedLength(kLevelZeroPixels * std::exp2(static_cast<float>(level)));

@@ -186,7 +186,11 @@ void Viewer::drawScene(bool moving) {
     fraction = static_cast<float>(options_.movingHairBudget) / static_cast<float>(thinned);
   }
   renderer_->setDetail(fraction);
-  renderer_->draw(live_->camera(size));
+  try {
+    renderer_->draw(live_->camera(size));
+  } catch (const GeometryLimitError& e) {
+    live_->drawingFailed(e.what());
+  }
   drawnMoving_ = moving;
   if (multisampled) multisample_->resolve();
 }

@@ -106,6 +106,7 @@ void FeatherDrawing::take(const Scene& scene, const std::vector<GLuint>& texture
   scene_.organ<FeatherPart>().types = scene.organ<FeatherPart>().types;
   scene_.organ<FeatherPart>().feathers = scene.organ<FeatherPart>().feathers;
   scene_.organ<FeatherPart>().poses = scene.organ<FeatherPart>().poses;
+  scene_.organ<FeatherPart>().maxVertices = scene.organ<FeatherPart>().maxVertices;
   scene_.materials = scene.materials;
   textures_ = textures;
   buffers_ = FeatherBuffers{};
@@ -145,7 +146,20 @@ void FeatherDrawing::build(const std::vector<std::uint8_t>& levels) {
 void FeatherDrawing::draw(const Camera& camera, const glm::vec3& light, float /*detail*/) {
   if (scene_.organ<FeatherPart>().feathers.empty()) return;
   const std::vector<std::uint8_t> levels = featherDetailLevels(scene_, camera);
-  if (!built_ || levels != buffers_.levels) build(levels);
+  if (!built_ || levels != buffers_.levels) {
+    // Geometry past the limit at these levels is not built again each frame.
+    if (!failure_.empty() && levels == failedLevels_) throw GeometryLimitError(failure_);
+    try {
+      build(levels);
+    } catch (const GeometryLimitError& e) {
+      release();
+      buffers_ = FeatherBuffers{};
+      failedLevels_ = levels;
+      failure_ = e.what();
+      throw;
+    }
+    failure_.clear();
+  }
 
   // The vane order for this camera: the barb indices are rebuilt only when it changes.
   std::vector<char> nearSides(buffers_.parts.size());

@@ -19,6 +19,7 @@
 #include "hirsute/core/progress.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
+#include "hirsute/interpreter/scene.h"
 #include "hirsute/lsys/function_curve.h"
 
 namespace CLI {
@@ -55,6 +56,7 @@ struct OrganStageRun {
   std::string lsystemFile;       // where errors without a place of their own point
   std::uint64_t seed = 0;        // of placement (--hair-seed); 0: the view file's
   Progress* progress = nullptr;  // the terminal's progress line (null: nothing shown)
+  std::size_t maxVertices = kDefaultMaxVertices;  // --max-vertices, for what outputs build
 };
 
 class OrganStage {

@@ -63,6 +63,9 @@ struct FeatherPart : OrganPartOf<FeatherPart> {
   // Empty, or one per feather: how the dynamics bent it (empty heights: drawn by its frame).
   std::vector<FeatherPose> poses;
   Bounds bounds;  // what the feathers' geometry fills (the feather stage measures it)
+  // The outputs build each feather at the detail of its size in their picture; more vertices
+  // than this in the feathers' geometry are an error (the run's --max-vertices).
+  std::size_t maxVertices = kDefaultMaxVertices;
 
   void addBounds(Bounds& box) const override { box.add(bounds); }
 };

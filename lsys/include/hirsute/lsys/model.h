@@ -9,6 +9,7 @@
 
 #include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/function_curve.h"
+#include "hirsute/lsys/preprocessor.h"
 #include "hirsute/lsys/program.h"
 
 namespace hirsute {
@@ -28,6 +29,8 @@ struct ModelOptions {
   // The `.l` text to use instead of the file's (a constant changed by the viewer's panel or by
   // `simulate --animate`); messages still name the file, and includes and fopen its folder.
   std::optional<std::string> lsystemText;
+  // The preprocessed text of the view file and of the `.l` each (--max-source-bytes).
+  std::size_t maxSourceBytes = kDefaultMaxSourceBytes;
 };
 
 Model loadModel(const std::filesystem::path& lsystemFile,

@@ -17,14 +17,18 @@
 
 namespace hirsute {
 
+// The preprocessed text's limit unless raised (--max-source-bytes): 16 MiB.
+inline constexpr std::size_t kDefaultMaxSourceBytes = std::size_t{16} << 20;
+
 struct PreprocessorOptions {
   // Object-like macros defined before the file is read (cpfg: `function set:` names of the .v).
   std::vector<std::pair<std::string, std::string>> defines;
   // The preprocessor program; `cpp` on the PATH by default.
   std::string program = "cpp";
   // Limits of one run: the preprocessed text (an #include of itself twice per level doubles it
-  // at every level), and the wall-clock time (an #include of a FIFO waits for its writer).
-  std::size_t maxOutputBytes = std::size_t{64} << 20;
+  // at every level; the parsed program takes about a hundred bytes a byte of it), and the
+  // wall-clock time (an #include of a FIFO waits for its writer).
+  std::size_t maxOutputBytes = kDefaultMaxSourceBytes;
   int timeoutSeconds = 60;
 };
 

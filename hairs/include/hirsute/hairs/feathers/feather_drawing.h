@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "hirsute/interpreter/feather_part.h"
@@ -63,6 +64,9 @@ class FeatherDrawing : public OrganDrawing {
   std::vector<std::uint32_t> order_;
   std::vector<FeatherDrawRun> runs_;
   std::vector<char> nearSides_;  // the vane order the barb indices were last built for
+  // The levels whose geometry passed the vertex limit, and the error it gave (empty: none).
+  std::vector<std::uint8_t> failedLevels_;
+  std::string failure_;
 };
 
 // The feathers' drawing, registered as "feathers".

@@ -20,6 +20,7 @@ struct FeatherStageOptions {
   std::string lsystemFile;  // where warnings and limit errors about the L-system's feathers point
   std::uint64_t seed = 0;   // of the coats' follicles; 0: the view file's `hair texture:` seed
   std::size_t maxFeathers = 1'000'000;  // more feathers (@Fe and @Fi ones and coats) are an error
+  std::size_t maxVertices = kDefaultMaxVertices;  // FeatherPart::maxVertices
   Progress* progress = nullptr;         // shows the coats' placement (null: nothing)
 };
 

@@ -110,6 +110,11 @@ class LiveModel {
   const ModelWorker& worker() const { return *worker_; }
   // The last build's error (or the animation file's, or a dynamics failure); empty when none.
   const std::string& error() const { return error_; }
+  // The window could not draw the build (an organ's geometry at this camera's detail passed
+  // --max-vertices): the message shows on the error line until the next build.
+  void drawingFailed(const std::string& message) {
+    if (error_.empty()) error_ = message;
+  }
   // The screenshot being written is not an edit of the model's files.
   void ignoreWrite(const std::filesystem::path& file);
 
