@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "model_pipeline.h"
@@ -16,6 +17,11 @@ struct RenderOptions {
   std::string output;
   std::string size = "800x600";
   int samples = 4;
+  // --trace: the path tracer instead of GL (trace_run.cpp, in the program itself).
+  bool trace = false;
+  int traceSamples = 64;
+  double traceSeconds = 0;
+  std::uint64_t traceSeed = 1;
 };
 
 struct ViewOptions {
@@ -33,6 +39,8 @@ struct ViewOptions {
 
 // In the drawing module.
 int runRender(const RenderOptions& options);
+// In the program: the path tracer needs no GL.
+int runTrace(const RenderOptions& options);
 int runView(const ViewOptions& options);
 
 }  // namespace hirsute::cli

@@ -33,7 +33,22 @@ void registerRenderCommand(CLI::App& app, Action& action) {
       ->add_option("--samples", options->samples,
                    "Multisample antialiasing: samples a pixel (default 4; 1 turns it off)")
       ->check(CLI::Range(1, 64));
+  render->add_flag("--trace", options->trace,
+                   "Render by the path tracer (Monte-Carlo, hairs, translucency, sky light) "
+                   "instead of GL");
+  render->add_option("--spp", options->traceSamples,
+                     "With --trace: samples a pixel, at most (default 64)")
+      ->check(CLI::Range(1, 1 << 20));
+  render->add_option("--time", options->traceSeconds,
+                     "With --trace: stop the passes before this many seconds (default: none)")
+      ->check(CLI::Range(0.0, 1e7));
+  render->add_option("--seed", options->traceSeed,
+                     "With --trace: the seed of the samples (default 1; one seed, one picture)");
   render->callback([options, &action] {
+    if (options->trace) {
+      action = [options] { return runTrace(*options); };
+      return;
+    }
     action = [options] { return runInDrawingModule("hirsuteRunRender", options.get()); };
   });
 }

@@ -27,6 +27,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "hirsute/core/model_folder.h"
 #include "hirsute/interpreter/contour.h"
 #include "hirsute/interpreter/model_resources.h"
@@ -265,6 +267,84 @@ void shadowMap(ViewLine& c) {
 // `light: O: x y z  V: x y z  A: r g b  D: r g b  S: r g b  P: x y z e c  T: c l q`
 // (manual §8.1.3). Each line adds a light. The colon after a key may be missing (tools-FernLeaf
 // writes `D 0.6 0.6 0.6`) and numbers may be separated by commas (`V: 1.0, 0.5, 0.5`).
+// The path tracer's lines (TraceSettings). Values out of range are errors at the value: a
+// model's light or sky must not make the tracer compute with infinities.
+float boundedValue(const ViewLine& c, const Token& token, double value, double low, double high) {
+  if (!(value >= low && value <= high)) {
+    c.fail(token.where, "the value " + std::string(token.text) + " in " + inQuotes(c.label()) +
+                            " must be from " + fmt::format("{:g}", low) + " to " +
+                            fmt::format("{:g}", high));
+  }
+  return value;
+}
+
+glm::vec3 boundedColour(const ViewLine& c, const std::vector<Token>& tokens, std::size_t& i,
+                        double high) {
+  const std::size_t first = i + 1;
+  const std::vector<double> v = subcommandNumbers(c, tokens, i, 3, "r,g,b");
+  for (std::size_t k = 0; k < 3; ++k) boundedValue(c, tokens[first + k], v[k], 0, high);
+  return asVector(v);
+}
+
+void traceLight(ViewLine& c) {
+  const std::vector<Token> tokens = subcommandTokens(c.line());
+  c.args.skipAll();
+  TraceSettings& t = c.view.trace;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const char key = subcommandKey(tokens[i].text);
+    if (key == 'D') {
+      const std::size_t first = i + 1;
+      const glm::vec3 d = asVector(subcommandNumbers(c, tokens, i, 3, "x,y,z"));
+      for (int k = 0; k < 3; ++k) boundedValue(c, tokens[first + k], d[k], -1e6, 1e6);
+      if (!(glm::length(d) > 0)) c.fail(tokens[first].where, "the light's direction is zero");
+      t.lightDirection = d;
+    } else if (key == 'A') {
+      const std::size_t first = i + 1;
+      t.lightAngle = static_cast<float>(boundedValue(
+          c, tokens[first], subcommandNumbers(c, tokens, i, 1, "an angle in degrees")[0], 0.01, 179));
+    } else if (key == 'I') {
+      t.lightIrradiance = boundedColour(c, tokens, i, 1e4);
+    } else {
+      c.fail(tokens[i].where, "expected 'D: x,y,z', 'A: degrees' or 'I: r,g,b' in " +
+                                  inQuotes(c.label()) + ", found " + inQuotes(tokens[i].text));
+    }
+  }
+}
+
+void hairShading(ViewLine& c) {
+  const std::vector<Token> tokens = subcommandTokens(c.line());
+  c.args.skipAll();
+  TraceSettings& t = c.view.trace;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const char key = subcommandKey(tokens[i].text);
+    const char* what = key == 'B' ? "the share scattered back" : key == 'R' ? "a roughness" : "a specular share";
+    if (key != 'B' && key != 'R' && key != 'S') {
+      c.fail(tokens[i].where, "expected 'B: backscatter', 'R: roughness' or 'S: specular' in " +
+                                  inQuotes(c.label()) + ", found " + inQuotes(tokens[i].text));
+    }
+    const std::size_t first = i + 1;
+    const double value = subcommandNumbers(c, tokens, i, 1, what)[0];
+    if (key == 'B') t.hairBackscatter = static_cast<float>(boundedValue(c, tokens[first], value, 0, 1));
+    if (key == 'R') t.hairRoughness = static_cast<float>(boundedValue(c, tokens[first], value, 0.01, 1.5));
+    if (key == 'S') t.hairSpecular = static_cast<float>(boundedValue(c, tokens[first], value, 0, 1));
+  }
+}
+
+void translucency(ViewLine& c) {
+  const SourceLocation colourAt = c.args.here();
+  const std::optional<long> colour = c.args.integer();
+  if (!colour || *colour < 0 || *colour > 4095) {
+    c.fail(colourAt, "expected a colour index from 0 to 4095 after " + inQuotes(c.label()));
+  }
+  const SourceLocation shareAt = c.args.here();
+  const std::optional<double> share = c.args.number();
+  if (!share || !(*share >= 0 && *share <= 1)) {
+    c.fail(shareAt, "expected the share of light passed through, from 0 to 1, after the colour "
+                    "in " + inQuotes(c.label()));
+  }
+  c.view.trace.translucent.emplace_back(static_cast<int>(*colour), static_cast<float>(*share));
+}
+
 void light(ViewLine& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   LightSource light;
@@ -674,6 +754,28 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
            if (const auto v = c.settingNumber()) c.view.surfaceDiffuse = static_cast<float>(*v);
          }},
         {"light:", &light},
+        // hirsute render --trace (docs/trace.md).
+        {"trace light:", &traceLight},
+        {"trace sky:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingTriple()) {
+             if (glm::all(glm::greaterThanEqual(*v, glm::vec3(0.0f))) &&
+                 glm::all(glm::lessThanEqual(*v, glm::vec3(1e4f)))) {
+               c.view.trace.sky = *v;
+             } else {
+               c.warn(c.line().at(0), "the sky's colour must be from 0 to 10000 a channel; the "
+                                      "line is ignored");
+             }
+           }
+         }},
+        {"trace up:",
+         [](ViewLine& c) {
+           if (const auto v = c.settingTriple()) {
+             if (glm::length(*v) > 0 && glm::length(*v) < 1e30f) c.view.trace.up = *v;
+           }
+         }},
+        {"translucency:", &translucency},
+        {"hair shading:", &hairShading},
 
         // Lines, contours and surfaces (§8.1.5).
         {"line style:", &lineStyle},

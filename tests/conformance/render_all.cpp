@@ -10,6 +10,8 @@
 //   hirsute render L V … -o gl.png --size 160x120
 //     exit code 0, no "error" in standard error, the PNG decodes at 160x120, and some pixel
 //     differs from the corner pixel (the background): the model drew something;
+//   hirsute render L V … -o traced.png --trace --spp 2 --size 80x60   (shipped models only)
+//     the same checks for the path tracer;
 //   hirsute export L V … --pov scene.pov --render --width 64 --height 48   (when povray is on
 //   the PATH; skipped with a message otherwise)
 //     exit code 0, no "error" in standard error, nothing printed beyond the model's own warnings
@@ -49,6 +51,7 @@ namespace {
 
 constexpr int kExitSkip = 77;
 constexpr int kGlWidth = 160, kGlHeight = 120;
+constexpr int kTraceWidth = 80, kTraceHeight = 60;  // render --trace, shipped models only
 constexpr int kPovWidth = 64, kPovHeight = 48;
 
 // One model to draw: the command-line arguments that name it (files, colour options, steps).
@@ -315,7 +318,8 @@ struct ModelResult {
   double renderSeconds = 0, exportSeconds = 0;
 };
 
-ModelResult drawModel(const ModelCase& model, const fs::path& folder, bool withPovray) {
+ModelResult drawModel(const ModelCase& model, const fs::path& folder, bool withPovray,
+                      bool traced) {
   ModelResult result;
   std::vector<std::string>& problems = result.problems;
   const char* emptyReason = drawsNothing(model.id);
@@ -335,6 +339,25 @@ ModelResult drawModel(const ModelCase& model, const fs::path& folder, bool withP
       problems.push_back("render printed an error:\n" + excerpt(rendered.standardError));
     }
     checkImage(png, kGlWidth, kGlHeight, emptyReason == nullptr, "render's PNG", problems);
+  }
+  if (traced) {
+    // The path tracer (render --trace) at a small size and two samples a pixel.
+    std::vector<std::string> trace = {"render"};
+    trace.insert(trace.end(), model.arguments.begin(), model.arguments.end());
+    const fs::path tracedPng = folder / "traced.png";
+    trace.insert(trace.end(), {"-o", tracedPng.string(), "--trace", "--spp", "2", "--size",
+                               std::to_string(kTraceWidth) + "x" + std::to_string(kTraceHeight)});
+    CommandRun run = runHirsute(trace, folder, "render --trace");
+    if (run.exitCode != 0) {
+      problems.push_back("render --trace exited with " + std::to_string(run.exitCode) + ":\n" +
+                         excerpt(run.standardError));
+    } else {
+      if (containsErrorWord(run.standardError)) {
+        problems.push_back("render --trace printed an error:\n" + excerpt(run.standardError));
+      }
+      checkImage(tracedPng, kTraceWidth, kTraceHeight, emptyReason == nullptr,
+                 "render --trace's PNG", problems);
+    }
   }
   if (!withPovray) return result;
 
@@ -414,7 +437,7 @@ int main(int argc, char** argv) {
     const ModelCase& model = cases[i];
     fs::path folder = work / std::to_string(i);
     fs::create_directories(folder);
-    ModelResult result = drawModel(model, folder, withPovray);
+    ModelResult result = drawModel(model, folder, withPovray, set == "models");
     renderTotal += result.renderSeconds;
     exportTotal += result.exportSeconds;
     bool ok = result.problems.empty();

@@ -481,3 +481,53 @@ TEST(ViewFileTest, ConformanceSettingsMatchTheirFiles) {
 
 }  // namespace
 }  // namespace hirsute
+
+namespace hirsute {
+namespace {
+
+// The path tracer's lines (docs/trace.md) set its light, sky and materials, and refuse values
+// out of range at the value.
+TEST(ViewFileTest, TheTracersLinesSetItsLightsAndMaterials) {
+  Diagnostics diagnostics;
+  const ViewSettings view = parseViewFile(
+      "trace light: D: -0.3,0.6,-1 A: 6 I: 4,3.9,3.6\ntrace sky: 0.1,0.2,0.3\n"
+      "trace up: 0,0,1\ntranslucency: 4 0.45\ntranslucency: 7 1\n"
+      "hair shading: B: 0.25 R: 0.2 S: 0.06\n",
+      "trace.v", diagnostics);
+  EXPECT_TRUE(diagnostics.warnings().empty());
+  const TraceSettings& t = view.trace;
+  ASSERT_TRUE(t.lightDirection.has_value());
+  EXPECT_EQ(*t.lightDirection, glm::vec3(-0.3f, 0.6f, -1));
+  EXPECT_FLOAT_EQ(t.lightAngle, 6);
+  EXPECT_EQ(t.lightIrradiance, glm::vec3(4, 3.9f, 3.6f));
+  EXPECT_EQ(t.sky, glm::vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(t.up, glm::vec3(0, 0, 1));
+  ASSERT_EQ(t.translucent.size(), 2u);
+  EXPECT_EQ(t.translucent[0], (std::pair<int, float>(4, 0.45f)));
+  EXPECT_FLOAT_EQ(t.hairBackscatter, 0.25f);
+  EXPECT_FLOAT_EQ(t.hairRoughness, 0.2f);
+  EXPECT_FLOAT_EQ(t.hairSpecular, 0.06f);
+
+  auto errorOf = [](const std::string& text) -> std::string {
+    Diagnostics d;
+    try {
+      parseViewFile(text, "trace.v", d);
+    } catch (const DiagnosticError& e) {
+      return e.diagnostic().text();
+    }
+    return "";
+  };
+  EXPECT_NE(errorOf("trace light: A: 400\n").find("trace.v:1:17: error:"), std::string::npos)
+      << errorOf("trace light: A: 400\n");
+  EXPECT_NE(errorOf("trace light: I: 1,1,1e30\n").find("must be from 0 to 10000"),
+            std::string::npos);
+  EXPECT_NE(errorOf("trace light: D: 0,0,0\n").find("the light's direction is zero"),
+            std::string::npos);
+  EXPECT_NE(errorOf("translucency: 4 1.5\n").find("trace.v:1:17: error:"), std::string::npos)
+      << errorOf("translucency: 4 1.5\n");
+  EXPECT_NE(errorOf("hair shading: B: nan\n").find("trace.v:1:"), std::string::npos)
+      << errorOf("hair shading: B: nan\n");
+}
+
+}  // namespace
+}  // namespace hirsute

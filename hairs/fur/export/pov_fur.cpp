@@ -20,21 +20,6 @@ namespace {
 constexpr int kStrandPoints = 7;  // six ribbon segments a strand
 constexpr char kEmittedFinish[] = "emission 1 diffuse 0 ambient 0";
 
-// The colour of `texture` at (u, v) as GL samples it (nearest texel, repeating; v = 0 is the
-// image's last row, as the renderer uploads it).
-glm::vec3 textureColour(const Texture& texture, const glm::vec2& uv) {
-  auto wrap = [](float t, int n) {
-    const int i = static_cast<int>(std::floor(t * static_cast<float>(n)));
-    return ((i % n) + n) % n;
-  };
-  const int x = wrap(uv.x, texture.width);
-  const int y = texture.height - 1 - wrap(uv.y, texture.height);
-  const std::uint8_t* p =
-      &texture.rgba[4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(texture.width) +
-                         static_cast<std::size_t>(x))];
-  return glm::vec3(p[0], p[1], p[2]) / 255.0f;
-}
-
 }  // namespace
 
 void FurWriter::writePov(const Scene& scene, PovWriter& pov) const {
@@ -62,7 +47,7 @@ void FurWriter::writePov(const Scene& scene, PovWriter& pov) const {
     std::vector<std::uint32_t> faces;
     std::size_t strands = 0;
     fur::forEachStrand(scene, surface, kStrandPoints, [&](const fur::FurStrandView& strand) {
-      const glm::vec3 colour = texture ? textureColour(*texture, strand.uv) : material.diffuse;
+      const glm::vec3 colour = texture ? fur::furTextureColour(*texture, strand.uv) : material.diffuse;
       const auto base = static_cast<std::uint32_t>(points.size());
       const std::size_t n = strand.points.size();
       for (std::size_t i = 0; i < n; ++i) {

@@ -78,6 +78,25 @@ struct ShadowMap {
   float offsetFactor = 5, offsetUnits = 10;
 };
 
+// The path tracer's lines (docs/trace.md): the paper's one spherical light and hemispherical
+// sky (papers/002_0e0bce38b72f21dc.txt, Sec. 5), the colours light passes through, and how
+// hairs scatter.
+struct TraceSettings {
+  // `trace light: D: x,y,z A: degrees I: r,g,b`: towards the light from the plant (none: the
+  // first `light:` line's direction, or the eye's), the angle it subtends, and the irradiance it
+  // gives a surface facing it.
+  std::optional<glm::vec3> lightDirection;
+  float lightAngle = 5;
+  glm::vec3 lightIrradiance{2.5f};
+  // `trace sky: r,g,b`: the sky's radiance over the hemisphere about `trace up: x,y,z`.
+  glm::vec3 sky{0.35f};
+  glm::vec3 up{0, 1, 0};
+  // `translucency: COLOUR T`: the share T of the colour's diffuse light that passes through.
+  std::vector<std::pair<int, float>> translucent;
+  // `hair shading: B: backscatter R: roughness S: specular` (hair_bsdf.h).
+  float hairBackscatter = 0.4f, hairRoughness = 0.25f, hairSpecular = 0.08f;
+};
+
 struct ViewSettings {
   // Turtle.
   float angleIncrement = 45;
@@ -124,6 +143,9 @@ struct ViewSettings {
   std::vector<SurfaceDeclaration> surfaces;
   std::vector<TextureDeclaration> textures;
   std::vector<std::string> backgroundScenes;
+
+  // hirsute render --trace.
+  TraceSettings trace;
 
   // Each organ's settings (organ_settings.h), by type: view.organ<NAMESettings>().
   OrganSettingsSet organs;

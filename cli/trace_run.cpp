@@ -1,0 +1,97 @@
+// `hirsute render --trace`: the model's still by the path tracer (docs/trace.md), framed as the
+// GL render frames it, so that a preview and a still of one view line up.
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "command.h"
+#include "drawing_commands.h"
+#include "hirsute/viewer/trace/path_tracer.h"
+#include "hirsute/viewer/trace/scene_geometry.h"
+#include "hirsute/viewer/view/view_lighting.h"
+
+namespace hirsute::cli {
+
+int runTrace(const RenderOptions& o) {
+  using Clock = std::chrono::steady_clock;
+  Progress progress = Progress::onTerminal(stderr);
+  ModelOptions model = o.model;
+  model.terminalProgress = &progress;
+  Diagnostics diagnostics(&std::cerr);
+  BuiltScene built;
+  try {
+    built = buildScene(model, diagnostics);
+  } catch (const DiagnosticError& e) {
+    progress.clear();
+    std::cerr << e.diagnostic().text() << '\n';
+    return kExitBadInput;
+  }
+  const std::size_t x = o.size.find('x');
+  const glm::ivec2 size(std::stoi(o.size.substr(0, x)), std::stoi(o.size.substr(x + 1)));
+  const Scene& scene = built.scene;
+  const ViewSettings& view = built.resources.view;
+  const Bounds bounds = scene.bounds();
+  const Camera camera = fitCamera(view, bounds, size);
+
+  // Without a `trace light:` line the light comes from where the view's first light shines
+  // from, as in the GL render; with none, from the eye.
+  const ViewLighting lighting =
+      viewLighting(view, built.resources.materialMode, -camera.forward);
+  glm::vec3 towards = -camera.forward;
+  if (lighting.colorMap) {
+    towards = lighting.colorMapLight;
+  } else if (!lighting.headlight && !lighting.lights.empty()) {
+    const LightSource& first = lighting.lights.front();
+    towards = first.directional ? first.vector : first.vector - bounds.center();
+  }
+  const trace::TraceLights lights = trace::traceLights(view.trace, bounds, towards);
+
+  trace::TraceOptions options;
+  options.samples = o.traceSamples;
+  options.seconds = o.traceSeconds;
+  options.threads = o.model.threads;
+  options.seed = o.traceSeed;
+  options.background = backgroundColor(scene, built.resources.materialMode);
+  options.progress = &progress;
+  trace::TraceImage image;
+  try {
+    const Clock::time_point started = Clock::now();
+    progress.begin("building the ray tracer's scene", Progress::Unit::None);
+    trace::TraceScene traced(view.trace, o.model.threads);
+    trace::addSceneGeometry(scene, camera, traced);
+    traced.commit();
+    progress.clear();
+    if (o.model.verbose) {
+      std::cerr << fmt::format(
+          "ray tracer's scene: {} triangles, {} curve segments, {:.1f} MB of buffers in {:.3f} "
+          "s\n",
+          traced.triangleCount(), traced.curveSegments(), traced.bufferBytes() / 1e6,
+          std::chrono::duration<double>(Clock::now() - started).count());
+    }
+    image = trace::traceImage(traced, camera, lights, options);
+  } catch (const GeometryLimitError& e) {
+    progress.clear();
+    std::cerr << model.lsystemFile << ": error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const std::runtime_error& e) {
+    progress.clear();
+    std::cerr << "hirsute: error: cannot trace: " << e.what() << '\n';
+    return kExitIoError;
+  }
+  progress.clear();
+  if (o.model.verbose) {
+    std::cerr << fmt::format("traced {} samples a pixel at {}x{} in {:.3f} s\n", image.passes,
+                             image.width, image.height, image.seconds);
+  }
+  try {
+    writePng(o.output, trace::displayImage(image));
+  } catch (const std::runtime_error& e) {
+    std::cerr << "hirsute: error: " << e.what() << '\n';
+    return kExitIoError;
+  }
+  return kExitOk;
+}
+
+}  // namespace hirsute::cli

@@ -1,0 +1,66 @@
+#include "hirsute/hairs/fur/fur_tracer.h"
+
+#include <cstdint>
+#include <vector>
+
+#include "hirsute/hairs/fur/fur_strands.h"
+#include "hirsute/interpreter/fur_part.h"
+
+namespace hirsute {
+namespace {
+
+constexpr int kStrandPoints = 7;  // as the exports sample a strand
+
+class FurTracer : public trace::OrganTracer {
+ public:
+  void addTo(const Scene& scene, const Camera& /*camera*/, trace::TraceScene& out) const override {
+    const FurPart& part = scene.organ<FurPart>();
+    const int material = part.surfaces.empty() ? -1 : out.hairOfColour(glm::vec3(1.0f));
+    for (const FurSurface& surface : part.surfaces) {
+      if (surface.attributes < 0) continue;
+      const FurAttributes& a = part.attributes[static_cast<std::size_t>(surface.attributes)];
+      const glm::vec3 base =
+          static_cast<std::size_t>(surface.material) < scene.materials.size()
+              ? scene.materials[static_cast<std::size_t>(surface.material)].diffuse
+              : Material{}.diffuse;
+      const Texture* texture = nullptr;
+      if (a.texture > 0 && static_cast<std::size_t>(a.texture) < scene.textures.size()) {
+        const Texture& t = scene.textures[static_cast<std::size_t>(a.texture)];
+        if (t.width > 0 && t.height > 0) texture = &t;
+      }
+      const std::size_t strands = fur::countStrands(scene, surface);
+      if (strands == 0) continue;
+      const trace::CurveBuffers b =
+          out.addCurves(trace::CurveShape::Round, strands * kStrandPoints,
+                        strands * (kStrandPoints - 1), material, true);
+      std::uint32_t vertex = 0;
+      std::size_t segment = 0, made = 0;
+      fur::forEachStrand(scene, surface, kStrandPoints, [&](const fur::FurStrandView& strand) {
+        if (made++ >= strands || strand.points.size() != kStrandPoints) return;
+        const glm::vec3 colour = trace::linearColour(
+            texture ? fur::furTextureColour(*texture, strand.uv) : base);
+        for (std::size_t i = 0; i < strand.points.size(); ++i) {
+          if (i + 1 < strand.points.size()) b.segments[segment++] = vertex;
+          b.tint[vertex] = glm::vec4(colour, 1);
+          b.vertices[vertex++] = glm::vec4(strand.points[i], strand.radius);
+        }
+      });
+      // Strands the count promised and the walk did not make stay as points at the origin
+      // of no width, which no ray hits.
+      for (; vertex < strands * kStrandPoints; ++vertex) {
+        b.vertices[vertex] = glm::vec4(0.0f);
+        b.tint[vertex] = glm::vec4(0.0f);
+      }
+      for (; segment < strands * (kStrandPoints - 1); ++segment) b.segments[segment] = 0;
+    }
+  }
+};
+
+}  // namespace
+
+const trace::OrganTracer& furTracer() {
+  static const FurTracer tracer;
+  return tracer;
+}
+
+}  // namespace hirsute

@@ -1,0 +1,223 @@
+// The integrator against what can be worked out by hand: a diffuse sphere under a uniform sky
+// and under the spherical light, the error of a pixel falling as 1/√samples, the same picture
+// on any number of threads, and the hairy-plants paper's backlit halo (Fig. 5).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hirsute/viewer/trace/path_tracer.h"
+#include "hirsute/viewer/trace/trace_scene.h"
+
+namespace {
+
+using namespace hirsute;
+using namespace hirsute::trace;
+
+// A unit sphere at the origin of reflectance `albedo`.
+void addSphere(TraceScene& scene, float albedo) {
+  TraceMaterial m;
+  m.surface.reflectance = glm::vec3(albedo);
+  scene.addSpheres({glm::vec4(0, 0, 0, 1)}, scene.addMaterial(m));
+}
+
+// The mean of `samples` paths along -z through (0, h, 5), each with its own stream.
+glm::vec3 pixel(const TraceScene& scene, const TraceLights& lights, float h, int samples,
+                std::uint64_t seed) {
+  TraceOptions options;
+  glm::vec3 sum(0.0f);
+  for (int i = 0; i < samples; ++i) {
+    Random random(seed, static_cast<std::uint64_t>(i));
+    sum += traceRay(scene, lights, glm::vec3(0, h, 5), glm::vec3(0, 0, -1), random, options);
+  }
+  return sum / static_cast<float>(samples);
+}
+
+TEST(PathTracer, ADiffuseSphereUnderAUniformSkyHasItsAnalyticRadiance) {
+  TraceScene scene(TraceSettings{});
+  addSphere(scene, 0.7f);
+  scene.commit();
+  TraceLights lights;
+  lights.sky = glm::vec3(0.5f);
+  lights.up = glm::vec3(0, 1, 0);
+  // A point whose normal makes angle α with the sky's up sees (1 + cos α)/2 of the sky's
+  // irradiance π L; a convex body never sees itself: L_out = ρ L (1 + cos α) / 2.
+  for (float h : {-0.8f, -0.3f, 0.0f, 0.5f, 0.9f}) {
+    const float expected = 0.7f * 0.5f * (1 + h) / 2;
+    EXPECT_NEAR(pixel(scene, lights, h, 20000, 1).g, expected, 0.01f * 0.35f + 0.002f) << "h " << h;
+  }
+}
+
+TEST(PathTracer, TheSphericalLightGivesItsIrradiance) {
+  TraceScene scene(TraceSettings{});
+  addSphere(scene, 0.5f);
+  scene.commit();
+  TraceSettings look;
+  look.lightDirection = glm::vec3(0, 0, 1);  // towards the eye: the point facing it is lit fully
+  look.lightAngle = 4;
+  look.lightIrradiance = glm::vec3(2.0f);
+  Bounds plant;
+  plant.add(glm::vec3(-1));
+  plant.add(glm::vec3(1));
+  TraceLights lights = traceLights(look, plant, glm::vec3(0, 0, 1));
+  lights.sky = glm::vec3(0.0f);
+  // A sphere of radius R and radiance L at distance d gives E = π L (R/d)² cos θ, and a
+  // Lambertian surface returns ρ E / π of it.
+  for (float degrees : {0.0f, 60.0f}) {
+    const float h = std::sin(glm::radians(degrees));
+    const glm::vec3 point(0, h, std::sqrt(1 - h * h));
+    const glm::vec3 toLight = lights.centre - point;
+    const float d = glm::length(toLight);
+    const float cosine = glm::dot(point, toLight / d);
+    const float expected = 0.5f * lights.radiance.g * (lights.radius / d) * (lights.radius / d) * cosine;
+    EXPECT_NEAR(pixel(scene, lights, h, 4000, 2).g, expected, 0.01f * expected) << degrees;
+  }
+}
+
+TEST(PathTracer, APixelsErrorFallsAsOneOverTheRootOfItsSamples) {
+  TraceScene scene(TraceSettings{});
+  addSphere(scene, 0.7f);
+  scene.commit();
+  TraceLights lights;
+  lights.sky = glm::vec3(0.5f);
+  const float h = 0.4f;
+  const float expected = 0.7f * 0.5f * (1 + h) / 2;
+  auto rmsError = [&](int samples) {
+    double sum = 0;
+    const int pixels = 200;
+    for (int p = 0; p < pixels; ++p) {
+      const float e = pixel(scene, lights, h, samples, 100 + static_cast<std::uint64_t>(p)).g - expected;
+      sum += static_cast<double>(e) * e;
+    }
+    return std::sqrt(sum / pixels);
+  };
+  const double few = rmsError(16), many = rmsError(256);
+  // Sixteen times the samples: a quarter of the error.
+  EXPECT_GT(few / many, 3.0) << few << " " << many;
+  EXPECT_LT(few / many, 5.3) << few << " " << many;
+}
+
+Camera frontCamera(int width, int height, float half) {
+  Camera camera;
+  camera.projection = Projection::Parallel;
+  camera.viewport = {width, height};
+  camera.eye = glm::vec3(0, 0, 10);
+  camera.forward = glm::vec3(0, 0, -1);
+  camera.up = glm::vec3(0, 1, 0);
+  camera.right = glm::vec3(1, 0, 0);
+  camera.halfHeight = half;
+  camera.halfWidth = half * static_cast<float>(width) / static_cast<float>(height);
+  camera.nearPlane = 0;
+  camera.farPlane = 20;
+  return camera;
+}
+
+TEST(PathTracer, ASeedGivesOnePictureOnAnyNumberOfThreads) {
+  TraceScene scene(TraceSettings{});
+  addSphere(scene, 0.6f);
+  scene.commit();
+  TraceLights lights;
+  lights.sky = glm::vec3(0.4f);
+  TraceOptions options;
+  options.samples = 3;
+  options.seed = 42;
+  options.threads = 1;
+  const TraceImage one = traceImage(scene, frontCamera(24, 16, 1.5f), lights, options);
+  options.threads = 3;
+  const TraceImage three = traceImage(scene, frontCamera(24, 16, 1.5f), lights, options);
+  ASSERT_EQ(one.radiance.size(), three.radiance.size());
+  for (std::size_t i = 0; i < one.radiance.size(); ++i) EXPECT_EQ(one.radiance[i], three.radiance[i]);
+  options.seed = 43;
+  const TraceImage other = traceImage(scene, frontCamera(24, 16, 1.5f), lights, options);
+  EXPECT_NE(one.radiance, other.radiance);
+}
+
+// Fig. 5 of the hairy-plants paper: a twig with fine hairs, lit from behind, glows in a band
+// just outside its silhouette; without the hairs the band is the background. Front lit, the
+// same hairs are much fainter.
+struct Twig {
+  float band = 0;   // mean radiance just outside the silhouette
+  float body = 0;   // mean radiance on the twig
+};
+
+Twig twig(bool hairs, const glm::vec3& towardsLight) {
+  TraceSettings look;
+  look.hairBackscatter = 0.2f;
+  look.hairSpecular = 0.05f;
+  TraceScene scene(look);
+  // A cylinder of radius 0.5 along x, as triangles.
+  const int sides = 32, rings = 2;
+  TriangleBuffers body = scene.addTriangles(sides * rings, 2 * sides, scene.surfaceOfColour(glm::vec3(0.3f, 0.2f, 0.1f)), true, false);
+  for (int r = 0; r < rings; ++r) {
+    for (int s = 0; s < sides; ++s) {
+      const float a = 2 * kPi * static_cast<float>(s) / sides;
+      const glm::vec3 n(0, std::cos(a), std::sin(a));
+      body.positions[r * sides + s] = glm::vec3(r == 0 ? -4.0f : 4.0f, 0, 0) + 0.5f * n;
+      body.normals[r * sides + s] = n;
+    }
+  }
+  for (int s = 0; s < sides; ++s) {
+    const std::uint32_t a = s, b = (s + 1) % sides, c = sides + s, d = sides + (s + 1) % sides;
+    const std::uint32_t tri[6] = {a, b, d, a, d, c};
+    std::copy(tri, tri + 6, body.indices + 6 * s);
+  }
+  if (hairs) {
+    // Straight hairs 0.3 long standing out of the surface, 0.004 thick, a dense fuzz.
+    const int count = 6000;
+    CurveBuffers b = scene.addCurves(CurveShape::Round, 2 * count, count,
+                                     scene.hairOfColour(glm::vec3(0.9f)), false);
+    Random random(9, 9);
+    for (int i = 0; i < count; ++i) {
+      const float x = -4 + 8 * random.uniform();
+      const float a = 2 * kPi * random.uniform();
+      const glm::vec3 n(0, std::cos(a), std::sin(a));
+      b.vertices[2 * i] = glm::vec4(glm::vec3(x, 0, 0) + 0.5f * n, 0.004f);
+      b.vertices[2 * i + 1] = glm::vec4(glm::vec3(x, 0, 0) + 0.8f * n, 0.004f);
+      b.segments[i] = static_cast<std::uint32_t>(2 * i);
+    }
+  }
+  scene.commit();
+  look.lightDirection = towardsLight;
+  look.lightIrradiance = glm::vec3(3.0f);
+  Bounds box;
+  box.add(glm::vec3(-4, -1, -1));
+  box.add(glm::vec3(4, 1, 1));
+  TraceLights lights = traceLights(look, box, towardsLight);
+  lights.sky = glm::vec3(0.0f);
+  TraceOptions options;
+  options.samples = 24;
+  const int width = 48, height = 48;
+  const TraceImage image = traceImage(scene, frontCamera(width, height, 1.2f), lights, options);
+  Twig out;
+  int inBand = 0, onBody = 0;
+  for (int y = 0; y < height; ++y) {
+    const float world = 1.2f * (1 - (y + 0.5f) / height * 2);
+    for (int x = 0; x < width; ++x) {
+      const float value = luminance(image.at(x, y));
+      if (std::abs(world) > 0.55f && std::abs(world) < 0.75f) {
+        out.band += value;
+        ++inBand;
+      } else if (std::abs(world) < 0.4f) {
+        out.body += value;
+        ++onBody;
+      }
+    }
+  }
+  out.band /= static_cast<float>(inBand);
+  out.body /= static_cast<float>(onBody);
+  return out;
+}
+
+TEST(PathTracer, BacklitHairsMakeAHaloOutsideTheSilhouette) {
+  const glm::vec3 behind = glm::normalize(glm::vec3(0, 0.25f, -1));
+  const glm::vec3 front = glm::normalize(glm::vec3(0, 0.25f, 1));
+  const Twig bare = twig(false, behind), hairy = twig(true, behind), frontLit = twig(true, front);
+  EXPECT_EQ(bare.band, 0.0f);
+  // The halo: the band glows at more than a twentieth of the light's white-surface radiance.
+  EXPECT_GT(hairy.band, 0.05f * 3.0f / kPi) << hairy.band;
+  // And the glow is the light passed through the hairs: lit from the front, they are fainter.
+  EXPECT_GT(hairy.band, 1.5f * frontLit.band) << hairy.band << " " << frontLit.band;
+  // The twig's own surface is lit from the front, not from behind.
+  EXPECT_GT(frontLit.body, 3 * hairy.body);
+}
+
+}  // namespace

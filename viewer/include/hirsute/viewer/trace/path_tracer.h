@@ -1,0 +1,76 @@
+// `hirsute render --trace`: a Monte-Carlo path tracer over the Embree scene (trace_scene.h), lit
+// as the hairy-plants paper lit its pictures (papers/002_0e0bce38b72f21dc.txt, Sec. 5): one
+// spherical light and a hemispherical skylight, each sampled directly and by the materials,
+// the two combined by multiple importance sampling (Veach's power heuristic). The plant stands
+// against a solid background, which camera rays that miss it see; the light lights but is not
+// seen.
+//
+// The picture is made in passes of one sample a pixel, over all the threads; a pixel's samples
+// depend on the seed, the pixel and the pass alone, so a seed gives the same picture on any
+// number of threads. A time budget stops the passes between two of them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "hirsute/core/progress.h"
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/interpreter/view_settings.h"
+#include "hirsute/viewer/view/camera.h"
+#include "hirsute/viewer/view/png_image.h"
+#include "hirsute/viewer/trace/sampling.h"
+#include "hirsute/viewer/trace/trace_scene.h"
+
+namespace hirsute::trace {
+
+struct TraceLights {
+  bool sphere = false;  // the spherical light
+  glm::vec3 centre{0.0f};
+  float radius = 0;
+  glm::vec3 radiance{0.0f};
+  glm::vec3 sky{0.0f};  // the sky's radiance over the hemisphere about `up`
+  glm::vec3 up{0, 1, 0};
+};
+
+// The lights of `look` for a plant in `plant`: the spherical light far off (fifty times the
+// plant's size) towards `look.lightDirection`, or `fallback` when the view file gives none,
+// sized to subtend `look.lightAngle` and bright enough to give `look.lightIrradiance`.
+TraceLights traceLights(const TraceSettings& look, const Bounds& plant, const glm::vec3& fallback);
+
+struct TraceOptions {
+  int samples = 64;       // a pixel, at most
+  double seconds = 0;     // the time budget (0: none); the passes stop before it runs out
+  int threads = 0;        // 0: one a core
+  std::uint64_t seed = 1;
+  int maxBounces = 16;
+  glm::vec3 background{0.0f};  // what camera rays that hit nothing see (a display colour)
+  Progress* progress = nullptr;
+};
+
+// Linear radiance a pixel, row 0 at the top, averaged over `passes` samples.
+struct TraceImage {
+  int width = 0, height = 0;
+  int passes = 0;
+  double seconds = 0;
+  std::vector<glm::vec3> radiance;
+
+  glm::vec3 at(int x, int y) const {
+    return radiance[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                    static_cast<std::size_t>(x)];
+  }
+};
+
+TraceImage traceImage(const TraceScene& scene, const Camera& camera, const TraceLights& lights,
+                      const TraceOptions& options);
+
+// The picture as a display shows it: sRGB, clamped, 8 bits.
+RgbaImage displayImage(const TraceImage& image);
+
+// The radiance one path from `origin` along `direction` (unit) brings back, for tests of the
+// integrator: `depth` 0 is a camera ray.
+glm::vec3 traceRay(const TraceScene& scene, const TraceLights& lights, const glm::vec3& origin,
+                   const glm::vec3& direction, Random& random, const TraceOptions& options);
+
+}  // namespace hirsute::trace

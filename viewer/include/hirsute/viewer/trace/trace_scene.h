@@ -1,0 +1,130 @@
+// The path tracer's geometry (DESIGN.md, "Stills: the ray tracer"): the Scene as Intel Embree 3
+// holds it, with a material for each shape. The Scene's own elements go in as they are drawn in
+// GL: triangles for meshes (cylinders, surfaces, polygons), spheres and discs as Embree's point
+// primitives, lines as round curves. Each organ adds its own part through its OrganTracer
+// (organ_tracer.h): plant hairs and fur strands as round curves of their radius, feather barbs
+// as flat curves fading to their tips, into buffers Embree owns, so that nothing is held twice.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/interpreter/view_settings.h"
+#include "hirsute/viewer/view/camera.h"
+#include "hirsute/viewer/trace/hair_bsdf.h"
+#include "hirsute/viewer/trace/surface_bsdf.h"
+
+struct RTCDeviceTy;
+struct RTCSceneTy;
+struct RTCGeometryTy;
+
+namespace hirsute::trace {
+
+// What a shape is made of. A hair material shades by its tangent (hair_bsdf.h), a surface one
+// by its normal (surface_bsdf.h).
+struct TraceMaterial {
+  bool hair = false;
+  SurfaceMaterial surface;
+  HairMaterial fibre;
+  glm::vec3 emission{0.0f};  // radiance the shape gives off
+  float opacity = 1;         // below 1: rays pass through that share of the time
+};
+
+enum class CurveShape : std::uint8_t {
+  Round,  // a tube of the vertices' radius (hairs, fur strands, lines)
+  Flat,   // a ribbon as wide as twice the radius, turned towards each ray (barbs)
+};
+
+// Buffers an organ fills in place (Embree owns them): `vertices` of (x, y, z, radius), one
+// `segments` entry a segment (the index of its first vertex; the next is its second), and, when
+// asked for, a `tint` a vertex (rgb multiplies the material's colours, a its opacity).
+struct CurveBuffers {
+  glm::vec4* vertices = nullptr;
+  std::uint32_t* segments = nullptr;
+  glm::vec4* tint = nullptr;
+};
+
+struct TriangleBuffers {
+  glm::vec3* positions = nullptr;
+  glm::vec3* normals = nullptr;  // null: flat-shaded
+  std::uint32_t* indices = nullptr;
+  glm::vec4* tint = nullptr;
+};
+
+// How a hit shape is shaded (indexed by Embree's geometry ID), with its buffers.
+struct TraceShape {
+  int material = 0;
+  bool curve = false;
+  const glm::vec4* curveVertices = nullptr;       // curves: (x, y, z, radius)
+  const std::uint32_t* curveSegments = nullptr;   // curves: a segment's first vertex
+  const std::uint32_t* triangleIndices = nullptr; // triangles: three a triangle
+  const glm::vec3* normals = nullptr;             // triangles: a vertex each, or null
+  const glm::vec4* tint = nullptr;                // a vertex each, or null
+};
+
+class TraceScene {
+ public:
+  // `look`: the view file's translucent colours and hair shading; `threads`: those Embree may
+  // build with (0: all).
+  explicit TraceScene(const TraceSettings& look, int threads = 0);
+  ~TraceScene();
+  TraceScene(const TraceScene&) = delete;
+  TraceScene& operator=(const TraceScene&) = delete;
+
+  int addMaterial(const TraceMaterial& material);
+  // The Scene's material `index` as a surface, or as a hair of that colour (cached).
+  int surfaceMaterial(const Scene& scene, int index);
+  int hairMaterial(const Scene& scene, int index);
+  // A hair or a two-sided surface of the linear colour `colour` (white for shapes whose tint
+  // gives their colour), shaded as the view file says hairs are.
+  int hairOfColour(const glm::vec3& colour);
+  int surfaceOfColour(const glm::vec3& colour);
+
+  CurveBuffers addCurves(CurveShape shape, std::size_t vertices, std::size_t segments,
+                         int material, bool tint);
+  TriangleBuffers addTriangles(std::size_t vertices, std::size_t triangles, int material,
+                               bool normals, bool tint);
+  void addSpheres(const std::vector<glm::vec4>& centresAndRadii, int material);
+  // Discs facing `normals` (a zero normal: facing each ray).
+  void addDiscs(const std::vector<glm::vec4>& centresAndRadii,
+                const std::vector<glm::vec3>& normals, int material);
+
+  // Builds the acceleration structure; nothing may be added after.
+  void commit();
+
+  RTCSceneTy* embree() const { return scene_; }
+  const TraceShape& shape(unsigned geometry) const { return shapes_[geometry]; }
+  const TraceMaterial& material(int index) const {
+    return materials_[static_cast<std::size_t>(index)];
+  }
+  RTCGeometryTy* geometry(unsigned id) const;
+  bool hasTransparency() const { return transparency_; }
+  std::size_t curveSegments() const { return curveSegments_; }
+  std::size_t triangleCount() const { return triangles_; }
+  // Bytes of the buffers handed to Embree (its hierarchy comes on top).
+  std::size_t bufferBytes() const { return bufferBytes_; }
+
+ private:
+  int attach(RTCGeometryTy* geometry, const TraceShape& shape);
+
+  TraceSettings look_;
+  RTCDeviceTy* device_ = nullptr;
+  RTCSceneTy* scene_ = nullptr;
+  std::vector<TraceShape> shapes_;
+  std::vector<TraceMaterial> materials_;
+  std::vector<int> surfaceOf_, hairOf_;
+  bool transparency_ = false;
+  std::size_t curveSegments_ = 0, triangles_ = 0, bufferBytes_ = 0;
+};
+
+// A colour as the view file and colour maps give it (display values) as the reflectance the
+// tracer computes with (linear light).
+glm::vec3 linearColour(const glm::vec3& display);
+
+}  // namespace hirsute::trace

@@ -1,0 +1,439 @@
+#include "hirsute/viewer/trace/path_tracer.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "hirsute/viewer/trace/hair_bsdf.h"
+#include "hirsute/viewer/trace/surface_bsdf.h"
+
+namespace hirsute::trace {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kMaxPassThroughs = 64;  // transparent layers a ray crosses before it stops
+
+// An intersection context that skips the shape a ray leaves, so that a ray from a hair or a
+// triangle does not find it again at a distance of rounding error.
+struct LeavingContext {
+  RTCIntersectContext base;
+  unsigned geometry = RTC_INVALID_GEOMETRY_ID, primitive = RTC_INVALID_GEOMETRY_ID;
+};
+
+void skipTheShapeLeft(const RTCFilterFunctionNArguments* args) {
+  const auto* context = reinterpret_cast<const LeavingContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    if (RTCHitN_geomID(args->hit, args->N, i) == context->geometry &&
+        RTCHitN_primID(args->hit, args->N, i) == context->primitive) {
+      args->valid[i] = 0;
+    }
+  }
+}
+
+struct Hit {
+  bool found = false;
+  float distance = 0;
+  unsigned geometry = 0, primitive = 0;
+  float u = 0, v = 0;
+  glm::vec3 normal{0.0f};  // Embree's geometric normal (not unit)
+};
+
+class Tracer {
+ public:
+  Tracer(const TraceScene& scene, const TraceLights& lights, const TraceOptions& options)
+      : scene_(scene), lights_(lights), options_(options) {
+    if (!lights.sphere) {
+      lightChoice_ = 0;
+    } else {
+      lightChoice_ = luminance(lights.sky) > 0 ? 0.5f : 1.0f;
+    }
+    epsilon_ = 1e-5f;
+  }
+
+  void setScale(float diagonal) { epsilon_ = std::max(1e-7f, 2e-6f * diagonal); }
+
+  Hit intersect(const glm::vec3& origin, const glm::vec3& direction, float near, float far,
+                unsigned leftGeometry, unsigned leftPrimitive) const {
+    LeavingContext context;
+    rtcInitIntersectContext(&context.base);
+    context.base.filter = &skipTheShapeLeft;
+    context.geometry = leftGeometry;
+    context.primitive = leftPrimitive;
+    RTCRayHit rh{};
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = direction.x;
+    rh.ray.dir_y = direction.y;
+    rh.ray.dir_z = direction.z;
+    rh.ray.tnear = near;
+    rh.ray.tfar = far;
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_.embree(), &context.base, &rh);
+    Hit hit;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    hit.found = true;
+    hit.distance = rh.ray.tfar;
+    hit.geometry = rh.hit.geomID;
+    hit.primitive = rh.hit.primID;
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+    hit.normal = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+    return hit;
+  }
+
+  // The tint at a hit (rgb, opacity), white and opaque where the shape has none.
+  glm::vec4 tintAt(const TraceShape& shape, const Hit& hit) const {
+    if (!shape.tint) return glm::vec4(1.0f);
+    if (shape.curve) {
+      const std::uint32_t first = shape.curveSegments[hit.primitive];
+      return glm::mix(shape.tint[first], shape.tint[first + 1], hit.u);
+    }
+    const std::uint32_t* t = shape.triangleIndices + 3 * static_cast<std::size_t>(hit.primitive);
+    return (1 - hit.u - hit.v) * shape.tint[t[0]] + hit.u * shape.tint[t[1]] +
+           hit.v * shape.tint[t[2]];
+  }
+
+  float opacityAt(const TraceShape& shape, const Hit& hit) const {
+    return scene_.material(shape.material).opacity * tintAt(shape, hit).a;
+  }
+
+  // The share of light that reaches `far` along the ray: 0 past an opaque shape, reduced by each
+  // partly transparent one.
+  float transmittance(glm::vec3 origin, const glm::vec3& direction, float far,
+                      unsigned leftGeometry, unsigned leftPrimitive) const {
+    if (!scene_.hasTransparency()) {
+      LeavingContext context;
+      rtcInitIntersectContext(&context.base);
+      context.base.filter = &skipTheShapeLeft;
+      context.geometry = leftGeometry;
+      context.primitive = leftPrimitive;
+      RTCRay ray{};
+      ray.org_x = origin.x;
+      ray.org_y = origin.y;
+      ray.org_z = origin.z;
+      ray.dir_x = direction.x;
+      ray.dir_y = direction.y;
+      ray.dir_z = direction.z;
+      ray.tnear = epsilon_;
+      ray.tfar = far;
+      ray.mask = 0xffffffffu;
+      rtcOccluded1(scene_.embree(), &context.base, &ray);
+      return ray.tfar < 0 ? 0.0f : 1.0f;
+    }
+    float through = 1;
+    for (int layer = 0; layer < kMaxPassThroughs; ++layer) {
+      const Hit hit = intersect(origin, direction, epsilon_, far, leftGeometry, leftPrimitive);
+      if (!hit.found) return through;
+      through *= 1 - opacityAt(scene_.shape(hit.geometry), hit);
+      if (through <= 0) return 0;
+      origin += hit.distance * direction;
+      far -= hit.distance;
+      leftGeometry = hit.geometry;
+      leftPrimitive = hit.primitive;
+    }
+    return 0;
+  }
+
+  // Where a ray meets the spherical light, or a negative distance.
+  float lightDistance(const glm::vec3& origin, const glm::vec3& direction) const {
+    if (!lights_.sphere) return -1;
+    const glm::vec3 toCentre = lights_.centre - origin;
+    const float along = glm::dot(toCentre, direction);
+    const float across2 = glm::dot(toCentre, toCentre) - along * along;
+    const float r2 = lights_.radius * lights_.radius;
+    if (across2 > r2) return -1;
+    const float t = along - std::sqrt(r2 - across2);
+    return t > 0 ? t : -1;
+  }
+
+  // The density, in solid angle, of sampling `direction` towards the light from `origin`.
+  float lightPdf(const glm::vec3& origin) const {
+    const float d2 = glm::dot(lights_.centre - origin, lights_.centre - origin);
+    const float sin2 = lights_.radius * lights_.radius / d2;
+    if (sin2 >= 1) return 0;
+    const float cosMax = std::sqrt(1 - sin2);
+    return 1 / (2 * kPi * (1 - cosMax));
+  }
+
+  glm::vec3 skyRadiance(const glm::vec3& direction) const {
+    return glm::dot(direction, lights_.up) > 0 ? lights_.sky : glm::vec3(0.0f);
+  }
+
+  template <class Bsdf>
+  glm::vec3 directLight(const Bsdf& bsdf, const glm::vec3& point, const glm::vec3& wo,
+                        const Hit& hit, Random& random) const {
+    const glm::vec2 u = random.uniform2();
+    const bool sphere = random.uniform() < lightChoice_;
+    glm::vec3 wi, radiance;
+    float pdf, far;
+    if (sphere) {
+      const glm::vec3 toCentre = lights_.centre - point;
+      const float distance = glm::length(toCentre);
+      const float sin2 = lights_.radius * lights_.radius / (distance * distance);
+      if (sin2 >= 1) return glm::vec3(0.0f);
+      const float cosMax = std::sqrt(1 - sin2);
+      wi = Frame::around(toCentre / distance).toWorld(sampleUniformCone(u, cosMax));
+      pdf = lightChoice_ / (2 * kPi * (1 - cosMax));
+      radiance = lights_.radiance;
+      far = distance - lights_.radius;
+    } else {
+      wi = Frame::around(lights_.up).toWorld(sampleUniformHemisphere(u));
+      pdf = (1 - lightChoice_) * kUniformHemispherePdf;
+      radiance = lights_.sky;
+      far = std::numeric_limits<float>::infinity();
+    }
+    if (!(pdf > 0) || luminance(radiance) <= 0) return glm::vec3(0.0f);
+    const glm::vec3 value = bsdf.value(wo, wi);
+    if (luminance(value) <= 0) return glm::vec3(0.0f);
+    // The sky lies behind the light: a sky sample towards the light sees the light instead.
+    if (!sphere && lightDistance(point, wi) > 0) return glm::vec3(0.0f);
+    const float through = transmittance(point, wi, far, hit.geometry, hit.primitive);
+    if (through <= 0) return glm::vec3(0.0f);
+    const float weight = powerHeuristic(pdf, bsdf.pdf(wo, wi));
+    return value * radiance * (through * weight / pdf);
+  }
+
+  glm::vec3 radiance(glm::vec3 origin, glm::vec3 direction, float near, float far,
+                     Random& random) const {
+    glm::vec3 total(0.0f), throughput(1.0f);
+    unsigned leftGeometry = RTC_INVALID_GEOMETRY_ID, leftPrimitive = RTC_INVALID_GEOMETRY_ID;
+    float lastPdf = 0;
+    int passThroughs = 0;
+    for (int bounce = 0;;) {
+      const Hit hit = intersect(origin, direction, near, far, leftGeometry, leftPrimitive);
+      const bool camera = bounce == 0;
+      // Lights seen by a scattered ray, weighted against having sampled them directly.
+      if (!camera) {
+        const float toLight = lightDistance(origin, direction);
+        if (toLight > 0 && (!hit.found || toLight < hit.distance)) {
+          const float weight = powerHeuristic(lastPdf, lightChoice_ * lightPdf(origin));
+          total += throughput * lights_.radiance * weight;
+          break;
+        }
+      }
+      if (!hit.found) {
+        if (camera) {
+          total += throughput * options_.background;
+        } else {
+          const float weight = powerHeuristic(lastPdf, (1 - lightChoice_) * kUniformHemispherePdf);
+          total += throughput * skyRadiance(direction) * weight;
+        }
+        break;
+      }
+      const TraceShape& shape = scene_.shape(hit.geometry);
+      const TraceMaterial& material = scene_.material(shape.material);
+      const glm::vec3 point = origin + hit.distance * direction;
+      const glm::vec4 tint = tintAt(shape, hit);
+      // A partly transparent shape is passed through in proportion to its transparency.
+      const float opacity = material.opacity * tint.a;
+      if (opacity < 1 && random.uniform() >= opacity) {
+        if (++passThroughs > kMaxPassThroughs) break;
+        origin = point;
+        far -= hit.distance;
+        near = 0;
+        leftGeometry = hit.geometry;
+        leftPrimitive = hit.primitive;
+        continue;
+      }
+      total += throughput * material.emission;
+      const glm::vec3 wo = -direction;
+      glm::vec3 wi, value;
+      float pdf;
+      if (material.hair) {
+        HairMaterial fibre = material.fibre;
+        fibre.diffuse *= glm::vec3(tint);
+        glm::vec3 tangent(0, 1, 0);
+        if (shape.curve) {
+          const std::uint32_t first = shape.curveSegments[hit.primitive];
+          const glm::vec3 along =
+              glm::vec3(shape.curveVertices[first + 1]) - glm::vec3(shape.curveVertices[first]);
+          if (glm::length(along) > 0) tangent = glm::normalize(along);
+        }
+        const HairBsdf bsdf(fibre, tangent);
+        total += throughput * directLight(bsdf, point, wo, hit, random);
+        const glm::vec4 u(random.uniform(), random.uniform(), random.uniform(), random.uniform());
+        const HairSample s = bsdf.sample(wo, u);
+        wi = s.direction;
+        value = s.value;
+        pdf = s.pdf;
+      } else {
+        SurfaceMaterial surface = material.surface;
+        surface.reflectance *= glm::vec3(tint);
+        surface.transmittance *= glm::vec3(tint);
+        glm::vec3 normal = hit.normal;
+        if (shape.normals) {
+          const std::uint32_t* t =
+              shape.triangleIndices + 3 * static_cast<std::size_t>(hit.primitive);
+          normal = (1 - hit.u - hit.v) * shape.normals[t[0]] + hit.u * shape.normals[t[1]] +
+                   hit.v * shape.normals[t[2]];
+        }
+        normal = glm::length(normal) > 0 ? glm::normalize(normal) : -direction;
+        if (glm::dot(normal, wo) < 0) normal = -normal;
+        const SurfaceBsdf bsdf(surface, normal);
+        total += throughput * directLight(bsdf, point, wo, hit, random);
+        const glm::vec3 u(random.uniform(), random.uniform(), random.uniform());
+        const SurfaceSample s = bsdf.sample(wo, u);
+        wi = s.direction;
+        value = s.value;
+        pdf = s.pdf;
+      }
+      if (!(pdf > 0) || luminance(value) <= 0) break;
+      throughput *= value / pdf;
+      lastPdf = pdf;
+      if (++bounce > options_.maxBounces) break;
+      // Russian roulette after the third bounce (Arvo and Kirk 1990).
+      if (bounce > 3) {
+        const float keep = std::min(0.95f, std::max(throughput.r, std::max(throughput.g, throughput.b)));
+        if (random.uniform() >= keep) break;
+        throughput /= keep;
+      }
+      origin = point;
+      direction = wi;
+      near = epsilon_;
+      far = std::numeric_limits<float>::infinity();
+      leftGeometry = hit.geometry;
+      leftPrimitive = hit.primitive;
+      passThroughs = 0;
+    }
+    return total;
+  }
+
+ private:
+  const TraceScene& scene_;
+  const TraceLights& lights_;
+  const TraceOptions& options_;
+  float lightChoice_ = 0.5f;  // the probability that a direct sample goes to the sphere
+  float epsilon_;
+};
+
+}  // namespace
+
+TraceLights traceLights(const TraceSettings& look, const Bounds& plant, const glm::vec3& fallback) {
+  TraceLights lights;
+  lights.sky = linearColour(look.sky);
+  lights.up = glm::length(look.up) > 0 ? glm::normalize(look.up) : glm::vec3(0, 1, 0);
+  glm::vec3 towards = look.lightDirection.value_or(fallback);
+  const float half = glm::radians(std::clamp(look.lightAngle, 0.01f, 179.0f)) / 2;
+  if (glm::length(towards) > 0 && luminance(look.lightIrradiance) > 0) {
+    towards = glm::normalize(towards);
+    const float size = plant.empty() ? 1.0f : std::max(plant.diagonal(), 1e-6f);
+    const float distance = 50 * size;
+    lights.sphere = true;
+    lights.centre = (plant.empty() ? glm::vec3(0.0f) : plant.center()) + distance * towards;
+    lights.radius = distance * std::sin(half);
+    // A sphere of angular radius δ and radiance L gives E = π L sin²δ to a surface facing it.
+    lights.radiance = look.lightIrradiance / (kPi * std::sin(half) * std::sin(half));
+  }
+  return lights;
+}
+
+glm::vec3 traceRay(const TraceScene& scene, const TraceLights& lights, const glm::vec3& origin,
+                   const glm::vec3& direction, Random& random, const TraceOptions& options) {
+  Tracer tracer(scene, lights, options);
+  return tracer.radiance(origin, direction, 0, std::numeric_limits<float>::infinity(), random);
+}
+
+TraceImage traceImage(const TraceScene& scene, const Camera& camera, const TraceLights& lights,
+                      const TraceOptions& options) {
+  const Clock::time_point start = Clock::now();
+  TraceImage image;
+  image.width = camera.viewport.x;
+  image.height = camera.viewport.y;
+  const std::size_t pixels =
+      static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  image.radiance.assign(pixels, glm::vec3(0.0f));
+  TraceOptions linear = options;
+  linear.background = linearColour(options.background);
+  Tracer tracer(scene, lights, linear);
+  const float aspect = static_cast<float>(image.width) / static_cast<float>(image.height);
+  const bool perspective = camera.projection == Projection::Perspective;
+  const float tanHalf = std::tan(glm::radians(camera.fieldOfViewY) / 2);
+  tracer.setScale(glm::length(glm::vec3(camera.halfWidth, camera.halfHeight, 0)) +
+                  std::abs(camera.farPlane - camera.nearPlane) * 1e-3f);
+
+  const int threads = options.threads > 0
+                          ? options.threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  std::vector<glm::vec3> sum(pixels, glm::vec3(0.0f));
+  const int passes = std::max(1, options.samples);
+  if (options.progress) options.progress->begin("tracing", Progress::Unit::Steps, passes);
+  double lastPass = 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    if (options.seconds > 0 && pass > 0 && elapsed + lastPass > options.seconds) break;
+    const Clock::time_point passStart = Clock::now();
+    std::atomic<int> nextRow{0};
+    auto work = [&] {
+      for (int y; (y = nextRow.fetch_add(1)) < image.height;) {
+        for (int x = 0; x < image.width; ++x) {
+          const std::size_t index =
+              static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+              static_cast<std::size_t>(x);
+          Random random(options.seed, (static_cast<std::uint64_t>(pass) << 36u) ^ index);
+          const glm::vec2 jitter = random.uniform2();
+          const float sx = (static_cast<float>(x) + jitter.x) / static_cast<float>(image.width) * 2 - 1;
+          const float sy = 1 - (static_cast<float>(y) + jitter.y) / static_cast<float>(image.height) * 2;
+          glm::vec3 origin, direction;
+          float near, far;
+          if (perspective) {
+            origin = camera.eye;
+            direction = glm::normalize(camera.forward + sx * tanHalf * aspect * camera.right +
+                                       sy * tanHalf * camera.up);
+            const float along = glm::dot(direction, camera.forward);
+            near = std::max(0.0f, camera.nearPlane / along);
+            far = camera.farPlane / along;
+          } else {
+            // The near plane may lie behind the eye (cpfg's front distance): rays start on it.
+            origin = camera.eye + sx * camera.halfWidth * camera.right +
+                     sy * camera.halfHeight * camera.up + camera.nearPlane * camera.forward;
+            direction = camera.forward;
+            near = 0;
+            far = camera.farPlane - camera.nearPlane;
+          }
+          glm::vec3 value = tracer.radiance(origin, direction, near, far, random);
+          // A path that found no number is dropped rather than spoiling the pixel.
+          if (!std::isfinite(value.x + value.y + value.z)) value = glm::vec3(0.0f);
+          sum[index] += value;
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    lastPass = std::chrono::duration<double>(Clock::now() - passStart).count();
+    image.passes = pass + 1;
+    if (options.progress) options.progress->update(pass + 1);
+  }
+  for (std::size_t i = 0; i < pixels; ++i) image.radiance[i] = sum[i] / static_cast<float>(image.passes);
+  image.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return image;
+}
+
+RgbaImage displayImage(const TraceImage& image) {
+  RgbaImage out(image.width, image.height);
+  auto encode = [](float v) {
+    v = std::clamp(v, 0.0f, 1.0f);
+    const float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+    return static_cast<std::uint8_t>(std::lround(s * 255));
+  };
+  for (std::size_t i = 0; i < image.radiance.size(); ++i) {
+    const glm::vec3 c = image.radiance[i];
+    out.rgba[4 * i] = encode(c.r);
+    out.rgba[4 * i + 1] = encode(c.g);
+    out.rgba[4 * i + 2] = encode(c.b);
+    out.rgba[4 * i + 3] = 255;
+  }
+  return out;
+}
+
+}  // namespace hirsute::trace

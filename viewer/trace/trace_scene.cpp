@@ -1,0 +1,223 @@
+#include "hirsute/viewer/trace/trace_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+
+namespace hirsute::trace {
+namespace {
+
+void failOnError(RTCDevice device, const char* what) {
+  const RTCError error = rtcGetDeviceError(device);
+  if (error == RTC_ERROR_NONE) return;
+  if (error == RTC_ERROR_OUT_OF_MEMORY) {
+    throw std::runtime_error(std::string("the ray tracer ran out of memory ") + what);
+  }
+  throw std::runtime_error(std::string("Embree failed ") + what + " (error " +
+                           std::to_string(static_cast<int>(error)) + ")");
+}
+
+template <class T>
+T* newBuffer(RTCGeometry geometry, RTCBufferType type, unsigned slot, RTCFormat format,
+             std::size_t count, std::size_t& bytes) {
+  bytes += sizeof(T) * count;
+  return static_cast<T*>(rtcSetNewGeometryBuffer(geometry, type, slot, format, sizeof(T), count));
+}
+
+const Material& sceneMaterial(const Scene& scene, int index) {
+  static const Material kDefault;
+  if (scene.materials.empty()) return kDefault;
+  const int last = static_cast<int>(scene.materials.size()) - 1;
+  return scene.materials[static_cast<std::size_t>(std::clamp(index, 0, last))];
+}
+
+}  // namespace
+
+glm::vec3 linearColour(const glm::vec3& display) {
+  glm::vec3 out;
+  for (int c = 0; c < 3; ++c) {
+    const float v = std::clamp(display[c], 0.0f, 1.0f);
+    out[c] = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+  }
+  return out;
+}
+
+TraceScene::TraceScene(const TraceSettings& look, int threads) : look_(look) {
+  const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
+  device_ = rtcNewDevice(config.c_str());
+  if (device_ == nullptr) throw std::runtime_error("Embree cannot start (rtcNewDevice failed)");
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_COMPACT | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+}
+
+TraceScene::~TraceScene() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+int TraceScene::addMaterial(const TraceMaterial& material) {
+  materials_.push_back(material);
+  if (material.opacity < 1) transparency_ = true;
+  return static_cast<int>(materials_.size()) - 1;
+}
+
+int TraceScene::surfaceMaterial(const Scene& scene, int index) {
+  const auto slot = static_cast<std::size_t>(std::max(0, index));
+  if (slot >= surfaceOf_.size()) surfaceOf_.resize(slot + 1, -1);
+  if (surfaceOf_[slot] >= 0) return surfaceOf_[slot];
+  const Material& m = sceneMaterial(scene, index);
+  float through = 0;
+  for (const auto& [colour, share] : look_.translucent) {
+    if (colour == index) through = std::clamp(share, 0.0f, 1.0f);
+  }
+  TraceMaterial t;
+  const glm::vec3 colour = linearColour(m.diffuse);
+  t.surface.reflectance = colour * (1 - through);
+  t.surface.transmittance = colour * through;
+  t.surface.specular = linearColour(m.specular);
+  t.surface.exponent = m.shininess;
+  t.opacity = 1 - std::clamp(m.transparency, 0.0f, 1.0f);
+  return surfaceOf_[slot] = addMaterial(t);
+}
+
+int TraceScene::hairMaterial(const Scene& scene, int index) {
+  const auto slot = static_cast<std::size_t>(std::max(0, index));
+  if (slot >= hairOf_.size()) hairOf_.resize(slot + 1, -1);
+  if (hairOf_[slot] >= 0) return hairOf_[slot];
+  return hairOf_[slot] = hairOfColour(linearColour(sceneMaterial(scene, index).diffuse));
+}
+
+int TraceScene::hairOfColour(const glm::vec3& colour) {
+  TraceMaterial t;
+  t.hair = true;
+  t.fibre.specular = glm::vec3(std::clamp(look_.hairSpecular, 0.0f, 1.0f));
+  t.fibre.diffuse = colour * (1 - t.fibre.specular.x);
+  t.fibre.backscatter = look_.hairBackscatter;
+  t.fibre.roughness = look_.hairRoughness;
+  return addMaterial(t);
+}
+
+int TraceScene::surfaceOfColour(const glm::vec3& colour) {
+  TraceMaterial t;
+  t.surface.reflectance = colour;
+  return addMaterial(t);
+}
+
+int TraceScene::attach(RTCGeometry geometry, const TraceShape& shape) {
+  const unsigned id = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);  // the scene holds it
+  if (id >= shapes_.size()) shapes_.resize(id + 1);
+  shapes_[id] = shape;
+  return static_cast<int>(id);
+}
+
+RTCGeometry TraceScene::geometry(unsigned id) const { return rtcGetGeometry(scene_, id); }
+
+CurveBuffers TraceScene::addCurves(CurveShape shape, std::size_t vertices, std::size_t segments,
+                                   int material, bool tint) {
+  CurveBuffers out;
+  if (segments == 0) return out;
+  RTCGeometry g = rtcNewGeometry(device_, shape == CurveShape::Round
+                                              ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE
+                                              : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
+  out.vertices =
+      newBuffer<glm::vec4>(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, vertices, bufferBytes_);
+  out.segments =
+      newBuffer<std::uint32_t>(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, segments, bufferBytes_);
+  if (tint) {
+    rtcSetGeometryVertexAttributeCount(g, 2);
+    out.tint = newBuffer<glm::vec4>(g, RTC_BUFFER_TYPE_VERTEX_ATTRIBUTE, 1, RTC_FORMAT_FLOAT4,
+                                    vertices, bufferBytes_);
+  }
+  failOnError(device_, "making curves");
+  curveSegments_ += segments;
+  if (tint) transparency_ = true;
+  attach(g, TraceShape{material, true, out.vertices, out.segments, nullptr, nullptr, out.tint});
+  return out;
+}
+
+TriangleBuffers TraceScene::addTriangles(std::size_t vertices, std::size_t triangles,
+                                         int material, bool normals, bool tint) {
+  TriangleBuffers out;
+  if (triangles == 0) return out;
+  RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  out.positions =
+      newBuffer<glm::vec3>(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, bufferBytes_);
+  // The index buffer holds three indices an element.
+  out.indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+      g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), triangles));
+  bufferBytes_ += 12 * triangles;
+  if (normals || tint) rtcSetGeometryVertexAttributeCount(g, 2);
+  if (normals) {
+    out.normals = newBuffer<glm::vec3>(g, RTC_BUFFER_TYPE_VERTEX_ATTRIBUTE, 0, RTC_FORMAT_FLOAT3,
+                                       vertices, bufferBytes_);
+  }
+  if (tint) {
+    out.tint = newBuffer<glm::vec4>(g, RTC_BUFFER_TYPE_VERTEX_ATTRIBUTE, 1, RTC_FORMAT_FLOAT4,
+                                    vertices, bufferBytes_);
+    transparency_ = true;
+  }
+  failOnError(device_, "making triangles");
+  triangles_ += triangles;
+  attach(g, TraceShape{material, false, nullptr, nullptr, out.indices, out.normals, out.tint});
+  return out;
+}
+
+void TraceScene::addSpheres(const std::vector<glm::vec4>& centresAndRadii, int material) {
+  if (centresAndRadii.empty()) return;
+  RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  glm::vec4* v = newBuffer<glm::vec4>(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                      centresAndRadii.size(), bufferBytes_);
+  std::copy(centresAndRadii.begin(), centresAndRadii.end(), v);
+  failOnError(device_, "making spheres");
+  attach(g, TraceShape{material});
+}
+
+void TraceScene::addDiscs(const std::vector<glm::vec4>& centresAndRadii,
+                          const std::vector<glm::vec3>& normals, int material) {
+  std::vector<glm::vec4> facing, oriented;
+  std::vector<glm::vec3> orientation;
+  for (std::size_t i = 0; i < centresAndRadii.size(); ++i) {
+    const glm::vec3 n = i < normals.size() ? normals[i] : glm::vec3(0.0f);
+    if (glm::length(n) > 0) {
+      oriented.push_back(centresAndRadii[i]);
+      orientation.push_back(glm::normalize(n));
+    } else {
+      facing.push_back(centresAndRadii[i]);
+    }
+  }
+  if (!facing.empty()) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_DISC_POINT);
+    glm::vec4* v = newBuffer<glm::vec4>(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                        facing.size(), bufferBytes_);
+    std::copy(facing.begin(), facing.end(), v);
+    attach(g, TraceShape{material});
+  }
+  if (!oriented.empty()) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT);
+    glm::vec4* v = newBuffer<glm::vec4>(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                        oriented.size(), bufferBytes_);
+    std::copy(oriented.begin(), oriented.end(), v);
+    glm::vec3* n = newBuffer<glm::vec3>(g, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3,
+                                        orientation.size(), bufferBytes_);
+    std::copy(orientation.begin(), orientation.end(), n);
+    attach(g, TraceShape{material});
+  }
+  failOnError(device_, "making discs");
+}
+
+void TraceScene::commit() {
+  const unsigned count = static_cast<unsigned>(shapes_.size());
+  for (unsigned id = 0; id < count; ++id) {
+    if (RTCGeometry g = rtcGetGeometry(scene_, id)) rtcCommitGeometry(g);
+  }
+  rtcCommitScene(scene_);
+  failOnError(device_, "building its hierarchy");
+}
+
+}  // namespace hirsute::trace
