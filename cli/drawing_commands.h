@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "model_pipeline.h"
 
 namespace hirsute::cli {
@@ -36,6 +38,12 @@ struct ViewOptions {
   bool noPanel = false;
   std::size_t movingHairs = 20000;
 };
+
+// `--size`'s WIDTHxHEIGHT, already checked by its validator.
+inline glm::ivec2 imageSize(const std::string& size) {
+  const std::size_t x = size.find('x');
+  return {std::stoi(size.substr(0, x)), std::stoi(size.substr(x + 1))};
+}
 
 // In the drawing module.
 int runRender(const RenderOptions& options);

@@ -33,14 +33,8 @@ int runExport(ExportOptions o) {
   Progress progress = Progress::onTerminal(stderr);
   o.model.terminalProgress = &progress;
   Diagnostics diagnostics(&std::cerr);
-  BuiltScene built;
-  try {
-    built = buildScene(o.model, diagnostics);
-  } catch (const DiagnosticError& e) {
-    progress.clear();
-    std::cerr << e.diagnostic().text() << '\n';
-    return kExitBadInput;
-  }
+  std::optional<BuiltScene> built = buildSceneOrSay(o.model, diagnostics, progress);
+  if (!built) return kExitBadInput;
   try {
     // Every file asked for is written, then all are renamed into place: a run that fails on
     // one leaves every one of them as it was (output_target.h).
@@ -48,20 +42,20 @@ int runExport(ExportOptions o) {
     if (!o.pov.empty()) {
       PovOptions options;
       options.group = &outputs;
-      options.view = built.resources.view;
-      options.materialMode = built.resources.materialMode;
+      options.view = built->resources.view;
+      options.materialMode = built->resources.materialMode;
       options.width = o.width;
       options.height = o.height;
-      writePov(built.scene, options, o.pov, &progress);
+      writePov(built->scene, options, o.pov, &progress);
     }
     if (!o.obj.empty()) {
       ObjOptions options;
       options.group = &outputs;
-      writeObj(built.scene, o.obj, options, &progress);
+      writeObj(built->scene, o.obj, options, &progress);
     }
     for (std::size_t k = 0; k < o.tables.size(); ++k) {
       if (o.tables[k].empty()) continue;
-      organWriters()[k]->table()->write(built.scene, o.tables[k], &progress, &outputs);
+      organWriters()[k]->table()->write(built->scene, o.tables[k], &progress, &outputs);
     }
     outputs.commit();
     progress.clear();

@@ -234,4 +234,15 @@ Scene growScene(const ModelOptions& o, const Model& model, const ModelResources&
   return scene;
 }
 
+std::optional<BuiltScene> buildSceneOrSay(const ModelOptions& o, Diagnostics& diagnostics,
+                                          Progress& progress) {
+  try {
+    return buildScene(o, diagnostics);
+  } catch (const DiagnosticError& e) {
+    progress.clear();
+    std::cerr << e.diagnostic().text() << '\n';
+    return std::nullopt;
+  }
+}
+
 }  // namespace hirsute::cli

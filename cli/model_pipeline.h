@@ -72,6 +72,10 @@ struct BuiltScene {
 // Loads the model (loadResources, loadLsystem) and grows its Scene (growScene). Throws
 // DiagnosticError on bad input (including an organ's, and past an organ's limits).
 BuiltScene buildScene(const ModelOptions& options, Diagnostics& diagnostics);
+// buildScene for a command: a DiagnosticError is printed on standard error (after `progress`
+// is cleared) and gives nothing, for the command to end with exit code 2.
+std::optional<BuiltScene> buildSceneOrSay(const ModelOptions& options, Diagnostics& diagnostics,
+                                          Progress& progress);
 // The view file's resources (colours, contours, surfaces, functions, the organs' files, …).
 ModelResources loadResources(const ModelOptions& options, Diagnostics& diagnostics);
 // The .l through the preprocessor, compiled; constant organ parameters checked.

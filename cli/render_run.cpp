@@ -15,25 +15,19 @@ int runRender(const RenderOptions& o) {
   ModelOptions model = o.model;
   model.terminalProgress = &progress;
   Diagnostics diagnostics(&std::cerr);
-  BuiltScene built;
-  try {
-    built = buildScene(model, diagnostics);
-  } catch (const DiagnosticError& e) {
-    progress.clear();
-    std::cerr << e.diagnostic().text() << '\n';
-    return kExitBadInput;
-  }
+  std::optional<BuiltScene> built = buildSceneOrSay(model, diagnostics, progress);
+  if (!built) return kExitBadInput;
   OffscreenOptions options;
-  std::size_t x = o.size.find('x');
-  options.width = std::stoi(o.size.substr(0, x));
-  options.height = std::stoi(o.size.substr(x + 1));
+  const glm::ivec2 size = imageSize(o.size);
+  options.width = size.x;
+  options.height = size.y;
   options.samples = o.samples;
   RgbaImage image;
   progress.begin("rendering", Progress::Unit::None);
   progress.update(0);
   try {
     image =
-        renderOffscreen(built.scene, built.resources.view, built.resources.materialMode, options);
+        renderOffscreen(built->scene, built->resources.view, built->resources.materialMode, options);
   } catch (const GeometryLimitError& e) {
     // An organ's geometry, built at the picture's detail, passed --max-vertices.
     progress.clear();

@@ -20,25 +20,18 @@ int runTrace(const RenderOptions& o) {
   ModelOptions model = o.model;
   model.terminalProgress = &progress;
   Diagnostics diagnostics(&std::cerr);
-  BuiltScene built;
-  try {
-    built = buildScene(model, diagnostics);
-  } catch (const DiagnosticError& e) {
-    progress.clear();
-    std::cerr << e.diagnostic().text() << '\n';
-    return kExitBadInput;
-  }
-  const std::size_t x = o.size.find('x');
-  const glm::ivec2 size(std::stoi(o.size.substr(0, x)), std::stoi(o.size.substr(x + 1)));
-  const Scene& scene = built.scene;
-  const ViewSettings& view = built.resources.view;
+  std::optional<BuiltScene> built = buildSceneOrSay(model, diagnostics, progress);
+  if (!built) return kExitBadInput;
+  const glm::ivec2 size = imageSize(o.size);
+  const Scene& scene = built->scene;
+  const ViewSettings& view = built->resources.view;
   const Bounds bounds = scene.bounds();
   const Camera camera = fitCamera(view, bounds, size);
 
   // Without a `trace light:` line the light comes from where the view's first light shines
   // from, as in the GL render; with none, from the eye.
   const ViewLighting lighting =
-      viewLighting(view, built.resources.materialMode, -camera.forward);
+      viewLighting(view, built->resources.materialMode, -camera.forward);
   glm::vec3 towards = -camera.forward;
   if (lighting.colorMap) {
     towards = lighting.colorMapLight;
@@ -53,7 +46,7 @@ int runTrace(const RenderOptions& o) {
   options.seconds = o.traceSeconds;
   options.threads = o.model.threads;
   options.seed = o.traceSeed;
-  options.background = backgroundColor(scene, built.resources.materialMode);
+  options.background = backgroundColor(scene, built->resources.materialMode);
   options.progress = &progress;
   trace::TraceImage image;
   try {

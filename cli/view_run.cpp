@@ -98,9 +98,9 @@ int runView(const ViewOptions& o) {
       // The build reports what is wrong with the .e file.
     }
   }
-  std::size_t x = o.size.find('x');
-  options.width = std::stoi(o.size.substr(0, x));
-  options.height = std::stoi(o.size.substr(x + 1));
+  const glm::ivec2 size = imageSize(o.size);
+  options.width = size.x;
+  options.height = size.y;
   options.samples = o.samples;
   options.steps = o.model.steps;
   options.saveDefines = o.save;

@@ -1,5 +1,8 @@
 #include "hirsute/interpreter/scene.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace hirsute {
 
 TriangleMesh& Scene::meshFor(int material, int texture) {
@@ -57,6 +60,23 @@ void Scene::clear() {
   organSurfaces.clear();
   organs_.clear();
   meshIndex_.clear();
+}
+
+glm::vec3 Texture::colourAt(const glm::vec2& uv) const {
+  const std::size_t texels = static_cast<std::size_t>(std::max(0, width)) *
+                             static_cast<std::size_t>(std::max(0, height));
+  if (texels == 0 || rgba.size() < 4 * texels) return glm::vec3(0.0f);
+  auto wrap = [](float t, int n) {
+    if (!(std::abs(t) < 1e6f)) t = 0;  // no int holds the texel of a coordinate past this
+    const int i = static_cast<int>(std::floor(t * static_cast<float>(n)));
+    return ((i % n) + n) % n;
+  };
+  const int x = wrap(uv.x, width);
+  const int y = height - 1 - wrap(uv.y, height);
+  const std::uint8_t* p =
+      &rgba[4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                 static_cast<std::size_t>(x))];
+  return glm::vec3(p[0], p[1], p[2]) / 255.0f;
 }
 
 }  // namespace hirsute

@@ -64,19 +64,6 @@ std::size_t countStrands(const Scene& scene, const FurSurface& surface) {
   return n;
 }
 
-glm::vec3 furTextureColour(const Texture& texture, const glm::vec2& uv) {
-  auto wrap = [](float t, int n) {
-    const int i = static_cast<int>(std::floor(t * static_cast<float>(n)));
-    return ((i % n) + n) % n;
-  };
-  const int x = wrap(uv.x, texture.width);
-  const int y = texture.height - 1 - wrap(uv.y, texture.height);
-  const std::uint8_t* p =
-      &texture.rgba[4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(texture.width) +
-                         static_cast<std::size_t>(x))];
-  return glm::vec3(p[0], p[1], p[2]) / 255.0f;
-}
-
 void forEachStrand(const Scene& scene, const FurSurface& surface, int samples,
                    const std::function<void(const FurStrandView&)>& emit) {
   if (surface.attributes < 0) return;

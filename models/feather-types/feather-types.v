@@ -18,3 +18,7 @@ feather: filoplume.fea
 feather: bristle.fea
 feather: hawk.fea
 feather: budgie.fea
+
+/* hirsute render --trace: the light of the line above (in colour-map mode it would come from
+   +x, edge-on to the feathers). */
+trace light: D: 0.3,0.6,1

@@ -174,3 +174,25 @@ TEST(OrganAttributeIndices, EachOrgansRecordHasASlotOfItsOwn) {
 
 }  // namespace
 }  // namespace hirsute
+
+namespace hirsute {
+namespace {
+
+// A texture's colour where a vertex samples it, as GL samples it: nearest texel, repeating,
+// v = 0 the image's last row; black for an empty texture and for coordinates no texel holds.
+TEST(TextureColour, IsTheNearestTexelRepeatingFromTheLastRow) {
+  Texture t;
+  t.width = 2;
+  t.height = 2;
+  // Row 0 (top): red, green; row 1 (bottom): blue, white.
+  t.rgba = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
+  EXPECT_EQ(t.colourAt({0.25f, 0.25f}), glm::vec3(0, 0, 1));
+  EXPECT_EQ(t.colourAt({0.75f, 0.25f}), glm::vec3(1, 1, 1));
+  EXPECT_EQ(t.colourAt({0.25f, 0.75f}), glm::vec3(1, 0, 0));
+  EXPECT_EQ(t.colourAt({1.25f, -0.25f}), glm::vec3(1, 0, 0));
+  EXPECT_EQ(t.colourAt({1e30f, 0.25f}), glm::vec3(0, 0, 1));
+  EXPECT_EQ(Texture{}.colourAt({0.5f, 0.5f}), glm::vec3(0.0f));
+}
+
+}  // namespace
+}  // namespace hirsute

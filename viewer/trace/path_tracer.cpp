@@ -21,9 +21,17 @@ constexpr int kMaxPassThroughs = 64;  // transparent layers a ray crosses before
 
 // An intersection context that skips the shape a ray leaves, so that a ray from a hair or a
 // triangle does not find it again at a distance of rounding error.
+void skipTheShapeLeft(const RTCFilterFunctionNArguments* args);
+
 struct LeavingContext {
   RTCIntersectContext base;
-  unsigned geometry = RTC_INVALID_GEOMETRY_ID, primitive = RTC_INVALID_GEOMETRY_ID;
+  unsigned geometry, primitive;
+
+  LeavingContext(unsigned leftGeometry, unsigned leftPrimitive)
+      : geometry(leftGeometry), primitive(leftPrimitive) {
+    rtcInitIntersectContext(&base);
+    base.filter = &skipTheShapeLeft;
+  }
 };
 
 void skipTheShapeLeft(const RTCFilterFunctionNArguments* args) {
@@ -35,6 +43,21 @@ void skipTheShapeLeft(const RTCFilterFunctionNArguments* args) {
       args->valid[i] = 0;
     }
   }
+}
+
+// A ray from `origin` along `direction` between `near` and `far`.
+RTCRay rayOf(const glm::vec3& origin, const glm::vec3& direction, float near, float far) {
+  RTCRay ray{};
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.dir_x = direction.x;
+  ray.dir_y = direction.y;
+  ray.dir_z = direction.z;
+  ray.tnear = near;
+  ray.tfar = far;
+  ray.mask = 0xffffffffu;
+  return ray;
 }
 
 struct Hit {
@@ -61,21 +84,9 @@ class Tracer {
 
   Hit intersect(const glm::vec3& origin, const glm::vec3& direction, float near, float far,
                 unsigned leftGeometry, unsigned leftPrimitive) const {
-    LeavingContext context;
-    rtcInitIntersectContext(&context.base);
-    context.base.filter = &skipTheShapeLeft;
-    context.geometry = leftGeometry;
-    context.primitive = leftPrimitive;
+    LeavingContext context(leftGeometry, leftPrimitive);
     RTCRayHit rh{};
-    rh.ray.org_x = origin.x;
-    rh.ray.org_y = origin.y;
-    rh.ray.org_z = origin.z;
-    rh.ray.dir_x = direction.x;
-    rh.ray.dir_y = direction.y;
-    rh.ray.dir_z = direction.z;
-    rh.ray.tnear = near;
-    rh.ray.tfar = far;
-    rh.ray.mask = 0xffffffffu;
+    rh.ray = rayOf(origin, direction, near, far);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_.embree(), &context.base, &rh);
     Hit hit;
@@ -111,21 +122,8 @@ class Tracer {
   float transmittance(glm::vec3 origin, const glm::vec3& direction, float far,
                       unsigned leftGeometry, unsigned leftPrimitive) const {
     if (!scene_.hasTransparency()) {
-      LeavingContext context;
-      rtcInitIntersectContext(&context.base);
-      context.base.filter = &skipTheShapeLeft;
-      context.geometry = leftGeometry;
-      context.primitive = leftPrimitive;
-      RTCRay ray{};
-      ray.org_x = origin.x;
-      ray.org_y = origin.y;
-      ray.org_z = origin.z;
-      ray.dir_x = direction.x;
-      ray.dir_y = direction.y;
-      ray.dir_z = direction.z;
-      ray.tnear = epsilon_;
-      ray.tfar = far;
-      ray.mask = 0xffffffffu;
+      LeavingContext context(leftGeometry, leftPrimitive);
+      RTCRay ray = rayOf(origin, direction, epsilon_, far);
       rtcOccluded1(scene_.embree(), &context.base, &ray);
       return ray.tfar < 0 ? 0.0f : 1.0f;
     }

@@ -9,13 +9,7 @@
 namespace hirsute::trace {
 
 void addSceneGeometry(const Scene& scene, const Camera& camera, TraceScene& out) {
-  // The width of a pixel at the centre of the picture.
-  const float pixelWorld =
-      camera.projection == Projection::Parallel
-          ? 2 * camera.halfHeight / static_cast<float>(std::max(1, camera.viewport.y))
-          : 2 * glm::length(camera.target - camera.eye) *
-                std::tan(glm::radians(camera.fieldOfViewY) / 2) /
-                static_cast<float>(std::max(1, camera.viewport.y));
+  const float pixelWorld = camera.pixelSize();
   for (const TriangleMesh& mesh : scene.meshes) {
     const bool normals = mesh.normals.size() == mesh.positions.size();
     const TriangleBuffers b = out.addTriangles(mesh.positions.size(), mesh.triangleCount(),

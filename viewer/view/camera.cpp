@@ -146,6 +146,12 @@ glm::vec3 Camera::toPixels(const glm::vec3& world) const {
           (0.5f - ndc.y * 0.5f) * static_cast<float>(viewport.y), ndc.z * 0.5f + 0.5f};
 }
 
+float Camera::pixelSize() const {
+  const float rows = static_cast<float>(std::max(1, viewport.y));
+  if (projection == Projection::Parallel) return 2 * halfHeight / rows;
+  return 2 * glm::length(target - eye) * std::tan(glm::radians(fieldOfViewY) / 2) / rows;
+}
+
 Camera fitCamera(const ViewSettings& view, const Bounds& plant, glm::ivec2 viewport) {
   Camera camera;
   camera.projection = view.projection;

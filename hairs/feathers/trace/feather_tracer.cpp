@@ -43,24 +43,40 @@ class FeatherTracer : public trace::OrganTracer {
         }
       }
     }
+    // A vertex's tint: its colour times its texture's there (as GL's barb shader multiplies
+    // them), and its transparency. The vanes know their texture; the vertices learn it here.
     const std::size_t barbVertices = b.barbPositions.size();
+    std::vector<int> textureOf(barbVertices, -1);
+    for (const FeatherBuffers::Part& part : b.parts) {
+      for (const FeatherBuffers::Vane& vane : part.vanes) {
+        for (std::uint32_t k = 0; k < vane.count; ++k)
+          textureOf[b.vaneIndices[vane.first + k]] = vane.texture;
+      }
+    }
     auto tintOf = [&](std::size_t i) {
       const glm::vec4& c = b.barbColors[i];
-      return glm::vec4(trace::linearColour(glm::vec3(c)), c.a);
+      glm::vec3 colour(c);
+      const int t = textureOf[i];
+      if (t >= 0 && static_cast<std::size_t>(t) < scene.textures.size())
+        colour *= scene.textures[static_cast<std::size_t>(t)].colourAt(b.barbTexcoords[i]);
+      return glm::vec4(trace::linearColour(colour), c.a);
     };
     if (!segments.empty()) {
       const trace::CurveBuffers curves =
           out.addCurves(trace::CurveShape::Flat, barbVertices, segments.size(),
                         out.hairOfColour(glm::vec3(1.0f)), true);
-      // Each vertex as wide as a share of the longer segment beside it.
+      // Each vertex as wide as a share of the longer segment beside it, and at least a pixel,
+      // as GL draws a barb.
       std::vector<float> width(barbVertices, 0.0f);
+      const float pixel = camera.pixelSize();
       for (std::uint32_t s : segments) {
         const float length = glm::distance(b.barbPositions[s], b.barbPositions[s + 1]);
         width[s] = std::max(width[s], length);
         width[s + 1] = std::max(width[s + 1], length);
       }
       for (std::size_t i = 0; i < barbVertices; ++i) {
-        curves.vertices[i] = glm::vec4(b.barbPositions[i], 0.5f * kBarbWidthShare * width[i]);
+        curves.vertices[i] = glm::vec4(b.barbPositions[i],
+                                       0.5f * std::max(kBarbWidthShare * width[i], pixel));
         curves.tint[i] = tintOf(i);
       }
       std::copy(segments.begin(), segments.end(), curves.segments);

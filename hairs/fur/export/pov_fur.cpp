@@ -47,7 +47,7 @@ void FurWriter::writePov(const Scene& scene, PovWriter& pov) const {
     std::vector<std::uint32_t> faces;
     std::size_t strands = 0;
     fur::forEachStrand(scene, surface, kStrandPoints, [&](const fur::FurStrandView& strand) {
-      const glm::vec3 colour = texture ? fur::furTextureColour(*texture, strand.uv) : material.diffuse;
+      const glm::vec3 colour = texture ? texture->colourAt(strand.uv) : material.diffuse;
       const auto base = static_cast<std::uint32_t>(points.size());
       const std::size_t n = strand.points.size();
       for (std::size_t i = 0; i < n; ++i) {

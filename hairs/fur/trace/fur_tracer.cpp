@@ -38,7 +38,7 @@ class FurTracer : public trace::OrganTracer {
       fur::forEachStrand(scene, surface, kStrandPoints, [&](const fur::FurStrandView& strand) {
         if (made++ >= strands || strand.points.size() != kStrandPoints) return;
         const glm::vec3 colour = trace::linearColour(
-            texture ? fur::furTextureColour(*texture, strand.uv) : base);
+            texture ? texture->colourAt(strand.uv) : base);
         for (std::size_t i = 0; i < strand.points.size(); ++i) {
           if (i + 1 < strand.points.size()) b.segments[segment++] = vertex;
           b.tint[vertex] = glm::vec4(colour, 1);

@@ -149,6 +149,11 @@ struct Texture {
   std::string file;     // as named by the view file, resolved against the model's folder
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgba;  // decoded pixels, row 0 at the top
+
+  // The colour at (u, v) as the GL renderer samples it where a model colours a vertex by its
+  // texture (nearest texel, repeating; v = 0 is the image's last row, as the renderer uploads
+  // it), 0..1. Black for an empty texture.
+  glm::vec3 colourAt(const glm::vec2& uv) const;
 };
 
 struct Bounds {

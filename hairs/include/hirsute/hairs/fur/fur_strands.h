@@ -31,10 +31,6 @@ struct FurStrandView {
 void forEachStrand(const Scene& scene, const FurSurface& surface, int samples,
                    const std::function<void(const FurStrandView&)>& emit);
 
-// The colour of `texture` at (u, v) as GL samples it (nearest texel, repeating; v = 0 is the
-// image's last row, as the renderer uploads it): a strand's colour at its root's (u, v).
-glm::vec3 furTextureColour(const Texture& texture, const glm::vec2& uv);
-
 // The strands forEachStrand makes, without making them.
 std::size_t countStrands(const Scene& scene, const FurSurface& surface);
 

@@ -28,6 +28,8 @@ struct Camera {
   // Image coordinates of a world point: x to the right and y down from the top-left corner of
   // the image, in pixels (pixel (i, j) covers [i, i+1) × [j, j+1)); z is window depth 0..1.
   glm::vec3 toPixels(const glm::vec3& world) const;
+  // The width of a pixel in world units at the point looked at.
+  float pixelSize() const;
 };
 
 // The camera cpfg sets up for `view` and a plant with the given bounds, for an image of
