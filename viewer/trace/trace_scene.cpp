@@ -47,6 +47,14 @@ glm::vec3 linearColour(const glm::vec3& display) {
 }
 
 TraceScene::TraceScene(const TraceSettings& look, int threads) : look_(look) {
+  // The share each colour passes through, the last line for a colour winning: one pass over
+  // the lines, however many a view file has.
+  for (const auto& [colour, share] : look_.translucent) {
+    if (colour < 0) continue;
+    const auto slot = static_cast<std::size_t>(colour);
+    if (slot >= through_.size()) through_.resize(slot + 1, 0.0f);
+    through_[slot] = std::clamp(share, 0.0f, 1.0f);
+  }
   const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
   device_ = rtcNewDevice(config.c_str());
   if (device_ == nullptr) throw std::runtime_error("Embree cannot start (rtcNewDevice failed)");
@@ -71,10 +79,7 @@ int TraceScene::surfaceMaterial(const Scene& scene, int index) {
   if (slot >= surfaceOf_.size()) surfaceOf_.resize(slot + 1, -1);
   if (surfaceOf_[slot] >= 0) return surfaceOf_[slot];
   const Material& m = sceneMaterial(scene, index);
-  float through = 0;
-  for (const auto& [colour, share] : look_.translucent) {
-    if (colour == index) through = std::clamp(share, 0.0f, 1.0f);
-  }
+  const float through = slot < through_.size() ? through_[slot] : 0.0f;
   TraceMaterial t;
   const glm::vec3 colour = linearColour(m.diffuse);
   t.surface.reflectance = colour * (1 - through);

@@ -119,6 +119,7 @@ class TraceScene {
   std::vector<TraceShape> shapes_;
   std::vector<TraceMaterial> materials_;
   std::vector<int> surfaceOf_, hairOf_;
+  std::vector<float> through_;  // translucency by colour index
   bool transparency_ = false;
   std::size_t curveSegments_ = 0, triangles_ = 0, bufferBytes_ = 0;
 };
