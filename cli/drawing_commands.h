@@ -24,6 +24,7 @@ struct RenderOptions {
   int traceSamples = 64;
   double traceSeconds = 0;
   std::uint64_t traceSeed = 1;
+  int bits = 8;  // --bits: 8 (sRGB) or 16 (linear light, with --trace)
 };
 
 struct ViewOptions {
@@ -49,6 +50,8 @@ inline glm::ivec2 imageSize(const std::string& size) {
 int runRender(const RenderOptions& options);
 // In the program: the path tracer needs no GL.
 int runTrace(const RenderOptions& options);
+// Whether `render -o PATH` asks for an OpenEXR file (its name ends in .exr, any case).
+bool hasExrExtension(const std::string& path);
 int runView(const ViewOptions& options);
 
 }  // namespace hirsute::cli

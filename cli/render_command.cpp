@@ -1,4 +1,5 @@
 // `hirsute render`: the model drawn headless (OSMesa) into a PNG, framed as cpfg frames it.
+#include <cctype>
 #include <iostream>
 #include <memory>
 #include <regex>
@@ -10,12 +11,22 @@
 
 namespace hirsute::cli {
 
+bool hasExrExtension(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string ext = path.substr(path.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr";
+}
+
 void registerRenderCommand(CLI::App& app, Action& action) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* render = app.add_subcommand(
       "render", "Render the model headless to a PNG image, with the view file's camera and lights");
   addModelOptions(*render, options->model);
-  render->add_option("-o,--output", options->output, "The PNG file to write")->required();
+  render
+      ->add_option("-o,--output", options->output,
+                   "The PNG file to write (with --trace also FILE.exr: OpenEXR, linear half floats)")
+      ->required();
   render
       ->add_option("--size", options->size, "Image size in pixels, WIDTHxHEIGHT (default 800x600)")
       ->check(CLI::Validator(
@@ -44,7 +55,19 @@ void registerRenderCommand(CLI::App& app, Action& action) {
       ->check(CLI::Range(0.0, 1e7));
   render->add_option("--seed", options->traceSeed,
                      "With --trace: the seed of the samples (default 1; one seed, one picture)");
+  render
+      ->add_option("--bits", options->bits,
+                   "With --trace: 8 (sRGB, default) or 16 bits a channel (linear light) in the PNG")
+      ->check(CLI::IsMember({8, 16}));
   render->callback([options, &action] {
+    const bool exr = hasExrExtension(options->output);
+    if (!options->trace && (exr || options->bits != 8)) {
+      throw CLI::ValidationError(exr ? "--output" : "--bits",
+                                 "an OpenEXR file and 16-bit PNGs are made by --trace only");
+    }
+    if (exr && options->bits != 8) {
+      throw CLI::ValidationError("--bits", "an OpenEXR file holds half floats; --bits is for PNGs");
+    }
     if (options->trace) {
       action = [options] { return runTrace(*options); };
       return;

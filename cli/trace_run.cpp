@@ -8,6 +8,7 @@
 
 #include "command.h"
 #include "drawing_commands.h"
+#include "hirsute/viewer/trace/exr_image.h"
 #include "hirsute/viewer/trace/path_tracer.h"
 #include "hirsute/viewer/trace/scene_geometry.h"
 #include "hirsute/viewer/view/view_lighting.h"
@@ -79,7 +80,13 @@ int runTrace(const RenderOptions& o) {
                              image.width, image.height, image.seconds);
   }
   try {
-    writePng(o.output, trace::displayImage(image));
+    if (hasExrExtension(o.output)) {
+      trace::writeExr(o.output, image.width, image.height, image.radiance);
+    } else if (o.bits == 16) {
+      writeLinearPng16(o.output, image.width, image.height, image.radiance);
+    } else {
+      writePng(o.output, trace::displayImage(image));
+    }
   } catch (const std::runtime_error& e) {
     std::cerr << "hirsute: error: " << e.what() << '\n';
     return kExitIoError;

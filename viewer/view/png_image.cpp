@@ -2,6 +2,8 @@
 
 #include <png.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -50,6 +52,33 @@ void writePng(const std::filesystem::path& path, const RgbaImage& image) {
   png->format = PNG_FORMAT_RGB;
   if (!png_image_write_to_stdio(png.get(), file.stream(), 0, rgb.data(), image.width * 3,
                                 nullptr)) {
+    throw writeError(path, png->message);
+  }
+  file.commit();
+}
+
+void writeLinearPng16(const std::filesystem::path& path, int width, int height,
+                      const std::vector<glm::vec3>& pixels) {
+  const std::size_t count = static_cast<std::size_t>(std::max(width, 0)) *
+                            static_cast<std::size_t>(std::max(height, 0));
+  if (count == 0 || pixels.size() != count) throw writeError(path, "the image is empty");
+  std::vector<png_uint_16> rgb(count * 3);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const float v = pixels[i][c];
+      // NaN reads as black.
+      const float clamped = v > 0 ? std::min(v, 1.0f) : 0.0f;
+      rgb[i * 3 + static_cast<std::size_t>(c)] =
+          static_cast<png_uint_16>(std::lround(clamped * 65535.0f));
+    }
+  }
+  OutputTarget file(path);
+  PngStruct png;
+  png->width = static_cast<png_uint_32>(width);
+  png->height = static_cast<png_uint_32>(height);
+  png->format = PNG_FORMAT_LINEAR_RGB;  // 16 bits a channel, gamma 1.0
+  // The row stride counts components, not bytes.
+  if (!png_image_write_to_stdio(png.get(), file.stream(), 0, rgb.data(), width * 3, nullptr)) {
     throw writeError(path, png->message);
   }
   file.commit();

@@ -26,6 +26,11 @@ struct RgbaImage {
 // Throws std::runtime_error ("path: cannot write …") on failure, leaving no file behind.
 void writePng(const std::filesystem::path& path, const RgbaImage& image);
 
+// Writes linear RGB (`pixels`: width × height, row 0 at the top, 1 = white) as a 16-bit PNG of
+// linear light (gAMA 1.0), for compositing; values are clamped to [0, 1]. Written like writePng.
+void writeLinearPng16(const std::filesystem::path& path, int width, int height,
+                      const std::vector<glm::vec3>& pixels);
+
 // Reads any PNG as 8-bit RGBA. Throws std::runtime_error on failure.
 RgbaImage readPng(const std::filesystem::path& path);
 
