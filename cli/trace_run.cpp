@@ -33,14 +33,8 @@ int runTrace(const RenderOptions& o) {
   // from, as in the GL render; with none, from the eye.
   const ViewLighting lighting =
       viewLighting(view, built->resources.materialMode, -camera.forward);
-  glm::vec3 towards = -camera.forward;
-  if (lighting.colorMap) {
-    towards = lighting.colorMapLight;
-  } else if (!lighting.headlight && !lighting.lights.empty()) {
-    const LightSource& first = lighting.lights.front();
-    towards = first.directional ? first.vector : first.vector - bounds.center();
-  }
-  const trace::TraceLights lights = trace::traceLights(view.trace, bounds, towards);
+  const trace::TraceLights lights =
+      trace::traceLights(view.trace, bounds, traceLightFallback(lighting, bounds, -camera.forward));
 
   trace::TraceOptions options;
   options.samples = o.traceSamples;

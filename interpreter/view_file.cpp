@@ -345,6 +345,62 @@ void translucency(ViewLine& c) {
   c.view.trace.translucent.emplace_back(static_cast<int>(*colour), static_cast<float>(*share));
 }
 
+// `veins: COLOUR PATTERN C: r,g,b N: count W: width B: bump K: strength S: seed`.
+void veins(ViewLine& c) {
+  const std::vector<Token> tokens = subcommandTokens(c.line());
+  c.args.skipAll();
+  VeinSettings v;
+  const auto colour = tokens.empty() ? std::nullopt : integerAtFront(tokens[0].text);
+  if (!colour || colour->first < 0 || colour->first > 4095 ||
+      colour->second != tokens[0].text.size()) {
+    c.fail(tokens.empty() ? c.labelAt() : tokens[0].where,
+           "expected a colour index from 0 to 4095 after " + inQuotes(c.label()));
+  }
+  v.colour = static_cast<int>(colour->first);
+  if (tokens.size() < 2 || (tokens[1].text != "splines" && tokens[1].text != "particles")) {
+    c.fail(tokens.size() < 2 ? tokens[0].where : tokens[1].where,
+           "expected the pattern 'splines' or 'particles' after the colour in " +
+               inQuotes(c.label()));
+  }
+  v.pattern = tokens[1].text == "splines" ? VeinPattern::Splines : VeinPattern::Particles;
+  for (std::size_t i = 2; i < tokens.size(); ++i) {
+    const char key = subcommandKey(tokens[i].text);
+    const std::size_t first = i + 1;
+    switch (key) {
+      case 'C':
+        v.veinColour = boundedColour(c, tokens, i, 1);
+        break;
+      case 'N':
+        v.count = static_cast<int>(boundedValue(
+            c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a count")[0], 1, 2000));
+        break;
+      case 'W':
+        v.width = static_cast<float>(boundedValue(
+            c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a width")[0], 0.001, 0.1));
+        break;
+      case 'B':
+        v.bump = static_cast<float>(boundedValue(
+            c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a height")[0], -4, 4));
+        break;
+      case 'K':
+        v.strength = static_cast<float>(boundedValue(
+            c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a strength")[0], 0, 1));
+        break;
+      case 'S':
+        v.seed = static_cast<std::uint32_t>(boundedValue(
+            c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a seed")[0], 0, 4294967295.0));
+        break;
+      default:
+        c.fail(tokens[i].where, "expected 'C: r,g,b', 'N: count', 'W: width', 'B: height', "
+                                "'K: strength' or 'S: seed' in " +
+                                    inQuotes(c.label()) + ", found " + inQuotes(tokens[i].text));
+    }
+  }
+  std::vector<VeinSettings>& all = c.view.trace.veins;
+  std::erase_if(all, [&](const VeinSettings& old) { return old.colour == v.colour; });
+  all.push_back(v);
+}
+
 void light(ViewLine& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   LightSource light;
@@ -776,6 +832,7 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
          }},
         {"translucency:", &translucency},
         {"hair shading:", &hairShading},
+        {"veins:", &veins},
 
         // Lines, contours and surfaces (§8.1.5).
         {"line style:", &lineStyle},

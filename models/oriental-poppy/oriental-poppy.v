@@ -19,3 +19,13 @@ hair: straight.l
 hair: curved.l
 hair texture: 100 11
 hair interpolation: on
+
+/* hirsute render --trace (docs/trace.md): sun from above and in front, a bluish sky; the
+   leaflets pass some light and show their veins; the bristles catch the light white. */
+trace light: D: 0.5,1,0.8 A: 5 I: 3.2,3.1,2.9
+trace sky: 0.28,0.31,0.38
+translucency: 1 0.3
+translucency: 3 0.3
+veins: 1 particles C: 0.55,0.66,0.42 W: 0.012 B: 0.5 K: 0.6
+veins: 3 particles C: 0.55,0.66,0.42 W: 0.012 B: 0.5 K: 0.6
+hair shading: B: 0.4 R: 0.25 S: 0.1

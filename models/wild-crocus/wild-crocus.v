@@ -20,3 +20,13 @@ hair: wavy.l
 hair: wispy.l
 hair texture: 100 5
 hair interpolation: on
+
+/* hirsute render --trace (docs/trace.md): the light behind and above, so that the sepals glow
+   with the light they pass and their veins (jittered points joined by splines, as the paper's
+   Fig. 7) show dark in it; the hairs scatter forwards, silver at the rims. */
+trace light: D: 0.3,0.5,-1 A: 6 I: 4,3.9,3.6
+trace sky: 0.08,0.09,0.11
+translucency: 5 0.5
+translucency: 2 0.3
+veins: 5 splines C: 0.3,0.12,0.5 W: 0.02 B: 0.8
+hair shading: B: 0.25 R: 0.2 S: 0.06

@@ -487,6 +487,17 @@ namespace {
 
 // The path tracer's lines (docs/trace.md) set its light, sky and materials, and refuse values
 // out of range at the value.
+// The error a view file's text stops with, or "" when it parses.
+std::string viewFileError(const std::string& text, const char* file) {
+  Diagnostics d;
+  try {
+    parseViewFile(text, file, d);
+  } catch (const DiagnosticError& e) {
+    return e.diagnostic().text();
+  }
+  return "";
+}
+
 TEST(ViewFileTest, TheTracersLinesSetItsLightsAndMaterials) {
   Diagnostics diagnostics;
   const ViewSettings view = parseViewFile(
@@ -508,15 +519,7 @@ TEST(ViewFileTest, TheTracersLinesSetItsLightsAndMaterials) {
   EXPECT_FLOAT_EQ(t.hairRoughness, 0.2f);
   EXPECT_FLOAT_EQ(t.hairSpecular, 0.06f);
 
-  auto errorOf = [](const std::string& text) -> std::string {
-    Diagnostics d;
-    try {
-      parseViewFile(text, "trace.v", d);
-    } catch (const DiagnosticError& e) {
-      return e.diagnostic().text();
-    }
-    return "";
-  };
+  auto errorOf = [](const std::string& text) { return viewFileError(text, "trace.v"); };
   EXPECT_NE(errorOf("trace light: A: 400\n").find("trace.v:1:17: error:"), std::string::npos)
       << errorOf("trace light: A: 400\n");
   EXPECT_NE(errorOf("trace light: I: 1,1,1e30\n").find("must be from 0 to 10000"),
@@ -527,6 +530,41 @@ TEST(ViewFileTest, TheTracersLinesSetItsLightsAndMaterials) {
       << errorOf("translucency: 4 1.5\n");
   EXPECT_NE(errorOf("hair shading: B: nan\n").find("trace.v:1:"), std::string::npos)
       << errorOf("hair shading: B: nan\n");
+}
+
+TEST(ViewFileTest, VeinsLinesSetEachColoursPattern) {
+  Diagnostics diagnostics;
+  const ViewSettings view = parseViewFile(
+      "veins: 5 splines C: 0.3,0.12,0.5 W: 0.02 B: 0.8\n"
+      "veins: 4 particles N: 90 K: 0.6 S: 7\n"
+      "veins: 5 particles\n",  // replaces the first line's
+      "veins.v", diagnostics);
+  EXPECT_TRUE(diagnostics.warnings().empty());
+  const std::vector<VeinSettings>& veins = view.trace.veins;
+  ASSERT_EQ(veins.size(), 2u);
+  EXPECT_EQ(veins[0].colour, 4);
+  EXPECT_EQ(veins[0].pattern, VeinPattern::Particles);
+  EXPECT_EQ(veins[0].count, 90);
+  EXPECT_FLOAT_EQ(veins[0].strength, 0.6f);
+  EXPECT_EQ(veins[0].seed, 7u);
+  EXPECT_FALSE(veins[0].veinColour.has_value());
+  EXPECT_EQ(veins[1].colour, 5);
+  EXPECT_EQ(veins[1].pattern, VeinPattern::Particles);
+  EXPECT_FLOAT_EQ(veins[1].width, 0.012f);  // the default, not the replaced line's
+
+  auto errorOf = [](const std::string& text) { return viewFileError(text, "veins.v"); };
+  EXPECT_NE(errorOf("veins: 5 spiral\n").find("veins.v:1:10: error: expected the pattern"),
+            std::string::npos)
+      << errorOf("veins: 5 spiral\n");
+  EXPECT_NE(errorOf("veins: 5x splines\n").find("veins.v:1:8: error: expected a colour index"),
+            std::string::npos)
+      << errorOf("veins: 5x splines\n");
+  EXPECT_NE(errorOf("veins: 5 splines W: 2\n").find("veins.v:1:21: error:"), std::string::npos)
+      << errorOf("veins: 5 splines W: 2\n");
+  EXPECT_NE(errorOf("veins: 5 splines N: 1e9\n").find("must be from 1 to 2000"),
+            std::string::npos);
+  EXPECT_NE(errorOf("veins: 5 splines Q: 1\n").find("found 'Q:'"), std::string::npos)
+      << errorOf("veins: 5 splines Q: 1\n");
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "hirsute/viewer/trace/hair_bsdf.h"
 #include "hirsute/viewer/trace/surface_bsdf.h"
+#include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute::trace {
 namespace {
@@ -166,6 +167,47 @@ class Tracer {
     return glm::dot(direction, lights_.up) > 0 ? lights_.sky : glm::vec3(0.0f);
   }
 
+  // The veins at a hit (veins.h): the colour goes towards the veins' on them, and the normal
+  // leans as on a surface raised by their height.
+  void addVeins(const TraceMaterial& material, const TraceShape& shape, const Hit& hit,
+                SurfaceMaterial& surface, glm::vec3& normal) const {
+    const std::uint32_t* t = shape.triangleIndices + 3 * static_cast<std::size_t>(hit.primitive);
+    const SurfacePoint& a = shape.surface[t[0]];
+    const SurfacePoint& b = shape.surface[t[1]];
+    const SurfacePoint& c = shape.surface[t[2]];
+    if (a.z < 0 || b.z < 0 || c.z < 0) return;  // a vertex of no surface
+    const float w = 1 - hit.u - hit.v;
+    const glm::vec2 uv = w * glm::vec2(a) + hit.u * glm::vec2(b) + hit.v * glm::vec2(c);
+    const VeinMap& map = scene_.veinMap(material.veins, a.z);
+    const float share = material.veinStrength * map.height(uv);
+    const glm::vec3 towards = glm::mix(glm::vec3(1.0f), material.veinColour, share);
+    surface.reflectance *= towards;
+    surface.transmittance *= towards;
+    // A vein lighter than its surface still returns no more light than it receives.
+    const glm::vec3 total = surface.reflectance + surface.transmittance;
+    for (int k = 0; k < 3; ++k) {
+      if (total[k] > 1) {
+        surface.reflectance[k] /= total[k];
+        surface.transmittance[k] /= total[k];
+      }
+    }
+    const float height = material.veinBump * material.veinWidth * a.w;
+    if (height == 0) return;
+    const glm::vec3 p0 = shape.positions[t[0]];
+    const glm::vec3 e1 = shape.positions[t[1]] - p0, e2 = shape.positions[t[2]] - p0;
+    const glm::vec2 d1 = glm::vec2(b) - glm::vec2(a), d2 = glm::vec2(c) - glm::vec2(a);
+    const float det = d1.x * d2.y - d1.y * d2.x;
+    if (std::abs(det) < 1e-12f) return;
+    const glm::vec3 dpdu = (d2.y * e1 - d1.y * e2) / det;
+    const glm::vec3 dpdv = (d1.x * e2 - d2.x * e1) / det;
+    const glm::vec2 slope = height * map.slope(uv);
+    const glm::vec3 bumped = glm::cross(dpdu + slope.x * normal, dpdv + slope.y * normal);
+    const float length = glm::length(bumped);
+    if (!(length > 0)) return;
+    const glm::vec3 unit = bumped / length;
+    normal = glm::dot(unit, normal) < 0 ? -unit : unit;
+  }
+
   template <class Bsdf>
   glm::vec3 directLight(const Bsdf& bsdf, const glm::vec3& point, const glm::vec3& wo,
                         const Hit& hit, Random& random) const {
@@ -275,6 +317,17 @@ class Tracer {
                    hit.v * shape.normals[t[2]];
         }
         normal = glm::length(normal) > 0 ? glm::normalize(normal) : -direction;
+        if (shape.texcoords) {
+          // The texture modulates the colour, as GL draws it.
+          const std::uint32_t* t =
+              shape.triangleIndices + 3 * static_cast<std::size_t>(hit.primitive);
+          const glm::vec2 uv = (1 - hit.u - hit.v) * shape.texcoords[t[0]] +
+                               hit.u * shape.texcoords[t[1]] + hit.v * shape.texcoords[t[2]];
+          const glm::vec3 texel = linearColour(scene_.texture(shape.texture).colourAt(uv));
+          surface.reflectance *= texel;
+          surface.transmittance *= texel;
+        }
+        if (material.veins >= 0 && shape.surface) addVeins(material, shape, hit, surface, normal);
         if (glm::dot(normal, wo) < 0) normal = -normal;
         const SurfaceBsdf bsdf(surface, normal);
         total += throughput * directLight(bsdf, point, wo, hit, random);
@@ -319,18 +372,11 @@ TraceLights traceLights(const TraceSettings& look, const Bounds& plant, const gl
   TraceLights lights;
   lights.sky = linearColour(look.sky);
   lights.up = glm::length(look.up) > 0 ? glm::normalize(look.up) : glm::vec3(0, 1, 0);
-  glm::vec3 towards = look.lightDirection.value_or(fallback);
-  const float half = glm::radians(std::clamp(look.lightAngle, 0.01f, 179.0f)) / 2;
-  if (glm::length(towards) > 0 && luminance(look.lightIrradiance) > 0) {
-    towards = glm::normalize(towards);
-    const float size = plant.empty() ? 1.0f : std::max(plant.diagonal(), 1e-6f);
-    const float distance = 50 * size;
-    lights.sphere = true;
-    lights.centre = (plant.empty() ? glm::vec3(0.0f) : plant.center()) + distance * towards;
-    lights.radius = distance * std::sin(half);
-    // A sphere of angular radius δ and radiance L gives E = π L sin²δ to a surface facing it.
-    lights.radiance = look.lightIrradiance / (kPi * std::sin(half) * std::sin(half));
-  }
+  const SphereLight sphere = sphereLight(look, plant, fallback);
+  lights.sphere = sphere.present;
+  lights.centre = sphere.centre;
+  lights.radius = sphere.radius;
+  lights.radiance = sphere.radiance;
   return lights;
 }
 

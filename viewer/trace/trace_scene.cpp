@@ -90,6 +90,43 @@ int TraceScene::surfaceMaterial(const Scene& scene, int index) {
   return surfaceOf_[slot] = addMaterial(t);
 }
 
+const VeinSettings* TraceScene::veinsOf(int index) const {
+  for (const VeinSettings& v : look_.veins) {
+    if (v.colour == index) return &v;
+  }
+  return nullptr;
+}
+
+int TraceScene::veinedMaterial(const Scene& scene, int index, float aspect) {
+  const int plain = surfaceMaterial(scene, index);
+  const VeinSettings* veins = veinsOf(index);
+  if (!veins) return plain;
+  const auto slot = static_cast<std::size_t>(std::max(0, index));
+  if (slot >= veinedOf_.size()) veinedOf_.resize(slot + 1, -1);
+  if (veinedOf_[slot] >= 0) return veinedOf_[slot];
+  TraceMaterial t = materials_[static_cast<std::size_t>(plain)];
+  std::vector<VeinMap> maps;
+  for (int k = 0; k < kVeinVariants; ++k) maps.emplace_back(*veins, aspect, k);
+  veinMaps_.push_back(std::move(maps));
+  t.veins = static_cast<int>(veinMaps_.size()) - 1;
+  // Without a colour of their own, veins are the surface's colour, darker.
+  // Kept as the ratio of the veins' colour to the surface's, which scales the reflected and
+  // the transmitted light alike.
+  const glm::vec3 colour = linearColour(sceneMaterial(scene, index).diffuse);
+  const glm::vec3 veinColour = veins->veinColour ? linearColour(*veins->veinColour) : 0.55f * colour;
+  for (int c = 0; c < 3; ++c) t.veinColour[c] = colour[c] > 0 ? veinColour[c] / colour[c] : 1.0f;
+  t.veinStrength = veins->strength;
+  t.veinBump = veins->bump;
+  t.veinWidth = veins->width;
+  return veinedOf_[slot] = addMaterial(t);
+}
+
+const VeinMap& TraceScene::veinMap(int veins, float variant) const {
+  const std::vector<VeinMap>& maps = veinMaps_[static_cast<std::size_t>(veins)];
+  const auto k = static_cast<std::size_t>(std::max(0.0f, variant)) % maps.size();
+  return maps[k];
+}
+
 int TraceScene::hairMaterial(const Scene& scene, int index) {
   const auto slot = static_cast<std::size_t>(std::max(0, index));
   if (slot >= hairOf_.size()) hairOf_.resize(slot + 1, -1);
@@ -146,8 +183,21 @@ CurveBuffers TraceScene::addCurves(CurveShape shape, std::size_t vertices, std::
   return out;
 }
 
+int TraceScene::addTexture(const Scene& scene, int index) {
+  if (index < 0 || static_cast<std::size_t>(index) >= scene.textures.size()) return -1;
+  const auto slot = static_cast<std::size_t>(index);
+  if (slot >= textureOf_.size()) textureOf_.resize(slot + 1, -2);
+  if (textureOf_[slot] != -2) return textureOf_[slot];
+  const Texture& t = scene.textures[slot];
+  if (t.width <= 0 || t.height <= 0 || t.rgba.empty()) return textureOf_[slot] = -1;
+  textures_.push_back(t);
+  bufferBytes_ += t.rgba.size();
+  return textureOf_[slot] = static_cast<int>(textures_.size()) - 1;
+}
+
 TriangleBuffers TraceScene::addTriangles(std::size_t vertices, std::size_t triangles,
-                                         int material, bool normals, bool tint) {
+                                         int material, bool normals, bool tint, bool surface,
+                                         int texture) {
   TriangleBuffers out;
   if (triangles == 0) return out;
   RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -168,8 +218,19 @@ TriangleBuffers TraceScene::addTriangles(std::size_t vertices, std::size_t trian
     transparency_ = true;
   }
   failOnError(device_, "making triangles");
+  if (surface) {
+    surfacePoints_.push_back(std::make_unique<SurfacePoint[]>(vertices));
+    out.surface = surfacePoints_.back().get();
+    bufferBytes_ += sizeof(SurfacePoint) * vertices;
+  }
+  if (texture >= 0) {
+    texcoords_.push_back(std::make_unique<glm::vec2[]>(vertices));
+    out.texcoords = texcoords_.back().get();
+    bufferBytes_ += sizeof(glm::vec2) * vertices;
+  }
   triangles_ += triangles;
-  attach(g, TraceShape{material, false, nullptr, nullptr, out.indices, out.normals, out.tint});
+  attach(g, TraceShape{material, false, nullptr, nullptr, out.indices, out.normals, out.tint,
+                       out.positions, out.surface, out.texcoords, texture});
   return out;
 }
 

@@ -1,5 +1,8 @@
 #include "hirsute/viewer/view/view_lighting.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace hirsute {
 
 ViewLighting viewLighting(const ViewSettings& view, bool materialMode,
@@ -37,6 +40,38 @@ glm::vec3 backgroundColor(const Scene& scene, bool materialMode) {
 glm::vec3 organLight(const ViewLighting& lighting, const glm::vec3& towardsEye) {
   if (lighting.colorMap) return lighting.colorMapLight;
   if (!lighting.headlight && !lighting.lights.empty()) return lighting.lights.front().vector;
+  return towardsEye;
+}
+
+}  // namespace hirsute
+
+namespace hirsute {
+
+SphereLight sphereLight(const TraceSettings& look, const Bounds& plant, const glm::vec3& fallback) {
+  constexpr float kPi = 3.14159265358979323846f;
+  SphereLight light;
+  glm::vec3 towards = look.lightDirection.value_or(fallback);
+  const float half = glm::radians(std::clamp(look.lightAngle, 0.01f, 179.0f)) / 2;
+  const glm::vec3 e = look.lightIrradiance;
+  if (!(glm::length(towards) > 0) || !(e.r + e.g + e.b > 0)) return light;
+  towards = glm::normalize(towards);
+  const float size = plant.empty() ? 1.0f : std::max(plant.diagonal(), 1e-6f);
+  const float distance = 50 * size;
+  light.present = true;
+  light.centre = (plant.empty() ? glm::vec3(0.0f) : plant.center()) + distance * towards;
+  light.radius = distance * std::sin(half);
+  // A sphere of angular radius δ and radiance L gives E = π L sin²δ to a surface facing it.
+  light.radiance = e / (kPi * std::sin(half) * std::sin(half));
+  return light;
+}
+
+glm::vec3 traceLightFallback(const ViewLighting& lighting, const Bounds& plant,
+                             const glm::vec3& towardsEye) {
+  if (lighting.colorMap) return lighting.colorMapLight;
+  if (!lighting.headlight && !lighting.lights.empty()) {
+    const LightSource& first = lighting.lights.front();
+    return first.directional ? first.vector : first.vector - plant.center();
+  }
   return towardsEye;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
@@ -81,6 +82,24 @@ struct ShadowMap {
 // The path tracer's lines (docs/trace.md): the paper's one spherical light and hemispherical
 // sky (papers/002_0e0bce38b72f21dc.txt, Sec. 5), the colours light passes through, and how
 // hairs scatter.
+// `veins: COLOUR PATTERN ...`: the path tracer's procedural veins on the surfaces of a colour
+// (docs/trace.md, "Veins"), as colour and as a bump map.
+enum class VeinPattern : std::uint8_t {
+  Splines,    // jittered points joined by splines, fanning from base to tip (the crocus's petals)
+  Particles,  // traced by particles that merge on their way to the midrib (the cherry's leaves)
+};
+
+struct VeinSettings {
+  int colour = 0;                       // the surfaces' colour index
+  VeinPattern pattern = VeinPattern::Splines;
+  std::optional<glm::vec3> veinColour;  // C: r,g,b; none: the surface's colour darkened
+  int count = 0;                        // N: veins (splines) or particles; 0: the pattern's default
+  float width = 0.012f;                 // W: the main veins' width, a share of the surface's length
+  float bump = 0.5f;                    // B: the veins' height, a share of their width
+  float strength = 1;                   // K: how far the colour goes to the veins' colour, 0–1
+  std::uint32_t seed = 1;               // S:
+};
+
 struct TraceSettings {
   // `trace light: D: x,y,z A: degrees I: r,g,b`: towards the light from the plant (none: the
   // first `light:` line's direction, or the eye's), the angle it subtends, and the irradiance it
@@ -95,6 +114,7 @@ struct TraceSettings {
   std::vector<std::pair<int, float>> translucent;
   // `hair shading: B: backscatter R: roughness S: specular` (hair_bsdf.h).
   float hairBackscatter = 0.4f, hairRoughness = 0.25f, hairSpecular = 0.08f;
+  std::vector<VeinSettings> veins;  // one a colour; a later line for a colour replaces it
 };
 
 struct ViewSettings {

@@ -19,6 +19,7 @@
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/trace/hair_bsdf.h"
 #include "hirsute/viewer/trace/surface_bsdf.h"
+#include "hirsute/viewer/trace/veins.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
@@ -34,6 +35,14 @@ struct TraceMaterial {
   HairMaterial fibre;
   glm::vec3 emission{0.0f};  // radiance the shape gives off
   float opacity = 1;         // below 1: rays pass through that share of the time
+  // Veins (veins.h): the index of the material's vein maps (-1: none), the veins' colour as a
+  // ratio to the surface's, how far the colour goes to it on a vein, the veins' height over
+  // their width.
+  int veins = -1;
+  glm::vec3 veinColour{0.0f};
+  float veinStrength = 1;
+  float veinBump = 0;
+  float veinWidth = 0;  // a share of the surface's length
 };
 
 enum class CurveShape : std::uint8_t {
@@ -50,11 +59,17 @@ struct CurveBuffers {
   glm::vec4* tint = nullptr;
 };
 
+// A surface's own coordinates at a vertex, for veins: (u across, v along, the variant of the
+// vein map, the surface's length in world units); a negative variant: none.
+using SurfacePoint = glm::vec4;
+
 struct TriangleBuffers {
   glm::vec3* positions = nullptr;
   glm::vec3* normals = nullptr;  // null: flat-shaded
   std::uint32_t* indices = nullptr;
   glm::vec4* tint = nullptr;
+  SurfacePoint* surface = nullptr;
+  glm::vec2* texcoords = nullptr;  // when the triangles have a texture
 };
 
 // How a hit shape is shaded (indexed by Embree's geometry ID), with its buffers.
@@ -66,6 +81,10 @@ struct TraceShape {
   const std::uint32_t* triangleIndices = nullptr; // triangles: three a triangle
   const glm::vec3* normals = nullptr;             // triangles: a vertex each, or null
   const glm::vec4* tint = nullptr;                // a vertex each, or null
+  const glm::vec3* positions = nullptr;           // triangles
+  const SurfacePoint* surface = nullptr;          // triangles: a vertex each, or null
+  const glm::vec2* texcoords = nullptr;           // triangles: a vertex each, or null
+  int texture = -1;                               // TraceScene::texture, with texcoords
 };
 
 class TraceScene {
@@ -85,11 +104,22 @@ class TraceScene {
   // gives their colour), shaded as the view file says hairs are.
   int hairOfColour(const glm::vec3& colour);
   int surfaceOfColour(const glm::vec3& colour);
+  // The view file's veins for the colour `index`, or null.
+  const VeinSettings* veinsOf(int index) const;
+  // The Scene's material `index` with its veins, made for surfaces of proportions `aspect`
+  // (width over length) the first time it is asked for (cached).
+  int veinedMaterial(const Scene& scene, int index, float aspect);
+  const VeinMap& veinMap(int veins, float variant) const;
 
   CurveBuffers addCurves(CurveShape shape, std::size_t vertices, std::size_t segments,
                          int material, bool tint);
+  // `texture`: an index of addTexture whose colour modulates the material's (cpfg's default
+  // texture mode, as GL draws it), read at `texcoords`; -1: none.
   TriangleBuffers addTriangles(std::size_t vertices, std::size_t triangles, int material,
-                               bool normals, bool tint);
+                               bool normals, bool tint, bool surface = false, int texture = -1);
+  // A copy of the Scene's texture `index` (cached), or -1 when it has no pixels.
+  int addTexture(const Scene& scene, int index);
+  const Texture& texture(int index) const { return textures_[static_cast<std::size_t>(index)]; }
   void addSpheres(const std::vector<glm::vec4>& centresAndRadii, int material);
   // Discs facing `normals` (a zero normal: facing each ray).
   void addDiscs(const std::vector<glm::vec4>& centresAndRadii,
@@ -118,7 +148,12 @@ class TraceScene {
   RTCSceneTy* scene_ = nullptr;
   std::vector<TraceShape> shapes_;
   std::vector<TraceMaterial> materials_;
-  std::vector<int> surfaceOf_, hairOf_;
+  std::vector<int> surfaceOf_, hairOf_, veinedOf_;
+  std::vector<std::vector<VeinMap>> veinMaps_;               // kVeinVariants a vein line
+  std::vector<std::unique_ptr<SurfacePoint[]>> surfacePoints_;  // the shapes' (not Embree's)
+  std::vector<std::unique_ptr<glm::vec2[]>> texcoords_;
+  std::vector<Texture> textures_;
+  std::vector<int> textureOf_;  // by the Scene's texture index
   std::vector<float> through_;  // translucency by colour index
   bool transparency_ = false;
   std::size_t curveSegments_ = 0, triangles_ = 0, bufferBytes_ = 0;

@@ -33,6 +33,23 @@ ViewLighting viewLighting(const ViewSettings& view, bool materialMode, const glm
 // first `light:` line's.
 glm::vec3 organLight(const ViewLighting& lighting, const glm::vec3& towardsEye);
 
+// The path tracer's spherical light (docs/trace.md, "Lights"), which the POV-Ray export's
+// `--trace-lights` places too: far off (fifty times the plant's size) towards the view file's
+// `trace light: D:`, sized to subtend its angle and bright enough to give its irradiance.
+struct SphereLight {
+  bool present = false;  // none when the direction or the irradiance is zero
+  glm::vec3 centre{0.0f};
+  float radius = 0;
+  glm::vec3 radiance{0.0f};
+};
+SphereLight sphereLight(const TraceSettings& look, const Bounds& plant, const glm::vec3& fallback);
+
+// Where the tracer's light comes from without a `trace light: D:` line: where the GL render's
+// light comes from (in colour-map mode the `light direction:`, else the first `light:` line's),
+// or, with the default light, the eye (`towardsEye`).
+glm::vec3 traceLightFallback(const ViewLighting& lighting, const Bounds& plant,
+                             const glm::vec3& towardsEye);
+
 // cpfg takes the background from entry 0 of the palette: the colour of a colour map, the
 // emission of a material file.
 glm::vec3 backgroundColor(const Scene& scene, bool materialMode);
