@@ -26,6 +26,7 @@ struct ExportOptions {
   // The organs' tables (organ_writer.h), one file name a writer of organWriters() (empty: none).
   std::vector<std::string> tables = std::vector<std::string>(organWriters().size());
   bool render = false;
+  bool traceLights = false;  // the path tracer's lights (PovOptions::traceLights)
   int width = 800, height = 600;
 };
 
@@ -46,6 +47,7 @@ int runExport(ExportOptions o) {
       options.materialMode = built->resources.materialMode;
       options.width = o.width;
       options.height = o.height;
+      options.traceLights = o.traceLights;
       writePov(built->scene, options, o.pov, &progress);
     }
     if (!o.obj.empty()) {
@@ -117,6 +119,11 @@ void registerExportCommand(CLI::App& app, Action& action) {
     if (const std::optional<OrganTable> table = organWriters()[k]->table())
       command->add_option(table->option, options->tables[k], table->help);
   }
+  command
+      ->add_flag("--trace-lights", options->traceLights,
+                 "Light the POV-Ray scene as render --trace does: an area light, the sky by "
+                 "radiosity, translucent colours by backside diffuse")
+      ->needs(command->get_option("--pov"));
   CLI::Option* render = command->add_flag(
       "--render", options->render,
       "Render the POV-Ray scene with the installed povray, to the .pov's name with .png");

@@ -113,7 +113,7 @@ const std::string& PovWriter::useTexture(int material, int texture) {
   if (material == lastMaterial_ && texture == lastTexture_) return lastName_;
   std::string name = textureName(material, texture);
   if (declaredTextures_.insert({material, texture}).second) {
-    writeMaterial(name, materialAt(*scene_, material), texture);
+    writeMaterial(name, material, materialAt(*scene_, material), texture);
   }
   lastMaterial_ = material;
   lastTexture_ = texture;
@@ -231,8 +231,17 @@ void PovWriter::writeHeader(const Scene& scene, std::span<const OrganWriter* con
   glm::vec3 ambient(kGlobalAmbient);
   for (const LightSource& light : lightsOf(options_.view, options_.materialMode, camera_))
     ambient += light.ambient;
+  if (options_.traceLights) {
+    // The tracer's sky lights the plant through radiosity, and there is no ambient term.
+    ambient = glm::vec3(0.0f);
+  }
   out_.put("global_settings{assumed_gamma 1 ambient_light rgb");
   vector(ambient, colour_);
+  if (options_.traceLights) {
+    out_.put(" radiosity{pretrace_start 0.08 pretrace_end 0.04 count 35 nearest_count 5 "
+             "error_bound 1.8 recursion_limit 2 low_error_factor 0.5 gray_threshold 0 "
+             "brightness 1 adc_bailout 0.005 normal on}");
+  }
   if (traceLevel > 0) {
     out_.put(" max_trace_level ");
     out_.putInteger(traceLevel);
@@ -288,7 +297,57 @@ void PovWriter::writeCamera() {
   out_.put("}\n");
 }
 
+// The tracer's spherical light as a circular area light of its size where it stands, its
+// colour the irradiance over π (POV-Ray's diffuse finish is ρ E cos θ, without Lambert's 1/π);
+// the sky as a dome about the plant, emitting the sky's radiance over the hemisphere about
+// `trace up:` and nothing below, which only radiosity sees (no_image) and which casts no
+// shadow. A white surface facing the light, or the sky, then looks as it does in the tracer.
+void PovWriter::writeTraceLights(const Bounds& bounds) {
+  const TraceSettings& look = options_.view.trace;
+  const ViewLighting lighting = viewLighting(options_.view, options_.materialMode, -camera_.forward);
+  const SphereLight light =
+      sphereLight(look, bounds, traceLightFallback(lighting, bounds, -camera_.forward));
+  NumberFormat format{5, false};
+  if (light.present) {
+    // `orient` turns the light's disc to face each point it lights; its two axes only have to
+    // be of one length, which printed numbers keep exactly along x and z.
+    const glm::vec3 a(2 * light.radius, 0, 0), b(0, 0, 2 * light.radius);
+    const float sin2 = std::pow(std::sin(glm::radians(std::clamp(look.lightAngle, 0.01f, 179.0f)) / 2), 2.0f);
+    out_.put("light_source{");
+    vector(light.centre, position_);
+    out_.put(" rgb");
+    vector(light.radiance * sin2, format);  // E / π
+    out_.put(" area_light");
+    vector(a, position_);
+    out_.put(',');
+    vector(b, position_);
+    out_.put(",5,5 adaptive 1 jitter circular orient}\n");
+  }
+  const glm::vec3 sky = srgbToLinear(look.sky);
+  if (sky != glm::vec3(0.0f)) {
+    const glm::vec3 up = glm::length(look.up) > 0 ? glm::normalize(look.up) : glm::vec3(0, 1, 0);
+    const float radius = 100 * std::max(bounds.diagonal(), 1e-3f);
+    out_.put("sphere{0,");
+    number(radius, position_);
+    out_.put(" hollow no_image no_shadow texture{pigment{function{select(x*");
+    number(up.x, format);
+    out_.put("+y*");
+    number(up.y, format);
+    out_.put("+z*");
+    number(up.z, format);
+    out_.put(",0,1)} colour_map{[0 rgb 0][1 rgb");
+    vector(sky, format);
+    out_.put("]}} finish{emission 1 diffuse 0 ambient 0}} translate");
+    vector(bounds.empty() ? glm::vec3(0.0f) : bounds.center(), position_);
+    out_.put("}\n");
+  }
+}
+
 void PovWriter::writeLights(const Bounds& bounds) {
+  if (options_.traceLights) {
+    writeTraceLights(bounds);
+    return;
+  }
   std::vector<LightSource> lights = lightsOf(options_.view, options_.materialMode, camera_);
   glm::vec3 centre = bounds.empty() ? options_.view.viewReference : bounds.center();
   float far = 10 * std::max(bounds.diagonal(), 1.0f);
@@ -338,7 +397,8 @@ std::string PovWriter::textureName(int material, int texture) const {
 // GL's lighting (cpfg's material mode) in POV-Ray's terms. POV-Ray multiplies ambient and emission
 // by the pigment, so they are written as ratios to the diffuse colour, which is kept above a
 // floor (invisible as diffuse light) so that a black diffuse colour can still glow.
-void PovWriter::writeMaterial(std::string_view name, const Material& material, int texture) {
+void PovWriter::writeMaterial(std::string_view name, int index, const Material& material,
+                              int texture) {
   glm::vec3 diffuse = glm::max(srgbToLinear(material.diffuse), glm::vec3(kDarkestPigment));
   glm::vec3 ambient = srgbToLinear(material.ambient) / diffuse;
   glm::vec3 emission = srgbToLinear(material.emission) / diffuse;
@@ -383,7 +443,22 @@ void PovWriter::writeMaterial(std::string_view name, const Material& material, i
   }
   out_.put("finish{ambient rgb");
   vector(ambient, format);
-  out_.put(" diffuse 1");
+  // With the tracer's lights, a translucent colour passes its share to the side away from the
+  // light (backside diffuse) and reflects the rest, as the tracer's surfaces do.
+  float through = 0;
+  if (options_.traceLights) {
+    for (const auto& [colour, share] : options_.view.trace.translucent) {
+      if (colour == index) through = std::clamp(share, 0.0f, 1.0f);
+    }
+  }
+  if (through > 0) {
+    out_.put(" diffuse ");
+    number(1 - through, format);
+    out_.put(',');
+    number(through, format);
+  } else {
+    out_.put(" diffuse 1");
+  }
   float specular = std::max({material.specular.x, material.specular.y, material.specular.z});
   if (specular > 0) {
     // GL's Blinn-Phong exponent n corresponds to POV-Ray's roughness 1/n.

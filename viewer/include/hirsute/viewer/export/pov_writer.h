@@ -36,6 +36,10 @@ struct PovOptions {
   std::optional<Bounds> fitBounds;
   // The outputs this scene is committed with (output_target.h); none: on its own.
   OutputGroup* group = nullptr;
+  // The path tracer's light set-up instead of the view's GL lights (docs/export.md, "The
+  // tracer's lights"): its spherical light as an area light, its sky as an emitting dome seen
+  // by radiosity, and the view file's `translucency:` as backside diffuse.
+  bool traceLights = false;
 };
 
 struct PovExportStats {
@@ -110,7 +114,8 @@ class PovWriter : public ScenePrinter {
   void writeHeader(const Scene& scene, std::span<const OrganWriter* const> organs);
   void writeCamera();
   void writeLights(const Bounds& bounds);
-  void writeMaterial(std::string_view name, const Material& material, int texture);
+  void writeMaterial(std::string_view name, int index, const Material& material, int texture);
+  void writeTraceLights(const Bounds& bounds);
   std::string textureName(int material, int texture) const;
   // A line, sphere or disc, held back while it may be the only member of a union.
   struct Primitive {
