@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # The path tracer against POV-Ray on the same view of the same model (issue 23's benchmark),
-# both timed as whole processes with GNU time (wall seconds, peak MiB): `hirsute render --trace`
-# at SPP samples a pixel, and `hirsute export --pov` followed by POV-Ray 3.7 rendering the
-# exported scene at the same size. Prints one row a model.
+# all timed as whole processes with GNU time (wall seconds, peak MiB): `hirsute render --trace`
+# at SPP samples a pixel; `hirsute export --pov` followed by POV-Ray 3.7 rendering the exported
+# scene at the same size, once with the view's GL lights (+A0.3 antialiasing) and once with the
+# tracer's own lights (`--trace-lights`: an area light and the sky by radiosity, the same set-up
+# as the tracer's). The tracer's noise is the RMS difference, in 8-bit display levels, between
+# its picture and one of another seed, over sqrt(2) (scripts/image-noise.py). Prints one row a
+# model; the speed columns are POV-Ray's export and render time over the tracer's.
 #   scripts/bench-trace.sh                 (builds build/release first)
 # HIRSUTE=PATH skips the build; SIZE (default 800x600), SPP (default 64) and MODELS (default
 # "nankin-cherry/nankin-cherry oriental-poppy/oriental-poppy wild-crocus/wild-crocus", each a
@@ -34,16 +38,24 @@ timed() {  # prints "seconds MiB" of the command, or "failed"
   fi
 }
 
-printf '%-16s %22s %22s %22s %8s\n' "model" "trace s / MiB" "export s / MiB" "POV-Ray s / MiB" "speed"
+printf '%-16s %15s %6s %15s %15s %8s %15s %15s %8s\n' "model" "trace s/MiB" "noise" \
+  "export s/MiB" "POV GL s/MiB" "speed" "export s/MiB" "POV trace s/MiB" "speed"
 for m in $models; do
   folder="$root/models/$(dirname "$m")"
   base="$(basename "$m")"
   read -r ts tm < <(timed "$program" render "$folder/$base.l" "$folder/$base.v" --trace \
     --spp "$spp" --size "$size" -o "$work/$base-trace.png")
-  read -r es em < <(timed "$program" export "$folder/$base.l" "$folder/$base.v" \
-    --pov "$work/$base.pov" --width "${size%x*}" --height "${size#*x}")
-  read -r ps pm < <(timed timeout "${POVRAY_LIMIT:-1800}" povray -D +A0.3 +W"${size%x*}" +H"${size#*x}" +I"$work/$base.pov" \
-    +O"$work/$base-pov.png")
-  ratio="$(awk -v t="$ts" -v e="$es" -v p="$ps" 'BEGIN { printf "%.1fx", (e + p) / t }')"
-  printf '%-16s %22s %22s %22s %8s\n' "$base" "$ts / $tm" "$es / $em" "$ps / $pm" "$ratio"
+  "$program" render "$folder/$base.l" "$folder/$base.v" --trace --spp "$spp" --size "$size" \
+    --seed 2 -o "$work/$base-trace2.png" 2> /dev/null
+  noise="$(python3 "$root/scripts/image-noise.py" "$work/$base-trace.png" "$work/$base-trace2.png")"
+  row="$(printf '%-16s %15s %6s' "$base" "$ts/$tm" "$noise")"
+  for lights in "" "--trace-lights"; do
+    read -r es em < <(timed "$program" export "$folder/$base.l" "$folder/$base.v" $lights \
+      --pov "$work/$base.pov" --width "${size%x*}" --height "${size#*x}")
+    read -r ps pm < <(timed timeout "${POVRAY_LIMIT:-1800}" povray -D +A0.3 +W"${size%x*}" \
+      +H"${size#*x}" +I"$work/$base.pov" +O"$work/$base-pov.png")
+    ratio="$(awk -v t="$ts" -v e="$es" -v p="$ps" 'BEGIN { if (p == "failed") print "-"; else printf "%.1fx", (e + p) / t }')"
+    row+="$(printf ' %15s %15s %8s' "$es/$em" "$ps/$pm" "$ratio")"
+  done
+  echo "$row"
 done

@@ -221,3 +221,52 @@ TEST(PathTracer, BacklitHairsMakeAHaloOutsideTheSilhouette) {
 }
 
 }  // namespace
+
+namespace {
+
+// A square of side 4 at height z facing +z, of `material`.
+void addSquare(TraceScene& scene, float z, int material) {
+  const TriangleBuffers b = scene.addTriangles(4, 2, material, false, false);
+  const glm::vec3 corners[4] = {{-2, -2, z}, {2, -2, z}, {2, 2, z}, {-2, 2, z}};
+  std::copy(corners, corners + 4, b.positions);
+  const std::uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+  std::copy(indices, indices + 6, b.indices);
+}
+
+// Light reaches a white floor through two half-transparent black sheets: a quarter of it on
+// the way down (the shadow ray counts each sheet once, in one traversal) and a quarter of what
+// the floor returns on the way up (camera rays pass each sheet half the time).
+TEST(PathTracer, ShadowRaysThroughTransparentSheetsCountEachOnce) {
+  TraceScene scene(TraceSettings{});
+  TraceMaterial white;
+  white.surface.reflectance = glm::vec3(1.0f);
+  TraceMaterial sheet;
+  sheet.surface.reflectance = glm::vec3(0.0f);
+  sheet.opacity = 0.5f;
+  addSquare(scene, 0, scene.addMaterial(white));
+  const int sheets = scene.addMaterial(sheet);
+  addSquare(scene, 0.5f, sheets);
+  addSquare(scene, 1.0f, sheets);
+  scene.commit();
+  ASSERT_TRUE(scene.hasTransparency());
+  TraceSettings look;
+  look.lightDirection = glm::vec3(0, 0, 1);
+  look.lightAngle = 2;
+  look.lightIrradiance = glm::vec3(kPi);  // a white surface facing it returns 1
+  Bounds box;
+  box.add(glm::vec3(-2, -2, 0));
+  box.add(glm::vec3(2, 2, 1));
+  TraceLights lights = traceLights(look, box, glm::vec3(0, 0, 1));
+  lights.sky = glm::vec3(0.0f);
+  glm::vec3 sum(0.0f);
+  constexpr int kSamples = 40000;
+  for (int i = 0; i < kSamples; ++i) {
+    Random random(9, static_cast<std::uint64_t>(i));
+    sum += traceRay(scene, lights, glm::vec3(0.1f, 0.2f, 5), glm::vec3(0, 0, -1), random,
+                    TraceOptions{});
+  }
+  const float expected = 0.25f * 0.25f;
+  EXPECT_NEAR(sum.g / kSamples, expected, 0.05f * expected);
+}
+
+}  // namespace

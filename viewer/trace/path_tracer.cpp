@@ -46,6 +46,31 @@ void skipTheShapeLeft(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// The context of a shadow ray through partly transparent shapes: every shape the ray meets
+// before `far` is reported to the filter, which multiplies the light let through by its
+// transparency and lets the ray go on, in one traversal rather than one a layer. The order of
+// the factors does not matter; a shape met twice (a round curve's two walls) counts once.
+struct ShadowContext {
+  RTCIntersectContext base;
+  unsigned leftGeometry, leftPrimitive;
+  const void* tracer;
+  float through = 1;
+  static constexpr int kRemembered = 8;
+  unsigned seenGeometry[kRemembered], seenPrimitive[kRemembered];
+  int seen = 0;
+
+  bool counted(unsigned geometry, unsigned primitive) {
+    const int count = std::min(seen, kRemembered);
+    for (int k = 0; k < count; ++k) {
+      if (seenGeometry[k] == geometry && seenPrimitive[k] == primitive) return true;
+    }
+    seenGeometry[seen % kRemembered] = geometry;
+    seenPrimitive[seen % kRemembered] = primitive;
+    ++seen;
+    return false;
+  }
+};
+
 // A ray from `origin` along `direction` between `near` and `far`.
 RTCRay rayOf(const glm::vec3& origin, const glm::vec3& direction, float near, float far) {
   RTCRay ray{};
@@ -128,18 +153,42 @@ class Tracer {
       rtcOccluded1(scene_.embree(), &context.base, &ray);
       return ray.tfar < 0 ? 0.0f : 1.0f;
     }
-    float through = 1;
-    for (int layer = 0; layer < kMaxPassThroughs; ++layer) {
-      const Hit hit = intersect(origin, direction, epsilon_, far, leftGeometry, leftPrimitive);
-      if (!hit.found) return through;
-      through *= 1 - opacityAt(scene_.shape(hit.geometry), hit);
-      if (through <= 0) return 0;
-      origin += hit.distance * direction;
-      far -= hit.distance;
-      leftGeometry = hit.geometry;
-      leftPrimitive = hit.primitive;
+    ShadowContext context{};
+    rtcInitIntersectContext(&context.base);
+    context.base.filter = &Tracer::attenuate;
+    context.leftGeometry = leftGeometry;
+    context.leftPrimitive = leftPrimitive;
+    context.tracer = this;
+    RTCRay ray = rayOf(origin, direction, epsilon_, far);
+    rtcOccluded1(scene_.embree(), &context.base, &ray);
+    return ray.tfar < 0 ? 0.0f : context.through;
+  }
+
+  // The shadow ray's filter (ShadowContext): a shape that lets no light through, or the light
+  // left falling below 1/1000, stops the ray; any other is passed, its transparency counted.
+  static void attenuate(const RTCFilterFunctionNArguments* args) {
+    auto* context = reinterpret_cast<ShadowContext*>(args->context);
+    const auto* tracer = static_cast<const Tracer*>(context->tracer);
+    for (unsigned i = 0; i < args->N; ++i) {
+      if (args->valid[i] == 0) continue;
+      Hit hit;
+      hit.geometry = RTCHitN_geomID(args->hit, args->N, i);
+      hit.primitive = RTCHitN_primID(args->hit, args->N, i);
+      if (hit.geometry == context->leftGeometry && hit.primitive == context->leftPrimitive) {
+        args->valid[i] = 0;
+        continue;
+      }
+      hit.u = RTCHitN_u(args->hit, args->N, i);
+      hit.v = RTCHitN_v(args->hit, args->N, i);
+      const float opacity = tracer->opacityAt(tracer->scene_.shape(hit.geometry), hit);
+      if (opacity >= 1) continue;  // opaque: occluded
+      if (!context->counted(hit.geometry, hit.primitive)) context->through *= 1 - opacity;
+      if (context->through < 1e-3f) {
+        context->through = 0;
+        continue;
+      }
+      args->valid[i] = 0;
     }
-    return 0;
   }
 
   // Where a ray meets the spherical light, or a negative distance.

@@ -131,7 +131,13 @@ int TraceScene::hairMaterial(const Scene& scene, int index) {
   const auto slot = static_cast<std::size_t>(std::max(0, index));
   if (slot >= hairOf_.size()) hairOf_.resize(slot + 1, -1);
   if (hairOf_[slot] >= 0) return hairOf_[slot];
-  return hairOf_[slot] = hairOfColour(linearColour(sceneMaterial(scene, index).diffuse));
+  const Material& m = sceneMaterial(scene, index);
+  const int hair = hairOfColour(linearColour(m.diffuse));
+  // A transparent hair material (the crocus's silky hairs) lets that share of rays pass, as GL
+  // blends it.
+  materials_[static_cast<std::size_t>(hair)].opacity = 1 - std::clamp(m.transparency, 0.0f, 1.0f);
+  if (m.transparency > 0) transparency_ = true;
+  return hairOf_[slot] = hair;
 }
 
 int TraceScene::hairOfColour(const glm::vec3& colour) {
