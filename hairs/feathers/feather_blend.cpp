@@ -203,6 +203,9 @@ KeyBarb extraKeyBarb(BarbSide side, float position, float angle, const KeyBarb& 
   return extra;
 }
 
+// The share of the vane over which the sheath's front opens the barbs.
+constexpr float kSheathEdge = 0.06f;
+
 float ramp(float age, float start, float end) {
   return std::clamp((age - start) / (end - start), 0.0f, 1.0f);
 }
@@ -262,6 +265,12 @@ FeatherType grownFeatherType(const FeatherType& type, float age) {
   const float barbs = ramp(age, 0.3f, 0.5f);
   const float sheathFront = 1 - ramp(age, 0.5f, 0.8f);  // the migrating key barb's position
   const float rise = ramp(age, 0.8f, 1);
+  // How far a barb at `position` has broken out: 0 in the sheath, 1 once the front is past it,
+  // over a short edge (kSheathEdge of the vane) just below the front.
+  auto opened = [&](float position) {
+    if (sheathFront >= 1) return 0.0f;  // the sheath is whole
+    return std::clamp((position - sheathFront) / kSheathEdge + 1, 0.0f, 1.0f);
+  };
 
   FeatherType out = type;
   out.calamusLength *= shaft;
@@ -287,18 +296,27 @@ FeatherType grownFeatherType(const FeatherType& type, float age) {
     const std::vector<KeyBarb> keys = VaneKeyBarbs(type, side).keys();
     const KeyBarb atBase = grownBarbAtEnd(keys, 0);
     const KeyBarb atTip = grownBarbAtEnd(keys, 1);
-    // The tip's extra before the migrating one: while both stand at the tip (until age 0.5) the
-    // barbs below it are still closed at 180°.
-    out.keyBarbs.push_back(extraKeyBarb(side, 0, 180, atBase, vaneAngle(grown, 0), rise));
-    out.keyBarbs.push_back(extraKeyBarb(side, 1, 180, atTip, vaneAngle(grown, 1), rise));
+    // A barb the sheath front has passed has broken out and stays open at its grown angle; below
+    // the front it lies closed along the rachis (Sec. 4.2.4: the sheath opens from the tip).
+    auto openAngle = [&](float position, float grownAngle) {
+      return mix(180, grownAngle, opened(position));
+    };
+    out.keyBarbs.push_back(extraKeyBarb(side, 0, openAngle(0, vaneAngle(grown, 0)), atBase,
+                                        vaneAngle(grown, 0), rise));
+    out.keyBarbs.push_back(extraKeyBarb(side, 1, openAngle(1, vaneAngle(grown, 1)), atTip,
+                                        vaneAngle(grown, 1), rise));
     out.keyBarbs.push_back(extraKeyBarb(side, sheathFront, vaneAngle(grown, sheathFront), atBase,
                                         vaneAngle(grown, 0), rise));
+    // The edge of the sheath, just below the front: closed, so that the barbs below stay in it.
+    const float inSheath = std::max(0.0f, sheathFront - kSheathEdge);
+    out.keyBarbs.push_back(extraKeyBarb(side, inSheath, openAngle(inSheath, vaneAngle(grown, inSheath)),
+                                        atBase, vaneAngle(grown, 0), rise));
     for (const KeyBarb& key : keys) {
       KeyBarb growing = key;
       growing.side = side;
       growing.vertices = mixVertices(straightened(key.vertices), key.vertices, rise);
       growing.plumulaceous = rise * key.plumulaceous;
-      if (key.angle) growing.angle = mix(180, *key.angle, rise);
+      growing.angle = openAngle(key.position, key.angle.value_or(vaneAngle(grown, key.position)));
       out.keyBarbs.push_back(std::move(growing));
     }
   }

@@ -129,4 +129,11 @@ void forEachStrand(const Scene& scene, const FurSurface& surface, int samples,
   });
 }
 
+const Texture* colourTexture(const Scene& scene, const FurAttributes& attributes) {
+  const int index = attributes.sceneTexture();
+  if (index < 0 || static_cast<std::size_t>(index) >= scene.textures.size()) return nullptr;
+  const Texture& t = scene.textures[static_cast<std::size_t>(index)];
+  return t.width > 0 && t.height > 0 && !t.rgba.empty() ? &t : nullptr;
+}
+
 }  // namespace hirsute::fur

@@ -37,11 +37,7 @@ void FurWriter::writePov(const Scene& scene, PovWriter& pov) const {
     const Material material = static_cast<std::size_t>(surface.material) < scene.materials.size()
                                   ? scene.materials[static_cast<std::size_t>(surface.material)]
                                   : Material{};
-    const Texture* texture = nullptr;
-    if (a.texture > 0 && static_cast<std::size_t>(a.texture) < scene.textures.size()) {
-      const Texture& t = scene.textures[static_cast<std::size_t>(a.texture)];
-      if (t.width > 0 && t.height > 0) texture = &t;
-    }
+    const Texture* texture = fur::colourTexture(scene, a);
     std::vector<glm::vec3> points;
     std::vector<Shade> shades;
     std::vector<std::uint32_t> faces;

@@ -189,9 +189,9 @@ void FurDrawing::upload(const OrganUpload& upload) {
     s.wrapsU = fur.wrapsU;
     const std::size_t material = static_cast<std::size_t>(fur.material);
     s.color = material < palette.size() ? palette[material].diffuse : glm::vec3(0.8f);
-    if (s.attributes.texture > 0 &&
-        static_cast<std::size_t>(s.attributes.texture) < textures.size())
-      s.colorTexture = textures[static_cast<std::size_t>(s.attributes.texture)];
+    const int colourTexture = s.attributes.sceneTexture();
+    if (colourTexture >= 0 && static_cast<std::size_t>(colourTexture) < textures.size())
+      s.colorTexture = textures[static_cast<std::size_t>(colourTexture)];
     gl_.GenVertexArrays(1, &s.vertexArray);
     gl_.BindVertexArray(s.vertexArray);
     s.buffers[0] = makeBuffer(gl_, GL_ARRAY_BUFFER, fur.positions);

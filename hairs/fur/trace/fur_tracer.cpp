@@ -23,11 +23,7 @@ class FurTracer : public trace::OrganTracer {
           static_cast<std::size_t>(surface.material) < scene.materials.size()
               ? scene.materials[static_cast<std::size_t>(surface.material)].diffuse
               : Material{}.diffuse;
-      const Texture* texture = nullptr;
-      if (a.texture > 0 && static_cast<std::size_t>(a.texture) < scene.textures.size()) {
-        const Texture& t = scene.textures[static_cast<std::size_t>(a.texture)];
-        if (t.width > 0 && t.height > 0) texture = &t;
-      }
+      const Texture* texture = fur::colourTexture(scene, a);
       const std::size_t strands = fur::countStrands(scene, surface);
       if (strands == 0) continue;
       const trace::CurveBuffers b =

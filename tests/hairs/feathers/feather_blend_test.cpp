@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <glm/geometric.hpp>
 
+#include "hirsute/hairs/feathers/barb_interpolation.h"
+#include "hirsute/hairs/feathers/default_barbs.h"
 #include "hirsute/hairs/feathers/feather_geometry.h"
 #include "hirsute/hairs/feathers/silhouette.h"
 
@@ -188,24 +190,82 @@ TEST(FeatherGrowth, ScheduleOfSection424) {
   const FeatherType rising = grownFeatherType(contour, 0.9f);
   EXPECT_FLOAT_EQ(rising.rachisSideCurvature, 0.5f * 0.1f);
   EXPECT_FLOAT_EQ(rising.left.baseAngle, 0.5f * 180 + 0.5f * 110);
-  // Three extra key barbs a vane; the migrating one from the tip (50%) to the base (80%).
+  // Four extra key barbs a vane; the migrating one from the tip (50%) to the base (80%), the
+  // sheath's edge just below it.
   const auto migrating = [](const FeatherType& type) { return type.keyBarbs[2].position; };
-  EXPECT_EQ(grownFeatherType(contour, 0.5f).keyBarbs.size(), 3u * 2 + 1 + 2);
+  EXPECT_EQ(grownFeatherType(contour, 0.5f).keyBarbs.size(), 4u * 2 + 1 + 2);
   EXPECT_FLOAT_EQ(migrating(grownFeatherType(contour, 0.5f)), 1);
   EXPECT_FLOAT_EQ(migrating(grownFeatherType(contour, 0.65f)), 0.5f);
   EXPECT_FLOAT_EQ(migrating(grownFeatherType(contour, 0.8f)), 0);
-  // Its angle is the grown vane's where it stands; the others are straight at 180°.
+  // Its angle is the grown vane's where it stands; the tip, which it has passed, is open at the
+  // grown vane's angle; the base and the sheath's edge are closed at 180°.
   const FeatherType opening = grownFeatherType(contour, 0.65f);
   EXPECT_FLOAT_EQ(*opening.keyBarbs[2].angle, 0.5f * 110 + 0.5f * 155);
   EXPECT_EQ(*opening.keyBarbs[0].angle, 180);
-  EXPECT_EQ(*opening.keyBarbs[1].angle, 180);
+  EXPECT_FLOAT_EQ(*opening.keyBarbs[1].angle, 155);
+  EXPECT_EQ(*opening.keyBarbs[3].angle, 180);
+  EXPECT_LT(opening.keyBarbs[3].position, 0.5f);
   // The feather's own key barbs are straight in the sheath.
-  const KeyBarb& own = opening.keyBarbs[3];
+  const KeyBarb& own = opening.keyBarbs[4];
   ASSERT_EQ(own.vertices.size(), 4u);
   EXPECT_NEAR(own.vertices[1].y, 0, 1e-7f);
   EXPECT_NEAR(own.vertices[1].z, 0, 1e-7f);
   // The barb count stays the grown feather's.
   EXPECT_EQ(barbPositions(grownFeatherType(contour, 0.2f)).size(), barbPositions(contour).size());
+}
+
+// The share of a vane's barbs that have left the sheath (their angle below 170°, 180° lying
+// along the rachis), over 400 positions, and whether they are all above the closed ones.
+struct Opening {
+  float fraction = 0;
+  bool tipFirst = true;
+};
+Opening openingOf(const FeatherType& type, BarbSide side) {
+  const VaneKeyBarbs vane(type, side);
+  const PlumulaceousBarbTable table(type.seed);
+  Opening out;
+  bool sawOpen = false;
+  int open = 0;
+  constexpr int kPositions = 400;
+  for (int i = 0; i < kPositions; ++i) {
+    const float position = (static_cast<float>(i) + 0.5f) / kPositions;
+    const bool isOpen = vane.barbAt(position, static_cast<std::size_t>(i), table).angle < 170;
+    if (sawOpen && !isOpen) out.tipFirst = false;  // a closed barb above an open one
+    sawOpen = sawOpen || isOpen;
+    open += isOpen ? 1 : 0;
+  }
+  out.fraction = static_cast<float>(open) / kPositions;
+  return out;
+}
+
+// Sec. 4.2.4, Figs. 6–7: the sheath opens from the tip; a barb that has broken out stays open,
+// so the open share of each vane grows with age, from none before 50% to all at 80%, and the
+// open barbs are always those nearest the tip.
+TEST(FeatherGrowth, TheVaneOpensFromTheTipAndStaysOpen) {
+  const FeatherType contour = load("contour.fea");
+  for (BarbSide side : {BarbSide::Left, BarbSide::Right}) {
+    float previous = 0;
+    for (int i = 0; i <= 40; ++i) {
+      const float age = static_cast<float>(i) / 40;
+      const Opening opening = openingOf(grownFeatherType(contour, age), side);
+      EXPECT_TRUE(opening.tipFirst) << "age " << age;
+      EXPECT_GE(opening.fraction, previous - 1e-6f) << "age " << age;
+      previous = opening.fraction;
+      if (age <= 0.5f) {
+        EXPECT_EQ(opening.fraction, 0) << "age " << age;
+      }
+      if (age >= 0.8f) {
+        EXPECT_EQ(opening.fraction, 1) << "age " << age;
+      }
+      // Between, the front stands at 1 − (age − 0.5)/0.3 of the vane, and the barbs are
+      // open above it and on part of the sheath's short edge below it.
+      if (age > 0.55f && age < 0.75f) {
+        const float above = (age - 0.5f) / 0.3f;
+        EXPECT_GE(opening.fraction, above - 0.01f) << "age " << age;
+        EXPECT_LE(opening.fraction, above + 0.07f) << "age " << age;
+      }
+    }
+  }
 }
 
 TEST(FeatherGrowth, GrowthIsContinuousUpToTheGrownFeather) {

@@ -9,6 +9,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <utility>
 #include <sstream>
 
 #include "hirsute/hairs/fur/fur_strand.h"
@@ -58,6 +61,49 @@ void buildTorus(Built& b, const char* view = "torus.v") {
 
 // The component of `offset` in the tangent plane of unit normal n.
 glm::dvec3 tangential(const glm::dvec3& offset, const glm::dvec3& n) { return offset - glm::dot(offset, n) * n; }
+
+// @Ut(i) is the view file's i-th texture, counted from 1 (models/fur-square/spotted.v declares
+// stripes, then spots); @Ut(0) the surface's colour.
+TEST(FurStage, UtNamesTheViewFilesTextureCountingFromOne) {
+  const fs::path folder = kModels / "fur-square";
+  Built spotted;
+  build(spotted, folder / "spotted.l", folder / "spotted.v");
+  const FurPart& part = spotted.scene.organ<FurPart>();
+  ASSERT_FALSE(part.surfaces.empty());
+  ASSERT_EQ(spotted.scene.textures.size(), 2u);
+  for (const FurSurface& surface : part.surfaces) {
+    const FurAttributes& a = part.attributes[static_cast<std::size_t>(surface.attributes)];
+    const Texture* texture = fur::colourTexture(spotted.scene, a);
+    ASSERT_NE(texture, nullptr);
+    EXPECT_EQ(fs::path(texture->file).filename(), "spots.png");
+  }
+  // The same square with @Ut(1), and with @Ut(0).
+  const fs::path scratch = fs::temp_directory_path() / "hirsute_fur_ut_test";
+  fs::create_directories(scratch);
+  for (const char* file : {"spotted.v", "square.v", "flat.con", "square.map", "stripes.png", "spots.png"}) {
+    fs::copy_file(folder / file, scratch / file, fs::copy_options::overwrite_existing);
+  }
+  std::ifstream in(folder / "spotted.l");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const auto& [coat, expected] : {std::pair{"1", "stripes.png"}, std::pair{"0", ""}}) {
+    std::string changed = text;
+    changed.replace(changed.find("#define COAT 2"), 14, std::string("#define COAT ") + coat);
+    std::ofstream(scratch / "coat.l") << changed;
+    Built b;
+    build(b, scratch / "coat.l", scratch / "spotted.v");
+    const FurPart& p = b.scene.organ<FurPart>();
+    ASSERT_FALSE(p.surfaces.empty());
+    const Texture* texture = fur::colourTexture(
+        b.scene, p.attributes[static_cast<std::size_t>(p.surfaces.front().attributes)]);
+    if (*expected == 0) {
+      EXPECT_EQ(texture, nullptr);
+    } else {
+      ASSERT_NE(texture, nullptr);
+      EXPECT_EQ(fs::path(texture->file).filename(), expected);
+    }
+  }
+  fs::remove_all(scratch);
+}
 
 TEST(FurStage, TorusIsOneSurfaceOfThePapersTriangles) {
   Built b;

@@ -36,6 +36,10 @@ struct FurAttributes {
   float clumpShape = 0.5f;  // @Uw: w of Eq. 5 (0: straight clumps, 1: bent in)
   int texture = 0;          // @Ut: the view file's texture (1-based), 0: the surface's colour
 
+  // The index of @Ut's texture in Scene::textures (which holds the view file's `texture:` lines
+  // in order, from 0), or -1 for the surface's colour.
+  int sceneTexture() const { return texture - 1; }
+
   bool enabled() const { return sides[0].enabled; }
 
   bool operator==(const FurAttributes&) const = default;

@@ -34,4 +34,8 @@ void forEachStrand(const Scene& scene, const FurSurface& surface, int samples,
 // The strands forEachStrand makes, without making them.
 std::size_t countStrands(const Scene& scene, const FurSurface& surface);
 
+// The colour texture `@Ut` names for strands of `attributes` (docs/fur.md), or null when they
+// take the surface's colour or the texture has no pixels.
+const Texture* colourTexture(const Scene& scene, const FurAttributes& attributes);
+
 }  // namespace hirsute::fur
