@@ -32,8 +32,11 @@ class SurfaceSampler::Faces {
         twist_(corners_.size()) {
     const CylinderSegment& seg = unfolding.segment();
     const float flip = face == SurfaceFace::Back ? -1.0f : 1.0f;
-    // Corner frames of ring k, column j of strip (k-1, k): the shading normal reoriented by the
-    // incline and wrap at that corner; h is the face's height vector.
+    // Corner frames of ring k, column j of strip (k-1, k): the surface's normal reoriented by the
+    // incline and wrap at that corner; h is the face's height vector. A tube's shading normals
+    // are those of a cylinder (perpendicular to the axis, as cpfg shades them); where the tube
+    // tapers the surface slopes, and its true normal is the shading normal without its part
+    // along h, so that organs stand on a cone as on a cylinder.
     for (std::size_t k = 1; k < unfolding.rings(); ++k) {
       const float tau0 = unfolding.tau(k - 1), tau1 = unfolding.tau(k);
       const glm::vec3 axis =
@@ -46,8 +49,9 @@ class SurfaceSampler::Faces {
           const std::size_t kk = k - 1 + r;
           const float tau = r == 0 ? tau0 : tau1;
           const float s = (unfolding.fraction(k - 1, j) + unfolding.fraction(k, j)) * 0.5f;
-          const glm::vec3 n = normalizedOr(flip * unfolding.normal(kk, j),
-                                           flip * glm::vec3(seg.rings[kk].frame.up));
+          const glm::vec3 shading = normalizedOr(flip * unfolding.normal(kk, j),
+                                                 flip * glm::vec3(seg.rings[kk].frame.up));
+          const glm::vec3 n = normalizedOr(shading - h * glm::dot(shading, h), shading);
           const CornerAngles angles = visitor.cornerAngles(s, tau);
           const std::size_t at = corner(k, r, j);
           corners_[at] = reorient(n, h, angles.incline, angles.wrap);

@@ -872,6 +872,37 @@ TEST(HairOrientation, InclineTiltsHairsTowardTheSegmentEndByTheAngle) {
   EXPECT_LT(worstSideways, 0.005);
 }
 
+// On a tapering tube the surface slopes: a hair of incline 0 stands square on it, along the
+// surface's normal, which leans towards the narrow end by the slope's angle (atan of the
+// radius's fall per unit length between the two rings about the root), not along the
+// cylinder's radial shading normal.
+TEST(HairOrientation, HairsStandSquareOnTheSurfaceOfATaperingTube) {
+  const PlacedHairs placed = place("cone.l");
+  ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);
+  const StraightAxis axis(placed.scene);
+  ASSERT_GT(placed.scene.organ<HairPart>().hairs.size(), 200u);
+  const std::vector<CylinderRing>& rings = placed.scene.cylinderSegments.at(0).rings;
+  ASSERT_GT(rings.size(), 2u);
+  double worst = 0, least = 90;
+  for (const Hair& h : placed.scene.organ<HairPart>().hairs) {
+    const glm::dvec3 d(h.direction()), n = axis.radial(h.root);
+    const double along = axis.along(h.root);
+    std::size_t k = 1;
+    while (k + 1 < rings.size() && axis.along(rings[k].frame.position) < along) ++k;
+    const double fall = rings[k - 1].radius - rings[k].radius;
+    const double run =
+        axis.along(rings[k].frame.position) - axis.along(rings[k - 1].frame.position);
+    const double slope = std::atan2(fall, run) * 180 / kPi;
+    least = std::min(least, slope);
+    // Tilted from the radial towards the narrow end (+heading), by the slope.
+    EXPECT_GT(glm::dot(d, axis.heading), 0);
+    worst = std::max(worst, std::abs(angleBetween(d, n) - slope));
+  }
+  measured("worst_degrees_off_the_surface_normal", worst);
+  EXPECT_GT(least, 5) << "the tube tapers all along";
+  EXPECT_LT(worst, 0.5) << "degrees off the surface's lean";
+}
+
 TEST(HairOrientation, InclineRangeSpreadsTheAngleOverValuePlusMinusRange) {
   const PlacedHairs placed = place("incline_range.l");
   const StraightAxis axis(placed.scene);
