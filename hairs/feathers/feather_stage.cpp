@@ -1,6 +1,7 @@
 #include "hirsute/hairs/feathers/feather_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -139,9 +140,10 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
   }
 
   // Single feathers are bounded by their own geometry. A coat has too many feathers for that:
-  // each is bounded by the box of its key types in its frame (blends interpolate the types'
-  // lengths and angles, so they stay near the union of their boxes, and growing feathers are
-  // smaller, their barbs along the rachis within the rachis and barb lengths).
+  // each is bounded by a box of its key types in its frame, the blend of their boxes (blends
+  // interpolate the types' lengths and angles, so they stay near the blend of their boxes, and
+  // growing feathers are smaller, their barbs along the rachis within the rachis and barb
+  // lengths), so that a coat of small feathers next to a few large ones is framed by its own.
   part.bounds = Bounds{};
   std::vector<Bounds> typeBoxes(part.types.size());
   for (std::size_t t = 0; t < part.types.size(); ++t) {
@@ -160,8 +162,23 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
       addBounds(featherGeometryOf(scene, feather, kBoundsDetail), toWorld, part.bounds);
       continue;
     }
-    Bounds local;
-    for (std::uint16_t type : feather.types) local.add(typeBoxes[type - 1u]);
+    // The blend's box: the key types' boxes weighted as the feather blends them (its lengths
+    // and widths are those weights' mix), widened by a tenth of the way to their union for
+    // what angles and silhouettes make not quite linear.
+    const std::array<float, 4> weights = {(1 - feather.along) * (1 - feather.across[0]),
+                                          (1 - feather.along) * feather.across[0],
+                                          feather.along * (1 - feather.across[1]),
+                                          feather.along * feather.across[1]};
+    Bounds all, local;
+    local.min = local.max = glm::vec3(0.0f);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Bounds& box = typeBoxes[feather.types[k] - 1u];
+      all.add(box);
+      local.min += weights[k] * box.min;
+      local.max += weights[k] * box.max;
+    }
+    local.min -= 0.1f * (local.min - all.min);
+    local.max += 0.1f * (all.max - local.max);
     for (int corner = 0; corner < 8; ++corner) {
       const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
                         (corner & 2) ? local.max.y : local.min.y,

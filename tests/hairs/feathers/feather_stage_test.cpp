@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "hirsute/hairs/feathers/feather_instances.h"
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
@@ -91,6 +94,48 @@ TEST(FeatherStage, CoatFollicleCountFollowsDensityTimesArea) {
     for (const Feather& f : b.scene.organ<FeatherPart>().feathers)
       EXPECT_EQ(f.origin, FeatherOrigin::Coat);
   }
+}
+
+// The box the outputs frame a coat by is its feathers' own: it holds every feather's geometry,
+// and where one key type is four times the others' size, it does not grow to that type's box
+// around feathers that take little of it (models/feather-coat with grey.fea made large).
+TEST(FeatherStage, ACoatIsFramedByItsFeathers) {
+  const fs::path folder = fs::temp_directory_path() / "hirsute_coat_bounds_test";
+  fs::remove_all(folder);
+  fs::copy(kModels / "feather-coat", folder);
+  {
+    std::ifstream in(folder / "grey.fea");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string from = "rachis length:          1.3";
+    ASSERT_NE(text.find(from), std::string::npos);
+    text.replace(text.find(from), from.size(), "rachis length:          5.2");
+    std::ofstream(folder / "grey.fea") << text;
+  }
+  for (const bool large : {false, true}) {
+    const fs::path models = large ? folder : kModels / "feather-coat";
+    Built b;
+    build(b, models / "random.l", models / "random.v");
+    const FeatherPart& part = b.scene.organ<FeatherPart>();
+    ASSERT_GT(part.feathers.size(), 50u);
+    Bounds real;
+    for (const Feather& feather : part.feathers) {
+      const FeatherGeometry geometry = featherGeometryOf(b.scene, feather, FeatherDetail{3, 3, 3});
+      const glm::mat4 toWorld = featherToWorld(feather);
+      forEachFeatherPart(geometry, [&](const FeatherGeometry& piece, bool) {
+        for (const glm::vec3& p : piece.shaft.positions) real.add(glm::vec3(toWorld * glm::vec4(p, 1)));
+        for (const glm::vec3& p : piece.vertices.positions) real.add(glm::vec3(toWorld * glm::vec4(p, 1)));
+      });
+    }
+    const float slack = 0.01f * real.diagonal();
+    for (int axis = 0; axis < 3; ++axis) {
+      EXPECT_LE(part.bounds.min[axis], real.min[axis] + slack) << "large " << large;
+      EXPECT_GE(part.bounds.max[axis], real.max[axis] - slack) << "large " << large;
+    }
+    RecordProperty(large ? "large_box_over_real" : "box_over_real",
+                   std::to_string(part.bounds.diagonal() / real.diagonal()));
+    EXPECT_LT(part.bounds.diagonal(), 1.15f * real.diagonal()) << "large " << large;
+  }
+  fs::remove_all(folder);
 }
 
 TEST(FeatherStage, HexagonalFolliclesSitAtTheLatticeSpacing) {
