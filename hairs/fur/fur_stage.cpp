@@ -10,6 +10,7 @@
 
 #include "hirsute/core/option_checks.h"
 #include "hirsute/hairs/fur/fur_strand.h"
+#include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/fur_texture.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
 #include "hirsute/hairs/placement/patch_unfolding.h"
@@ -384,6 +385,20 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
                      "the model has no fur for the droplets to fall on");
   report.droplets += spray(scene, options.droplets, options.dropletRadius, options.dropletWetness,
                            options.dropletSeed, costs);
+  // A curl that turns more often than an exported strand's points can follow is smoothed.
+  for (const FurSurface& s : part.surfaces) {
+    if (s.attributes < 0) continue;
+    const FurAttributes& fur = part.attributes[static_cast<std::size_t>(s.attributes)];
+    if (fur::strandSamplesCapped(fur)) {
+      diagnostics.warn(SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0},
+                       fmt::format("a fur curl of {:g} radians over the length (@Uc) turns more "
+                                   "than {} times: exported strands follow it with {} points "
+                                   "and smooth it",
+                                   fur.curlFrequency, (fur::kMaxStrandSamples - 1) / fur::kSamplesPerTurn,
+                                   fur::kMaxStrandSamples));
+      break;
+    }
+  }
   report.surfaces = part.surfaces.size();
   for (const FurSurface& s : part.surfaces) {
     report.triangles += s.triangleCount();
@@ -433,7 +448,9 @@ class FurStage : public OrganStageOf<FurCommandOptions> {
                        "Seed of the random droplets (default 1)");
   }
   std::string growFrom(const OrganStageRun& run, const FurCommandOptions& options) const override {
-    const FurStageReport report = growFur(run.scene, run.resources, options.stage, run.diagnostics);
+    FurStageOptions stage = options.stage;
+    stage.lsystemFile = run.lsystemFile;
+    const FurStageReport report = growFur(run.scene, run.resources, stage, run.diagnostics);
     return fmt::format("fur: {} surfaces, {} triangles, {:.4g} units², {} droplets",
                        report.surfaces, report.triangles, report.area, report.droplets);
   }

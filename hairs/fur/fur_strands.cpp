@@ -136,4 +136,25 @@ const Texture* colourTexture(const Scene& scene, const FurAttributes& attributes
   return t.width > 0 && t.height > 0 && !t.rgba.empty() ? &t : nullptr;
 }
 
+namespace {
+
+// The points a strand of `attributes` needs, before the cap.
+double neededSamples(const FurAttributes& attributes) {
+  if (attributes.curlRadius <= 0) return kMinStrandSamples;
+  const double turns = std::abs(static_cast<double>(attributes.curlFrequency)) / (2 * 3.14159265358979);
+  return std::ceil(turns * kSamplesPerTurn) + 1;
+}
+
+}  // namespace
+
+int strandSamples(const FurAttributes& attributes) {
+  const double needed = neededSamples(attributes);
+  if (!(needed <= kMaxStrandSamples)) return kMaxStrandSamples;  // also a NaN frequency
+  return std::max(kMinStrandSamples, static_cast<int>(needed));
+}
+
+bool strandSamplesCapped(const FurAttributes& attributes) {
+  return !(neededSamples(attributes) <= kMaxStrandSamples);
+}
+
 }  // namespace hirsute::fur

@@ -7,16 +7,17 @@
 #include "hirsute/viewer/export/obj_writer.h"
 
 namespace hirsute {
-namespace {
-constexpr int kStrandPoints = 7;  // the POV-Ray ribbons' points (pov_fur.cpp)
-}  // namespace
-
 void FurWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
   obj.group("fur");
   std::uint64_t strands = 0;
   for (const FurSurface& surface : scene.organ<FurPart>().surfaces) {
     obj.useMaterial(surface.material, -1);
-    fur::forEachStrand(scene, surface, kStrandPoints, [&](const fur::FurStrandView& strand) {
+    const int samples =
+        surface.attributes < 0
+            ? fur::kMinStrandSamples
+            : fur::strandSamples(
+                  scene.organ<FurPart>().attributes[static_cast<std::size_t>(surface.attributes)]);
+    fur::forEachStrand(scene, surface, samples, [&](const fur::FurStrandView& strand) {
       const std::uint64_t first = obj.stats().vertices + 1;
       for (const glm::vec3& p : strand.points) obj.vertex(p);
       for (std::uint64_t i = 0; i < strand.points.size(); ++i) obj.polyline().push_back(first + i);

@@ -17,7 +17,6 @@
 namespace hirsute {
 namespace {
 
-constexpr int kStrandPoints = 7;  // six ribbon segments a strand
 constexpr char kEmittedFinish[] = "emission 1 diffuse 0 ambient 0";
 
 }  // namespace
@@ -42,7 +41,8 @@ void FurWriter::writePov(const Scene& scene, PovWriter& pov) const {
     std::vector<Shade> shades;
     std::vector<std::uint32_t> faces;
     std::size_t strands = 0;
-    fur::forEachStrand(scene, surface, kStrandPoints, [&](const fur::FurStrandView& strand) {
+    // As many ribbon segments as the curl needs (fur_strands.h).
+    fur::forEachStrand(scene, surface, fur::strandSamples(a), [&](const fur::FurStrandView& strand) {
       const glm::vec3 colour = texture ? texture->colourAt(strand.uv) : material.diffuse;
       const auto base = static_cast<std::uint32_t>(points.size());
       const std::size_t n = strand.points.size();

@@ -9,8 +9,6 @@
 namespace hirsute {
 namespace {
 
-constexpr int kStrandPoints = 7;  // as the exports sample a strand
-
 class FurTracer : public trace::OrganTracer {
  public:
   void addTo(const Scene& scene, const Camera& /*camera*/, trace::TraceScene& out) const override {
@@ -26,13 +24,16 @@ class FurTracer : public trace::OrganTracer {
       const Texture* texture = fur::colourTexture(scene, a);
       const std::size_t strands = fur::countStrands(scene, surface);
       if (strands == 0) continue;
+      // As the exports sample a strand: enough points to follow its curl.
+      const auto points = static_cast<std::size_t>(fur::strandSamples(a));
       const trace::CurveBuffers b =
-          out.addCurves(trace::CurveShape::Round, strands * kStrandPoints,
-                        strands * (kStrandPoints - 1), material, true);
+          out.addCurves(trace::CurveShape::Round, strands * points,
+                        strands * (points - 1), material, true);
       std::uint32_t vertex = 0;
       std::size_t segment = 0, made = 0;
-      fur::forEachStrand(scene, surface, kStrandPoints, [&](const fur::FurStrandView& strand) {
-        if (made++ >= strands || strand.points.size() != kStrandPoints) return;
+      fur::forEachStrand(scene, surface, static_cast<int>(points),
+                         [&](const fur::FurStrandView& strand) {
+        if (made++ >= strands || strand.points.size() != points) return;
         const glm::vec3 colour = trace::linearColour(
             texture ? texture->colourAt(strand.uv) : base);
         for (std::size_t i = 0; i < strand.points.size(); ++i) {
@@ -43,11 +44,11 @@ class FurTracer : public trace::OrganTracer {
       });
       // Strands the count promised and the walk did not make stay as points at the origin
       // of no width, which no ray hits.
-      for (; vertex < strands * kStrandPoints; ++vertex) {
+      for (; vertex < strands * points; ++vertex) {
         b.vertices[vertex] = glm::vec4(0.0f);
         b.tint[vertex] = glm::vec4(0.0f);
       }
-      for (; segment < strands * (kStrandPoints - 1); ++segment) b.segments[segment] = 0;
+      for (; segment < strands * (points - 1); ++segment) b.segments[segment] = 0;
     }
   }
 };

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -207,6 +208,74 @@ TEST(FurStage, CurlOfExportedStrandsHasItsRadiusAndFrequency) {
         EXPECT_NEAR(std::abs(winding), expected, 1e-3 * expected);
       });
   EXPECT_GT(measured, 300u);
+}
+
+// The exports sample a strand by its curl (fur::strandSamples): on models/fur-curls' square of
+// many small curls (ω = 40, six turns and more over the length) the exported strand winds as
+// the shells' curl does and keeps to its path, where seven points made a gentle arc.
+TEST(FurStage, ExportedStrandsFollowTheirCurl) {
+  Built b;
+  build(b, kModels / "fur-curls" / "curls.l", kModels / "fur-curls" / "curls.v");
+  const FurPart& part = b.scene.organ<FurPart>();
+  const FurSurface* curly = nullptr;
+  for (const FurSurface& s : part.surfaces) {
+    if (part.attributes[static_cast<std::size_t>(s.attributes)].curlFrequency == 40) curly = &s;
+  }
+  ASSERT_NE(curly, nullptr);
+  const FurAttributes& a = part.attributes[static_cast<std::size_t>(curly->attributes)];
+  const int samples = fur::strandSamples(a);
+  EXPECT_GE(samples, 12 * 40 / (2 * kPi));  // twelve points a turn
+  EXPECT_FALSE(fur::strandSamplesCapped(a));
+  // The same strands finely sampled: the path the exported ones must keep to.
+  std::vector<std::vector<glm::vec3>> fine;
+  fur::forEachStrand(b.scene, *curly, 801, [&](const fur::FurStrandView& strand) {
+    if (fine.size() < 200) fine.emplace_back(strand.points.begin(), strand.points.end());
+  });
+  auto check = [&](int points, double& worstWinding, double& worstGap) {
+    std::size_t k = 0;
+    worstWinding = worstGap = 0;
+    fur::forEachStrand(b.scene, *curly, points, [&](const fur::FurStrandView& strand) {
+      if (k >= fine.size()) return;
+      const std::vector<glm::dvec3> side = across(strand);
+      double winding = 0;
+      for (int i = 2; i < points; ++i) {
+        winding += turn(side[static_cast<std::size_t>(i - 1)], side[static_cast<std::size_t>(i)],
+                        glm::dvec3(strand.normal));
+      }
+      const double expected = 40 * strand.reach * (points - 2.0) / (points - 1.0);
+      worstWinding = std::max(worstWinding, std::abs(std::abs(winding) - expected) / expected);
+      // Each fine point's distance to the exported polyline, over the strand's curl radius at
+      // its tip (K_alpha L h).
+      const double radius = a.curlRadius * a.length * strand.reach;
+      for (const glm::vec3& f : fine[k]) {
+        double nearest = 1e30;
+        for (std::size_t i = 0; i + 1 < strand.points.size(); ++i) {
+          const glm::dvec3 p(strand.points[i]), q(strand.points[i + 1]), x(f);
+          const double t = std::clamp(glm::dot(x - p, q - p) / std::max(glm::dot(q - p, q - p), 1e-30), 0.0, 1.0);
+          nearest = std::min(nearest, glm::length(x - (p + t * (q - p))));
+        }
+        worstGap = std::max(worstGap, nearest / radius);
+      }
+      ++k;
+    });
+  };
+  double winding = 0, gap = 0;
+  check(samples, winding, gap);
+  RecordProperty("worst_winding_error", std::to_string(winding));
+  RecordProperty("worst_gap_over_curl_radius", std::to_string(gap));
+  EXPECT_LT(winding, 0.01);
+  EXPECT_LT(gap, 0.06);
+  // Seven points, as before: the curl is lost.
+  check(7, winding, gap);
+  EXPECT_GT(gap, 0.5);
+  // A curl beyond what the cap follows says so.
+  FurAttributes wild = a;
+  wild.curlFrequency = 1e4f;
+  EXPECT_EQ(fur::strandSamples(wild), fur::kMaxStrandSamples);
+  EXPECT_TRUE(fur::strandSamplesCapped(wild));
+  FurAttributes straight = a;
+  straight.curlRadius = 0;
+  EXPECT_EQ(fur::strandSamples(straight), fur::kMinStrandSamples);
 }
 
 TEST(FurStage, WetStrandsDoNotCurlAndLeanTowardsTheirClump) {

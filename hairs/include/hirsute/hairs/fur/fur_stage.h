@@ -33,6 +33,7 @@ struct FurStageOptions {
   std::uint32_t dropletSeed = 1;
   std::size_t maxSurfaces = 100'000;  // more fur surfaces are an error
   DropletLimits dropletLimits;
+  std::string lsystemFile;  // where warnings about the model point
 };
 
 struct FurStageReport {

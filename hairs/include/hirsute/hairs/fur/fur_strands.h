@@ -34,6 +34,16 @@ void forEachStrand(const Scene& scene, const FurSurface& surface, int samples,
 // The strands forEachStrand makes, without making them.
 std::size_t countStrands(const Scene& scene, const FurSurface& surface);
 
+// How many points an exported strand takes (POV-Ray, OBJ, the tracer): enough to follow its
+// curl, kSamplesPerTurn a turn of @Uc's ω, at least kMinStrandSamples and at most
+// kMaxStrandSamples (the fur stage warns when a curl turns more often than that can follow).
+inline constexpr int kMinStrandSamples = 7;
+inline constexpr int kSamplesPerTurn = 12;
+inline constexpr int kMaxStrandSamples = 193;  // 16 turns
+int strandSamples(const FurAttributes& attributes);
+// Whether strandSamples had to cap the points of a strand of `attributes`.
+bool strandSamplesCapped(const FurAttributes& attributes);
+
 // The colour texture `@Ut` names for strands of `attributes` (docs/fur.md), or null when they
 // take the surface's colour or the texture has no pixels.
 const Texture* colourTexture(const Scene& scene, const FurAttributes& attributes);
