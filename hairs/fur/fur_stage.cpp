@@ -302,6 +302,7 @@ FurStageReport growFur(Scene& scene, const ModelResources& resources,
   FurPart& part = scene.organ<FurPart>();
   const FurSettings& settings = resources.view.organ<FurSettings>();
   FurStageReport report;
+  part.maxVertices = options.maxVertices;
   part.surfaces.clear();
   part.textures.clear();
   std::map<float, int> textureForDensity;
@@ -450,6 +451,7 @@ class FurStage : public OrganStageOf<FurCommandOptions> {
   std::string growFrom(const OrganStageRun& run, const FurCommandOptions& options) const override {
     FurStageOptions stage = options.stage;
     stage.lsystemFile = run.lsystemFile;
+    stage.maxVertices = run.maxVertices;
     const FurStageReport report = growFur(run.scene, run.resources, stage, run.diagnostics);
     return fmt::format("fur: {} surfaces, {} triangles, {:.4g} units², {} droplets",
                        report.surfaces, report.triangles, report.area, report.droplets);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "hirsute/hairs/fur/fur_strand.h"
@@ -155,6 +156,23 @@ int strandSamples(const FurAttributes& attributes) {
 
 bool strandSamplesCapped(const FurAttributes& attributes) {
   return !(neededSamples(attributes) <= kMaxStrandSamples);
+}
+
+int StrandBudget::charge(const Scene& scene, const FurSurface& surface, std::size_t index) {
+  const FurPart& part = scene.organ<FurPart>();
+  const int samples =
+      surface.attributes < 0
+          ? kMinStrandSamples
+          : strandSamples(part.attributes[static_cast<std::size_t>(surface.attributes)]);
+  used_ += countStrands(scene, surface) * static_cast<std::size_t>(samples);
+  if (used_ > limit_) {
+    throw GeometryLimitError("the fur's strands grew past " + std::to_string(limit_) +
+                             " points (--max-vertices) at fur surface " +
+                             std::to_string(index + 1) + " of " +
+                             std::to_string(part.surfaces.size()) + " (" +
+                             std::to_string(samples) + " points a strand for its curl)");
+  }
+  return samples;
 }
 
 }  // namespace hirsute::fur

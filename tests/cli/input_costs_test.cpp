@@ -168,6 +168,31 @@ TEST_F(InputCosts, FeathersGeometryAtThePicturesDetailHasALimit) {
   EXPECT_EQ(within.exitCode, 0) << within.err;
 }
 
+// The fur's exported strands take points by their curl (up to 193 each): their points in all
+// count against --max-vertices before they are made, in the exports and the tracer.
+TEST_F(InputCosts, FurStrandsPointsHaveALimit) {
+  const fs::path curls = kModels / "fur-curls";
+  for (const char* file : {"curls.l", "curls.v", "curls.map", "flat.con"})
+    fs::copy_file(curls / file, folder_.path() / file);
+  const fs::path model = folder_.path() / "curls.l";
+  const fs::path view = folder_.path() / "curls.v";
+  const std::string message = "the fur's strands grew past 200000 points (--max-vertices) at fur surface ";
+  expectError(exportPov(model, view, {"--max-vertices", "200000"}), "curls.l: error:", message);
+  EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
+  const fs::path obj = folder_.path() / "out.obj";
+  expectError(runHirsute({"export", model.string(), view.string(), "--obj", obj.string(),
+                          "--max-vertices", "200000"}),
+              "curls.l: error:", message);
+  EXPECT_FALSE(fs::exists(obj));
+  const fs::path picture = folder_.path() / "curls.png";
+  expectError(runHirsute({"render", model.string(), view.string(), "--trace", "--spp", "1",
+                          "--size", "80x60", "-o", picture.string(), "--max-vertices", "200000"}),
+              "curls.l: error:", message);
+  EXPECT_FALSE(fs::exists(picture));
+  const RunResult within = exportPov(model, view);
+  EXPECT_EQ(within.exitCode, 0) << within.err;
+}
+
 // The preprocessed text has a limit of its own (--max-source-bytes): the parsed program takes
 // about a hundred bytes a byte of it (a 64 MiB axiom took some 7 GB).
 TEST_F(InputCosts, TheSourceTextHasALimit) {

@@ -10,13 +10,12 @@ namespace hirsute {
 void FurWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
   obj.group("fur");
   std::uint64_t strands = 0;
-  for (const FurSurface& surface : scene.organ<FurPart>().surfaces) {
+  fur::StrandBudget budget(scene.organ<FurPart>());
+  const std::vector<FurSurface>& surfaces = scene.organ<FurPart>().surfaces;
+  for (std::size_t index = 0; index < surfaces.size(); ++index) {
+    const FurSurface& surface = surfaces[index];
     obj.useMaterial(surface.material, -1);
-    const int samples =
-        surface.attributes < 0
-            ? fur::kMinStrandSamples
-            : fur::strandSamples(
-                  scene.organ<FurPart>().attributes[static_cast<std::size_t>(surface.attributes)]);
+    const int samples = budget.charge(scene, surface, index);
     fur::forEachStrand(scene, surface, samples, [&](const fur::FurStrandView& strand) {
       const std::uint64_t first = obj.stats().vertices + 1;
       for (const glm::vec3& p : strand.points) obj.vertex(p);

@@ -28,6 +28,7 @@ void FurWriter::writePov(const Scene& scene, PovWriter& pov) const {
   const glm::vec3 light = glm::normalize(organLight(
       viewLighting(pov.options().view, pov.options().materialMode, towardsEye), towardsEye));
   const bool perspective = camera.projection == Projection::Perspective;
+  fur::StrandBudget budget(scene.organ<FurPart>());
   for (std::size_t index = 0; index < scene.organ<FurPart>().surfaces.size(); ++index) {
     const FurSurface& surface = scene.organ<FurPart>().surfaces[index];
     if (surface.attributes < 0) continue;
@@ -41,8 +42,9 @@ void FurWriter::writePov(const Scene& scene, PovWriter& pov) const {
     std::vector<Shade> shades;
     std::vector<std::uint32_t> faces;
     std::size_t strands = 0;
-    // As many ribbon segments as the curl needs (fur_strands.h).
-    fur::forEachStrand(scene, surface, fur::strandSamples(a), [&](const fur::FurStrandView& strand) {
+    // As many ribbon segments as the curl needs (fur_strands.h), within --max-vertices.
+    const int samples = budget.charge(scene, surface, index);
+    fur::forEachStrand(scene, surface, samples, [&](const fur::FurStrandView& strand) {
       const glm::vec3 colour = texture ? texture->colourAt(strand.uv) : material.diffuse;
       const auto base = static_cast<std::uint32_t>(points.size());
       const std::size_t n = strand.points.size();

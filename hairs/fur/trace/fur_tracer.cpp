@@ -14,7 +14,9 @@ class FurTracer : public trace::OrganTracer {
   void addTo(const Scene& scene, const Camera& /*camera*/, trace::TraceScene& out) const override {
     const FurPart& part = scene.organ<FurPart>();
     const int material = part.surfaces.empty() ? -1 : out.hairOfColour(glm::vec3(1.0f));
-    for (const FurSurface& surface : part.surfaces) {
+    fur::StrandBudget budget(part);
+    for (std::size_t index = 0; index < part.surfaces.size(); ++index) {
+      const FurSurface& surface = part.surfaces[index];
       if (surface.attributes < 0) continue;
       const FurAttributes& a = part.attributes[static_cast<std::size_t>(surface.attributes)];
       const glm::vec3 base =
@@ -24,8 +26,8 @@ class FurTracer : public trace::OrganTracer {
       const Texture* texture = fur::colourTexture(scene, a);
       const std::size_t strands = fur::countStrands(scene, surface);
       if (strands == 0) continue;
-      // As the exports sample a strand: enough points to follow its curl.
-      const auto points = static_cast<std::size_t>(fur::strandSamples(a));
+      // As the exports sample a strand: enough points to follow its curl, within --max-vertices.
+      const auto points = static_cast<std::size_t>(budget.charge(scene, surface, index));
       const trace::CurveBuffers b =
           out.addCurves(trace::CurveShape::Round, strands * points,
                         strands * (points - 1), material, true);

@@ -61,6 +61,9 @@ struct FurPart : OrganPartOf<FurPart> {
   std::vector<FurAttributes> attributes;  // the records surfaces refer to
   std::vector<FurSurface> surfaces;
   std::vector<FurTexture> textures;
+  // The exports and the tracer build every strand's points; more than this in all is an error
+  // (the run's --max-vertices, set by the fur stage).
+  std::size_t maxVertices = kDefaultMaxVertices;
 
   // Every surface vertex widened by the fur's length.
   void addBounds(Bounds& box) const override;

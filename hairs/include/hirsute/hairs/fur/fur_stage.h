@@ -34,6 +34,7 @@ struct FurStageOptions {
   std::size_t maxSurfaces = 100'000;  // more fur surfaces are an error
   DropletLimits dropletLimits;
   std::string lsystemFile;  // where warnings about the model point
+  std::size_t maxVertices = kDefaultMaxVertices;  // the exported strands' points, in all
 };
 
 struct FurStageReport {

@@ -44,6 +44,18 @@ int strandSamples(const FurAttributes& attributes);
 // Whether strandSamples had to cap the points of a strand of `attributes`.
 bool strandSamplesCapped(const FurAttributes& attributes);
 
+// Counts the points of the exported strands against FurPart::maxVertices, surface by surface,
+// before they are made: throws GeometryLimitError naming the surface reached.
+class StrandBudget {
+ public:
+  explicit StrandBudget(const FurPart& part) : limit_(part.maxVertices) {}
+  // The points a strand of `surface` gets (strandSamples), once its strands are counted.
+  int charge(const Scene& scene, const FurSurface& surface, std::size_t index);
+
+ private:
+  std::size_t limit_, used_ = 0;
+};
+
 // The colour texture `@Ut` names for strands of `attributes` (docs/fur.md), or null when they
 // take the surface's colour or the texture has no pixels.
 const Texture* colourTexture(const Scene& scene, const FurAttributes& attributes);
