@@ -546,5 +546,33 @@ TEST_F(HairExportTest, CommandWritesTheHairsCsvAlone) {
   }
 }
 
+// A textured feather type's barbs reach POV-Ray in its texture's colours (times the type's), as
+// GL's barb shader draws them: the peacock feather's eye gives its barbs hundreds of colours,
+// where an untextured type (feather-types' first) gives them one.
+TEST_F(HairExportTest, FeatherTexturesReachPovRay) {
+  auto barbColours = [&](const std::string& model, const std::string& name) {
+    const std::string base = std::string(HIRSUTE_SOURCE_DIR) + "/models/" + model;
+    const fs::path pov = file(name + ".pov");
+    EXPECT_EQ(runHirsute("export '" + base + "/" + name + ".l' '" + base + "/" + name +
+                             ".v' --pov '" + pov.string() + "' --width 200 --height 200",
+                         file("log")),
+              0)
+        << readText(file("log"));
+    const std::string text = readText(pov);
+    const std::size_t barbs = text.find("// feather barbs");
+    EXPECT_NE(barbs, std::string::npos);
+    std::set<std::string> colours;
+    for (std::size_t at = text.find("rgbt<", barbs); at != std::string::npos;
+         at = text.find("rgbt<", at + 1)) {
+      const std::size_t end = text.find('>', at);
+      const std::string rgbt = text.substr(at + 5, end - at - 5);
+      colours.insert(rgbt.substr(0, rgbt.rfind(',')));  // without the transparency
+    }
+    return colours.size();
+  };
+  EXPECT_GT(barbColours("peacock-feather", "peacock-feather"), 100u);
+  EXPECT_LE(barbColours("feather-interpolation", "feather-interpolation"), 8u);
+}
+
 }  // namespace
 }  // namespace hirsute

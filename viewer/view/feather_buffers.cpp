@@ -207,4 +207,26 @@ void orderFeatherBarbs(const FeatherBuffers& buffers, const Camera& camera,
   }
 }
 
+std::vector<glm::vec4> texturedBarbColours(const Scene& scene, const FeatherBuffers& b) {
+  // The vanes know their texture; the vertices learn it here.
+  std::vector<int> textureOf(b.barbPositions.size(), -1);
+  for (const FeatherBuffers::Part& part : b.parts) {
+    for (const FeatherBuffers::Vane& vane : part.vanes) {
+      for (std::uint32_t k = 0; k < vane.count; ++k) {
+        const std::uint32_t vertex = b.vaneIndices[vane.first + k];
+        if (vertex < textureOf.size()) textureOf[vertex] = vane.texture;
+      }
+    }
+  }
+  std::vector<glm::vec4> colours(b.barbColors.begin(), b.barbColors.end());
+  colours.resize(b.barbPositions.size(), glm::vec4(1.0f));
+  for (std::size_t i = 0; i < colours.size() && i < b.barbTexcoords.size(); ++i) {
+    const int t = textureOf[i];
+    if (t < 0 || static_cast<std::size_t>(t) >= scene.textures.size()) continue;
+    const glm::vec3 texel = scene.textures[static_cast<std::size_t>(t)].colourAt(b.barbTexcoords[i]);
+    colours[i] = glm::vec4(glm::vec3(colours[i]) * texel, colours[i].a);
+  }
+  return colours;
+}
+
 }  // namespace hirsute

@@ -4,7 +4,8 @@
 // whose vertices carry their colour and a transparency that fades to the barb tips (and, on
 // strips, to their edges), interpolated across each triangle as POV-Ray does for a face with three
 // texture indices. Polyline barbs become thin ribbons facing the feather's front, since POV-Ray
-// has no lines. Textures are not exported (the colour is the type's).
+// has no lines. A textured type's barbs take its texture's colour at each vertex, times the
+// type's colour, as GL's barb shader does (at a still's detail the barbs sample it densely).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -34,7 +35,7 @@ void FeatherWriter::writePov(const Scene& scene, PovWriter& pov) const {
   // Polyline barbs as ribbons: each segment (i, j) a quad across the barb in the vane plane.
   std::vector<std::uint32_t> triangles;
   std::vector<glm::vec3> positions = b.barbPositions;
-  std::vector<glm::vec4> colours = b.barbColors;
+  std::vector<glm::vec4> colours = texturedBarbColours(scene, b);
   for (const FeatherBuffers::Part& part : b.parts) {
     for (const FeatherBuffers::Vane& vane : part.vanes) {
       const auto begin = b.vaneIndices.begin() + vane.first;

@@ -44,22 +44,11 @@ class FeatherTracer : public trace::OrganTracer {
       }
     }
     // A vertex's tint: its colour times its texture's there (as GL's barb shader multiplies
-    // them), and its transparency. The vanes know their texture; the vertices learn it here.
+    // them), and its transparency.
     const std::size_t barbVertices = b.barbPositions.size();
-    std::vector<int> textureOf(barbVertices, -1);
-    for (const FeatherBuffers::Part& part : b.parts) {
-      for (const FeatherBuffers::Vane& vane : part.vanes) {
-        for (std::uint32_t k = 0; k < vane.count; ++k)
-          textureOf[b.vaneIndices[vane.first + k]] = vane.texture;
-      }
-    }
+    const std::vector<glm::vec4> colours = texturedBarbColours(scene, b);
     auto tintOf = [&](std::size_t i) {
-      const glm::vec4& c = b.barbColors[i];
-      glm::vec3 colour(c);
-      const int t = textureOf[i];
-      if (t >= 0 && static_cast<std::size_t>(t) < scene.textures.size())
-        colour *= scene.textures[static_cast<std::size_t>(t)].colourAt(b.barbTexcoords[i]);
-      return glm::vec4(trace::linearColour(colour), c.a);
+      return glm::vec4(trace::linearColour(glm::vec3(colours[i])), colours[i].a);
     };
     if (!segments.empty()) {
       const trace::CurveBuffers curves =

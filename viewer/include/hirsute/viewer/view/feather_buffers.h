@@ -75,6 +75,11 @@ std::vector<std::uint8_t> featherDetailLevels(const Scene& scene, const Camera& 
 // Builds every feather of `scene` at its level.
 FeatherBuffers buildFeatherBuffers(const Scene& scene, const std::vector<std::uint8_t>& levels);
 
+// Each barb vertex's colour (display values) times its vane's texture there, with its alpha, as
+// GL's barb shader multiplies them: what the outputs that colour barbs by vertex (the tracer,
+// POV-Ray) draw.
+std::vector<glm::vec4> texturedBarbColours(const Scene& scene, const FeatherBuffers& buffers);
+
 // A run of barb indices drawn with one texture, in drawing order.
 struct FeatherDrawRun {
   int texture = -1;
