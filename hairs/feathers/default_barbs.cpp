@@ -1,5 +1,7 @@
 #include "hirsute/hairs/feathers/default_barbs.h"
 
+#include <algorithm>
+
 #include <glm/geometric.hpp>
 
 namespace hirsute {
@@ -44,6 +46,22 @@ PlumulaceousBarbTable::PlumulaceousBarbTable(std::uint64_t seed) {
     glm::vec3 cv3(1, random.uniform(-0.15f, 0.15f), random.uniform(-0.15f, 0.15f));
     cv3 *= random.uniform(0.7f, 1.0f) / glm::length(cv3);
     vertices_.insert(vertices_.end(), {cv0, cv1, cv2, cv3});
+  }
+}
+
+PlumulaceousBarbTable::PlumulaceousBarbTable(
+    const std::vector<std::pair<std::uint64_t, float>>& seeds)
+    : vertices_(kEntries * kVertices, glm::vec3(0.0f)) {
+  float total = 0;
+  for (const auto& [seed, weight] : seeds) total += std::max(weight, 0.0f);
+  if (!(total > 0)) {
+    *this = PlumulaceousBarbTable(seeds.empty() ? 1 : seeds.front().first);
+    return;
+  }
+  for (const auto& [seed, weight] : seeds) {
+    if (!(weight > 0)) continue;
+    const PlumulaceousBarbTable one(seed);
+    for (std::size_t k = 0; k < vertices_.size(); ++k) vertices_[k] += (weight / total) * one.vertices_[k];
   }
 }
 

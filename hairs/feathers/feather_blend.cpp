@@ -239,6 +239,22 @@ FeatherType blendFeatherTypes(const FeatherType& a, const FeatherType& b, float 
   }
   const FeatherType& nearer = t < 0.5f ? a : b;
   out.seed = nearer.seed;
+  // Bdf1 blends with the shape: the two types' seeds, each with its weight in the blend.
+  auto seedsOf = [](const FeatherType& type) {
+    return type.seedBlend.empty() ? std::vector<std::pair<std::uint64_t, float>>{{type.seed, 1.0f}}
+                                  : type.seedBlend;
+  };
+  for (const auto& [seed, weight] : seedsOf(a)) out.seedBlend.emplace_back(seed, (1 - t) * weight);
+  for (const auto& [seed, weight] : seedsOf(b)) {
+    auto same = std::find_if(out.seedBlend.begin(), out.seedBlend.end(),
+                             [&](const auto& entry) { return entry.first == seed; });
+    if (same != out.seedBlend.end()) {
+      same->second += t * weight;
+    } else {
+      out.seedBlend.emplace_back(seed, t * weight);
+    }
+  }
+  if (out.seedBlend.size() == 1) out.seedBlend.clear();  // one seed: its own table
   out.appearance = nearer.appearance;
   if (a.appearance.colourKind == FeatherColourKind::Rgb &&
       b.appearance.colourKind == FeatherColourKind::Rgb) {

@@ -169,7 +169,8 @@ void buildBarbs(const FeatherType& type, const Rachis& rachis, const FeatherDeta
   const int segments = std::max(1, detail.barbSegments);
   const std::size_t perBarb = static_cast<std::size_t>(segments) + 1;
   const bool strips = type.appearance.drawing == BarbStyle::Strips;
-  const PlumulaceousBarbTable table(type.seed);
+  const PlumulaceousBarbTable table =
+      type.seedBlend.empty() ? PlumulaceousBarbTable(type.seed) : PlumulaceousBarbTable(type.seedBlend);
   const std::array<BarbSide, 2> sides = {BarbSide::Left, BarbSide::Right};
 
   const std::size_t barbCount = 2 * positions.size();

@@ -149,6 +149,32 @@ TEST(FeatherBlend, BlendIsContinuousNearTheEnds) {
       1e-3f);
 }
 
+// Bdf1 blends with the shape: across a row of blends of two down types that differ only in
+// their seed, neighbouring feathers differ by as little on either side of the middle as
+// elsewhere (the nearer type's seed made the barbs jump at t = 0.5).
+TEST(FeatherBlend, DefaultBarbsBlendWithoutAJumpInTheMiddle) {
+  FeatherType a = load("down.fea");
+  FeatherType b = a;
+  b.seed = a.seed + 77;
+  const FeatherDetail detail{8, 6, 4};
+  float largestStep = 0, middleStep = 0;
+  constexpr int kSteps = 20;
+  FeatherGeometry previous = buildFeatherGeometry(a, detail);
+  for (int i = 1; i <= kSteps; ++i) {
+    const float t = static_cast<float>(i) / kSteps;
+    const FeatherGeometry next = buildFeatherGeometry(blendFeatherTypes(a, b, t), detail);
+    const float step = largestBarbDistance(next, previous);
+    // The two steps about t = 0.5, and the others.
+    const bool middle = i == kSteps / 2 || i == kSteps / 2 + 1;
+    (middle ? middleStep : largestStep) = std::max(middle ? middleStep : largestStep, step);
+    previous = next;
+  }
+  // The two types differ: the ends are far apart.
+  const float apart = largestBarbDistance(buildFeatherGeometry(a, detail), buildFeatherGeometry(b, detail));
+  EXPECT_GT(apart, 4 * largestStep);
+  EXPECT_LT(middleStep, 1.5f * largestStep) << "a jump in the middle of the row";
+}
+
 TEST(FeatherGrowth, GrowthAtAgeOneGivesTheGrownFeather) {
   const FeatherType contour = load("contour.fea");
   const FeatherDetail detail{10, 6, 5};

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "hirsute/core/diagnostic.h"
@@ -97,6 +98,10 @@ struct FeatherType {
   Vane right;                     // -y
   std::vector<KeyBarb> keyBarbs;  // in file order
   std::uint64_t seed = 1;         // of the random table behind Bdf1 (Sec. 4.3.1)
+  // A blended type's tables: the key types' seeds with their weights (summing to 1), whose
+  // tables are mixed entry by entry, so that Bdf1 changes with the blend as its shape does;
+  // empty: the table of `seed` alone.
+  std::vector<std::pair<std::uint64_t, float>> seedBlend;
 
   FeatherAppearance appearance;
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "hirsute/interpreter/feather_type.h"
@@ -22,6 +23,9 @@ class PlumulaceousBarbTable {
   static constexpr std::size_t kVertices = 4;
 
   explicit PlumulaceousBarbTable(std::uint64_t seed);
+  // The tables of `seeds` mixed entry by entry with their weights (a blended type's,
+  // FeatherType::seedBlend); one seed of weight 1 is that seed's table.
+  explicit PlumulaceousBarbTable(const std::vector<std::pair<std::uint64_t, float>>& seeds);
 
   // Bdf1 for barb `index` (counted from the rachis base) of a vane (Left or Right). In the barb
   // frame of KeyBarb: cv0 at the origin, the chord mostly along +x, |cv0 cv3| in [0.7, 1].
