@@ -476,5 +476,48 @@ TEST(LiveModelTest, ScriptOrganCommandsShowHideAndAct) {
   EXPECT_GT(wet, 0);
 }
 
+// The fur's gust and drying as script commands: `gust` moves the strands' particles and they
+// come back to rest; `dry on` makes wet fur drier on the clock, `dry off` stops it.
+TEST(LiveModelTest, ScriptGustMovesTheFurAndDryDriesIt) {
+  ShippedModel shipped("fur-square", "square");
+  LiveModelOptions options = shipped.liveOptions();
+  options.script = parseViewScript("droplets 40; gust; dry on", "--commands");
+  RecordingView view;
+  HandClock clock;
+  LiveModel live(options, shipped.builder(), view, {}, clock.now());
+  settle(live);
+  const auto& fur = dynamic_cast<const LiveFur&>(*live.organ("fur"));
+  ASSERT_FALSE(fur.fur().organ<FurPart>().surfaces.empty());
+  auto tips = [&] {
+    std::vector<glm::vec3> out;
+    for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) out.insert(out.end(), s.tips.begin(), s.tips.end());
+    return out;
+  };
+  auto wetness = [&] {
+    double sum = 0;
+    for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) {
+      for (const glm::vec4& texel : s.wetness) sum += texel.w;
+    }
+    return sum;
+  };
+  const std::vector<glm::vec3> rest = tips();
+  runScript(live);  // the three commands, at one instant
+  EXPECT_TRUE(fur.moving());
+  EXPECT_TRUE(fur.drying());
+  const double wet = wetness();
+  EXPECT_GT(wet, 0);
+  clock.advance(0.2);
+  live.update();
+  const std::vector<glm::vec3> blown = tips();
+  ASSERT_EQ(blown.size(), rest.size());
+  double moved = 0;
+  for (std::size_t i = 0; i < rest.size(); ++i) moved = std::max(moved, double(glm::distance(blown[i], rest[i])));
+  EXPECT_GT(moved, 1e-3) << "the gust moved no strand";
+  EXPECT_LT(wetness(), wet) << "drying dried nothing";
+  // `dry off` stops the drying.
+  live.act(organIndex("fur"), 1, {400, 400});  // the key toggles it off
+  EXPECT_FALSE(fur.drying());
+}
+
 }  // namespace
 }  // namespace hirsute

@@ -28,8 +28,8 @@ enum Action : std::size_t { kSpray, kDry, kGust };
 
 const LiveAction kActions[] = {
     {"droplets", "n", 'J', "spray 20 droplets at random on the fur"},
-    {"", "", 'Y', "let the fur dry (wetness fades over 10 s: curls return, clumps open) / stop"},
-    {"", "", 'G', "a gust of wind through the fur"},
+    {"dry", "o", 'Y', "let the fur dry (wetness fades over 10 s: curls return, clumps open) / stop"},
+    {"gust", "", 'G', "a gust of wind through the fur"},
 };
 
 // The droplets J sprays.
@@ -87,7 +87,8 @@ void LiveFur::act(std::size_t index, const LiveActionCall& call) {
       }
       break;
     case kDry:
-      toggleDrying();
+      // The key toggles; `dry on` and `dry off` set.
+      if (call.byKey || call.words.empty() || (call.words.front() == "on") != drying_) toggleDrying();
       break;
     case kGust:
       gust(call.viewport);
@@ -136,6 +137,7 @@ void LiveFur::gust(glm::ivec2 viewport) {
   // Across the line of sight, from alternating sides.
   gust_ = (spraySeed_++ % 2 == 0 ? 1.0f : -1.0f) * kGustStrength * host_.camera(viewport).right;
   gustLeft_ = kGustSeconds;
+  moving_ = true;  // the host steps moving organs
   lastStep_ = host_.now();
 }
 
