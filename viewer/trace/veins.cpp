@@ -24,7 +24,7 @@ float gaussian(Random& random) {
 }  // namespace
 
 VeinMap::VeinMap(const VeinSettings& settings, float aspect, int variant)
-    : aspect_(std::clamp(aspect, 0.02f, 50.0f)),
+    : aspect_(std::isfinite(aspect) ? std::clamp(aspect, 0.02f, 50.0f) : 0.4f),
       height_(static_cast<std::size_t>(kAcross) * kAlong, 0.0f) {
   const std::uint64_t seed = (static_cast<std::uint64_t>(settings.seed) << 8u) ^
                              static_cast<std::uint64_t>(variant) ^ 0x9e3779b97f4a7c15ull;
@@ -205,6 +205,7 @@ float VeinMap::texel(int i, int j) const {
 }
 
 float VeinMap::height(glm::vec2 uv) const {
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return 0;  // a surface point of no number
   const float x = std::clamp(uv.x, 0.0f, 1.0f) * kAcross - 0.5f;
   const float y = std::clamp(uv.y, 0.0f, 1.0f) * kAlong - 0.5f;
   const int i = static_cast<int>(std::floor(x)), j = static_cast<int>(std::floor(y));
