@@ -574,5 +574,52 @@ TEST_F(HairExportTest, FeatherTexturesReachPovRay) {
   EXPECT_LE(barbColours("feather-interpolation", "feather-interpolation"), 8u);
 }
 
+// The OBJ export's barbs take a material of their type's colour and texture: the hawk's and the
+// budgie's vanes (models/feather-types) a map_Kd of their image, written beside the OBJ, and
+// their faces and polylines texture coordinates that exist; untextured types a plain Kd.
+TEST_F(HairExportTest, FeatherTexturesAndColoursReachTheObj) {
+  const std::string base = std::string(HIRSUTE_SOURCE_DIR) + "/models/feather-types/feather-types";
+  const fs::path obj = file("types.obj");
+  ASSERT_EQ(runHirsute("export '" + base + ".l' '" + base + ".v' --obj '" + obj.string() + "'",
+                       file("log")),
+            0)
+      << readText(file("log"));
+  const std::vector<std::string> library = linesOf(readText(file("types.mtl")));
+  std::size_t textured = 0, plain = 0;
+  for (std::size_t k = 0; k < library.size(); ++k) {
+    if (library[k].rfind("newmtl feather_", 0) != 0) continue;
+    ASSERT_LT(k + 1, library.size());
+    EXPECT_EQ(library[k + 1].rfind("Kd ", 0), 0u) << library[k + 1];
+    if (library[k].find("_T") != std::string::npos) {
+      ++textured;
+      ASSERT_LT(k + 3, library.size());
+      ASSERT_EQ(library[k + 3].rfind("map_Kd ", 0), 0u) << library[k + 3];
+      EXPECT_TRUE(fs::exists(file(library[k + 3].substr(7)))) << library[k + 3];
+    } else {
+      ++plain;
+    }
+  }
+  EXPECT_EQ(textured, 2u);  // the hawk and the budgie
+  EXPECT_GT(plain, 0u);
+  // Texture coordinates: every one referred to exists, and textured barbs refer to them.
+  std::uint64_t texcoords = 0, referred = 0, largest = 0;
+  bool inTextured = false;
+  for (const std::string& line : linesOf(readText(obj))) {
+    if (line.rfind("vt ", 0) == 0) ++texcoords;
+    if (line.rfind("usemtl ", 0) == 0) inTextured = line.find("_T") != std::string::npos;
+    if (!inTextured || (line.rfind("f ", 0) != 0 && line.rfind("l ", 0) != 0)) continue;
+    std::istringstream words(line.substr(2));
+    for (std::string word; words >> word;) {
+      const std::size_t slash = word.find('/');
+      ASSERT_NE(slash, std::string::npos) << line;
+      largest = std::max<std::uint64_t>(largest, std::stoull(word.substr(slash + 1)));
+      ++referred;
+    }
+  }
+  EXPECT_GT(referred, 1000u);
+  EXPECT_GT(texcoords, 0u);
+  EXPECT_LE(largest, texcoords);
+}
+
 }  // namespace
 }  // namespace hirsute

@@ -100,15 +100,45 @@ void ObjWriter::useMaterial(int material, int texture) {
   if (key == current_) return;
   if (materialSet_.insert(key).second) {
     materialsUsed_.push_back(key);
-    if (texture >= 0 && !out_.writesInPlace()) {
-      writeTexturePng(scene_->textures.at(static_cast<std::size_t>(texture)),
-                      target_.parent_path() / textureFileName(target_, texture), options_.group);
-    }
+    writeTextureOnce(texture);
   }
   out_.put("usemtl ");
   out_.put(materialName(material, texture));
   out_.put('\n');
   current_ = key;
+}
+
+// The texture's image beside the OBJ, once however many materials use it (none in place: a
+// device or FIFO has no folder beside it).
+void ObjWriter::writeTextureOnce(int texture) {
+  if (texture < 0 || out_.writesInPlace() || !texturesWritten_.insert(texture).second) return;
+  writeTexturePng(scene_->textures.at(static_cast<std::size_t>(texture)),
+                  target_.parent_path() / textureFileName(target_, texture), options_.group);
+}
+
+void ObjWriter::useOrganMaterial(const std::string& name, const glm::vec3& diffuse,
+                                 int texture) {
+  if (current_ == std::pair<int, int>{-1, -1} && currentOrganMaterial_ == name) return;
+  const auto known = std::find_if(organMaterials_.begin(), organMaterials_.end(),
+                                  [&](const OrganMaterial& m) { return m.name == name; });
+  if (known == organMaterials_.end()) {
+    organMaterials_.push_back({name, diffuse, texture});
+    writeTextureOnce(texture);
+  }
+  out_.put("usemtl ");
+  out_.put(name);
+  out_.put('\n');
+  current_ = {-1, -1};  // the next useMaterial writes its usemtl again
+  currentOrganMaterial_ = name;
+}
+
+void ObjWriter::texcoord(const glm::vec2& t) {
+  out_.put("vt ");
+  out_.putFixed(t.x, texcoord_);
+  out_.put(' ');
+  out_.putFixed(t.y, texcoord_);
+  out_.put('\n');
+  ++stats_.texcoords;
 }
 
 void ObjWriter::vertex(const glm::vec3& p) {
@@ -204,14 +234,23 @@ void ObjWriter::line(const LineSegment& line, LineStyle) {
 }
 
 void ObjWriter::finishPolyline() {
-  if (polyline_.empty()) return;
+  if (polyline_.empty()) {
+    polylineTexcoords_.clear();
+    return;
+  }
+  const bool textured = polylineTexcoords_.size() == polyline_.size();
   out_.put('l');
-  for (std::uint64_t index : polyline_) {
+  for (std::size_t i = 0; i < polyline_.size(); ++i) {
     out_.put(' ');
-    out_.putInteger(static_cast<std::int64_t>(index));
+    out_.putInteger(static_cast<std::int64_t>(polyline_[i]));
+    if (textured) {
+      out_.put('/');
+      out_.putInteger(static_cast<std::int64_t>(polylineTexcoords_[i]));
+    }
   }
   out_.put('\n');
   polyline_.clear();
+  polylineTexcoords_.clear();
   ++stats_.lineElements;
 }
 
@@ -320,9 +359,21 @@ void ObjWriter::writeMaterialLibrary() {
       mtl.put('\n');
     }
   }
+  for (const OrganMaterial& m : organMaterials_) {
+    mtl.put("newmtl ");
+    mtl.put(m.name);
+    mtl.put('\n');
+    rgb("Kd", m.diffuse);
+    mtl.put("illum 1\n");
+    if (m.texture >= 0) {
+      mtl.put("map_Kd ");
+      mtl.put(textureFileName(target_, m.texture));
+      mtl.put('\n');
+    }
+  }
   mtl.commit();
   stats_.mtlBytes = mtl.bytesWritten();
-  stats_.materials = materialsUsed_.size();
+  stats_.materials = materialsUsed_.size() + organMaterials_.size();
 }
 
 void ObjWriter::endScene() {
@@ -339,13 +390,18 @@ void ObjWriter::organ(const OrganWriter& organ, const Scene& scene) {
 }
 
 void ObjWriter::face(const std::array<std::uint64_t, 3>& vertices,
-                     const std::optional<std::array<std::uint64_t, 3>>& normals) {
+                     const std::optional<std::array<std::uint64_t, 3>>& normals,
+                     const std::optional<std::array<std::uint64_t, 3>>& texcoords) {
   out_.put('f');
   for (std::size_t k = 0; k < 3; ++k) {
     out_.put(' ');
     out_.putInteger(static_cast<std::int64_t>(vertices[k]));
+    if (texcoords) {
+      out_.put('/');
+      out_.putInteger(static_cast<std::int64_t>((*texcoords)[k]));
+    }
     if (normals) {
-      out_.put("//");
+      out_.put(texcoords ? "/" : "//");
       out_.putInteger(static_cast<std::int64_t>((*normals)[k]));
     }
   }

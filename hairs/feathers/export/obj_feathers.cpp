@@ -1,8 +1,15 @@
 // Feathers in the OBJ file (DESIGN.md, "Feathers"): built at a still's level of detail
 // (feather_buffers.h), the shafts as triangles with their normals, the barbs as `l` polylines
 // (`drawing: lines`) or as the triangles of their two strips (`drawing: strips`), under
-// `o feathers`. OBJ has no per-vertex transparency: the barbs' fading is left out, and they take
-// the scene's material 0 (the colour of a feather type is in its .fea file).
+// `o feathers`. OBJ has no per-vertex transparency: the barbs' fading is left out. The shafts take
+// the scene's material 0; each vane's barbs a material of its type's colour (the .fea file's) and
+// texture (map_Kd, with the barbs' texture coordinates of the type's mapping), as GL multiplies
+// them.
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
 #include "hirsute/hairs/feathers/feather_writer.h"
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
@@ -17,7 +24,7 @@ void FeatherWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
   const FeatherBuffers b = buildFeatherBuffers(
       scene, std::vector<std::uint8_t>(scene.organ<FeatherPart>().feathers.size(), kStillLevel));
   obj.group("feathers");
-  obj.useMaterial(0, -1);
+  obj.useMaterial(0, -1);  // the shafts
   // The faces of `indices` from `from`, `count` of them, numbered from `first`; with normals,
   // numbered alike from `normalFirst`.
   auto faces = [&obj](std::uint64_t first, const std::vector<std::uint32_t>& indices,
@@ -37,13 +44,39 @@ void FeatherWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
   for (const glm::vec3& p : b.shaftPositions) obj.vertex(p);
   for (const glm::vec3& n : b.shaftNormals) obj.normal(n);
   faces(shaftFirst, b.shaftIndices, 0, b.shaftIndices.size(), shaftNormalFirst);
-  // Barbs.
+  // Barbs: vertices and texture coordinates numbered together.
   const std::uint64_t barbFirst = obj.stats().vertices + 1;
+  const std::uint64_t texcoordFirst = obj.stats().texcoords + 1;
   for (const glm::vec3& p : b.barbPositions) obj.vertex(p);
+  const bool textured = b.barbTexcoords.size() == b.barbPositions.size();
+  if (textured) {
+    for (const glm::vec2& t : b.barbTexcoords) obj.texcoord(t);
+  }
   for (const FeatherBuffers::Part& part : b.parts) {
     for (const FeatherBuffers::Vane& vane : part.vanes) {
+      if (vane.count == 0) continue;
+      // The vane's material: its type's colour and texture.
+      const std::uint32_t firstVertex = b.vaneIndices[vane.first];
+      const glm::vec3 colour =
+          firstVertex < b.barbColors.size() ? glm::vec3(b.barbColors[firstVertex]) : glm::vec3(1.0f);
+      const int texture = textured && vane.texture >= 0 &&
+                                  static_cast<std::size_t>(vane.texture) < scene.textures.size()
+                              ? vane.texture
+                              : -1;
+      const auto byte = [](float c) { return static_cast<int>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255)); };
+      obj.useOrganMaterial(fmt::format("feather_{:02x}{:02x}{:02x}{}", byte(colour.r), byte(colour.g),
+                                       byte(colour.b), texture >= 0 ? fmt::format("_T{}", texture + 1) : ""),
+                           colour, texture);
       if (vane.primitiveSize == 3) {
-        faces(barbFirst, b.vaneIndices, vane.first, vane.count, 0);
+        for (std::size_t t = vane.first; t + 3 <= vane.first + vane.count && t + 3 <= b.vaneIndices.size();
+             t += 3) {
+          std::array<std::uint64_t, 3> vertices{}, texcoords{};
+          for (std::size_t k = 0; k < 3; ++k) {
+            vertices[k] = barbFirst + b.vaneIndices[t + k];
+            texcoords[k] = texcoordFirst + b.vaneIndices[t + k];
+          }
+          obj.face(vertices, std::nullopt, texture >= 0 ? std::optional(texcoords) : std::nullopt);
+        }
         continue;
       }
       // Segment pairs (i, i + 1) of one barb join into one polyline.
@@ -54,8 +87,10 @@ void FeatherWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
         if (polyline.empty() || polyline.back() != barbFirst + i) {
           obj.finishPolyline();
           obj.polyline().push_back(barbFirst + i);
+          if (texture >= 0) obj.polylineTexcoords().push_back(texcoordFirst + i);
         }
         obj.polyline().push_back(barbFirst + j);
+        if (texture >= 0) obj.polylineTexcoords().push_back(texcoordFirst + j);
       }
       obj.finishPolyline();
     }

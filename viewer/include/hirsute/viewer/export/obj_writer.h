@@ -64,22 +64,33 @@ class ObjWriter : public ScenePrinter {
   // What the organs' writers draw with (organ_writer.h), between beginScene() and endScene().
   ExportFile& out() { return out_; }
   void useMaterial(int material, int texture);
+  // A material an organ defines itself (a feather type's colour and texture, which are no entry
+  // of the Scene's palette): `usemtl NAME`, and in the library Kd `diffuse` (display values) and
+  // map_Kd of the Scene's texture `texture` (-1: none). One name, one material.
+  void useOrganMaterial(const std::string& name, const glm::vec3& diffuse, int texture);
   // `o name`, unless it is the current object; `name` outlives the writer (a literal).
   void group(std::string_view name);
   // `v`, `vn`: numbered from 1 in the order written (stats().vertices, stats().normals).
   void vertex(const glm::vec3& p);
   void normal(const glm::vec3& n);
-  // A face of three vertex numbers, with the normal numbers `normals` (none: without).
+  // `vt`: numbered from 1 in the order written (stats().texcoords).
+  void texcoord(const glm::vec2& t);
+  // A face of three vertex numbers, with the normal numbers `normals` and the texture
+  // coordinate numbers `texcoords` (none: without).
   void face(const std::array<std::uint64_t, 3>& vertices,
-            const std::optional<std::array<std::uint64_t, 3>>& normals = std::nullopt);
-  // The polyline being gathered: vertex numbers, written as one `l` by finishPolyline().
+            const std::optional<std::array<std::uint64_t, 3>>& normals = std::nullopt,
+            const std::optional<std::array<std::uint64_t, 3>>& texcoords = std::nullopt);
+  // The polyline being gathered: vertex numbers, written as one `l` by finishPolyline(); when
+  // polylineTexcoords() holds one number a vertex, as `v/vt` pairs.
   std::vector<std::uint64_t>& polyline() { return polyline_; }
+  std::vector<std::uint64_t>& polylineTexcoords() { return polylineTexcoords_; }
   void finishPolyline();
   // Adds `count` to what the organ's writers wrote of `what` (ObjExportStats::organs).
   void count(std::string_view what, std::uint64_t count);
 
  private:
   void writeMaterialLibrary();
+  void writeTextureOnce(int texture);
 
   std::filesystem::path target_, mtlTarget_;
   ObjOptions options_;
@@ -97,7 +108,15 @@ class ObjWriter : public ScenePrinter {
   std::vector<glm::vec3> spherePoints_;
   std::vector<std::uint32_t> sphereTriangles_;
   // The polyline being gathered: its vertex numbers, and where it ends.
-  std::vector<std::uint64_t> polyline_;
+  std::vector<std::uint64_t> polyline_, polylineTexcoords_;
+  struct OrganMaterial {
+    std::string name;
+    glm::vec3 diffuse;
+    int texture;
+  };
+  std::vector<OrganMaterial> organMaterials_;  // in order of first use
+  std::string currentOrganMaterial_;
+  std::set<int> texturesWritten_;
   glm::vec3 polylineEnd_{0.0f};
   ObjExportStats stats_;
 };
