@@ -419,6 +419,15 @@ TEST(LiveModelTest, TheFeathersDynamicsStepsOnTheClockAndPauses) {
   EXPECT_TRUE(live.error().empty());
 }
 
+// The wetness of every texel of the live fur's masks, added up.
+double furWetness(const LiveFur& fur) {
+  double sum = 0;
+  for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) {
+    for (const glm::vec4& texel : s.wetness) sum += texel.w;
+  }
+  return sum;
+}
+
 TEST(LiveModelTest, DropletsWetTheFurAndItDriesOnTheClock) {
   ShippedModel shipped("fur-square", "square");
   LiveModelOptions options = shipped.liveOptions();
@@ -429,13 +438,7 @@ TEST(LiveModelTest, DropletsWetTheFurAndItDriesOnTheClock) {
   auto& fur = dynamic_cast<LiveFur&>(*live.organ("fur"));
   const std::size_t organ = organIndex("fur");
   ASSERT_FALSE(fur.fur().organ<FurPart>().surfaces.empty());
-  auto wetness = [&] {
-    double sum = 0;
-    for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) {
-      for (const glm::vec4& texel : s.wetness) sum += texel.w;
-    }
-    return sum;
-  };
+  auto wetness = [&] { return furWetness(fur); };
   const double dry = wetness();
   live.act(organ, 0, {400, 400});  // J: 20 droplets
   EXPECT_EQ(view.furUpdates, 1);
@@ -468,12 +471,8 @@ TEST(LiveModelTest, ScriptOrganCommandsShowHideAndAct) {
   EXPECT_FALSE(live.shown().organShown("fur"));
   EXPECT_TRUE(live.shown().organShown("hairs"));
   EXPECT_EQ(view.furUpdates, 1);
-  double wet = 0;
   const auto& fur = dynamic_cast<const LiveFur&>(*live.organ("fur"));
-  for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) {
-    for (const glm::vec4& texel : s.wetness) wet += texel.w;
-  }
-  EXPECT_GT(wet, 0);
+  EXPECT_GT(furWetness(fur), 0);
 }
 
 // The fur's gust and drying as script commands: `gust` moves the strands' particles and they
@@ -493,13 +492,7 @@ TEST(LiveModelTest, ScriptGustMovesTheFurAndDryDriesIt) {
     for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) out.insert(out.end(), s.tips.begin(), s.tips.end());
     return out;
   };
-  auto wetness = [&] {
-    double sum = 0;
-    for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) {
-      for (const glm::vec4& texel : s.wetness) sum += texel.w;
-    }
-    return sum;
-  };
+  auto wetness = [&] { return furWetness(fur); };
   const std::vector<glm::vec3> rest = tips();
   runScript(live);  // the three commands, at one instant
   EXPECT_TRUE(fur.moving());

@@ -187,14 +187,7 @@ void ObjWriter::mesh(const TriangleMesh& mesh) {
   }
   if (textured) {
     // t = 0 is the image's bottom row, in OBJ as in the GL renderer.
-    for (const glm::vec2& t : mesh.texcoords) {
-      out_.put("vt ");
-      out_.putFixed(t.x, texcoord_);
-      out_.put(' ');
-      out_.putFixed(t.y, texcoord_);
-      out_.put('\n');
-    }
-    stats_.texcoords += count;
+    for (const glm::vec2& t : mesh.texcoords) texcoord(t);
   }
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     out_.put('f');
