@@ -398,6 +398,11 @@ void veins(ViewLine& c) {
   }
   std::vector<VeinSettings>& all = c.view.trace.veins;
   std::erase_if(all, [&](const VeinSettings& old) { return old.colour == v.colour; });
+  // Each colour's veins are four maps the tracer makes before the first pixel.
+  constexpr std::size_t kMaxVeinColours = 64;
+  if (all.size() >= kMaxVeinColours) {
+    c.fail(c.labelAt(), "more than " + std::to_string(kMaxVeinColours) + " colours with veins");
+  }
   all.push_back(v);
 }
 

@@ -532,6 +532,17 @@ TEST(ViewFileTest, TheTracersLinesSetItsLightsAndMaterials) {
       << errorOf("hair shading: B: nan\n");
 }
 
+// Each colour's veins cost the tracer four maps: a view file may give veins to 64 colours.
+TEST(ViewFileTest, VeinsHaveALimitOfColours) {
+  std::string text;
+  for (int colour = 1; colour <= 64; ++colour) text += "veins: " + std::to_string(colour) + " splines\n";
+  Diagnostics diagnostics;
+  EXPECT_EQ(parseViewFile(text, "veins.v", diagnostics).trace.veins.size(), 64u);
+  const std::string error = viewFileError(text + "veins: 65 particles\n", "veins.v");
+  EXPECT_NE(error.find("veins.v:65:1: error: more than 64 colours with veins"), std::string::npos)
+      << error;
+}
+
 TEST(ViewFileTest, VeinsLinesSetEachColoursPattern) {
   Diagnostics diagnostics;
   const ViewSettings view = parseViewFile(

@@ -45,6 +45,10 @@ void VeinMap::stroke(glm::vec2 a, glm::vec2 b, float wa, float wb, float peak) {
   const int i1 = std::min(kAcross - 1, static_cast<int>(std::ceil(high.x * kAcross - 0.5f)));
   const int j0 = std::max(0, static_cast<int>(std::floor(low.y * kAlong - 0.5f)));
   const int j1 = std::min(kAlong - 1, static_cast<int>(std::ceil(high.y * kAlong - 0.5f)));
+  if (i1 < i0 || j1 < j0) return;
+  const auto box = static_cast<std::size_t>(i1 - i0 + 1) * static_cast<std::size_t>(j1 - j0 + 1);
+  if (work_ + box > kMaxWork) return;
+  work_ += box;
   const glm::vec2 ab = pb - pa;
   const float length2 = glm::dot(ab, ab);
   for (int j = j0; j <= j1; ++j) {
@@ -154,7 +158,13 @@ void VeinMap::particles(const VeinSettings& settings, std::uint64_t seed) {
   const float reach = 0.08f;               // neighbours further off do not attract
   const float slant = 1 / std::tan(glm::radians(50.0f));  // secondary veins meet the midrib at 50°
   const float veinWidth = 0.45f * width;
+  // The walk ends when every particle has joined the midrib, or when its neighbour searches or
+  // its strokes have cost what a map may (the map is full long before).
+  constexpr std::size_t kMaxComparisons = std::size_t{200} << 20;
+  std::size_t comparisons = 0;
   for (int iteration = 0; iteration < 2000; ++iteration) {
+    if (comparisons > kMaxComparisons || work_ >= kMaxWork) break;
+    comparisons += all.size() * all.size();
     bool moved = false;
     for (std::size_t a = 0; a < all.size(); ++a) {
       Particle& p = all[a];

@@ -9,6 +9,7 @@
 // the length, and distances in the map are x = u·aspect, y = v.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,7 @@ namespace hirsute::trace {
 class VeinMap {
  public:
   static constexpr int kAcross = 256, kAlong = 512;  // texels
+  static constexpr std::size_t kMaxWork = std::size_t{16} << 20;
 
   // The map of `settings` for a surface of proportions `aspect` (width / length), the
   // `variant`-th of its kind (each variant is another draw of the same pattern).
@@ -45,6 +47,10 @@ class VeinMap {
 
   float aspect_;
   std::vector<float> height_;  // kAcross × kAlong, u fastest
+  // Texels the strokes have visited: past kMaxWork (the map covered hundreds of times over,
+  // which the higher-wins rule has long saturated) the pattern stops, so that no count and
+  // width a view file may give costs more than about a tenth of a second a map.
+  std::size_t work_ = 0;
 };
 
 // How many variants a vein line has: surfaces of its colour take them in turn, so that
