@@ -1,0 +1,63 @@
+// `hirsute render --trace` and `export --trace-lights` from the command line, on a shipped model:
+// the outputs for compositing are what their names say, the GL render refuses them, and the
+// POV-Ray export takes the tracer's lights.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "support/run_hirsute.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace hirsute::testing;
+
+const fs::path kCrocus = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "wild-crocus";
+
+std::string bytesOf(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(TraceCommand, WritesOpenExrAndSixteenBitPngAndTheGlRenderRefusesThem) {
+  TemporaryFolder folder;
+  const std::string model = (kCrocus / "wild-crocus.l").string();
+  const std::string view = (kCrocus / "closeup.v").string();
+  const fs::path exr = folder.path() / "still.exr";
+  RunResult run = runHirsute({"render", model, view, "--trace", "--spp", "1", "--size", "32x24",
+                              "-o", exr.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(bytesOf(exr).substr(0, 4), std::string("\x76\x2f\x31\x01", 4));  // OpenEXR's magic
+  const fs::path png = folder.path() / "still.png";
+  run = runHirsute({"render", model, view, "--trace", "--spp", "1", "--size", "32x24", "--bits",
+                    "16", "-o", png.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::string bytes = bytesOf(png);
+  ASSERT_GT(bytes.size(), 26u);
+  EXPECT_EQ(bytes.substr(12, 4), "IHDR");
+  EXPECT_EQ(static_cast<int>(static_cast<unsigned char>(bytes[24])), 16);  // bits a channel
+  const fs::path refused = folder.path() / "gl.png";
+  run = runHirsute({"render", model, view, "--bits", "16", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("made by --trace only"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(refused));
+}
+
+TEST(TraceCommand, ExportTakesTheTracersLights) {
+  TemporaryFolder folder;
+  const fs::path pov = folder.path() / "crocus.pov";
+  const RunResult run =
+      runHirsute({"export", (kCrocus / "wild-crocus.l").string(), (kCrocus / "wild-crocus.v").string(),
+                  "--pov", pov.string(), "--trace-lights", "--width", "64", "--height", "48"});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::string text = bytesOf(pov);
+  EXPECT_NE(text.find("area_light"), std::string::npos);
+  EXPECT_NE(text.find("radiosity{"), std::string::npos);
+  EXPECT_NE(text.find("no_image"), std::string::npos);
+  EXPECT_NE(text.find("diffuse .5,.5"), std::string::npos);  // translucency: 5 0.5
+}
+
+}  // namespace
