@@ -312,11 +312,10 @@ void PovWriter::writeTraceLights(const Bounds& bounds) {
     // `orient` turns the light's disc to face each point it lights; its two axes only have to
     // be of one length, which printed numbers keep exactly along x and z.
     const glm::vec3 a(2 * light.radius, 0, 0), b(0, 0, 2 * light.radius);
-    const float sin2 = std::pow(std::sin(glm::radians(std::clamp(look.lightAngle, 0.01f, 179.0f)) / 2), 2.0f);
     out_.put("light_source{");
     vector(light.centre, position_);
     out_.put(" rgb");
-    vector(light.radiance * sin2, format);  // E / π
+    vector(look.lightIrradiance / 3.14159265f, format);  // E / π
     out_.put(" area_light");
     vector(a, position_);
     out_.put(',');
