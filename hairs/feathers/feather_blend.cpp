@@ -210,6 +210,36 @@ float ramp(float age, float start, float end) {
   return std::clamp((age - start) / (end - start), 0.0f, 1.0f);
 }
 
+// A type's textures as cross-fade layers: its own cross-fade, or its one texture (or none).
+std::vector<FeatherTextureLayer> textureLayersOf(const FeatherAppearance& appearance) {
+  if (!appearance.crossFade.empty()) return appearance.crossFade;
+  return {FeatherTextureLayer{appearance.texture, appearance.textureMapping,
+                              appearance.sceneTexture, 1.0f}};
+}
+
+// The cross-fade of two types' textures at t: each layer weighted by its type's share, equal
+// layers merged; empty when both draw one and the same texture (or none), which needs no fading.
+std::vector<FeatherTextureLayer> crossFadeOf(const FeatherAppearance& a,
+                                             const FeatherAppearance& b, float t) {
+  std::vector<FeatherTextureLayer> layers;
+  auto add = [&layers](FeatherTextureLayer layer, float share) {
+    layer.weight *= share;
+    if (layer.texture.empty()) layer.mapping = FeatherTextureMapping::Barb;  // white everywhere
+    auto same = std::find_if(layers.begin(), layers.end(), [&layer](const FeatherTextureLayer& l) {
+      return l.texture == layer.texture && l.mapping == layer.mapping;
+    });
+    if (same != layers.end()) {
+      same->weight += layer.weight;
+    } else if (layer.weight > 0) {
+      layers.push_back(std::move(layer));
+    }
+  };
+  for (const FeatherTextureLayer& layer : textureLayersOf(a)) add(layer, 1 - t);
+  for (const FeatherTextureLayer& layer : textureLayersOf(b)) add(layer, t);
+  if (layers.size() <= 1) return {};
+  return layers;
+}
+
 }  // namespace
 
 FeatherType blendFeatherTypes(const FeatherType& a, const FeatherType& b, float t) {
@@ -246,8 +276,9 @@ FeatherType blendFeatherTypes(const FeatherType& a, const FeatherType& b, float 
   };
   for (const auto& [seed, weight] : seedsOf(a)) out.seedBlend.emplace_back(seed, (1 - t) * weight);
   for (const auto& [seed, weight] : seedsOf(b)) {
+    const std::uint64_t key = seed;  // clang before 16 cannot capture a structured binding
     auto same = std::find_if(out.seedBlend.begin(), out.seedBlend.end(),
-                             [&](const auto& entry) { return entry.first == seed; });
+                             [key](const auto& entry) { return entry.first == key; });
     if (same != out.seedBlend.end()) {
       same->second += t * weight;
     } else {
@@ -256,6 +287,7 @@ FeatherType blendFeatherTypes(const FeatherType& a, const FeatherType& b, float 
   }
   if (out.seedBlend.size() == 1) out.seedBlend.clear();  // one seed: its own table
   out.appearance = nearer.appearance;
+  out.appearance.crossFade = crossFadeOf(a.appearance, b.appearance, t);
   if (a.appearance.colourKind == FeatherColourKind::Rgb &&
       b.appearance.colourKind == FeatherColourKind::Rgb) {
     out.appearance.colour = mix(a.appearance.colour, b.appearance.colour, t);
