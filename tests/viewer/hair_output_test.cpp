@@ -22,8 +22,15 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/hairs/feathers/feather_stage.h"
 #include "hirsute/hairs/plant/hair_csv_writer.h"
+#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/hair_part.h"
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/turtle.h"
+#include "hirsute/lsys/derivation.h"
+#include "hirsute/lsys/evaluator.h"
+#include "hirsute/lsys/model.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
@@ -31,6 +38,7 @@
 #include "hirsute/viewer/gl/organ_drawing.h"
 #include "hirsute/viewer/gl/offscreen.h"
 #include "hirsute/viewer/view/camera.h"
+#include "hirsute/viewer/view/feather_buffers.h"
 #include "hirsute/viewer/view/png_image.h"
 #include "support/test_files.h"
 
@@ -619,6 +627,96 @@ TEST_F(HairExportTest, FeatherTexturesAndColoursReachTheObj) {
   EXPECT_GT(referred, 1000u);
   EXPECT_GT(texcoords, 0u);
   EXPECT_LE(largest, texcoords);
+}
+
+// The OBJ export writes a cross-fade as vertex colours (`v x y z r g b`) under a white material:
+// the blended feathers of hawk-to-budgie.l have them, each colour in [0, 1], and the two ends'
+// pure types keep their textured materials.
+TEST_F(HairExportTest, CrossFadedFeathersGiveTheObjVertexColours) {
+  const std::string folder = std::string(HIRSUTE_SOURCE_DIR) + "/models/feather-types/";
+  const fs::path obj = file("row.obj");
+  ASSERT_EQ(runHirsute("export '" + folder + "hawk-to-budgie.l' '" + folder +
+                           "feather-types.v' --obj '" + obj.string() + "'",
+                       file("log")),
+            0)
+      << readText(file("log"));
+  std::size_t coloured = 0, plain = 0;
+  std::set<std::string> materials;
+  for (const std::string& line : linesOf(readText(obj))) {
+    if (line.rfind("usemtl ", 0) == 0) materials.insert(line.substr(7));
+    if (line.rfind("v ", 0) != 0) continue;
+    std::istringstream words(line.substr(2));
+    std::vector<double> numbers;
+    for (double x; words >> x;) numbers.push_back(x);
+    if (numbers.size() == 3) {
+      ++plain;
+      continue;
+    }
+    ASSERT_EQ(numbers.size(), 6u) << line;
+    for (std::size_t k = 3; k < 6; ++k) {
+      EXPECT_GE(numbers[k], 0.0);
+      EXPECT_LE(numbers[k], 1.0);
+    }
+    ++coloured;
+  }
+  EXPECT_GT(coloured, 1000u);
+  EXPECT_GT(plain, 0u);  // shafts and the two unblended ends
+  EXPECT_TRUE(materials.count("feather_ffffff")) << "the cross-fades' white material";
+  EXPECT_EQ(std::count_if(materials.begin(), materials.end(),
+                          [](const std::string& m) { return m.find("_T") != std::string::npos; }),
+            2);
+}
+
+// A blended type cross-fades its key types' textures with its shape: along the row of
+// models/feather-types/hawk-to-budgie.l (@Fi from the barred hawk feather to the green budgie
+// feather in eight steps) the barbs' mean colour moves by even steps (each about a seventh of
+// the way from the hawk to the budgie, none a quarter); a blend taking the nearer type's texture
+// jumps by 0.58 of it at t = 0.5.
+TEST(FeatherTextures, BlendedTexturesCrossFadeAlongARow) {
+  const fs::path folder = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "feather-types";
+  Diagnostics diagnostics;
+  const ModelResources resources =
+      loadModelResources(folder / "feather-types.v", {}, diagnostics);
+  const Model model = loadModel(folder / "hawk-to-budgie.l", folder / "feather-types.v", diagnostics);
+  std::ostringstream printed;
+  Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, printed);
+  Derivation derivation(model.program, evaluator, diagnostics);
+  derivation.run();
+  Scene scene;
+  interpret(derivation, resources, scene, diagnostics);
+  FeatherStageOptions options;
+  options.lsystemFile = (folder / "hawk-to-budgie.l").string();
+  growFeathers(scene, resources, model.functions, options, diagnostics);
+  const std::size_t count = scene.organ<FeatherPart>().feathers.size();
+  ASSERT_EQ(count, 9u);
+  ASSERT_EQ(scene.textures.size(), 2u);
+
+  const FeatherBuffers buffers =
+      buildFeatherBuffers(scene, std::vector<std::uint8_t>(count, 5));
+  const std::vector<glm::vec4> colours = texturedBarbColours(scene, buffers);
+  ASSERT_EQ(buffers.parts.size(), count);  // neither type has an afterfeather
+  std::vector<glm::vec3> means;
+  for (const FeatherBuffers::Part& part : buffers.parts) {
+    std::set<std::uint32_t> vertices;
+    for (const FeatherBuffers::Vane& vane : part.vanes) {
+      for (std::uint32_t k = 0; k < vane.count; ++k) vertices.insert(buffers.vaneIndices[vane.first + k]);
+    }
+    glm::vec3 sum(0.0f);
+    float weight = 0;
+    for (std::uint32_t v : vertices) {
+      sum += glm::vec3(colours[v]) * colours[v].a;  // as drawn: faded towards the tips
+      weight += colours[v].a;
+    }
+    ASSERT_GT(weight, 0);
+    means.push_back(sum / weight);
+  }
+  const float whole = glm::length(means.back() - means.front());
+  EXPECT_GT(whole, 0.15f);  // the hawk's brown and the budgie's green differ
+  float largest = 0;
+  for (std::size_t i = 0; i + 1 < means.size(); ++i) {
+    largest = std::max(largest, glm::length(means[i + 1] - means[i]));
+  }
+  EXPECT_LT(largest, whole / 4) << "largest step " << largest << " of " << whole;
 }
 
 }  // namespace

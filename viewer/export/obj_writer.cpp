@@ -141,13 +141,27 @@ void ObjWriter::texcoord(const glm::vec2& t) {
   ++stats_.texcoords;
 }
 
-void ObjWriter::vertex(const glm::vec3& p) {
+void ObjWriter::putVertexPosition(const glm::vec3& p) {
   out_.put("v ");
   out_.putFixed(p.x, position_);
   out_.put(' ');
   out_.putFixed(p.y, position_);
   out_.put(' ');
   out_.putFixed(p.z, position_);
+}
+
+void ObjWriter::vertex(const glm::vec3& p) {
+  putVertexPosition(p);
+  out_.put('\n');
+  ++stats_.vertices;
+}
+
+void ObjWriter::vertex(const glm::vec3& p, const glm::vec3& colour) {
+  putVertexPosition(p);
+  for (int k = 0; k < 3; ++k) {
+    out_.put(' ');
+    out_.putFixed(std::clamp(colour[k], 0.0f, 1.0f), NumberFormat{4, true});
+  }
   out_.put('\n');
   ++stats_.vertices;
 }

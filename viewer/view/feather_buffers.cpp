@@ -27,8 +27,9 @@ glm::vec3 colourOf(const Scene& scene, const FeatherAppearance& appearance) {
       .diffuse;
 }
 
-const std::vector<glm::vec2>& texcoordsOf(const FeatherGeometry& part) {
-  switch (part.appearance.textureMapping) {
+const std::vector<glm::vec2>& texcoordsOf(const FeatherGeometry& part,
+                                          FeatherTextureMapping mapping) {
+  switch (mapping) {
     case FeatherTextureMapping::Vane:
       return part.vertices.vaneUv;
     case FeatherTextureMapping::Growth:
@@ -57,12 +58,28 @@ void appendPart(const Scene& scene, const FeatherGeometry& part, const FeatherMa
   placed.left = glm::normalize(toWorld.direction(glm::vec3(0.0f), glm::vec3(0, 1, 0)));
   const bool strips = part.appearance.drawing == BarbStyle::Strips &&
                       part.vertices.stripSides.size() == part.vertices.positions.size();
-  const std::vector<glm::vec2>& uv = texcoordsOf(part);
+  const std::vector<glm::vec2>& uv = texcoordsOf(part, part.appearance.textureMapping);
+  // A cross-fade of textures is drawn into the barbs' colours, vertex by vertex.
+  const std::vector<FeatherTextureLayer>& layers = part.appearance.crossFade;
+  auto fadedTexel = [&](std::size_t i) {
+    glm::vec3 sum(0.0f);
+    for (const FeatherTextureLayer& layer : layers) {
+      const std::vector<glm::vec2>& at = texcoordsOf(part, layer.mapping);
+      const bool textured = layer.sceneTexture >= 0 &&
+                            static_cast<std::size_t>(layer.sceneTexture) < scene.textures.size() &&
+                            i < at.size();
+      sum += layer.weight *
+             (textured ? scene.textures[static_cast<std::size_t>(layer.sceneTexture)].colourAt(at[i])
+                       : glm::vec3(1.0f));
+    }
+    return sum;
+  };
   for (int v = 0; v < 2; ++v) {
     FeatherBuffers::Vane& vane = placed.vanes[v];
     vane.left = v == 0;
     vane.primitiveSize = strips ? 3 : 2;
-    vane.texture = part.appearance.sceneTexture;
+    vane.texture = layers.empty() ? part.appearance.sceneTexture : -1;
+    vane.faded = !layers.empty();
     vane.first = static_cast<std::uint32_t>(out.vaneIndices.size());
     for (const Barb& barb : part.barbs) {
       if ((barb.side == BarbSide::Left) != vane.left || barb.vertexCount < 2) continue;
@@ -75,15 +92,16 @@ void appendPart(const Scene& scene, const FeatherGeometry& part, const FeatherMa
         const glm::vec3 p = part.vertices.positions[i];
         const float alpha = tipFade(part.vertices.s[i]);
         const glm::vec2 t = i < uv.size() ? uv[i] : glm::vec2(0.0f);
+        const glm::vec3 barbColour = layers.empty() ? colour : colour * fadedTexel(i);
         out.barbPositions.push_back(toWorld.point(p));
-        out.barbColors.emplace_back(colour, alpha);
+        out.barbColors.emplace_back(barbColour, alpha);
         out.barbTexcoords.push_back(t);
         if (strips) {
           // Sec. 4.3.1: two strips either side of the barb, fading away from it.
           const glm::vec3 side = part.appearance.stripWidth * part.vertices.stripSides[i];
           for (float sign : {1.0f, -1.0f}) {
             out.barbPositions.push_back(toWorld.point(p + sign * side));
-            out.barbColors.emplace_back(colour, 0.0f);
+            out.barbColors.emplace_back(barbColour, 0.0f);
             out.barbTexcoords.push_back(t);
           }
         }

@@ -4,7 +4,8 @@
 // `o feathers`. OBJ has no per-vertex transparency: the barbs' fading is left out. The shafts take
 // the scene's material 0; each vane's barbs a material of its type's colour (the .fea file's) and
 // texture (map_Kd, with the barbs' texture coordinates of the type's mapping), as GL multiplies
-// them.
+// them. A blended type's cross-fade of textures is written as vertex colours (`v x y z r g b`)
+// under a white material.
 #include <algorithm>
 #include <cmath>
 
@@ -47,7 +48,24 @@ void FeatherWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
   // Barbs: vertices and texture coordinates numbered together.
   const std::uint64_t barbFirst = obj.stats().vertices + 1;
   const std::uint64_t texcoordFirst = obj.stats().texcoords + 1;
-  for (const glm::vec3& p : b.barbPositions) obj.vertex(p);
+  // A blended type's cross-fade of textures is in its barbs' colours: those vertices carry them.
+  std::vector<bool> faded(b.barbPositions.size(), false);
+  for (const FeatherBuffers::Part& part : b.parts) {
+    for (const FeatherBuffers::Vane& vane : part.vanes) {
+      if (!vane.faded) continue;
+      for (std::uint32_t k = 0; k < vane.count; ++k) {
+        const std::uint32_t vertex = b.vaneIndices[vane.first + k];
+        if (vertex < faded.size()) faded[vertex] = true;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < b.barbPositions.size(); ++i) {
+    if (faded[i] && i < b.barbColors.size()) {
+      obj.vertex(b.barbPositions[i], glm::vec3(b.barbColors[i]));
+    } else {
+      obj.vertex(b.barbPositions[i]);
+    }
+  }
   const bool textured = b.barbTexcoords.size() == b.barbPositions.size();
   if (textured) {
     for (const glm::vec2& t : b.barbTexcoords) obj.texcoord(t);
@@ -55,10 +73,12 @@ void FeatherWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
   for (const FeatherBuffers::Part& part : b.parts) {
     for (const FeatherBuffers::Vane& vane : part.vanes) {
       if (vane.count == 0) continue;
-      // The vane's material: its type's colour and texture.
+      // The vane's material: its type's colour and texture; white under a cross-fade's vertex
+      // colours.
       const std::uint32_t firstVertex = b.vaneIndices[vane.first];
-      const glm::vec3 colour =
-          firstVertex < b.barbColors.size() ? glm::vec3(b.barbColors[firstVertex]) : glm::vec3(1.0f);
+      const glm::vec3 colour = !vane.faded && firstVertex < b.barbColors.size()
+                                   ? glm::vec3(b.barbColors[firstVertex])
+                                   : glm::vec3(1.0f);
       const int texture = textured && vane.texture >= 0 &&
                                   static_cast<std::size_t>(vane.texture) < scene.textures.size()
                               ? vane.texture

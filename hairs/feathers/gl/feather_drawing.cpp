@@ -1,5 +1,6 @@
 #include "hirsute/hairs/feathers/feather_drawing.h"
 
+#include <functional>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "hirsute/interpreter/feather_part.h"
@@ -108,6 +109,16 @@ void FeatherDrawing::take(const Scene& scene, const std::vector<GLuint>& texture
   scene_.organ<FeatherPart>().poses = scene.organ<FeatherPart>().poses;
   scene_.organ<FeatherPart>().maxVertices = scene.organ<FeatherPart>().maxVertices;
   scene_.materials = scene.materials;
+  // The feathers' own images, where they stand in the Scene's list: a blended type's cross-fade
+  // is drawn into its barbs' colours from them.
+  scene_.textures.resize(scene.textures.size());
+  std::function<void(const FeatherType&)> keepTextures = [&](const FeatherType& type) {
+    const int t = type.appearance.sceneTexture;
+    if (t >= 0 && static_cast<std::size_t>(t) < scene.textures.size())
+      scene_.textures[static_cast<std::size_t>(t)] = scene.textures[static_cast<std::size_t>(t)];
+    if (type.afterfeather) keepTextures(*type.afterfeather);
+  };
+  for (const FeatherType& type : scene.organ<FeatherPart>().types) keepTextures(type);
   textures_ = textures;
   buffers_ = FeatherBuffers{};
 }

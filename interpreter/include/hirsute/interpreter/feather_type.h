@@ -66,6 +66,16 @@ struct KeyBarb {
   }
 };
 
+// One texture of a blended type's cross-fade: the texture of a key type (empty: a key type
+// without one, drawn as white) in its mapping, and its weight in the blend.
+struct FeatherTextureLayer {
+  std::string texture;
+  FeatherTextureMapping mapping = FeatherTextureMapping::Barb;
+  int sceneTexture = -1;
+  float weight = 0;
+  bool operator==(const FeatherTextureLayer&) const = default;
+};
+
 // How a feather is drawn (Sec. 4.3.1, 4.3.3); the geometry carries a copy for the renderer.
 struct FeatherAppearance {
   BarbStyle drawing = BarbStyle::Lines;
@@ -77,6 +87,10 @@ struct FeatherAppearance {
   FeatherTextureMapping textureMapping = FeatherTextureMapping::Barb;
   // The texture's index in Scene::textures once the feather stage has read it (-1: none).
   int sceneTexture = -1;
+  // A type blended from key types of different textures cross-fades them: the barbs' colour is
+  // `colour` times the weighted sum of the layers' texels, weights summing to 1 (Sec. 4.2.3
+  // blends the shape; the texture follows it). Empty: `texture` alone.
+  std::vector<FeatherTextureLayer> crossFade;
   bool operator==(const FeatherAppearance&) const = default;
 };
 

@@ -72,6 +72,9 @@ class ObjWriter : public ScenePrinter {
   void group(std::string_view name);
   // `v`, `vn`: numbered from 1 in the order written (stats().vertices, stats().normals).
   void vertex(const glm::vec3& p);
+  // A vertex with its colour (display values, 0..1), `v x y z r g b`, the extension Blender and
+  // MeshLab read as vertex colours.
+  void vertex(const glm::vec3& p, const glm::vec3& colour);
   void normal(const glm::vec3& n);
   // `vt`: numbered from 1 in the order written (stats().texcoords).
   void texcoord(const glm::vec2& t);
@@ -89,6 +92,7 @@ class ObjWriter : public ScenePrinter {
   void count(std::string_view what, std::uint64_t count);
 
  private:
+  void putVertexPosition(const glm::vec3& p);  // `v x y z`, without the line's end
   void writeMaterialLibrary();
   void writeTextureOnce(int texture);
 

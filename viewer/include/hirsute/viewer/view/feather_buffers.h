@@ -42,6 +42,9 @@ struct FeatherBuffers {
     std::uint32_t primitiveSize = 2;     // 2 (lines) or 3 (triangles)
     std::uint32_t perBarb = 0;           // primitives a barb (its barbs have equal segments)
     int texture = -1;
+    // Its colours vary vertex by vertex: a blended type's cross-fade of textures, drawn into
+    // them (FeatherAppearance::crossFade); `texture` is then -1.
+    bool faded = false;
     bool left = true;
   };
   std::vector<std::uint32_t> vaneIndices;
