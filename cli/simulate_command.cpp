@@ -18,9 +18,14 @@
 
 #include "command.h"
 #include "hirsute/hairs/dynamics/coat_motion.h"
+#include "hirsute/hairs/dynamics/wind_field.h"
+#include "hirsute/hairs/fur/fur_motion.h"
+#include "hirsute/hairs/fur/fur_stage.h"
 #include "hirsute/core/output_target.h"
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/feather_settings.h"
+#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/interaction/animation_file.h"
@@ -106,6 +111,121 @@ dynamics::SimulationParameters parametersFor(const FeatherDynamicsSettings& view
   return p;
 }
 
+// The fur's part of a run (docs/fur.md, "Fur over time"): every strand's particle stepped under
+// the force per unit mass (the view file's `fur force:` or --fur-force) plus the wind and its
+// gusts (the feathers' wind field, times --fur-drag); droplets at their frames and the rain;
+// drying from its frame. Its state lives in the drawn Scene's fur surfaces.
+class FurRun {
+ public:
+  static constexpr double kDefaultDrag = 1;  // per second
+
+  FurRun(const SimulateOptions& o, const FurSettings& view,
+         const dynamics::WindParameters& wind, double frameTime)
+      : wind_(wind),
+        force_(o.furForce.size() == 3
+                   ? glm::vec3(o.furForce[0], o.furForce[1], o.furForce[2])
+                   : view.force),
+        drag_(o.furDrag.value_or(kDefaultDrag)),
+        dryRate_(o.dry.value_or(0)),
+        dryFrom_(o.dryFrom),
+        seed_(o.dropSeed),
+        frameTime_(frameTime) {
+    for (const std::string& text : o.drops) falls_.push_back(*dropletFall(text, false));
+    if (!o.rain.empty()) rain_ = dropletFall(o.rain, true);
+  }
+
+  // Every droplet the run lets fall and what it blends, against the limits of one spray: an
+  // error naming the options, before any frame.
+  std::optional<std::string> checkCosts(const Scene& scene, int frames) const {
+    int mask = 0;
+    for (const FurSurface& s : scene.organ<FurPart>().surfaces) mask = std::max(mask, s.wetnessSize);
+    double droplets = 0, texels = 0;
+    auto charge = [&](double count, float radius) {
+      const double side = std::min<double>(mask, 2.0 * radius * mask + 2);
+      droplets += count;
+      texels += count * side * side;
+    };
+    for (const DropletFall& f : falls_)
+      if (f.frame <= frames) charge(f.count, f.radius);
+    if (rain_) charge(std::floor(rain_->count * frameTime_ * (frames - 1)), rain_->radius);
+    const DropletLimits limits;
+    if (droplets > 10'000'000 || texels > static_cast<double>(limits.texels)) {
+      return fmt::format(
+          "error: the run's droplets (--drop, --rain: {:.0f} over {} frames) would blend more "
+          "than {} texels of the wetness masks (the limit); use fewer or smaller droplets, or "
+          "fewer frames",
+          droplets, frames, limits.texels);
+    }
+    return std::nullopt;
+  }
+
+  // Frame 1: the fur as the model grew it, and the droplets of frame 1.
+  void start(Scene& scene) {
+    motion_.reset(scene);
+    dropped_ = fall(scene, 1);
+  }
+
+  // A new body for the frame: its fur takes the particles, velocities and wetness of `before`.
+  void carry(Scene& scene, const Scene& before) { motion_.reset(scene, &before); }
+
+  // A later frame: its droplets, a frame time of motion from `time`, drying.
+  void advance(Scene& scene, int frame, double time) {
+    dropped_ = fall(scene, frame);
+    const dynamics::WindField& wind = wind_;
+    const bool windy = drag_ > 0 && (wind.parameters().velocity.squaredNorm() > 0 ||
+                                     wind.parameters().gustStrength > 0);
+    motion_.step(scene, static_cast<float>(frameTime_), [&](const glm::vec3& root) {
+      if (!windy) return force_;
+      const Eigen::Vector3d w = wind.velocityAt(Eigen::Vector3d(root.x, root.y, root.z), time);
+      return force_ + static_cast<float>(drag_) * glm::vec3(w.x(), w.y(), w.z());
+    });
+    if (dryRate_ > 0 && frame >= dryFrom_)
+      fur::dryFur(scene, static_cast<float>(dryRate_), static_cast<float>(frameTime_));
+  }
+
+  // The frame's row of fur.csv.
+  std::string row(int frame, double time, const Scene& scene, double seconds) const {
+    const fur::FurMeasures m = fur::measureFur(scene, &motion_);
+    return fmt::format("{},{:.6g},{},{:.6g},{:.6g},{:.6g},{},{:.6g},{:.4f}\n", frame, time,
+                       dropped_, m.meanBend, m.largestBend, m.largestSpeed, m.wetTexels,
+                       m.meanWetness, seconds);
+  }
+
+  std::size_t droplets() const { return droppedInAll_; }
+
+ private:
+  std::size_t fall(Scene& scene, int frame) {
+    std::size_t landed = 0;
+    auto spray = [&](std::size_t count, const DropletFall& f) {
+      landed += sprayDroplets(scene, count, f.radius, f.wetness,
+                              seed_ + 7919u * static_cast<std::uint32_t>(frame) +
+                                  static_cast<std::uint32_t>(landed));
+    };
+    for (const DropletFall& f : falls_)
+      if (f.frame == frame) spray(static_cast<std::size_t>(f.count), f);
+    if (rain_ && frame > 1) {
+      owed_ += rain_->count * frameTime_;
+      const double whole = std::floor(owed_);
+      owed_ -= whole;
+      spray(static_cast<std::size_t>(whole), *rain_);
+    }
+    droppedInAll_ += landed;
+    return landed;
+  }
+
+  dynamics::WindField wind_;
+  glm::vec3 force_;
+  double drag_, dryRate_;
+  int dryFrom_;
+  std::uint32_t seed_;
+  double frameTime_;
+  std::vector<DropletFall> falls_;
+  std::optional<DropletFall> rain_;
+  double owed_ = 0;  // rain's droplets not yet fallen
+  std::size_t dropped_ = 0, droppedInAll_ = 0;
+  fur::FurMotion motion_;
+};
+
 // "frame-0007.pov": the frame's number, at least four digits, as many as the last frame needs.
 std::string frameName(int frame, int frames, const char* extension) {
   const int digits = std::max(4, static_cast<int>(std::to_string(frames).size()));
@@ -169,10 +289,12 @@ int runSimulate(SimulateOptions o) {
     std::cerr << e.what() << '\n';
     return kExitIoError;
   }
-  if (first.scene.organ<FeatherPart>().feathers.empty()) {
+  const bool feathers = !first.scene.organ<FeatherPart>().feathers.empty();
+  const bool furry = !first.scene.organ<FurPart>().surfaces.empty();
+  if (!feathers && !furry) {
     return badInput(progress, o.model.lsystemFile +
-                                  ": error: the model has no feathers to simulate (@Fe, @Fi or "
-                                  "a feather coat; docs/dynamics.md)");
+                                  ": error: the model has no feathers or fur to simulate (@Fe, "
+                                  "@Fi, a feather coat or @U fur; docs/dynamics.md, docs/fur.md)");
   }
   const FeatherDynamicsSettings& view = first.resources.view.organ<FeatherSettings>().dynamics;
   const dynamics::SimulationParameters parameters = parametersFor(view, o);
@@ -209,11 +331,18 @@ int runSimulate(SimulateOptions o) {
 
   std::optional<dynamics::CoatMotion> motion;
   try {
-    motion.emplace(first.scene, parameters);
+    if (feathers) motion.emplace(first.scene, parameters);
   } catch (const std::invalid_argument& e) {
     return badInput(progress, o.model.lsystemFile + ": error: cannot simulate: " + e.what());
   }
-  if (const std::size_t crossing = motion->penetrations(); crossing > 0) {
+  const double frameTime = 1.0 / o.fps;
+  std::optional<FurRun> fur;
+  if (furry) {
+    fur.emplace(o, first.resources.view.organ<FurSettings>(), parameters.wind, frameTime);
+    if (const auto error = fur->checkCosts(first.scene, frames))
+      return badInput(progress, o.model.lsystemFile + ": " + *error);
+  }
+  if (const std::size_t crossing = motion ? motion->penetrations() : 0; crossing > 0) {
     return badInput(progress,
                     o.model.lsystemFile + ": error: the feathers' stems already meet or come " +
                         "nearer than the minimum separation in " + std::to_string(crossing) +
@@ -226,11 +355,21 @@ int runSimulate(SimulateOptions o) {
       "frame,time,steps,substeps,retries,candidates,contacts,impulses,repulsions,"
       "impact_zones,penetrations,kept_near,calami_left,calami_crossed,calami_zoned,"
       "seconds\n";
-  const auto writeTable = [&]() -> int {
+  std::string furTable =
+      "frame,time,droplets,mean_bend,largest_bend,largest_speed,wet_texels,mean_wetness,"
+      "seconds\n";
+  const auto writeTables = [&]() -> int {
     try {
-      OutputTarget csv(fs::path(o.output) / "simulation.csv");
-      std::fputs(table.c_str(), csv.stream());
-      csv.commit();
+      if (motion) {
+        OutputTarget csv(fs::path(o.output) / "simulation.csv");
+        std::fputs(table.c_str(), csv.stream());
+        csv.commit();
+      }
+      if (fur) {
+        OutputTarget csv(fs::path(o.output) / "fur.csv");
+        std::fputs(furTable.c_str(), csv.stream());
+        csv.commit();
+      }
     } catch (const std::runtime_error& e) {
       progress.clear();
       std::cerr << e.what() << '\n';
@@ -238,10 +377,14 @@ int runSimulate(SimulateOptions o) {
     }
     return 0;
   };
-  const double frameTime = 1.0 / o.fps;
   dynamics::SimulationCounters before;
   double simulating = 0;  // seconds in the steps, apart from deriving and writing
   Scene drawn = first.scene;
+  try {
+    if (fur) fur->start(drawn);
+  } catch (const DiagnosticError& e) {
+    return badInput(progress, o.model.lsystemFile + ": " + e.diagnostic().text());
+  }
   progress.begin("simulating", Progress::Unit::Steps, frames);
   for (int frame = 1; frame <= frames; ++frame) {
     progress.update(frame);
@@ -260,8 +403,15 @@ int runSimulate(SimulateOptions o) {
       }
       try {
         const auto stepping = Clock::now();
-        motion->advance(frameTime, substeps, body);
+        if (motion) motion->advance(frameTime, substeps, body);
+        if (fur) {
+          if (body) fur->carry(moved, drawn);
+          fur->advance(body ? moved : drawn, frame, (frame - 2) * frameTime);
+        }
         simulating += std::chrono::duration<double>(Clock::now() - stepping).count();
+      } catch (const DiagnosticError& e) {
+        if (const int failed = writeTables(); failed != 0) return failed;
+        return badInput(progress, o.model.lsystemFile + ": " + e.diagnostic().text());
       } catch (const dynamics::FrameMismatch& e) {
         return badInput(
             progress,
@@ -269,7 +419,7 @@ int runSimulate(SimulateOptions o) {
                         o.animation.empty() ? o.model.lsystemFile : o.animation, frame, e.what()));
       } catch (const dynamics::StepFailure& e) {
         // The frames before it stay, and so do their rows of the table.
-        if (const int failed = writeTable(); failed != 0) return failed;
+        if (const int failed = writeTables(); failed != 0) return failed;
         progress.clear();
         std::cerr << o.model.lsystemFile << ": error: frame " << frame << ": " << e.what()
                   << "; the frames before it and their rows of simulation.csv are written\n";
@@ -280,7 +430,7 @@ int runSimulate(SimulateOptions o) {
     const fs::path folder(o.output);
     if (!o.noFrames) {
       try {
-        motion->pose(drawn);
+        if (motion) motion->pose(drawn);
         // A frame's files (the scene, its OBJ and their side files) land together or not at all.
         OutputGroup files;
         PovOptions framePov = pov;
@@ -300,6 +450,9 @@ int runSimulate(SimulateOptions o) {
         return kExitIoError;
       }
     }
+    const double frameSeconds = std::chrono::duration<double>(Clock::now() - frameStarted).count();
+    if (fur) furTable += fur->row(frame, (frame - 1) * frameTime, drawn, frameSeconds);
+    if (!motion) continue;
     const dynamics::SimulationCounters& c = motion->simulation().counters();
     table += fmt::format(
         "{},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f}\n", frame,
@@ -308,14 +461,22 @@ int runSimulate(SimulateOptions o) {
         c.impulses - before.impulses, c.repulsions - before.repulsions,
         c.impactZones - before.impactZones, c.penetrations - before.penetrations,
         c.keptNear - before.keptNear, c.calamiLeft - before.calamiLeft,
-        c.calamiCrossed - before.calamiCrossed, c.calamiZoned - before.calamiZoned,
-        std::chrono::duration<double>(Clock::now() - frameStarted).count());
+        c.calamiCrossed - before.calamiCrossed, c.calamiZoned - before.calamiZoned, frameSeconds);
     before = c;
   }
-  if (const int failed = writeTable(); failed != 0) return failed;
+  if (const int failed = writeTables(); failed != 0) return failed;
   progress.clear();
-  const dynamics::SimulationCounters& c = motion->simulation().counters();
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+  if (fur) {
+    const fur::FurMeasures m = fur::measureFur(drawn);
+    std::cout << fmt::format(
+        "{} frames of fur ({} strands on {} surfaces) in {:.2f} s, {:.3f} s of it simulating: "
+        "{} droplets; at the end a mean bend of {:.3g} fur lengths, {} texels wet\n",
+        frames, m.strands, drawn.organ<FurPart>().surfaces.size(), seconds, simulating,
+        fur->droplets(), m.meanBend, m.wetTexels);
+  }
+  if (!motion) return kExitOk;
+  const dynamics::SimulationCounters& c = motion->simulation().counters();
   std::cout << fmt::format(
       "{} frames of {} feathers ({} rooted on the body) in {:.2f} s, {:.3f} s of it simulating "
       "({:.1f} frames/s): {} steps, {} retried; {} candidates, {} contacts, {} impact zones; "

@@ -1,6 +1,7 @@
 #include "simulate_options.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <fstream>
 #include <regex>
@@ -51,6 +52,38 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
   command.add_option("--gust-seed", options.gustSeed, "The gusts' seed");
   command.add_option("--drag", options.drag, "Drag per unit length per unit speed")
       ->check(finiteRange(0.0, 1e6));
+  command
+      .add_option("--drop", options.drops,
+                  "FRAME:N[:RADIUS[:WETNESS]]: N droplets on the fur at random at FRAME "
+                  "(repeatable; radius 0.05, wetness 1 unless given)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            return dropletFall(text, false) ? std::string() : "'" + text + "' is not FRAME:N[:RADIUS[:WETNESS]]";
+          },
+          "FRAME:N[:RADIUS[:WETNESS]]"));
+  command
+      .add_option("--rain", options.rain,
+                  "RATE[:RADIUS[:WETNESS]]: droplets a second on the fur at random")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            return dropletFall(text, true) ? std::string() : "'" + text + "' is not RATE[:RADIUS[:WETNESS]]";
+          },
+          "RATE[:RADIUS[:WETNESS]]"));
+  command.add_option("--dry", options.dry, "The fur dries: wetness lost a second (0.1: in 10 s)")
+      ->check(finiteRange(0.0, 1e6));
+  command.add_option("--dry-from", options.dryFrom, "The frame the drying starts at (default 1)")
+      ->check(CLI::Range(1, 1'000'000));
+  command
+      .add_option("--fur-force", options.furForce,
+                  "The force X Y Z per unit mass on every fur strand (default: the view file's "
+                  "`fur force:`)")
+      ->expected(3)
+      ->check(finiteRange(-1e6, 1e6));
+  command
+      .add_option("--fur-drag", options.furDrag,
+                  "The force per unit mass a unit of wind speed puts on a fur strand (default 1)")
+      ->check(finiteRange(0.0, 1e6));
+  command.add_option("--drop-seed", options.dropSeed, "The seed of the random droplets (default 1)");
   command.add_flag("--obj", options.obj, "Write a Wavefront OBJ of every frame too");
   command.add_flag("--no-frames", options.noFrames,
                    "Write no scenes, only simulation.csv (to measure the simulation alone)");
@@ -58,6 +91,42 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
       ->check(CLI::Range(1, 16384));
   command.add_option("--height", options.height, "The frames' height in pixels (default 600)")
       ->check(CLI::Range(1, 16384));
+}
+
+std::optional<DropletFall> dropletFall(const std::string& text, bool rain) {
+  std::vector<double> numbers;
+  std::size_t from = 0;
+  while (true) {
+    const std::size_t colon = text.find(':', from);
+    const std::string word = text.substr(from, colon == std::string::npos ? colon : colon - from);
+    if (word.empty() || word.size() > 64) return std::nullopt;
+    char* end = nullptr;
+    const double value = std::strtod(word.c_str(), &end);
+    if (end != word.c_str() + word.size() || !std::isfinite(value)) return std::nullopt;
+    numbers.push_back(value);
+    if (colon == std::string::npos) break;
+    from = colon + 1;
+  }
+  const std::size_t first = rain ? 0 : 1;  // a drop's frame comes before its count
+  if (numbers.size() < first + 1 || numbers.size() > first + 3) return std::nullopt;
+  DropletFall fall;
+  if (!rain) {
+    if (numbers[0] != std::floor(numbers[0]) || numbers[0] < 1 || numbers[0] > 1'000'000)
+      return std::nullopt;
+    fall.frame = static_cast<int>(numbers[0]);
+  }
+  fall.count = numbers[first];
+  if (fall.count < 0 || fall.count > 10'000'000) return std::nullopt;
+  if (!rain && fall.count != std::floor(fall.count)) return std::nullopt;
+  if (numbers.size() > first + 1) {
+    if (numbers[first + 1] < 1e-6 || numbers[first + 1] > 1) return std::nullopt;
+    fall.radius = static_cast<float>(numbers[first + 1]);
+  }
+  if (numbers.size() > first + 2) {
+    if (numbers[first + 2] < 0 || numbers[first + 2] > 1) return std::nullopt;
+    fall.wetness = static_cast<float>(numbers[first + 2]);
+  }
+  return fall;
 }
 
 std::optional<AnimatedDefine> animatedDefine(const std::string& text,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -28,7 +29,32 @@ struct SimulateOptions {
   std::optional<unsigned> gustSeed;
   std::optional<int> substeps, segments;
   std::string animate;  // NAME=FROM:TO: a #define of the .l moved over the frames
+  // Fur over time (docs/fur.md, "Fur over time"): droplets at given frames (FRAME:N[:RADIUS
+  // [:WETNESS]]), rain (RATE[:RADIUS[:WETNESS]], droplets a second), drying (wetness lost a
+  // second, from frame dryFrom), the strands' force per unit mass (the view file's `fur force:`)
+  // and how strongly the wind pushes them.
+  std::vector<std::string> drops;
+  std::string rain;
+  std::optional<double> dry;
+  int dryFrom = 1;
+  std::vector<double> furForce;
+  std::optional<double> furDrag;
+  std::uint32_t dropSeed = 1;
 };
+
+// Droplets falling on the fur: `count` at random at frame `frame` (rain: count a second, frame
+// 0), each of `radius` (the fur surface's [0, 1] units) and `wetness`.
+struct DropletFall {
+  int frame = 0;
+  double count = 0;
+  float radius = 0.05f;
+  float wetness = 1;
+};
+
+// `--drop FRAME:N[:RADIUS[:WETNESS]]` (rain: false) or `--rain RATE[:RADIUS[:WETNESS]]` (rain:
+// true), read; nothing when the text is not that, or a number is out of its range (frame 1 to
+// 1 000 000, N and RATE 0 to 10 000 000, RADIUS 1e-6 to 1, WETNESS 0 to 1).
+std::optional<DropletFall> dropletFall(const std::string& text, bool rain);
 
 // Adds the model's arguments and simulate's own options to `command`.
 void addSimulateOptions(CLI::App& command, SimulateOptions& options);

@@ -116,6 +116,8 @@ vector fur @/bending.l @/bending.v -o out --droplets 20 --droplet-radius 0.1 \
   --droplet-wetness 0.5 --droplet-seed 3 --no-fur --no-hairs --max-hairs 10
 vector colours @/bending.l -o out -m 2:@/feather-coat.map -M @/feather-coat.map -n 3 \
   --threads 2 --max-modules 1000 --max-vertices 100000 --max-file-bytes 4096
+vector weather @/bending.l @/bending.v -o out --drop 2:6 --drop 3:1:0.1:0.5 --rain 24:0.05 \
+  --dry 0.5 --dry-from 4 --fur-force 0 -1 0 --fur-drag 2 --drop-seed 9
 vector bad @/bending.l -o out --fps nan --frames 0 --gravity 1 2
 
 echo "fuzz: $count .l seed files; running ${targets[*]}" \

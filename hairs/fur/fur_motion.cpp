@@ -34,9 +34,15 @@ void FurMotion::reset(Scene& scene, const Scene* previousScene) {
 }
 
 bool FurMotion::step(Scene& scene, float seconds, const glm::vec3& force) {
+  seconds = std::clamp(seconds, 0.0f, 0.1f);  // a stalled frame does not throw the fur
+  return step(scene, seconds, [&force](const glm::vec3&) { return force; });
+}
+
+bool FurMotion::step(Scene& scene, float seconds,
+                     const std::function<glm::vec3(const glm::vec3&)>& forceAt) {
   FurPart& fur = scene.organ<FurPart>();
   if (velocities_.size() != fur.surfaces.size()) reset(scene);
-  seconds = std::clamp(seconds, 0.0f, 0.1f);  // a stalled frame does not throw the fur
+  seconds = std::max(seconds, 0.0f);
   const int steps = std::max(1, static_cast<int>(std::ceil(seconds / kMaxStep)));
   const float dt = seconds / static_cast<float>(steps);
   for (std::size_t s = 0; s < fur.surfaces.size(); ++s) {
@@ -45,6 +51,7 @@ bool FurMotion::step(Scene& scene, float seconds, const glm::vec3& force) {
     const FurAttributes& a = fur.attributes[static_cast<std::size_t>(surface.attributes)];
     for (std::size_t i = 0; i < surface.positions.size(); ++i) {
       const StrandRoot strand{surface.positions[i], surface.normals[i], a.length};
+      const glm::vec3 force = forceAt(surface.positions[i]);
       StrandState state{surface.tips[i], velocities_[s][i]};
       for (int k = 0; k < steps; ++k) stepStrand(strand, a.stiffness, a.mass, kDamping, force, dt, state);
       surface.tips[i] = state.tip;
@@ -65,6 +72,38 @@ bool FurMotion::moving(const Scene& scene, float speed) const {
     }
   }
   return false;
+}
+
+FurMeasures measureFur(const Scene& scene, const FurMotion* motion) {
+  const FurPart& fur = scene.organ<FurPart>();
+  FurMeasures m;
+  double bends = 0, wetness = 0;
+  for (std::size_t s = 0; s < fur.surfaces.size(); ++s) {
+    const FurSurface& surface = fur.surfaces[s];
+    if (surface.attributes < 0) continue;
+    const float length = fur.attributes[static_cast<std::size_t>(surface.attributes)].length;
+    if (!(length > 0)) continue;
+    for (std::size_t i = 0; i < surface.positions.size() && i < surface.tips.size(); ++i) {
+      const glm::vec3 rest = surface.positions[i] + length * surface.normals[i];
+      const double bend = glm::length(surface.tips[i] - rest) / length;
+      bends += bend;
+      m.largestBend = std::max(m.largestBend, bend);
+      ++m.strands;
+    }
+    if (motion != nullptr && s < motion->velocities().size()) {
+      for (const glm::vec3& v : motion->velocities()[s])
+        m.largestSpeed = std::max(m.largestSpeed, static_cast<double>(glm::length(v) / length));
+    }
+    m.texels += surface.wetness.size();
+    for (const glm::vec4& texel : surface.wetness) {
+      if (texel.w <= 0) continue;
+      ++m.wetTexels;
+      wetness += texel.w;
+    }
+  }
+  if (m.strands > 0) m.meanBend = bends / static_cast<double>(m.strands);
+  if (m.wetTexels > 0) m.meanWetness = wetness / static_cast<double>(m.wetTexels);
+  return m;
 }
 
 bool dryFur(Scene& scene, float rate, float seconds) {

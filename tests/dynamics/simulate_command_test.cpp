@@ -1,7 +1,8 @@
 // `hirsute simulate` on the shipped models: numbered POV-Ray frames and the table of what each
 // frame's steps did, no intersection left in any frame, the body of an animation carrying its
-// feathers, the wind moving awns on a still body, the same frames from the same run, and the
-// errors of a model without feathers.
+// feathers, the wind moving awns on a still body, the same frames from the same run, fur moving
+// in the wind, wetted by droplets and rain and drying, and the errors of a model without feathers
+// or fur and of bad fur options.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -129,13 +130,128 @@ TEST_F(SimulateCommand, AnAnimatedDefineMovesTheBody) {
   EXPECT_NE(wrong.text.find("--animate takes NAME=FROM:TO"), std::string::npos) << wrong.text;
 }
 
-TEST_F(SimulateCommand, AModelWithoutFeathersIsAnError) {
+TEST_F(SimulateCommand, AModelWithoutFeathersOrFurIsAnError) {
   const Output out = simulate("herb", "herb.l herb.v", "--frames 2", folder_);
   EXPECT_EQ(out.status, 2) << out.text;
-  EXPECT_NE(out.text.find("herb.l: error: the model has no feathers to simulate"),
+  EXPECT_NE(out.text.find("herb.l: error: the model has no feathers or fur to simulate"),
             std::string::npos)
       << out.text;
   EXPECT_FALSE(fs::exists(folder_ / "frame-0001.pov"));
+}
+
+// fur.csv's rows as numbers, the header left out; each row has the header's nine columns.
+std::vector<std::vector<double>> furTable(const fs::path& folder) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(readText(folder / "fur.csv"));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "frame,time,droplets,mean_bend,largest_bend,largest_speed,wet_texels,"
+                  "mean_wetness,seconds");
+  while (std::getline(in, line)) {
+    std::vector<double> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(std::stod(cell));
+    EXPECT_EQ(cells.size(), 9u) << line;
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+enum FurColumn { kFrame, kTime, kDroplets, kMeanBend, kLargestBend, kSpeed, kWetTexels, kWetness };
+
+// Fur over time (docs/fur.md, "Fur over time"): on the fur square, a wind with gusts bends the
+// strands away from rest where without wind they stay at rest; six droplets at frame 2 wet the
+// mask; drying from frame 4 makes the wet texels drier frame by frame (0.5 a second at 24 frames
+// a second); every frame has its POV-Ray scene, and the fur in the last differs from the first.
+TEST_F(SimulateCommand, FurMovesInTheWindAndDropletsWetItAndItDries) {
+  const std::string files = "square.l square.v";
+  const Output out = simulate("fur-square", files,
+                              "--frames 8 --wind 3 0 0 --gusts 1 --drop 2:6 --dry 0.5 "
+                              "--dry-from 4 --width 80 --height 60",
+                              folder_ / "windy");
+  ASSERT_EQ(out.status, 0) << out.text;
+  EXPECT_NE(out.text.find("8 frames of fur (625 strands on 1 surfaces)"), std::string::npos)
+      << out.text;
+  EXPECT_FALSE(fs::exists(folder_ / "windy" / "simulation.csv"));  // no feathers
+  const auto windy = furTable(folder_ / "windy");
+  ASSERT_EQ(windy.size(), 8u);
+  EXPECT_EQ(windy[0][kMeanBend], 0);
+  EXPECT_GT(windy[7][kMeanBend], 0.1);  // a fifth of the way to the fur's bend in this wind
+  EXPECT_EQ(windy[0][kWetTexels], 0);
+  EXPECT_EQ(windy[1][kDroplets], 6);
+  EXPECT_GT(windy[1][kWetTexels], 500);
+  EXPECT_EQ(windy[2][kWetness], 1);  // not yet drying
+  for (std::size_t k = 3; k < 8; ++k) {
+    EXPECT_NEAR(windy[k][kWetness], windy[k - 1][kWetness] - 0.5 / 24, 1e-4) << "frame " << k + 1;
+  }
+  EXPECT_NE(readText(folder_ / "windy" / "frame-0001.pov"),
+            readText(folder_ / "windy" / "frame-0008.pov"));
+
+  ASSERT_EQ(simulate("fur-square", files, "--frames 8 --no-frames", folder_ / "still").status, 0);
+  const auto still = furTable(folder_ / "still");
+  ASSERT_EQ(still.size(), 8u);
+  EXPECT_LT(still[7][kMeanBend], 1e-3);
+  EXPECT_EQ(still[7][kWetTexels], 0);
+  EXPECT_FALSE(fs::exists(folder_ / "still" / "frame-0001.pov"));
+}
+
+// Rain: droplets a second at random, the frame time's share each frame (48 a second over 7
+// frame times at 24 frames a second: 14), the same for the same seed and elsewhere for another.
+TEST_F(SimulateCommand, RainFallsAtItsRateAndTheSeedPlacesIt) {
+  const std::string files = "square.l square.v";
+  auto wet = [&](const std::string& options, const std::string& name) {
+    const Output out = simulate("fur-square", files, "--frames 8 --no-frames " + options,
+                                folder_ / name);
+    EXPECT_EQ(out.status, 0) << out.text;
+    return furTable(folder_ / name);
+  };
+  const auto rain = wet("--rain 48:0.03", "rain");
+  double fallen = 0;
+  for (const auto& row : rain) fallen += row[kDroplets];
+  EXPECT_EQ(fallen, 14);
+  EXPECT_EQ(rain[0][kDroplets], 0);
+  const auto again = wet("--rain 48:0.03", "again");
+  const auto other = wet("--rain 48:0.03 --drop-seed 5", "other");
+  EXPECT_EQ(again.back()[kWetTexels], rain.back()[kWetTexels]);
+  EXPECT_NE(other.back()[kWetTexels], rain.back()[kWetTexels]);
+}
+
+// A body that moves (the square's side from 4 to 5, rounded: it grows at frame 4) carries its
+// fur: the wet patches of frame 1 stay wet and keep drying, and the roots' jump drags the tips
+// behind them.
+TEST_F(SimulateCommand, AMovingBodyCarriesItsFurAndItsWetness) {
+  const Output out = simulate("fur-square", "square.l square.v",
+                              "--frames 6 --animate SIDE=4:5 --drop 1:4 --dry 1 --no-frames",
+                              folder_);
+  ASSERT_EQ(out.status, 0) << out.text;
+  const auto rows = furTable(folder_);
+  ASSERT_EQ(rows.size(), 6u);
+  EXPECT_GT(rows[0][kWetTexels], 500);
+  for (std::size_t k = 1; k < 6; ++k) {
+    EXPECT_EQ(rows[k][kWetTexels], rows[0][kWetTexels]) << "frame " << k + 1;
+    EXPECT_NEAR(rows[k][kWetness], 1 - k / 24.0, 1e-4) << "frame " << k + 1;
+  }
+  EXPECT_LT(rows[2][kMeanBend], 1e-3);  // still, and no wind
+  EXPECT_GT(rows[3][kMeanBend], 0.5);   // the body grew under the fur
+}
+
+// Bad droplet and drying options end the run with exit code 2 before any frame, and so do
+// droplets past what a run may blend.
+TEST_F(SimulateCommand, BadFurOptionsAreBadInput) {
+  for (const char* options : {"--drop 2", "--drop 0:5", "--drop 2:-1", "--drop 2:5:0", "--drop 2:5:0.1:2",
+                              "--drop 2.5:1", "--drop 2:nan", "--rain x", "--rain 5:0.1:1:1",
+                              "--dry -1", "--dry-from 0", "--fur-force 1 2", "--fur-drag inf"}) {
+    const Output out =
+        simulate("fur-square", "square.l square.v", std::string("--frames 2 ") + options, folder_);
+    EXPECT_EQ(out.status, 2) << options << ": " << out.text;
+    EXPECT_FALSE(fs::exists(folder_ / "frame-0001.pov")) << options;
+  }
+  const Output flood = simulate("fur-square", "square.l square.v",
+                                "--frames 100 --rain 10000000:1 --no-frames", folder_);
+  EXPECT_EQ(flood.status, 2) << flood.text;
+  EXPECT_NE(flood.text.find("square.l: error: the run's droplets (--drop, --rain"),
+            std::string::npos)
+      << flood.text;
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -31,12 +32,31 @@ class FurMotion {
   // whether a particle still moves.
   bool step(Scene& fur, float seconds, const glm::vec3& force);
 
+  // The same with a force that varies over the fur (wind and gusts): `forceAt` gives the force
+  // per unit mass on the strand rooted at a point, evaluated once per call for each strand.
+  // `seconds` is taken whole, in sub-steps of at most kMaxStep.
+  bool step(Scene& fur, float seconds, const std::function<glm::vec3(const glm::vec3&)>& forceAt);
+
   // Whether any particle moves faster than `speed` fur lengths per second.
   bool moving(const Scene& fur, float speed = 1e-3f) const;
+
+  // Each particle's velocity, per surface, per vertex (empty before the first reset or step).
+  const std::vector<std::vector<glm::vec3>>& velocities() const { return velocities_; }
 
  private:
   std::vector<std::vector<glm::vec3>> velocities_;  // per surface, per vertex
 };
+
+// How far the fur is from rest and how wet it is, over all its strands and masks.
+struct FurMeasures {
+  std::size_t strands = 0;  // particles: one per surface vertex
+  // Each tip's distance from its rest tip (root + length · normal), in fur lengths.
+  double meanBend = 0, largestBend = 0;
+  double largestSpeed = 0;  // fur lengths per second (0 before any step)
+  std::size_t texels = 0, wetTexels = 0;  // of the masks that exist
+  double meanWetness = 0;                 // over the wet texels
+};
+FurMeasures measureFur(const Scene& fur, const FurMotion* motion = nullptr);
 
 // The wetness falls by `rate` per second: a fur drying over 1 / rate seconds. Returns whether any
 // texel is still wet.
