@@ -37,5 +37,6 @@ void registerExportCommand(CLI::App& app, Action& action);
 void registerViewCommand(CLI::App& app, Action& action);
 void registerBenchCommand(CLI::App& app, Action& action);
 void registerSimulateCommand(CLI::App& app, Action& action);
+void registerFeatherScanCommand(CLI::App& app, Action& action);
 
 }  // namespace hirsute::cli
