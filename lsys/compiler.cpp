@@ -1,6 +1,7 @@
 // Compiles the syntax tree into a Program: resolves names to frame or shared slots, checks
 // calls against the built-ins, evaluates the constant header items, and turns every block,
 // condition and successor into stack code.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -118,6 +119,9 @@ class Compiler {
   void compileStore(const std::string& name, const SourceLocation& where, const Scope& scope, Builder& b);
   void compileBlock(const ast::Block& block, const Scope& scope, Builder& b);
   void compileStmt(const ast::Stmt& s, const Scope& scope, Builder& b);
+  // Before the loop `s`: each math built-in the loop calls on arguments it never changes, computed
+  // once into a slot of the frame that the loop then reads (hoisted_). Returns the calls hoisted.
+  std::vector<const ast::Expr*> hoistInvariantCalls(const ast::Stmt& s, const Scope& scope, Builder& b);
   int arrayId(const std::string& name, const SourceLocation& where, const Scope& scope, std::size_t subscripts);
   Code finish(Builder& b) {
     if (b.code.maxStack > program_.maxStack) program_.maxStack = b.code.maxStack;
@@ -148,6 +152,8 @@ class Compiler {
   Program& program_;
   Diagnostics& diagnostics_;
   NameMap globals_;
+  // Calls computed before the loop that holds them: the frame slot with their value.
+  std::unordered_map<const ast::Expr*, int> hoisted_;
   double arrayCells_ = 0;  // elements of all arrays declared so far
 };
 
@@ -359,9 +365,81 @@ void Compiler::compileExpr(const ast::Expr& e, const Scope& scope, Builder& b) {
       return;
     }
     case K::Call:
+      if (auto it = hoisted_.find(&e); it != hoisted_.end()) {
+        b.emit(Op::LoadLocal, 0, it->second, location(e.where));
+        return;
+      }
       compileCall(e, scope, b);
       return;
   }
+}
+
+std::vector<const ast::Expr*> Compiler::hoistInvariantCalls(const ast::Stmt& loop,
+                                                            const Scope& scope, Builder& b) {
+  std::vector<const ast::Expr*> calls;
+  if (!scope.locals || !scope.slotNames) return calls;  // header blocks have no frame
+  std::vector<std::string> changed;
+  collectAssigned(loop.body, changed);
+  collectScanned(loop.value.get(), changed);
+  // A value the loop cannot change, computed without a warning or an effect: numbers, variables
+  // that exist and that it never assigns, operators, and math built-ins of such values.
+  std::function<bool(const ast::Expr&)> invariant = [&](const ast::Expr& e) {
+    using K = ast::Expr::Kind;
+    switch (e.kind) {
+      case K::Number:
+        return true;
+      case K::Variable:
+        return std::find(changed.begin(), changed.end(), e.name) == changed.end() &&
+               (scope.locals->count(e.name) || scope.shared->count(e.name) || globals_.count(e.name));
+      case K::Unary:
+        if (e.unaryOp == ast::UnaryOp::AddressOf) return false;
+        [[fallthrough]];
+      case K::Binary:
+      case K::Conditional:
+        return std::all_of(e.operands.begin(), e.operands.end(),
+                           [&](const ast::ExprPtr& o) { return invariant(*o); });
+      case K::Call: {
+        const BuiltinInfo* info = findBuiltin(e.name);
+        const int count = static_cast<int>(e.operands.size());
+        return info && isMathBuiltin(info->id) && count >= info->minArguments &&
+               count <= info->maxArguments &&
+               std::all_of(e.operands.begin(), e.operands.end(),
+                           [&](const ast::ExprPtr& o) { return invariant(*o); });
+      }
+      default:
+        return false;
+    }
+  };
+  // The outermost such calls, wherever the loop evaluates an expression.
+  std::function<void(const ast::Expr*)> find = [&](const ast::Expr* e) {
+    if (!e) return;
+    if (e->kind == ast::Expr::Kind::Call && !hoisted_.count(e) && invariant(*e)) {
+      calls.push_back(e);
+      return;
+    }
+    for (const auto& o : e->operands) find(o.get());
+  };
+  std::function<void(const ast::Block&)> findIn = [&](const ast::Block& block) {
+    for (const auto& st : block) {
+      find(st->value.get());
+      for (const auto& subscript : st->subscripts) find(subscript.get());
+      findIn(st->body);
+      findIn(st->otherwise);
+    }
+  };
+  find(loop.value.get());
+  findIn(loop.body);
+  for (const ast::Expr* call : calls) {
+    const int slot = static_cast<int>(scope.slotNames->size());
+    // A name no model can write, so no variable of the model shares the slot.
+    std::string name = "\x01hoisted ";
+    name += std::to_string(slot);
+    scope.slotNames->push_back(std::move(name));
+    compileCall(*call, scope, b);
+    b.emit(Op::StoreLocal, 0, slot, location(call->where));
+    hoisted_.emplace(call, slot);
+  }
+  return calls;
 }
 
 void Compiler::compileCall(const ast::Expr& e, const Scope& scope, Builder& b) {
@@ -453,6 +531,7 @@ void Compiler::compileStmt(const ast::Stmt& s, const Scope& scope, Builder& b) {
       return;
     }
     case K::While: {
+      const std::vector<const ast::Expr*> hoisted = hoistInvariantCalls(s, scope, b);
       int top = b.here();
       compileExpr(*s.value, scope, b);
       int test = b.here();
@@ -460,9 +539,11 @@ void Compiler::compileStmt(const ast::Stmt& s, const Scope& scope, Builder& b) {
       compileBlock(s.body, scope, b);
       b.emit(Op::LoopBack, 0, top, loc);
       b.patch(test, b.here());
+      for (const ast::Expr* call : hoisted) hoisted_.erase(call);
       return;
     }
     case K::DoWhile: {
+      const std::vector<const ast::Expr*> hoisted = hoistInvariantCalls(s, scope, b);
       int top = b.here();
       compileBlock(s.body, scope, b);
       compileExpr(*s.value, scope, b);
@@ -470,6 +551,7 @@ void Compiler::compileStmt(const ast::Stmt& s, const Scope& scope, Builder& b) {
       b.emit(Op::JumpIfFalse, 0, 0, loc);
       b.emit(Op::LoopBack, 0, top, loc);
       b.patch(test, b.here());
+      for (const ast::Expr* call : hoisted) hoisted_.erase(call);
       return;
     }
     case K::Arrays:

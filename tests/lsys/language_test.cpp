@@ -106,6 +106,35 @@ TEST_P(FixtureModel, DerivesTheExpectedString) {
 INSTANTIATE_TEST_SUITE_P(Lsys, FixtureModel, ::testing::ValuesIn(fixtureNames()),
                          [](const auto& info) { return info.param; });
 
+// A math built-in that a loop calls on a value the loop never changes is computed once before
+// it (hoisted.l): P's cos(x) comes before its loop, its sin(i x) stays inside; Q, whose loop
+// assigns x, computes nothing before its loop. Both give the same values (hoisted.expected).
+TEST(Blocks, LoopInvariantCallsAreComputedBeforeTheLoop) {
+  Diagnostics diagnostics;
+  const Model model = loadModel(fixtures() / "hoisted.l", std::nullopt, diagnostics);
+  const auto& productions = model.program.lsystems.front().productions.productions;
+  ASSERT_EQ(productions.size(), 2u);
+  // Calls before the loop's top (the LoopBack's target) and within it.
+  auto calls = [](const Code& code) {
+    int top = -1;
+    for (const Instruction& in : code.instructions)
+      if (in.op == Op::LoopBack) top = in.operand;
+    std::pair<int, int> count{0, 0};
+    for (std::size_t i = 0; i < code.instructions.size(); ++i) {
+      const Op op = code.instructions[i].op;
+      const bool call = op == Op::Call || op == Op::CallSin || op == Op::CallCos ||
+                        op == Op::CallSqrt || op == Op::CallFabs || op == Op::CallExp ||
+                        op == Op::CallLog;
+      if (!call) continue;
+      (static_cast<int>(i) < top ? count.first : count.second) += 1;
+    }
+    return count;
+  };
+  EXPECT_EQ(calls(productions[0].before), std::make_pair(1, 1));  // cos before, sin inside
+  EXPECT_EQ(calls(productions[1].before), std::make_pair(0, 2));
+  EXPECT_GT(productions[0].frameSize, productions[1].frameSize);  // the slot of cos(x)
+}
+
 TEST(Stochastic, WeightsAreNormalisedByTheirSum) {
   std::string text = derive(fixtures() / "stochastic.l", false).text;
   double b = static_cast<double>(std::count(text.begin(), text.end(), 'B'));

@@ -39,9 +39,12 @@ struct DerivationOptions {
   // module: a step that mostly copies modules gains nothing from threads and spends memory on the
   // parts. Steps in parts that take as long a module as one thread did make the next step run
   // alone, to measure it again, and after three in a row every step. Tests set both to 0 to split
-  // every step that may be.
+  // every step that may be. 60 ns: a block of a few math calls a module (models/bench/fourier.l,
+  // about 140 ns) gains 1.7x on two cores; steps that mostly copy and match contexts (about 7 ns
+  // a module: leaves.l, signal.l) gain too little over the threads' start and the parts' copy for
+  // the measurement to tell them from noise.
   std::size_t parallelMinimumModules = 16384;
-  double parallelMinimumCost = 150;
+  double parallelMinimumCost = 60;
 };
 
 class Derivation {
