@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <ostream>
 #include <random>
 #include <string>
 
@@ -146,6 +147,7 @@ double lengthAt(const Vane& vane, double rp) {
 struct Case {
   const char* name;
   double tilt;
+  friend void PrintTo(const Case& c, std::ostream* os) { *os << c.name << " turned " << c.tilt; }
 };
 
 class FeatherScanOfType : public ::testing::TestWithParam<Case> {};
