@@ -56,6 +56,8 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   addThreadsOption(command, o.threads);
   command.add_option("--max-vertices", o.maxVertices,
                      "More vertices in the geometry are an error (default 100000000)");
+  command.add_option("--max-mesh-triangles", o.maxMeshTriangles,
+                     "A mesh surface of more triangles is an error (default 2000000)");
   command.add_option("--hair-seed", o.placementSeed,
                      "Seed of hair placement (default: the view file's `hair texture:` seed)");
   const std::span<const OrganStage* const> stages = organStages();
@@ -130,7 +132,8 @@ ColorFiles colorFilesFor(const ModelOptions& o, Diagnostics& diagnostics) {
 ModelResources loadResources(const ModelOptions& o, Diagnostics& diagnostics) {
   std::optional<std::filesystem::path> view;
   if (!o.viewFile.empty()) view = o.viewFile;
-  return loadModelResources(view, colorFilesFor(o, diagnostics), diagnostics);
+  return loadModelResources(view, colorFilesFor(o, diagnostics), diagnostics,
+                            o.maxMeshTriangles);
 }
 
 Model loadLsystem(const ModelOptions& o, Diagnostics& diagnostics) {

@@ -37,6 +37,7 @@ struct ModelOptions {
   std::size_t maxSourceBytes = kDefaultMaxSourceBytes;               // --max-source-bytes
   int threads = 0;  // --threads: of the derivation (0: one a core)
   std::size_t maxVertices = kDefaultMaxVertices;
+  std::size_t maxMeshTriangles = kDefaultMaxMeshTriangles;  // --max-mesh-triangles
   std::uint64_t placementSeed = 0;       // --hair-seed; 0: the view file's `hair texture:` seed
   OrganOptionsSet organs;                // each organ's own options (organ_stage.h)
   bool verbose = false;                  // -v: counts and times on stderr

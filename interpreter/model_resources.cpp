@@ -105,7 +105,8 @@ void loadContours(ModelResources& resources, Diagnostics& diagnostics) {
   }
 }
 
-void loadSurfaces(ModelResources& resources, Diagnostics& diagnostics) {
+void loadSurfaces(ModelResources& resources, std::size_t maxMeshTriangles,
+                  Diagnostics& diagnostics) {
   for (const SurfaceDeclaration& declaration : resources.view.surfaces) {
     const std::string name = writtenName(declaration.file, resources.folder);
     const std::string id(1, declaration.id);
@@ -116,11 +117,21 @@ void loadSurfaces(ModelResources& resources, Diagnostics& diagnostics) {
       continue;
     }
     Surface surface;
+    const bool mesh = isMeshFile(declaration.file);
     try {
-      surface = loadSurface(declaration.file);
+      if (mesh) {
+        surface.file = declaration.file;
+        surface.mesh = std::make_shared<const SurfaceMeshData>(
+            loadMeshFile(declaration.file, resources.folder, maxMeshTriangles, diagnostics));
+      } else {
+        surface = loadSurface(declaration.file);
+      }
     } catch (const DiagnosticError& error) {
+      // A mesh's own errors name the mesh file (its line where it has lines): the view file's
+      // line is where the user looks first, so it is named too.
       rethrowAtViewLine(declaration.where, "surface", name, error);
     }
+
     surface.id = declaration.id;
     surface.viewSize = declaration.size;
     if (declaration.sPrecision > 0) surface.sPrecision = declaration.sPrecision;
@@ -160,7 +171,8 @@ void loadBackgroundScenes(ModelResources& resources, Diagnostics& diagnostics) {
 }  // namespace
 
 ModelResources loadModelResources(const std::optional<std::filesystem::path>& viewFile,
-                                  const ColorFiles& colors, Diagnostics& diagnostics) {
+                                  const ColorFiles& colors, Diagnostics& diagnostics,
+                                  std::size_t maxMeshTriangles) {
   ModelResources resources;
   if (viewFile) {
     resources.folder = viewFile->parent_path();
@@ -172,7 +184,7 @@ ModelResources loadModelResources(const std::optional<std::filesystem::path>& vi
   loadPalette(resources, colors, diagnostics);
   loadTextures(resources, diagnostics);
   loadContours(resources, diagnostics);
-  loadSurfaces(resources, diagnostics);
+  loadSurfaces(resources, maxMeshTriangles, diagnostics);
   loadBackgroundScenes(resources, diagnostics);
   return resources;
 }

@@ -64,9 +64,59 @@ glm::dvec3 placeSurfacePoint(const Surface& surface, const SurfacePlacement& pla
   return placement.position + placementMatrix(surface, placement) * (point - surface.contact);
 }
 
+namespace {
+
+// A mesh file's triangles placed like a patch's points; normals by the inverse transpose of the
+// placement, so that a mesh's outside stays its outside under a mirroring scale (its triangles are
+// then turned over). One organ record covers the whole mesh.
+std::size_t appendMesh(Scene& scene, const Surface& surface, const SurfacePlacement& placement,
+                       const SurfaceAppearance& appearance, const OrganAttributeIndices& organs) {
+  const SurfaceMeshData& data = *surface.mesh;
+  const glm::dmat3 m = placementMatrix(surface, placement);
+  const glm::dmat3 normalMatrix =
+      glm::determinant(m) != 0.0 ? glm::transpose(glm::inverse(m)) : glm::dmat3(1.0);
+  TriangleMesh& mesh = scene.meshFor(appearance.material(0), appearance.texture);
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  const auto firstIndex = static_cast<std::uint32_t>(mesh.indices.size());
+  for (std::size_t v = 0; v < data.positions.size(); ++v) {
+    mesh.positions.push_back(
+        glm::vec3(placement.position + m * (data.positions[v] - surface.contact)));
+    const glm::dvec3 normal = normalMatrix * data.normals[v];
+    mesh.normals.push_back(glm::dot(normal, normal) > 0 ? glm::vec3(glm::normalize(normal))
+                                                        : glm::vec3(0, 0, 1));
+    if (mesh.texture >= 0) mesh.texcoords.push_back(data.uv[v]);
+  }
+  // A mirroring scale turns the triangles over: their order is reversed to stay counter-clockwise
+  // about the placed normals.
+  const bool mirrored = glm::determinant(m) < 0.0;
+  for (std::size_t t = 0; t + 2 < data.indices.size(); t += 3) {
+    const std::uint32_t a = data.indices[t], b = data.indices[t + 1], c = data.indices[t + 2];
+    if (mirrored) {
+      mesh.indices.insert(mesh.indices.end(), {base + a, base + c, base + b});
+    } else {
+      mesh.indices.insert(mesh.indices.end(), {base + a, base + b, base + c});
+    }
+  }
+  if (!(organs == OrganAttributeIndices{})) {
+    OrganSurface record;
+    record.kind = OrganSurfaceKind::Mesh;
+    record.mesh = static_cast<int>(&mesh - scene.meshes.data());
+    record.firstVertex = base;
+    record.firstIndex = firstIndex;
+    record.indexCount = static_cast<std::uint32_t>(mesh.indices.size()) - firstIndex;
+    record.uv = data.uv;
+    record.organs = organs;
+    scene.organSurfaces.push_back(std::move(record));
+  }
+  return data.triangles();
+}
+
+}  // namespace
+
 std::size_t appendSurface(Scene& scene, const Surface& surface, const SurfacePlacement& placement,
                           const SurfaceAppearance& appearance,
                           const OrganAttributeIndices& organs) {
+  if (surface.mesh) return appendMesh(scene, surface, placement, appearance, organs);
   const bool organsSet = !(organs == OrganAttributeIndices{});
   const glm::dmat3 m = placementMatrix(surface, placement);
   const int sSteps = std::max(1, surface.sPrecision), tSteps = std::max(1, surface.tPrecision);

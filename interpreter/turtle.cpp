@@ -710,8 +710,9 @@ void Turtle::closePolygon() {
 void Turtle::drawSurface(char id, const float* p, std::size_t count) {
   const auto found = resources_.surfaces.find(id);
   if (found == resources_.surfaces.end()) {
-    warnOnce(std::string("~") + id,
-             std::string("~") + id + ": the view file declares no surface '" + id + "'");
+    std::string key = "~";
+    key += id;
+    warnOnce(key, fmt::format("{}: the view file declares no surface '{}'", key, id));
     return;
   }
   const Surface& surface = found->second;
@@ -743,9 +744,17 @@ void Turtle::drawSurface(char id, const float* p, std::size_t count) {
     }
     // A surface's tessellation is counted before it is built: PRECISION S: 1000 T: 1000 makes
     // a million vertices a patch.
-    const std::size_t vertices = surface.patches.size() *
-                                 (static_cast<std::size_t>(std::max(1, surface.sPrecision)) + 1) *
-                                 (static_cast<std::size_t>(std::max(1, surface.tPrecision)) + 1);
+    const std::size_t vertices =
+        surface.mesh ? surface.mesh->positions.size()
+                     : surface.patches.size() *
+                           (static_cast<std::size_t>(std::max(1, surface.sPrecision)) + 1) *
+                           (static_cast<std::size_t>(std::max(1, surface.tPrecision)) + 1);
+    if (surface.mesh && (vertices > maxVertices_ || scene_->vertexCount() > maxVertices_ - vertices)) {
+      throw GeometryLimitError(fmt::format(
+          "surface ~{} (a mesh of {} vertices) would grow the geometry past {} vertices (raise "
+          "the limit with --max-vertices)",
+          surface.id, vertices, maxVertices_));
+    }
     if (vertices > maxVertices_ || scene_->vertexCount() > maxVertices_ - vertices) {
       throw GeometryLimitError(fmt::format(
           "surface ~{} ({} patches at precision {} × {}) would grow the geometry past {} vertices "

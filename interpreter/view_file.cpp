@@ -31,6 +31,7 @@
 
 #include "hirsute/core/model_folder.h"
 #include "hirsute/interpreter/contour.h"
+#include "hirsute/interpreter/mesh_file.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/view_lines.h"
 #include "hirsute/lsys/view_file_lines.h"
@@ -592,7 +593,8 @@ void contour(ViewLine& c) {
 }
 
 // `surface: X file.s size [s_prec t_prec] [texture]`. cpfg reads a texture id; the manual names
-// a texture file there, which Hirsute also accepts (it becomes the next texture).
+// a texture file there, which Hirsute also accepts (it becomes the next texture). A mesh file
+// takes no precisions: `surface: X file.obj size [texture]`.
 void surface(ViewLine& c) {
   SurfaceDeclaration surface;
   const SourceLocation idAt = c.args.here();
@@ -604,7 +606,9 @@ void surface(ViewLine& c) {
   surface.where = c.args.here();
   surface.file = c.resolve(c.requiredWord("a surface file name"), surface.where);
   surface.size = static_cast<float>(c.requiredNumber("the surface's size"));
-  if (!c.args.atEnd() && integerAtFront(c.args.peekWord())) {
+  // A mesh (mesh_file.h) has no precisions: `surface: X file.obj size [texture]`.
+  const bool mesh = isMeshFile(surface.file);
+  if (!mesh && !c.args.atEnd() && integerAtFront(c.args.peekWord())) {
     const SourceLocation precisionAt = c.args.here();
     surface.sPrecision = static_cast<int>(c.requiredInteger("the s precision", 0, 1000));
     if (c.args.atEnd()) {

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <string>
 
+#include "hirsute/hairs/placement/patch_unfolding.h"
 #include "hirsute/hairs/placement/placement_random.h"
 #include "hirsute/hairs/placement/segment_unfolding.h"
 #include "hirsute/hairs/placement/surface_sampler.h"
@@ -35,6 +36,7 @@ struct CoatPlacer {
   std::vector<float> order;
 
   void segment(std::size_t index, SurfaceSampler& sampler);
+  void surface(std::size_t index);
 };
 
 // The key feather's two types and its blend at girth position s (@Fk(k1, k2, fun)).
@@ -169,6 +171,37 @@ void CoatPlacer::segment(std::size_t index, SurfaceSampler& sampler) {
   }
 }
 
+// A mesh surface's coat (OrganSurfaceKind::Mesh, docs/meshes.md): follicles over its area
+// (SurfaceSampler::sampleMesh), each feather lying along the direction in which the mesh's v
+// grows (its flow), the key feather blended across u by its function as around a girth; the
+// coat is drawn from low v to high.
+void CoatPlacer::surface(std::size_t index) {
+  const OrganSurface& record = scene.organSurfaces[index];
+  const int attributes = record.organs.of<FeatherAttributes>();
+  if (record.kind != OrganSurfaceKind::Mesh || attributes < 0 ||
+      static_cast<std::size_t>(attributes) >= scene.organ<FeatherPart>().attributes.size() ||
+      record.mesh < 0 || record.indexCount < 3) {
+    return;
+  }
+  const FeatherAttributes& coat = scene.organ<FeatherPart>().attributes[static_cast<std::size_t>(attributes)];
+  const PatchUnfolding unfolding(record, scene.meshes[static_cast<std::size_t>(record.mesh)]);
+  bool any = false;
+  for (FeatherSide side : {FeatherSide::Front, FeatherSide::Back}) {
+    if (!coat.side(side).enabled) continue;
+    const SideValues values(coat.side(side), coat.side(side), settings.function);
+    SideCoat sideCoat(*this, values, coat.key, coat.key, 0.0f, 1.0f);
+    if (!(sideCoat.maxDensity() > 0)) continue;
+    any = true;
+    const std::uint64_t key = placementKey(
+        settings.seed,
+        placementKey(0x6d65736800000000u + index, 0x66656100u + static_cast<std::uint64_t>(side)));
+    SurfaceSampler::sampleMesh(unfolding, side == FeatherSide::Back ? SurfaceFace::Back
+                                                                     : SurfaceFace::Front,
+                               sideCoat.maxDensity(), key, sideCoat);
+  }
+  if (any) ++report.surfaces;
+}
+
 }  // namespace
 
 std::vector<TexturePoint> hexagonalFollicles(int columns, int rows) {
@@ -203,6 +236,10 @@ FeatherCoatReport placeFeatherCoats(Scene& scene, const FeatherCoatSettings& set
   if (settings.progress) settings.progress->begin("placing feather coats", Progress::Unit::Count);
   for (std::size_t i = 0; i < scene.cylinderSegments.size(); ++i) {
     placer.segment(i, sampler);
+    if (settings.progress) settings.progress->update(static_cast<double>(placer.report.feathers));
+  }
+  for (std::size_t i = 0; i < scene.organSurfaces.size(); ++i) {
+    placer.surface(i);
     if (settings.progress) settings.progress->update(static_cast<double>(placer.report.feathers));
   }
 

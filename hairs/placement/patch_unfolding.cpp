@@ -18,7 +18,30 @@ PatchUnfolding::PatchUnfolding(const OrganSurface& surface, const TriangleMesh& 
     high = glm::max(high, uv);
   }
   span_ = glm::max(high - low_, glm::vec2(1e-30f));
-  if (surface.kind == OrganSurfaceKind::BicubicPatch) {
+  if (surface.kind == OrganSurfaceKind::Mesh) {
+    // A mesh's atlas may pinch whole rows of (u, v) into a point (a sphere's poles), where a fit
+    // over edges would follow the few pinched triangles: the scales are the root mean squares of
+    // the triangles' ∂P/∂u and ∂P/∂v over the atlas, each triangle weighted by its (u, v) area.
+    double su = 0, sv = 0, weight = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t i0 = corner(i, 0), i1 = corner(i, 1), i2 = corner(i, 2);
+      const glm::dvec2 d1 = glm::dvec2(surface.uv[i1] - surface.uv[i0]);
+      const glm::dvec2 d2 = glm::dvec2(surface.uv[i2] - surface.uv[i0]);
+      const double det = d1.x * d2.y - d1.y * d2.x;
+      if (det == 0) continue;
+      const glm::dvec3 e1 = glm::dvec3(position(i1) - position(i0));
+      const glm::dvec3 e2 = glm::dvec3(position(i2) - position(i0));
+      const glm::dvec3 dU = (d2.y * e1 - d1.y * e2) / det, dV = (-d2.x * e1 + d1.x * e2) / det;
+      const double w = 0.5 * std::abs(det);
+      su += w * glm::dot(dU, dU);
+      sv += w * glm::dot(dV, dV);
+      weight += w;
+    }
+    if (weight > 0 && su > 0 && sv > 0) {
+      scale_ = glm::vec2(static_cast<float>(std::sqrt(su / weight)),
+                         static_cast<float>(std::sqrt(sv / weight)));
+    }
+  } else if (surface.kind != OrganSurfaceKind::Polygon) {
     // The scales for which the triangles' edges have, in the least-squares sense, their world
     // lengths: |e|² ≈ Lu²·Δu² + Lv²·Δv² over every edge, solved for Lu² and Lv².
     double a = 0, b = 0, c = 0, ru = 0, rv = 0;

@@ -2,6 +2,8 @@
 // (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.1, 3.2 and 4.4; DESIGN.md, "Organs").
 #include "hirsute/hairs/placement/surface_sampler.h"
 
+#include "hirsute/hairs/placement/mesh_sampling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -362,6 +364,50 @@ void SurfaceSampler::samplePatch(const PatchUnfolding& unfolding, SurfaceFace fa
         }
       }
     }
+  }
+}
+
+void SurfaceSampler::sampleMesh(const PatchUnfolding& unfolding, SurfaceFace face,
+                                 float maxDensity, std::uint64_t key,
+                                 AttachmentVisitor& visitor) {
+  if (!(maxDensity > 0.0f)) return;
+  const double expected = static_cast<double>(maxDensity) * unfolding.area();
+  visitor.expectPoints(expected);
+  if (!(expected >= 0.5) || !std::isfinite(expected)) return;
+  const float flip = face == SurfaceFace::Back ? -1.0f : 1.0f;
+  const std::vector<SurfaceSample> samples =
+      sampleSurfaceArea(unfolding, static_cast<std::size_t>(std::llround(expected)),
+                        placementKey(key, face == SurfaceFace::Back ? 2u : 1u));
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const SurfaceSample& sample = samples[k];
+    const glm::vec3 h = unfolding.heightVector(sample.triangle);
+    const float w[3] = {1.0f - sample.b1 - sample.b2, sample.b1, sample.b2};
+    AttachmentPoint candidate;
+    glm::vec2 at(0.0f);
+    std::uint32_t vertex[3];
+    for (int c = 0; c < 3; ++c) {
+      vertex[c] = unfolding.corner(sample.triangle, c);
+      at += w[c] * unfolding.normalized(vertex[c]);
+    }
+    candidate.s = at.x;
+    candidate.tau = at.y;
+    candidate.girthRatio = 1.0f;
+    candidate.random = PlacementRandom(placementKey(key, k));
+    visitor.pointTested();
+    if (!visitor.keep(candidate)) continue;
+    AttachmentFrame frame;
+    for (int c = 0; c < 3; ++c) {
+      const glm::vec2 where = unfolding.normalized(vertex[c]);
+      const CornerAngles angles = visitor.cornerAngles(where.x, where.y);
+      const glm::vec3 n = normalizedOr(flip * unfolding.normal(vertex[c]), anyPerpendicular(h));
+      const CornerVectors corner = reorient(n, normalizedOr(h, anyPerpendicular(n)),
+                                            angles.incline, angles.wrap);
+      frame.position += w[c] * unfolding.position(vertex[c]);
+      frame.direction += w[c] * corner.direction;
+      frame.across += w[c] * corner.across;
+      frame.twist += w[c] * angles.twist;
+    }
+    visitor.place(candidate, frame);
   }
 }
 

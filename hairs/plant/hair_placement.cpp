@@ -252,8 +252,12 @@ void Placer::surface(std::size_t index) {
     SideHairs hairs(*this, values, side);
     const std::uint64_t sideKey = placementKey(
         settings.seed, placementKey(0x7375726661636500u + index, static_cast<std::uint64_t>(side)));
-    sampler.samplePatch(unfolding, side == HairSide::Back ? SurfaceFace::Back : SurfaceFace::Front,
-                        hairs.maxDensity(), sideKey, hairs);
+    const SurfaceFace face = side == HairSide::Back ? SurfaceFace::Back : SurfaceFace::Front;
+    if (record.kind == OrganSurfaceKind::Mesh) {
+      SurfaceSampler::sampleMesh(unfolding, face, hairs.maxDensity(), sideKey, hairs);
+    } else {
+      sampler.samplePatch(unfolding, face, hairs.maxDensity(), sideKey, hairs);
+    }
   }
 }
 

@@ -75,7 +75,7 @@ std::vector<SurfacePoint> surfaceCoordinates(const Scene& scene, int m, float& a
     // Its length in world units: a polygon's (u, v) are world distances already; a patch's
     // scale is the mean of world over parameter length along its edges.
     float length = extent.y;
-    if (surface.kind == OrganSurfaceKind::BicubicPatch) {
+    if (surface.kind != OrganSurfaceKind::Polygon) {
       float sum = 0;
       int edges = 0;
       for (std::uint32_t i = 0; i + 1 < surface.indexCount; ++i) {

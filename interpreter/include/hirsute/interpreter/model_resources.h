@@ -42,9 +42,11 @@ struct ModelResources {
 inline constexpr int kMaxColorBanks = 12;
 
 // Reads the view file (through the preprocessor) and every file it and `colors` name.
-// Without a colour file, a default palette is used. Throws DiagnosticError (file:line).
+// Without a colour file, a default palette is used; a mesh surface of more than
+// `maxMeshTriangles` triangles is refused. Throws DiagnosticError (file:line).
 ModelResources loadModelResources(const std::optional<std::filesystem::path>& viewFile,
-                                  const ColorFiles& colors, Diagnostics& diagnostics);
+                                  const ColorFiles& colors, Diagnostics& diagnostics,
+                                  std::size_t maxMeshTriangles = kDefaultMaxMeshTriangles);
 
 // The view settings alone (used by tests and by loadModelResources).
 ViewSettings parseViewFile(const std::string& preprocessedText, const std::filesystem::path& viewFile,

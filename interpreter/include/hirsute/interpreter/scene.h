@@ -133,6 +133,8 @@ enum class OrganSurfaceKind : std::uint8_t {
                  // points, v across the rows (surface_mesh.h)
   Polygon,       // (u, v): world distances in the polygon's plane from its first vertex, u
                  // along its first edge, v = n × u (n its Newell normal, the front)
+  Mesh,          // (u, v): a mesh file's texture coordinates (mesh_file.h), or its x and y over
+                 // their bounds; organs are placed over its area, not over (u, v)
 };
 
 struct OrganSurface {

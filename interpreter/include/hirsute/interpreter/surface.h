@@ -3,10 +3,13 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "hirsute/interpreter/mesh_file.h"
 
 namespace hirsute {
 
@@ -39,6 +42,9 @@ struct Surface {
   int sPrecision = kDefaultSurfacePrecision, tPrecision = kDefaultSurfacePrecision;
   int texture = 0;       // 1-based, 0 none (the view's `surface:` line)
   std::vector<BezierPatch> patches;
+  // A mesh file's triangles instead of patches (mesh_file.h): its contact and end points are the
+  // file's origin, its heading +y and its up +z, SIZE 1.
+  std::shared_ptr<const SurfaceMeshData> mesh;
 };
 
 // Reads a `.s` file. Throws DiagnosticError at the broken line.

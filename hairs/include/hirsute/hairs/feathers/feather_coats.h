@@ -31,6 +31,7 @@ struct FeatherCoatSettings {
 struct FeatherCoatReport {
   std::size_t feathers = 0;  // coat feathers placed
   std::size_t segments = 0;  // segments that carried a coat
+  std::size_t surfaces = 0;  // mesh surfaces that carried a coat
   std::size_t segmentsWithoutMesh = 0;
 };
 

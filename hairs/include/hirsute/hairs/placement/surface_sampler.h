@@ -102,6 +102,12 @@ class SurfaceSampler {
   void samplePatch(const PatchUnfolding& unfolding, SurfaceFace face, float maxDensity,
                    std::uint64_t key, AttachmentVisitor& visitor) const;
 
+  // A mesh file's surface (OrganSurfaceKind::Mesh): maxDensity × its area points over the
+  // triangles' world area (mesh_sampling.h), not over its (u, v); every point's girthRatio is
+  // 1. The corner frames are those of samplePatch; the back's points are drawn anew.
+  static void sampleMesh(const PatchUnfolding& unfolding, SurfaceFace face, float maxDensity,
+                         std::uint64_t key, AttachmentVisitor& visitor);
+
   // Sec. 3.2: points along edge `which` (0: the contour's first point, 1: its last) of an open
   // segment, √maxDensity per unit length, spaced evenly with a jitter and counted in arc length
   // from @Gs, so that the rhythm continues from segment to segment. The direction is the edge

@@ -1,0 +1,209 @@
+#!/usr/bin/env python3
+"""Builds the mesh files of models/mesh-leaf, mesh-body and mesh-bird (docs/meshes.md).
+
+Each mesh is made here from formulas, so that the models carry no file of unknown origin:
+
+  mesh-leaf/leaf.ply   a leaf blade as a scanner would give it: an ASCII PLY of positions and
+                       triangles only (no normals, no texture coordinates), the blade an
+                       elliptic outline bent down along its midrib and cupped across it;
+  mesh-body/body.obj   an animal-like body: a torso, a neck and a head blended as one smooth
+                       closed surface of revolution about a bent spine, with normals and a
+                       texture atlas cut along its belly (a UV seam) and at the two poles;
+  mesh-bird/bird.obj   a bird's body made the same way: a plump convex body tapering from
+                       the breast to the head, its atlas's v running from the tail to the beak; open at
+                       the tail, where a bird's tail feathers would grow.
+
+Run from the repository root: python3 scripts/make-meshes.py
+"""
+import math
+import os
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def leaf(rows=40, columns=16):
+    """The blade along +y (the turtle's heading), its width along x, its front facing +z."""
+    length, width = 6.0, 2.4
+    points, triangles = [], []
+    for i in range(rows + 1):
+        t = i / rows
+        half = 0.5 * width * math.sin(math.pi * t) ** 0.8 * (1.0 - 0.25 * t)
+        for j in range(columns + 1):
+            s = 2.0 * j / columns - 1.0
+            x = s * half
+            y = t * length
+            # bent down towards the tip, cupped up towards the edges
+            z = -0.35 * length * t * t + 0.35 * (s * s) * half
+            points.append((x, y, z))
+    for i in range(rows):
+        for j in range(columns):
+            a = i * (columns + 1) + j
+            b, c, d = a + 1, a + columns + 1, a + columns + 2
+            triangles.append((a, b, d))
+            triangles.append((a, d, c))
+    # The base and the tip have no width: their columns are one point, so those triangles have
+    # no area. A scanner's mesh has none there: they are left out here.
+    kept = []
+    for a, b, c in triangles:
+        pa, pb, pc = points[a], points[b], points[c]
+        u = [pb[k] - pa[k] for k in range(3)]
+        v = [pc[k] - pa[k] for k in range(3)]
+        n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+        if math.sqrt(sum(x * x for x in n)) > 1e-9:
+            kept.append((a, b, c))
+    return points, kept
+
+
+def write_ply(path, points, triangles, comment):
+    with open(path, "w") as out:
+        out.write("ply\nformat ascii 1.0\n")
+        out.write("comment %s\n" % comment)
+        out.write("element vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
+                  % len(points))
+        out.write("element face %d\nproperty list uchar int vertex_indices\nend_header\n"
+                  % len(triangles))
+        for p in points:
+            out.write("%.6f %.6f %.6f\n" % p)
+        for t in triangles:
+            out.write("3 %d %d %d\n" % t)
+
+
+def bird_radius(t):
+    """A plump bird: a convex body tapering from the breast to the head, with no neck, so that
+    a coat lying towards the tail rides over it everywhere."""
+    return 1.15 * math.sin(math.pi * t) ** 0.5 * (1.0 - 0.45 * t)
+
+
+def animal_radius(t):
+    """An animal: a long torso, a neck and a head."""
+    torso = 1.05 * math.sin(math.pi * min(t / 0.7, 1.0)) ** 0.6 if t < 0.7 else 0.0
+    head = 0.55 * math.sin(math.pi * max(0.0, (t - 0.66) / 0.34)) ** 0.7 if t > 0.66 else 0.0
+    neck = 0.5 if 0.55 < t < 0.8 else 0.0
+    return max(torso, head, neck * math.sin(math.pi * (t - 0.55) / 0.25), 0.0)
+
+
+def body(rings=48, sides=32, radius=animal_radius, length=5.0, rise=1.4, open_tail=False):
+    """A body along +y: radius r(t) about a spine that bends forward into the neck and head.
+
+    t runs from the tail (0) to the nose (1); the angle a around the spine from the back (0)
+    over the side to the belly (pi) and back. The texture atlas: u = (a - pi) / 2pi, v = t, cut
+    along the belly line a = pi (its vertices doubled) and pinched at the two poles.
+    """
+    def spine(t):
+        # straight along +y for the torso, rising (+z is up) into the neck and head
+        y = length * t
+        z = rise * max(0.0, t - 0.62) ** 2 / 0.38 ** 2
+        return (0.0, y, z)
+
+    def frame(t):
+        e = 1e-4
+        a, b = spine(max(0.0, t - e)), spine(min(1.0, t + e))
+        d = [b[k] - a[k] for k in range(3)]
+        n = math.sqrt(sum(x * x for x in d))
+        h = [x / n for x in d]
+        # "up" is +z made perpendicular to the heading, "side" completes the frame
+        up = [0.0, 0.0, 1.0]
+        dot = sum(up[k] * h[k] for k in range(3))
+        up = [up[k] - dot * h[k] for k in range(3)]
+        n = math.sqrt(sum(x * x for x in up))
+        up = [x / n for x in up]
+        side = [h[1] * up[2] - h[2] * up[1], h[2] * up[0] - h[0] * up[2], h[0] * up[1] - h[1] * up[0]]
+        return h, up, side
+
+    def point(t, a):
+        c = spine(t)
+        h, up, side = frame(t)
+        r = radius(t)
+        # the torso a little wider than high
+        sx, sz = 1.1 * math.sin(a), math.cos(a)
+        return tuple(c[k] + r * (sx * side[k] + sz * up[k]) for k in range(3))
+
+    positions, uvs, faces = [], [], []
+    # ring vertices: rings-1 inner rings; the poles are single points
+    index = {}
+    for i in range(1, rings):
+        t = i / rings
+        for j in range(sides + 1):
+            a = math.pi + 2.0 * math.pi * j / sides  # from the belly, over a side, the back
+            index[(i, j)] = len(positions)
+            positions.append(point(t, a))
+            uvs.append((j / sides, t))
+    tail, nose = len(positions), len(positions) + 1
+    positions.append(point(0.0, 0.0))
+    positions.append(point(1.0, 0.0))
+    uvs.append((0.5, 0.0))
+    uvs.append((0.5, 1.0))
+    for i in range(1, rings - 1):
+        for j in range(sides):
+            a, b = index[(i, j)], index[(i, j + 1)]
+            c, d = index[(i + 1, j)], index[(i + 1, j + 1)]
+            faces.append((a, d, c))
+            faces.append((a, b, d))
+    for j in range(sides):
+        if not open_tail:
+            faces.append((tail, index[(1, j + 1)], index[(1, j)]))
+        faces.append((nose, index[(rings - 1, j)], index[(rings - 1, j + 1)]))
+    if open_tail:
+        # the tail end is left open (where a bird's tail feathers would be): no pole there, so
+        # the coat's flow does not converge into a point
+        first = 4
+        faces = [f for f in faces if all(k == nose or k >= index[(first, 0)] for k in f)]
+        used = sorted({k for f in faces for k in f})
+        renumber = {k: n for n, k in enumerate(used)}
+        positions = [positions[k] for k in used]
+        uvs = [uvs[k] for k in used]
+        faces = [tuple(renumber[k] for k in f) for f in faces]
+
+    # Vertex normals: area-weighted face normals, summed over the vertices that are one point
+    # (the doubled seam), so that the seam does not show in the shading.
+    def key(p):
+        return tuple(round(x, 6) for x in p)
+    sums = {}
+    for f in faces:
+        p = [positions[k] for k in f]
+        u = [p[1][k] - p[0][k] for k in range(3)]
+        v = [p[2][k] - p[0][k] for k in range(3)]
+        n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+        for k in f:
+            s = sums.setdefault(key(positions[k]), [0.0, 0.0, 0.0])
+            for m in range(3):
+                s[m] += n[m]
+    normals = []
+    for p in positions:
+        s = sums[key(p)]
+        n = math.sqrt(sum(x * x for x in s)) or 1.0
+        normals.append(tuple(x / n for x in s))
+    return positions, normals, uvs, faces
+
+
+def write_obj(path, positions, normals, uvs, faces, comment):
+    with open(path, "w") as out:
+        out.write("# %s\n" % comment)
+        for p in positions:
+            out.write("v %.6f %.6f %.6f\n" % p)
+        for t in uvs:
+            out.write("vt %.6f %.6f\n" % t)
+        for n in normals:
+            out.write("vn %.6f %.6f %.6f\n" % n)
+        for f in faces:
+            out.write("f %s\n" % " ".join("%d/%d/%d" % (k + 1, k + 1, k + 1) for k in f))
+
+
+def main():
+    points, triangles = leaf()
+    write_ply(os.path.join(ROOT, "models/mesh-leaf/leaf.ply"), points, triangles,
+              "leaf blade made by scripts/make-meshes.py")
+    positions, normals, uvs, faces = body()
+    write_obj(os.path.join(ROOT, "models/mesh-body/body.obj"), positions, normals, uvs, faces,
+              "animal-like body made by scripts/make-meshes.py")
+    bird = body(radius=bird_radius, length=4.0, rise=0.0, open_tail=True)
+    write_obj(os.path.join(ROOT, "models/mesh-bird/bird.obj"), *bird,
+              "bird body made by scripts/make-meshes.py")
+    print("leaf.ply: %d triangles; body.obj: %d triangles; bird.obj: %d triangles"
+          % (len(triangles), len(faces), len(bird[3])))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

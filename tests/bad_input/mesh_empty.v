@@ -1,0 +1,1 @@
+surface: B mesh_empty.stl 1

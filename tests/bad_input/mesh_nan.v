@@ -1,0 +1,1 @@
+surface: B mesh_nan.obj 1

@@ -1,0 +1,1 @@
+surface: B mesh_too_many_triangles.obj 1

@@ -1,0 +1,198 @@
+// Mesh files as surfaces (mesh_file.h): read with Assimp, confined to the model's folder, checked,
+// and placed by the turtle like a `.s` surface.
+#include "hirsute/interpreter/mesh_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "hirsute/interpreter/hair_attributes.h"
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/scene.h"
+#include "../../interpreter/surface_mesh.h"
+#include "support/test_files.h"
+
+namespace hirsute {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A unit cube as an OBJ: 6 quads (12 triangles), texture coordinates and normals per face.
+constexpr const char* kCube =
+    "mtllib cube.mtl\n"
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+    "vn 0 0 -1\nvn 0 0 1\nvn 0 -1 0\nvn 0 1 0\nvn -1 0 0\nvn 1 0 0\n"
+    "f 1/1/1 4/4/1 3/3/1 2/2/1\n"
+    "f 5/1/2 6/2/2 7/3/2 8/4/2\n"
+    "f 1/1/3 2/2/3 6/3/3 5/4/3\n"
+    "f 4/1/4 8/4/4 7/3/4 3/2/4\n"
+    "f 1/1/5 5/2/5 8/3/5 4/4/5\n"
+    "f 2/1/6 3/2/6 7/3/6 6/4/6\n";
+
+class MeshFileTest : public testing::TemporaryFolderTest {
+ protected:
+  MeshFileTest() : TemporaryFolderTest("hirsute_mesh_") {}
+
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(file(name), std::ios::binary) << text;
+    return file(name);
+  }
+  SurfaceMeshData load(const std::string& name, std::size_t limit = kDefaultMaxMeshTriangles) {
+    return loadMeshFile(file(name), folder_, limit, diagnostics);
+  }
+  Diagnostic error(const std::string& name, std::size_t limit = kDefaultMaxMeshTriangles) {
+    try {
+      load(name, limit);
+    } catch (const DiagnosticError& e) {
+      return e.diagnostic();
+    }
+    ADD_FAILURE() << name << ": expected a DiagnosticError";
+    return {};
+  }
+  std::string warnings() const {
+    std::string text;
+    for (const Diagnostic& d : diagnostics.warnings()) text += d.text() + "\n";
+    return text;
+  }
+
+  Diagnostics diagnostics;
+};
+
+TEST_F(MeshFileTest, AnObjGivesItsTrianglesNormalsAndTextureCoordinates) {
+  write("cube.obj", kCube);
+  write("cube.mtl", "newmtl skin\nKd 1 1 1\n");
+  EXPECT_TRUE(isMeshFile(file("cube.obj")));
+  const SurfaceMeshData mesh = load("cube.obj");
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings();
+  EXPECT_EQ(mesh.triangles(), 12u);
+  EXPECT_TRUE(mesh.fileUvs);
+  EXPECT_EQ(mesh.boundsMin, glm::dvec3(0.0));
+  EXPECT_EQ(mesh.boundsMax, glm::dvec3(1.0));
+  ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+  // Every triangle winds counter-clockwise about its vertices' normals (the file's outward ones).
+  for (std::size_t t = 0; t < mesh.triangles(); ++t) {
+    const glm::dvec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]],
+                     c = mesh.positions[mesh.indices[3 * t + 2]];
+    EXPECT_GT(glm::dot(glm::cross(b - a, c - a), mesh.normals[mesh.indices[3 * t]]), 0) << t;
+  }
+  for (const glm::vec2& uv : mesh.uv) {
+    EXPECT_TRUE(uv.x == 0 || uv.x == 1);
+    EXPECT_TRUE(uv.y == 0 || uv.y == 1);
+  }
+}
+
+TEST_F(MeshFileTest, TheFormatIsChosenByTheFileAndAMeshWithoutCoordinatesIsMappedFlat) {
+  write("tile.ply",
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n2 0 0\n2 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  write("tile.stl",
+        "solid tile\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 2 0 0\nvertex 2 1 0\n"
+        "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 2 1 0\n"
+        "vertex 0 1 0\nendloop\nendfacet\nendsolid tile\n");
+  for (const char* name : {"tile.ply", "tile.stl"}) {
+    const SurfaceMeshData mesh = load(name);
+    EXPECT_EQ(mesh.triangles(), 2u) << name;
+    EXPECT_FALSE(mesh.fileUvs) << name;
+    // (u, v) are x and y over their bounds, the normals computed: +z.
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      EXPECT_NEAR(mesh.uv[v].x, mesh.positions[v].x / 2, 1e-6) << name;
+      EXPECT_NEAR(mesh.uv[v].y, mesh.positions[v].y, 1e-6) << name;
+      EXPECT_NEAR(mesh.normals[v].z, 1, 1e-6) << name;
+    }
+  }
+  EXPECT_FALSE(isMeshFile(file("leaf.s")));
+  EXPECT_FALSE(isMeshFile(file("notes.txt")));
+}
+
+TEST_F(MeshFileTest, FilesTheMeshNamesOutsideTheFolderAreNotRead) {
+  fs::create_directories(file("model"));
+  write("outside.mtl", "newmtl skin\nKd 1 0 0\n");
+  std::ofstream(file("model/cube.obj")) << "mtllib ../outside.mtl\n" << kCube;
+  const SurfaceMeshData mesh =
+      loadMeshFile(file("model/cube.obj"), file("model"), kDefaultMaxMeshTriangles, diagnostics);
+  EXPECT_EQ(mesh.triangles(), 12u);
+  EXPECT_NE(warnings().find("leaves the model's folder"), std::string::npos) << warnings();
+}
+
+TEST_F(MeshFileTest, BadMeshesAreErrorsInTheirOwnFile) {
+  write("nan.obj", "v 0 0 0\nv 1 0 0\nv 1 nan 0\nf 1 2 3\n");
+  const Diagnostic nan = error("nan.obj");
+  EXPECT_EQ(nan.where.line, 3);
+  EXPECT_EQ(nan.where.column, 5);
+  EXPECT_NE(nan.message.find("'nan' is not a finite coordinate"), std::string::npos) << nan.text();
+
+  write("empty.obj", "# nothing\n");
+  EXPECT_NE(error("empty.obj").message.find("cannot read the mesh"), std::string::npos);
+  write("points.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\n");
+  const std::string points = error("points.obj").message;
+  EXPECT_TRUE(points.find("no triangles") != std::string::npos ||
+              points.find("cannot read the mesh") != std::string::npos)
+      << points;
+  write("broken.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1\n");
+  EXPECT_NE(error("broken.ply").message.find("cannot read the mesh"), std::string::npos);
+
+  write("cube.obj", kCube);
+  const Diagnostic limit = error("cube.obj", 11);
+  EXPECT_NE(limit.message.find("12 triangles, more than the limit of 11"), std::string::npos)
+      << limit.text();
+  EXPECT_NE(limit.message.find("--max-mesh-triangles"), std::string::npos);
+}
+
+TEST_F(MeshFileTest, DegenerateTrianglesAreLeftOutAndNonManifoldEdgesReported) {
+  // Two good triangles, one with two corners at one point, one with its corners on a line, and
+  // a fan of three triangles on the edge 1-2.
+  write("fan.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 0 0 1\nv 0 0 -1\n"
+        "f 1 2 3\nf 1 1 3\nf 1 2 4\nf 1 2 5\nf 2 1 6\n");
+  const SurfaceMeshData mesh = load("fan.obj");
+  EXPECT_EQ(mesh.triangles(), 3u);
+  const std::string text = warnings();
+  EXPECT_NE(text.find("degenerate triangles (no area) left out"), std::string::npos) << text;
+  EXPECT_NE(text.find("1 edge is shared by more than two triangles"), std::string::npos) << text;
+}
+
+// Placed by ~X like a `.s` surface: the file's x, y, z along the turtle's L, H and U, scaled;
+// normals stay unit and outward, a mirroring scale keeps the triangles counter-clockwise.
+TEST_F(MeshFileTest, TheTurtlePlacesTheMeshInItsFrame) {
+  write("cube.obj", kCube);
+  Surface surface;
+  surface.mesh = std::make_shared<const SurfaceMeshData>(load("cube.obj"));
+  for (double mirror : {1.0, -1.0}) {
+    Scene scene;
+    SurfacePlacement placement;
+    placement.position = glm::dvec3(5, 0, 0);
+    placement.heading = glm::dvec3(0, 0, 1);
+    placement.left = glm::dvec3(0, 1, 0);
+    placement.up = glm::dvec3(1, 0, 0);
+    placement.scale = glm::dvec3(2 * mirror, 2, 2);
+    SurfaceAppearance appearance;
+    appearance.material = [](int) { return 3; };
+    OrganAttributeIndices organs;
+    organs.of<HairAttributes>() = 0;
+    EXPECT_EQ(appendSurface(scene, surface, placement, appearance, organs), 12u);
+    ASSERT_EQ(scene.organSurfaces.size(), 1u);
+    const OrganSurface& record = scene.organSurfaces[0];
+    EXPECT_EQ(record.kind, OrganSurfaceKind::Mesh);
+    EXPECT_EQ(record.indexCount, 36u);
+    const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(record.mesh)];
+    EXPECT_EQ(mesh.material, 3);
+    const glm::vec3 centre(5 + 1, 1 * mirror, 1);  // x → L·2·mirror, y → H·2, z → U·2
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      EXPECT_NEAR(glm::length(mesh.normals[v]), 1, 1e-5);
+    }
+    for (std::size_t i = 0; i < mesh.indices.size(); i += 3) {
+      const glm::vec3 a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
+                      c = mesh.positions[mesh.indices[i + 2]];
+      const glm::vec3 face = glm::cross(b - a, c - a);
+      EXPECT_GT(glm::dot(face, mesh.normals[mesh.indices[i]]), 0) << mirror;
+      EXPECT_GT(glm::dot(face, (a + b + c) / 3.0f - centre), 0) << mirror << ": outward";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hirsute
