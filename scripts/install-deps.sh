@@ -9,7 +9,7 @@ packages=(
   clang libclang-rt-14-dev
   libglm-dev libosmesa6-dev libpng-dev libstb-dev povray zlib1g-dev pkg-config libembree-dev libopenexr-dev
   libglfw3-dev libimgui-dev xvfb xauth
-  time
+  time parallel rsync
 )
 
 missing=()
