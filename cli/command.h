@@ -38,5 +38,6 @@ void registerViewCommand(CLI::App& app, Action& action);
 void registerBenchCommand(CLI::App& app, Action& action);
 void registerSimulateCommand(CLI::App& app, Action& action);
 void registerFeatherScanCommand(CLI::App& app, Action& action);
+void registerRenderFramesCommand(CLI::App& app, Action& action);
 
 }  // namespace hirsute::cli

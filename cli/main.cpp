@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   hirsute::cli::registerExportCommand(app, action);
   hirsute::cli::registerViewCommand(app, action);
   hirsute::cli::registerSimulateCommand(app, action);
+  hirsute::cli::registerRenderFramesCommand(app, action);
   hirsute::cli::registerFeatherScanCommand(app, action);
   hirsute::cli::registerBenchCommand(app, action);
   try {

@@ -2,6 +2,7 @@
 
 #include "hirsute/core/child_confinement.h"
 #include "hirsute/core/model_folder.h"
+#include "hirsute/core/program_path.h"
 
 #include <fcntl.h>
 #include <sys/resource.h>
@@ -79,26 +80,6 @@ class TemporaryFile {
   std::string path_;
   int fd_ = -1;
 };
-
-// The program as the shell would find it on PATH (a name with a slash is taken as it is); empty
-// when there is none. Found before fork, so that the child only calls exec.
-std::string findOnPath(const std::string& program) {
-  if (program.find('/') != std::string::npos) return access(program.c_str(), X_OK) == 0 ? program : "";
-  const char* path = std::getenv("PATH");
-  std::string folders = path && *path ? path : "/usr/local/bin:/usr/bin:/bin";
-  std::size_t start = 0;
-  while (start <= folders.size()) {
-    std::size_t end = folders.find(':', start);
-    if (end == std::string::npos) end = folders.size();
-    const std::string folder = folders.substr(start, end - start);
-    const std::string candidate = (folder.empty() ? std::string(".") : folder) + "/" + program;
-    struct stat st {};
-    if (stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) && access(candidate.c_str(), X_OK) == 0)
-      return candidate;
-    start = end + 1;
-  }
-  return "";
-}
 
 // Traditional-mode cpp reports a missing `#include` file one line late, at the word `include`.
 // Moves `where` to the file name on the directive's own line, as the user would look for it.
