@@ -53,16 +53,20 @@ class FrameModels {
         lsystem_(first.model),
         animation_(std::move(animation)),
         define_(std::move(define)),
-        frames_(frames) {
+        frames_(frames),
+        meshFrames_(resources_.meshFrames() > 1 ? resources_.meshFrames() : 0) {
     if (define_) lsystemText_ = readText(model_.lsystemFile);
   }
 
   // Whether frame k (from 1) has a body of its own, else the one before stays.
   bool moves(int k) const {
-    return k == 1 || static_cast<std::size_t>(k) <= animation_.size() || define_.has_value();
+    return k == 1 || static_cast<std::size_t>(k) <= animation_.size() || define_.has_value() ||
+           static_cast<std::size_t>(k) <= meshFrames_;
   }
 
-  Scene build(int k, Diagnostics& diagnostics) const {
+  // Frame k's scene; its moving meshes (mesh sequences) at their k-th frame.
+  Scene build(int k, Diagnostics& diagnostics) {
+    resources_.meshFrame = static_cast<std::size_t>(k - 1);
     ModelOptions options = model_;
     if (k > 1) options.terminalProgress = nullptr;
     if (!animation_.empty())
@@ -95,6 +99,7 @@ class FrameModels {
   std::optional<AnimatedDefine> define_;
   std::string lsystemText_;  // the .l as read, when a #define moves
   int frames_;
+  std::size_t meshFrames_;  // the frames of its moving meshes; 0 when none moves
 };
 
 dynamics::SimulationParameters parametersFor(const FeatherDynamicsSettings& view,
@@ -279,7 +284,11 @@ int runSimulate(SimulateOptions o) {
                                               o.animation, kMaxAnimationFrames));
       }
     }
-    frames = o.frames.value_or(animation.empty() ? 48 : static_cast<int>(animation.size()));
+    // Without an animation file, a moving mesh's frames set the length of the run.
+    const std::size_t meshFrames = first.resources.meshFrames();
+    frames = o.frames.value_or(!animation.empty() ? static_cast<int>(animation.size())
+                               : meshFrames > 1   ? static_cast<int>(meshFrames)
+                                                  : 48);
     models.emplace(o.model, first, animation, define, frames);
     first.scene = models->build(1, diagnostics);
   } catch (const DiagnosticError& e) {
@@ -318,7 +327,11 @@ int runSimulate(SimulateOptions o) {
   // middle and last frames too, so that a body that moves stays in view.
   Bounds fit = first.scene.bounds();
   if (frames > 1 && models->moves(2)) {
-    const int used = define ? frames : std::min(static_cast<int>(animation.size()), frames);
+    const int used =
+        define ? frames
+               : std::min(std::max(static_cast<int>(animation.size()),
+                                   static_cast<int>(first.resources.meshFrames())),
+                          frames);
     for (const int k : {(used + 1) / 2, used}) {
       try {
         fit.add(models->build(k, diagnostics).bounds());

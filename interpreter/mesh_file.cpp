@@ -160,7 +160,137 @@ void checkObjCoordinates(const std::string& text, const fs::path& file) {
   }
 }
 
-glm::dvec3 toDvec3(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
+// Frames a second at which an animated file's motion is sampled (docs/meshes.md).
+constexpr double kAnimationRate = 24;
+
+// A mesh of the file where a node places it.
+struct Instance {
+  const aiNode* node = nullptr;
+  const aiMesh* mesh = nullptr;
+};
+
+void collectInstances(const aiScene& scene, const aiNode* node, std::vector<Instance>& out) {
+  if (node == nullptr) return;
+  for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+    const aiMesh* mesh = scene.mMeshes[node->mMeshes[i]];
+    if ((mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) != 0) out.push_back({node, mesh});
+  }
+  for (unsigned i = 0; i < node->mNumChildren; ++i) collectInstances(scene, node->mChildren[i], out);
+}
+
+// The value of keys at `ticks`: held before the first and after the last, linear between.
+template <class Key, class Blend>
+auto keyed(const Key* keys, unsigned count, double ticks, Blend blend) {
+  if (count == 1 || ticks <= keys[0].mTime) return keys[0].mValue;
+  for (unsigned i = 1; i < count; ++i) {
+    if (ticks < keys[i].mTime) {
+      const double span = keys[i].mTime - keys[i - 1].mTime;
+      const auto t = static_cast<ai_real>(span > 0 ? (ticks - keys[i - 1].mTime) / span : 0.0);
+      return blend(keys[i - 1].mValue, keys[i].mValue, t);
+    }
+  }
+  return keys[count - 1].mValue;
+}
+
+// A node's transform relative to its parent at `ticks`: the animation's keys where it has a
+// channel for the node, else the file's.
+aiMatrix4x4 localTransform(const aiNode* node, const aiAnimation* animation, double ticks) {
+  if (animation != nullptr) {
+    for (unsigned c = 0; c < animation->mNumChannels; ++c) {
+      const aiNodeAnim* channel = animation->mChannels[c];
+      if (channel->mNodeName != node->mName) continue;
+      aiVector3D scaling(1, 1, 1), position;
+      aiQuaternion rotation;
+      aiVector3D restScaling, restPosition;
+      aiQuaternion restRotation;
+      node->mTransformation.Decompose(restScaling, restRotation, restPosition);
+      const auto lerp = [](const aiVector3D& a, const aiVector3D& b, ai_real t) {
+        return a + (b - a) * t;
+      };
+      const auto slerp = [](const aiQuaternion& a, const aiQuaternion& b, ai_real t) {
+        aiQuaternion out;
+        aiQuaternion::Interpolate(out, a, b, t);
+        return out.Normalize();
+      };
+      position = channel->mNumPositionKeys > 0
+                     ? keyed(channel->mPositionKeys, channel->mNumPositionKeys, ticks, lerp)
+                     : restPosition;
+      rotation = channel->mNumRotationKeys > 0
+                     ? keyed(channel->mRotationKeys, channel->mNumRotationKeys, ticks, slerp)
+                     : restRotation;
+      scaling = channel->mNumScalingKeys > 0
+                    ? keyed(channel->mScalingKeys, channel->mNumScalingKeys, ticks, lerp)
+                    : restScaling;
+      return aiMatrix4x4(scaling, rotation, position);
+    }
+  }
+  return node->mTransformation;
+}
+
+aiMatrix4x4 globalTransform(const aiNode* node, const aiAnimation* animation, double ticks) {
+  aiMatrix4x4 global = localTransform(node, animation, ticks);
+  for (const aiNode* parent = node->mParent; parent != nullptr; parent = parent->mParent) {
+    global = localTransform(parent, animation, ticks) * global;
+  }
+  return global;
+}
+
+glm::dvec3 applied(const aiMatrix4x4& m, const aiVector3D& v) {
+  return {m.a1 * v.x + m.a2 * v.y + m.a3 * v.z + m.a4, m.b1 * v.x + m.b2 * v.y + m.b3 * v.z + m.b4,
+          m.c1 * v.x + m.c2 * v.y + m.c3 * v.z + m.c4};
+}
+
+// A normal under the linear part of m (its inverse transpose).
+glm::dvec3 appliedToNormal(const aiMatrix4x4& m, const aiVector3D& n) {
+  const glm::dmat3 linear(m.a1, m.b1, m.c1, m.a2, m.b2, m.c2, m.a3, m.b3, m.c3);
+  const glm::dmat3 normalMatrix =
+      glm::determinant(linear) != 0 ? glm::transpose(glm::inverse(linear)) : linear;
+  const glm::dvec3 out = normalMatrix * glm::dvec3(n.x, n.y, n.z);
+  const double length = glm::length(out);
+  return std::isfinite(length) && length > 0 ? out / length : glm::dvec3(0.0);
+}
+
+// Every instance's vertices and normals at `ticks`: a skinned mesh by its bones' transforms
+// (each bone's node at that time times its offset, weighted), any other by its node's.
+void posedVertices(const aiScene& scene, const aiAnimation* animation, double ticks,
+                   const std::vector<Instance>& instances, std::vector<glm::dvec3>& positions,
+                   std::vector<glm::dvec3>& normals) {
+  for (const Instance& instance : instances) {
+    const aiMesh& mesh = *instance.mesh;
+    const aiMatrix4x4 placed = globalTransform(instance.node, animation, ticks);
+    std::vector<double> weight(mesh.mNumVertices, 0.0);
+    std::vector<glm::dvec3> skinned(mesh.mNumVertices, glm::dvec3(0.0)),
+        skinnedNormals(mesh.mNumVertices, glm::dvec3(0.0));
+    for (unsigned b = 0; b < mesh.mNumBones; ++b) {
+      const aiBone& bone = *mesh.mBones[b];
+      const aiNode* node = scene.mRootNode->FindNode(bone.mName);
+      if (node == nullptr) continue;
+      const aiMatrix4x4 m = globalTransform(node, animation, ticks) * bone.mOffsetMatrix;
+      for (unsigned w = 0; w < bone.mNumWeights; ++w) {
+        const aiVertexWeight& vw = bone.mWeights[w];
+        if (vw.mVertexId >= mesh.mNumVertices || !(vw.mWeight > 0)) continue;
+        weight[vw.mVertexId] += vw.mWeight;
+        skinned[vw.mVertexId] += static_cast<double>(vw.mWeight) * applied(m, mesh.mVertices[vw.mVertexId]);
+        if (mesh.HasNormals()) {
+          skinnedNormals[vw.mVertexId] +=
+              static_cast<double>(vw.mWeight) * appliedToNormal(m, mesh.mNormals[vw.mVertexId]);
+        }
+      }
+    }
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      if (weight[v] > 0) {
+        positions.push_back(skinned[v] / weight[v]);
+        const double length = glm::length(skinnedNormals[v]);
+        normals.push_back(length > 0 ? skinnedNormals[v] / length : glm::dvec3(0.0));
+      } else {
+        positions.push_back(applied(placed, mesh.mVertices[v]));
+        normals.push_back(mesh.HasNormals() ? appliedToNormal(placed, mesh.mNormals[v])
+                                            : glm::dvec3(0.0));
+      }
+    }
+  }
+}
 
 }  // namespace
 
@@ -189,7 +319,7 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(
       file.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                         aiProcess_PreTransformVertices | aiProcess_GenSmoothNormals |
+                         aiProcess_GenSmoothNormals | aiProcess_LimitBoneWeights |
                          aiProcess_SortByPType | aiProcess_ValidateDataStructure);
   for (const std::string& refused : files->refused()) {
     diagnostics.warn(at(file), "the mesh names " + refused + "; not read");
@@ -198,13 +328,15 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
     throw DiagnosticError(at(file), fmt::format("cannot read the mesh: {}", importer.GetErrorString()));
   }
 
+  // Every mesh where a node places it (a mesh two nodes name is there twice).
+  std::vector<Instance> instances;
+  collectInstances(*scene, scene->mRootNode, instances);
   std::size_t faces = 0;
-  bool allUvs = true;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene->mMeshes[m];
-    if ((mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
-    faces += mesh.mNumFaces;
-    allUvs = allUvs && mesh.HasTextureCoords(0);
+  bool allUvs = true, colours = true;
+  for (const Instance& instance : instances) {
+    faces += instance.mesh->mNumFaces;
+    allUvs = allUvs && instance.mesh->HasTextureCoords(0);
+    colours = colours && instance.mesh->HasVertexColors(0);
   }
   if (faces > maxTriangles) {
     throw DiagnosticError(at(file), fmt::format("the mesh has {} triangles, more than the limit of "
@@ -214,27 +346,9 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
 
   SurfaceMeshData data;
   data.fileUvs = allUvs && faces > 0;
-  bool colours = true;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene->mMeshes[m];
-    if ((mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) != 0) colours = colours && mesh.HasVertexColors(0);
-  }
-  std::size_t degenerate = 0;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene->mMeshes[m];
-    if ((mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
-    const auto base = static_cast<std::uint32_t>(data.positions.size());
+  for (const Instance& instance : instances) {
+    const aiMesh& mesh = *instance.mesh;
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-      const glm::dvec3 p = toDvec3(mesh.mVertices[v]);
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-        throw DiagnosticError(at(file), fmt::format("vertex {} of mesh '{}' has a non-finite "
-                                                    "coordinate",
-                                                    v + 1, mesh.mName.C_Str()));
-      }
-      data.positions.push_back(p);
-      glm::dvec3 n = mesh.HasNormals() ? toDvec3(mesh.mNormals[v]) : glm::dvec3(0.0);
-      const double length = glm::length(n);
-      data.normals.push_back(std::isfinite(length) && length > 0 ? n / length : glm::dvec3(0.0));
       if (data.fileUvs) {
         const aiVector3D& t = mesh.mTextureCoords[0][v];
         data.uv.emplace_back(std::isfinite(t.x) ? t.x : 0.0f, std::isfinite(t.y) ? t.y : 0.0f);
@@ -244,11 +358,52 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
         data.colours.emplace_back(c.r, c.g, c.b);
       }
     }
+  }
+  std::uint32_t base = 0;
+  for (const Instance& instance : instances) {
+    const aiMesh& mesh = *instance.mesh;
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) continue;
       data.indices.insert(data.indices.end(), {base + face.mIndices[0], base + face.mIndices[1],
                                                base + face.mIndices[2]});
+    }
+    base += mesh.mNumVertices;
+  }
+
+  // The positions and normals: at rest, or an animated file's frames at kAnimationRate.
+  const aiAnimation* animation = scene->mNumAnimations > 0 ? scene->mAnimations[0] : nullptr;
+  std::size_t frames = 1;
+  double ticksPerSecond = 1;
+  if (animation != nullptr) {
+    ticksPerSecond = animation->mTicksPerSecond > 0 ? animation->mTicksPerSecond : 25.0;
+    const double seconds = std::max(0.0, animation->mDuration) / ticksPerSecond;
+    const double count = std::floor(seconds * kAnimationRate + 1e-9) + 1;
+    if (!(count * static_cast<double>(base) <= static_cast<double>(kMaxSequenceVertices))) {
+      throw DiagnosticError(at(file), fmt::format("the animation would hold more than {} vertices "
+                                                  "over its {:.0f} frames (the limit)",
+                                                  kMaxSequenceVertices, count));
+    }
+    frames = static_cast<std::size_t>(count);
+  }
+  for (std::size_t k = 0; k < frames; ++k) {
+    const double ticks = static_cast<double>(k) / kAnimationRate * ticksPerSecond;
+    std::vector<glm::dvec3> positions, normals;
+    posedVertices(*scene, animation, ticks, instances, positions, normals);
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+      const glm::dvec3& p = positions[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        throw DiagnosticError(at(file), fmt::format("vertex {} has a non-finite coordinate{}", v + 1,
+                                                    k > 0 ? fmt::format(" at frame {}", k + 1)
+                                                          : std::string()));
+      }
+    }
+    if (k == 0) {
+      data.positions = std::move(positions);
+      data.normals = std::move(normals);
+    } else {
+      data.laterPositions.push_back(std::move(positions));
+      data.laterNormals.push_back(std::move(normals));
     }
   }
   if (data.positions.empty() || data.indices.empty()) {
@@ -273,6 +428,7 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
                     .first->second;
   }
   const double minimumArea = 1e-14 * diagonal * diagonal;
+  std::size_t degenerate = 0;
   std::vector<std::uint32_t> kept;
   kept.reserve(data.indices.size());
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
@@ -318,6 +474,26 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
     const double length = glm::length(faceSum[v]);
     data.normals[v] = length > 0 ? faceSum[v] / length : glm::dvec3(0, 0, 1);
   }
+  // An animated file's later frames: the same, on their own positions.
+  for (std::size_t k = 0; k < data.laterPositions.size(); ++k) {
+    const std::vector<glm::dvec3>& positions = data.laterPositions[k];
+    std::vector<glm::dvec3>& normals = data.laterNormals[k];
+    if (std::all_of(normals.begin(), normals.end(),
+                    [](const glm::dvec3& n) { return n != glm::dvec3(0.0); })) {
+      continue;
+    }
+    std::vector<glm::dvec3> sum(positions.size(), glm::dvec3(0.0));
+    for (std::size_t t = 0; t + 2 < data.indices.size(); t += 3) {
+      const std::uint32_t a = data.indices[t], b = data.indices[t + 1], c = data.indices[t + 2];
+      const glm::dvec3 n = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+      for (std::uint32_t v : {a, b, c}) sum[v] += n;
+    }
+    for (std::size_t v = 0; v < normals.size(); ++v) {
+      if (normals[v] != glm::dvec3(0.0)) continue;
+      const double length = glm::length(sum[v]);
+      normals[v] = length > 0 ? sum[v] / length : glm::dvec3(0, 0, 1);
+    }
+  }
 
   if (!data.fileUvs) {
     // No (u, v) in the file: x and y over their bounds, as cpfg maps one texture over a whole
@@ -326,6 +502,79 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
                                                           glm::dvec2(1e-300));
     data.uv.clear();
     for (const glm::dvec3& p : data.positions) data.uv.emplace_back((glm::dvec2(p) - low) / span);
+  }
+  return data;
+}
+
+bool isMeshSequence(const fs::path& file) {
+  return file.filename().string().find('#') != std::string::npos;
+}
+
+SurfaceMeshData loadMeshSequence(const fs::path& pattern, const fs::path& folder,
+                                 std::size_t maxTriangles, Diagnostics& diagnostics) {
+  const std::string name = pattern.filename().string();
+  const std::size_t hashes = name.find('#');
+  std::size_t width = 0;
+  while (hashes + width < name.size() && name[hashes + width] == '#') ++width;
+  const std::string prefix = name.substr(0, hashes), suffix = name.substr(hashes + width);
+  if (suffix.find('#') != std::string::npos) {
+    throw DiagnosticError(at(pattern), "a mesh sequence's name has one run of '#' (the frame number)");
+  }
+  // The frame numbers there are: prefix, at least `width` digits, suffix.
+  const fs::path parent = pattern.parent_path().empty() ? fs::path(".") : pattern.parent_path();
+  std::vector<long> numbers;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(parent, error)) {
+    const std::string file = entry.path().filename().string();
+    if (file.size() < prefix.size() + width + suffix.size() || file.rfind(prefix, 0) != 0 ||
+        file.compare(file.size() - suffix.size(), suffix.size(), suffix) != 0) {
+      continue;
+    }
+    const std::string digits = file.substr(prefix.size(), file.size() - prefix.size() - suffix.size());
+    if (digits.size() < width || digits.size() > 9 ||
+        !std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c); })) {
+      continue;
+    }
+    if (digits.size() > width && digits.front() == '0') continue;
+    numbers.push_back(std::stol(digits));
+  }
+  std::sort(numbers.begin(), numbers.end());
+  if (numbers.empty()) {
+    throw DiagnosticError(at(pattern), fmt::format("no frame of the mesh sequence (files {}{}{})",
+                                                   prefix, std::string(width, '0'), suffix));
+  }
+  const auto frameFile = [&](long number) {
+    std::string digits = std::to_string(number);
+    if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
+    return parent / (prefix + digits + suffix);
+  };
+  SurfaceMeshData data = loadMeshFile(frameFile(numbers.front()), folder, maxTriangles, diagnostics);
+  for (std::size_t k = 1; k < numbers.size(); ++k) {
+    if (numbers[k] != numbers[k - 1] + 1) {
+      throw DiagnosticError(at(frameFile(numbers[k - 1] + 1)),
+                            fmt::format("frame {} of the mesh sequence is missing (frames {} to "
+                                        "{} are there)",
+                                        numbers[k - 1] + 1, numbers.front(), numbers.back()));
+    }
+    if ((k + 1) * data.positions.size() > kMaxSequenceVertices) {
+      throw DiagnosticError(at(frameFile(numbers[k])),
+                            fmt::format("the mesh sequence would hold more than {} vertices over "
+                                        "its frames (the limit); use fewer frames or a coarser "
+                                        "mesh",
+                                        kMaxSequenceVertices));
+    }
+    // A later frame's own warnings repeat the first's: they are not reported again.
+    Diagnostics quiet;
+    SurfaceMeshData frame = loadMeshFile(frameFile(numbers[k]), folder, maxTriangles, quiet);
+    if (frame.positions.size() != data.positions.size()) {
+      throw DiagnosticError(at(frameFile(numbers[k])),
+                            fmt::format("this frame of the mesh sequence has {} vertices, the "
+                                        "first {}: every frame must have the first one's "
+                                        "vertices and triangles",
+                                        frame.positions.size(), data.positions.size()));
+    }
+    data.laterPositions.push_back(std::move(frame.positions));
+    data.laterNormals.push_back(std::move(frame.normals));
   }
   return data;
 }

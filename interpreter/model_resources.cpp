@@ -110,7 +110,8 @@ void loadSurfaces(ModelResources& resources, std::size_t maxMeshTriangles,
   for (const SurfaceDeclaration& declaration : resources.view.surfaces) {
     const std::string name = writtenName(declaration.file, resources.folder);
     const std::string id(1, declaration.id);
-    if (!fileExists(declaration.file)) {
+    const bool sequence = isMeshSequence(declaration.file) && isMeshFile(declaration.file);
+    if (!sequence && !fileExists(declaration.file)) {
       // cpfg goes on without it (cpfg-Sedge names a bract.s it does not have); ~X draws nothing.
       diagnostics.warn(declaration.where, "cannot open surface file " + name + " (looked for " +
                                               declaration.file + "); ~" + id + " draws nothing");
@@ -119,7 +120,11 @@ void loadSurfaces(ModelResources& resources, std::size_t maxMeshTriangles,
     Surface surface;
     const bool mesh = isMeshFile(declaration.file);
     try {
-      if (mesh) {
+      if (sequence) {
+        surface.file = declaration.file;
+        surface.mesh = std::make_shared<const SurfaceMeshData>(
+            loadMeshSequence(declaration.file, resources.folder, maxMeshTriangles, diagnostics));
+      } else if (mesh) {
         surface.file = declaration.file;
         surface.mesh = std::make_shared<const SurfaceMeshData>(
             loadMeshFile(declaration.file, resources.folder, maxMeshTriangles, diagnostics));

@@ -78,10 +78,11 @@ std::size_t appendMesh(Scene& scene, const Surface& surface, const SurfacePlacem
   TriangleMesh& mesh = scene.meshFor(appearance.material(0), appearance.texture);
   const auto base = static_cast<std::uint32_t>(mesh.positions.size());
   const auto firstIndex = static_cast<std::uint32_t>(mesh.indices.size());
-  for (std::size_t v = 0; v < data.positions.size(); ++v) {
-    mesh.positions.push_back(
-        glm::vec3(placement.position + m * (data.positions[v] - surface.contact)));
-    const glm::dvec3 normal = normalMatrix * data.normals[v];
+  const std::vector<glm::dvec3>& positions = data.positionsAt(placement.frame);
+  const std::vector<glm::dvec3>& normals = data.normalsAt(placement.frame);
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    mesh.positions.push_back(glm::vec3(placement.position + m * (positions[v] - surface.contact)));
+    const glm::dvec3 normal = normalMatrix * normals[v];
     mesh.normals.push_back(glm::dot(normal, normal) > 0 ? glm::vec3(glm::normalize(normal))
                                                         : glm::vec3(0, 0, 1));
     if (mesh.texture >= 0) mesh.texcoords.push_back(data.uv[v]);

@@ -16,6 +16,7 @@ struct SurfacePlacement {
   glm::dvec3 position{0.0};
   glm::dvec3 heading{0, 1, 0}, left{-1, 0, 0}, up{0, 0, -1};
   glm::dvec3 scale{1.0};  // along L, H and U: ~X(s) or ~X(sx,sy,sz), times the turtle's scale
+  std::size_t frame = 0;  // a moving mesh's frame (SurfaceMeshData::positionsAt)
 };
 
 // Where a point of the surface file lands. cpfg's transform: with H_f and U_f the file's

@@ -721,6 +721,7 @@ void Turtle::drawSurface(char id, const float* p, std::size_t count) {
   placement.heading = state_.heading;
   placement.left = state_.left;
   placement.up = state_.up;
+  placement.frame = resources_.meshFrame;
   // ~X(s) scales uniformly (a second parameter is ignored), ~X(sx,sy,sz) per axis.
   placement.scale =
       count >= 3 ? glm::dvec3(p[0], p[1], p[2]) : glm::dvec3(parameterOr(p, count, 0, 1));

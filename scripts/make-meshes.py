@@ -11,7 +11,11 @@ Each mesh is made here from formulas, so that the models carry no file of unknow
                        texture atlas cut along its belly (a UV seam) and at the two poles;
   mesh-bird/bird.obj   a bird's body made the same way: a plump convex body tapering from
                        the breast to the head, its atlas's v running from the tail to the beak; open at
-                       the tail, where a bird's tail feathers would grow.
+                       the tail, where a bird's tail feathers would grow;
+  mesh-bird/nod.NNNN.obj  the same bird, coarser, nodding over 12 frames: a mesh sequence of
+                       the same vertices and triangles in every frame, for `hirsute simulate`;
+  tests/fixtures/interpreter/bending-strip.gltf  a strip skinned to two bones, the upper one
+                       turning 90 degrees about x over a second: an animated file.
 
 Run from the repository root: python3 scripts/make-meshes.py
 """
@@ -20,6 +24,7 @@ import os
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+NOD_FRAMES = 12
 
 
 def leaf(rows=40, columns=16):
@@ -181,14 +186,105 @@ def write_obj(path, positions, normals, uvs, faces, comment):
     with open(path, "w") as out:
         out.write("# %s\n" % comment)
         for p in positions:
-            out.write("v %.6f %.6f %.6f\n" % p)
+            out.write("v %.5f %.5f %.5f\n" % p)
         for t in uvs:
-            out.write("vt %.6f %.6f\n" % t)
+            out.write("vt %.5f %.5f\n" % t)
         for n in normals:
-            out.write("vn %.6f %.6f %.6f\n" % n)
+            out.write("vn %.4f %.4f %.4f\n" % n)
         for f in faces:
             out.write("f %s\n" % " ".join("%d/%d/%d" % (k + 1, k + 1, k + 1) for k in f))
 
+
+
+def skinned_strip():
+    """A glTF 2.0 file of a strip skinned to two bones, the second bending 90 degrees about x
+    over one second: a moving body Assimp reads as an animated file."""
+    import base64
+    import json
+    import struct
+    rows, height = 8, 2.0
+    positions, normals, uvs, joints, weights, indices = [], [], [], [], [], []
+    for i in range(rows + 1):
+        y = height * i / rows
+        w = min(1.0, max(0.0, (y - 0.5) / 1.0))  # the upper bone's share, 0 below 0.5, 1 above 1.5
+        for x in (-0.25, 0.25):
+            positions.append((x, y, 0.0))
+            normals.append((0.0, 0.0, 1.0))
+            uvs.append((x + 0.25, y / height))
+            joints.append((0, 1, 0, 0))
+            weights.append((1.0 - w, w, 0.0, 0.0))
+    for i in range(rows):
+        a, b, c, d = 2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 3
+        indices += [a, b, d, a, d, c]
+    times = [0.0, 0.5, 1.0]
+    half = [math.radians(a) / 2 for a in (0.0, 45.0, 90.0)]
+    rotations = [(math.sin(h), 0.0, 0.0, math.cos(h)) for h in half]
+    # inverse bind matrices (column-major): bone 0 at the origin, bone 1 at y = 1
+    inverse_bind = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+                    1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1]
+    parts = []
+    views = []
+
+    def add(data, target=None):
+        offset = sum(len(p) for p in parts)
+        while len(data) % 4:
+            data += b"\0"
+        parts.append(data)
+        view = {"buffer": 0, "byteOffset": offset, "byteLength": len(data)}
+        if target:
+            view["target"] = target
+        views.append(view)
+        return len(views) - 1
+    flat = lambda rows: [v for row in rows for v in row]
+    v_pos = add(struct.pack("<%df" % (3 * len(positions)), *flat(positions)), 34962)
+    v_nor = add(struct.pack("<%df" % (3 * len(normals)), *flat(normals)), 34962)
+    v_uv = add(struct.pack("<%df" % (2 * len(uvs)), *flat(uvs)), 34962)
+    v_joi = add(struct.pack("<%dH" % (4 * len(joints)), *flat(joints)), 34962)
+    v_wei = add(struct.pack("<%df" % (4 * len(weights)), *flat(weights)), 34962)
+    v_ind = add(struct.pack("<%dH" % len(indices), *indices), 34963)
+    v_ibm = add(struct.pack("<32f", *inverse_bind))
+    v_tim = add(struct.pack("<3f", *times))
+    v_rot = add(struct.pack("<12f", *flat(rotations)))
+    n = len(positions)
+    accessors = [
+        {"bufferView": v_pos, "componentType": 5126, "count": n, "type": "VEC3",
+         "min": [-0.25, 0.0, 0.0], "max": [0.25, height, 0.0]},
+        {"bufferView": v_nor, "componentType": 5126, "count": n, "type": "VEC3"},
+        {"bufferView": v_uv, "componentType": 5126, "count": n, "type": "VEC2"},
+        {"bufferView": v_joi, "componentType": 5123, "count": n, "type": "VEC4"},
+        {"bufferView": v_wei, "componentType": 5126, "count": n, "type": "VEC4"},
+        {"bufferView": v_ind, "componentType": 5123, "count": len(indices), "type": "SCALAR"},
+        {"bufferView": v_ibm, "componentType": 5126, "count": 2, "type": "MAT4"},
+        {"bufferView": v_tim, "componentType": 5126, "count": 3, "type": "SCALAR",
+         "min": [0.0], "max": [1.0]},
+        {"bufferView": v_rot, "componentType": 5126, "count": 3, "type": "VEC4"},
+    ]
+    data = b"".join(parts)
+    gltf = {
+        "asset": {"version": "2.0", "generator": "scripts/make-meshes.py"},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [
+            {"name": "strip", "mesh": 0, "skin": 0},
+            {"name": "lower", "children": [2]},
+            {"name": "upper", "translation": [0.0, 1.0, 0.0]},
+        ],
+        "meshes": [{"name": "strip", "primitives": [{
+            "attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2, "JOINTS_0": 3,
+                           "WEIGHTS_0": 4},
+            "indices": 5}]}],
+        "skins": [{"joints": [1, 2], "inverseBindMatrices": 6}],
+        "animations": [{"name": "bend", "samplers": [{"input": 7, "output": 8,
+                                                      "interpolation": "LINEAR"}],
+                        "channels": [{"sampler": 0,
+                                      "target": {"node": 2, "path": "rotation"}}]}],
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64,"
+                            + base64.b64encode(data).decode("ascii")}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    return json.dumps(gltf, indent=1)
 
 def main():
     points, triangles = leaf()
@@ -200,6 +296,16 @@ def main():
     bird = body(radius=bird_radius, length=4.0, rise=0.0, open_tail=True)
     write_obj(os.path.join(ROOT, "models/mesh-bird/bird.obj"), *bird,
               "bird body made by scripts/make-meshes.py")
+    # The bird nodding: 12 frames in which its front half rises and falls once, the same
+    # vertices and triangles in every frame (as an animation exported frame by frame).
+    for k in range(1, NOD_FRAMES + 1):
+        rise = 0.9 * math.sin(2.0 * math.pi * (k - 1) / NOD_FRAMES)
+        frame = body(rings=32, sides=24, radius=bird_radius, length=4.0, rise=rise,
+                     open_tail=True)
+        write_obj(os.path.join(ROOT, "models/mesh-bird/nod.%04d.obj" % k), *frame,
+                  "frame %d of the nodding bird, made by scripts/make-meshes.py" % k)
+    with open(os.path.join(ROOT, "tests/fixtures/interpreter/bending-strip.gltf"), "w") as out:
+        out.write(skinned_strip() + "\n")
     print("leaf.ply: %d triangles; body.obj: %d triangles; bird.obj: %d triangles"
           % (len(triangles), len(faces), len(bird[3])))
     return 0

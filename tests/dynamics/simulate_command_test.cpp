@@ -130,6 +130,25 @@ TEST_F(SimulateCommand, AnAnimatedDefineMovesTheBody) {
   EXPECT_NE(wrong.text.find("--animate takes NAME=FROM:TO"), std::string::npos) << wrong.text;
 }
 
+// A mesh sequence (models/mesh-bird/nod.####.obj, docs/meshes.md) is a moving body: frame k
+// draws its k-th mesh, the coat's roots follow its triangles, nothing intersects, and without
+// --frames the run is as long as the sequence.
+TEST_F(SimulateCommand, AMeshSequenceMovesTheBodyAndItsCoat) {
+  const Output out = simulate("mesh-bird", "bird.l nod.v", "--frames 4", folder_);
+  ASSERT_EQ(out.status, 0) << out.text;
+  EXPECT_NE(out.text.find("4 frames of"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("rooted on the body"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("0 left"), std::string::npos) << out.text;
+  EXPECT_NE(readText(folder_ / "frame-0001.pov"), readText(folder_ / "frame-0004.pov"));
+  const auto rows = table(folder_);
+  ASSERT_EQ(rows.size(), 5u);
+  for (std::size_t r = 1; r < rows.size(); ++r) EXPECT_EQ(rows[r][10], "0") << "frame " << r;
+
+  const Output whole = simulate("mesh-bird", "bird.l nod.v", "--no-frames", folder_ / "whole");
+  ASSERT_EQ(whole.status, 0) << whole.text;
+  EXPECT_NE(whole.text.find("12 frames of"), std::string::npos) << whole.text;
+}
+
 TEST_F(SimulateCommand, AModelWithoutFeathersOrFurIsAnError) {
   const Output out = simulate("herb", "herb.l herb.v", "--frames 2", folder_);
   EXPECT_EQ(out.status, 2) << out.text;

@@ -155,6 +155,90 @@ TEST_F(MeshFileTest, DegenerateTrianglesAreLeftOutAndNonManifoldEdgesReported) {
   EXPECT_NE(text.find("1 edge is shared by more than two triangles"), std::string::npos) << text;
 }
 
+// A mesh sequence: the frames from the lowest number on, each with the first one's vertices.
+TEST_F(MeshFileTest, AMeshSequenceHasAFrameForEachFileAndTheFirstsTriangles) {
+  const auto tile = [](double z) {
+    std::string text = "v 0 0 0\nv 1 0 0\nv 1 1 ";
+    text += std::to_string(z);
+    text += "\nv 0 1 0\nf 1 2 3 4\n";
+    return text;
+  };
+  write("tile.0003.obj", tile(0));
+  write("tile.0004.obj", tile(0.5));
+  write("tile.0005.obj", tile(1));
+  EXPECT_TRUE(isMeshSequence(file("tile.####.obj")));
+  EXPECT_FALSE(isMeshSequence(file("tile.obj")));
+  const SurfaceMeshData mesh = loadMeshSequence(file("tile.####.obj"), folder_,
+                                                kDefaultMaxMeshTriangles, diagnostics);
+  ASSERT_EQ(mesh.frames(), 3u);
+  EXPECT_EQ(mesh.triangles(), 2u);
+  double highest[3] = {0, 0, 0};
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (const glm::dvec3& p : mesh.positionsAt(k)) highest[k] = std::max(highest[k], p.z);
+  }
+  EXPECT_EQ(highest[0], 0);
+  EXPECT_EQ(highest[1], 0.5);
+  EXPECT_EQ(highest[2], 1);
+  // Past the last frame, the last.
+  EXPECT_EQ(&mesh.positionsAt(7), &mesh.positionsAt(2));
+
+  write("gap.0001.obj", tile(0));
+  write("gap.0003.obj", tile(0));
+  write("more.0001.obj", tile(0));
+  write("more.0002.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 2 0\nf 1 2 3 4\nf 2 5 3\n");
+  const auto error = [&](const std::string& pattern) {
+    try {
+      loadMeshSequence(file(pattern), folder_, kDefaultMaxMeshTriangles, diagnostics);
+    } catch (const DiagnosticError& e) {
+      return e.diagnostic().text();
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error("gap.####.obj").find("gap.0002.obj: error: frame 2 of the mesh sequence is missing"),
+            std::string::npos)
+      << error("gap.####.obj");
+  EXPECT_NE(error("more.####.obj").find("more.0002.obj: error: this frame of the mesh sequence has 5 "
+                                        "vertices, the first 4"),
+            std::string::npos)
+      << error("more.####.obj");
+  EXPECT_NE(error("none.####.obj").find("no frame of the mesh sequence"), std::string::npos);
+}
+
+// An animated file: a glTF strip skinned to two bones (scripts/make-meshes.py), the upper bone
+// (at y = 1) turning 90 degrees about x over one second, sampled at 24 frames a second.
+TEST_F(MeshFileTest, AnAnimatedFileGivesAFrameForEachTwentyFourthOfASecond) {
+  fs::copy_file(fs::path(HIRSUTE_SOURCE_DIR) / "tests/fixtures/interpreter/bending-strip.gltf",
+                file("strip.gltf"));
+  const SurfaceMeshData mesh = load("strip.gltf");
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings();
+  ASSERT_EQ(mesh.frames(), 25u);
+  EXPECT_EQ(mesh.triangles(), 16u);
+  EXPECT_TRUE(mesh.fileUvs);
+  const auto top = [&](std::size_t frame) {
+    glm::dvec3 highest(0, -1, 0);
+    for (const glm::dvec3& p : mesh.positionsAt(frame)) {
+      if (p.x > 0 && (p.y + p.z > highest.y + highest.z)) highest = p;
+    }
+    return highest;
+  };
+  const double s = std::sqrt(0.5);
+  EXPECT_NEAR(glm::distance(top(0), glm::dvec3(0.25, 2, 0)), 0, 1e-5);
+  EXPECT_NEAR(glm::distance(top(12), glm::dvec3(0.25, 1 + s, s)), 0, 1e-5);
+  EXPECT_NEAR(glm::distance(top(24), glm::dvec3(0.25, 1, 1)), 0, 1e-5);
+  // The foot (weighted to the lower bone alone) stays; the normals turn with the upper bone.
+  for (std::size_t frame : {0u, 12u, 24u}) {
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      if (mesh.positions[v].y <= 0.5) {
+        EXPECT_NEAR(glm::distance(mesh.positionsAt(frame)[v], mesh.positions[v]), 0, 1e-6);
+      }
+      if (mesh.positions[v].y >= 1.5) {
+        const glm::dvec3 turned = frame == 24 ? glm::dvec3(0, -1, 0) : frame == 12 ? glm::dvec3(0, -s, s) : glm::dvec3(0, 0, 1);
+        EXPECT_NEAR(glm::distance(mesh.normalsAt(frame)[v], turned), 0, 1e-5) << frame;
+      }
+    }
+  }
+}
+
 // Placed by ~X like a `.s` surface: the file's x, y, z along the turtle's L, H and U, scaled;
 // normals stay unit and outward, a mirroring scale keeps the triangles counter-clockwise.
 TEST_F(MeshFileTest, TheTurtlePlacesTheMeshInItsFrame) {

@@ -3,6 +3,7 @@
 // defines a surface drawn by `~X` like a cpfg `.s` surface (docs/meshes.md).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -27,9 +28,28 @@ struct SurfaceMeshData {
   std::vector<std::uint32_t> indices;    // three per triangle, counter-clockwise about the normal
   bool fileUvs = false;                  // uv come from the file (else: x, y over their bounds)
   glm::dvec3 boundsMin{0.0}, boundsMax{0.0};
+  // A mesh sequence's frames after the first (`body.####.obj`): the positions and normals of
+  // each, over the first frame's vertices, triangles and (u, v).
+  std::vector<std::vector<glm::dvec3>> laterPositions, laterNormals;
 
   std::size_t triangles() const { return indices.size() / 3; }
+  std::size_t frames() const { return 1 + laterPositions.size(); }
+  // Frame k's positions and normals (from 0; past the last, the last).
+  const std::vector<glm::dvec3>& positionsAt(std::size_t frame) const {
+    return frame == 0 || laterPositions.empty()
+               ? positions
+               : laterPositions[std::min(frame, laterPositions.size()) - 1];
+  }
+  const std::vector<glm::dvec3>& normalsAt(std::size_t frame) const {
+    return frame == 0 || laterNormals.empty()
+               ? normals
+               : laterNormals[std::min(frame, laterNormals.size()) - 1];
+  }
 };
+
+// A mesh sequence may hold at most this many vertices over all its frames (24 bytes a position
+// and as many a normal: about 1 GB).
+inline constexpr std::size_t kMaxSequenceVertices = 20'000'000;
 
 // Whether a file is read as a mesh rather than as a cpfg `.s` surface: its extension is one
 // Assimp imports and is not `.s`.
@@ -44,5 +64,18 @@ bool isMeshFile(const std::filesystem::path& file);
 // `maxTriangles` triangles.
 SurfaceMeshData loadMeshFile(const std::filesystem::path& file, const std::filesystem::path& folder,
                              std::size_t maxTriangles, Diagnostics& diagnostics);
+
+// Whether a name is a mesh sequence's: a run of '#' in its file name stands for the frame number
+// (`body.####.obj`: body.0001.obj, body.0002.obj, …).
+bool isMeshSequence(const std::filesystem::path& file);
+
+// A mesh sequence: its frames are the files whose numbers, written with at least as many digits
+// as the run of '#', are consecutive from the lowest there is; every frame has the first one's
+// vertices and triangles (a sequence exported frame by frame from an animation), and its own
+// positions and normals. Throws DiagnosticError naming the file of a frame that is missing,
+// broken or of other vertices, for no frame at all, and past kMaxSequenceVertices.
+SurfaceMeshData loadMeshSequence(const std::filesystem::path& pattern,
+                                 const std::filesystem::path& folder, std::size_t maxTriangles,
+                                 Diagnostics& diagnostics);
 
 }  // namespace hirsute

@@ -2,6 +2,8 @@
 // or materials, contours, surfaces and textures, loaded once per model.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -36,6 +38,18 @@ struct ModelResources {
   std::vector<Texture> textures;
   // The view file's `background scene:` files in order; interpret() appends them to the Scene.
   std::vector<BackgroundScene> backgroundScenes;
+  // The frame (from 0) of the moving meshes (mesh sequences, docs/meshes.md) that `~X` draws:
+  // `hirsute simulate` sets it frame by frame; elsewhere the first.
+  std::size_t meshFrame = 0;
+
+  // The most frames of any moving mesh surface; 1 when none moves.
+  std::size_t meshFrames() const {
+    std::size_t frames = 1;
+    for (const auto& [id, surface] : surfaces) {
+      if (surface.mesh) frames = std::max(frames, surface.mesh->frames());
+    }
+    return frames;
+  }
 };
 
 // cpfg's -m/-M banks run from 1 to 12.
