@@ -79,37 +79,49 @@ std::size_t CoatMotion::penetrations() const {
                            simulation_.nearestAllowed());
 }
 
+CoatTarget CoatMotion::targetOf(const Scene& next) const {
+  const std::vector<Vector3d>& fromBody = simulation_.body().vertices;
+  if (boundRoots() < bound_.size() &&
+      next.organ<FeatherPart>().feathers.size() != simulation_.stems().size()) {
+    throw FrameMismatch(
+        "the frame has " + std::to_string(next.organ<FeatherPart>().feathers.size()) +
+        " feathers where the simulation has " + std::to_string(simulation_.stems().size()) +
+        ": a simulation needs the same feathers in every frame");
+  }
+  BodyMesh body = bodyMeshOf(next);
+  if (body.vertices.size() != fromBody.size() || body.triangles != simulation_.body().triangles) {
+    throw FrameMismatch(
+        "the frame's body has " + std::to_string(body.triangles.size()) + " triangles over " +
+        std::to_string(body.vertices.size()) + " vertices where the first had " +
+        std::to_string(simulation_.body().triangles.size()) + " over " +
+        std::to_string(fromBody.size()) + ": the body may move and bend, but keep its mesh");
+  }
+  CoatTarget target;
+  target.anchors.resize(simulation_.anchors().size());
+  const std::vector<Vector3d> normals = vertexNormals(body);
+  for (std::size_t s = 0; s < target.anchors.size(); ++s)
+    target.anchors[s] = bound_[s].triangle >= 0
+                            ? anchorOnBody(body, normals, bound_[s])
+                            : anchorFrameOf(next.organ<FeatherPart>().feathers[s]);
+  target.body = std::move(body.vertices);
+  return target;
+}
+
 void CoatMotion::advance(double seconds, int steps, const Scene* next) {
+  if (steps < 1 || !(seconds > 0)) throw std::invalid_argument("a frame needs a time and steps");
+  if (next) {
+    advance(seconds, steps, targetOf(*next));
+    return;
+  }
+  advance(seconds, steps, CoatTarget{simulation_.anchors(), simulation_.body().vertices});
+}
+
+void CoatMotion::advance(double seconds, int steps, const CoatTarget& target) {
   if (steps < 1 || !(seconds > 0)) throw std::invalid_argument("a frame needs a time and steps");
   const std::vector<StemFrame> fromAnchors = simulation_.anchors();
   const std::vector<Vector3d> fromBody = simulation_.body().vertices;
-  std::vector<StemFrame> toAnchors = fromAnchors;
-  std::vector<Vector3d> toBody = fromBody;
-  if (next) {
-    if (boundRoots() < bound_.size() &&
-        next->organ<FeatherPart>().feathers.size() != simulation_.stems().size()) {
-      throw FrameMismatch(
-          "the frame has " + std::to_string(next->organ<FeatherPart>().feathers.size()) +
-          " feathers where the simulation has " + std::to_string(simulation_.stems().size()) +
-          ": a simulation needs the same feathers in every frame");
-    }
-    BodyMesh body = bodyMeshOf(*next);
-    if (body.vertices.size() != fromBody.size() ||
-        body.triangles != simulation_.body().triangles) {
-      throw FrameMismatch("the frame's body has " + std::to_string(body.triangles.size()) +
-                          " triangles over " + std::to_string(body.vertices.size()) +
-                          " vertices where the first had " +
-                          std::to_string(simulation_.body().triangles.size()) + " over " +
-                          std::to_string(fromBody.size()) +
-                          ": the body may move and bend, but keep its mesh");
-    }
-    toBody = body.vertices;
-    const std::vector<Vector3d> normals = vertexNormals(body);
-    for (std::size_t s = 0; s < toAnchors.size(); ++s)
-      toAnchors[s] = bound_[s].triangle >= 0
-                         ? anchorOnBody(body, normals, bound_[s])
-                         : anchorFrameOf(next->organ<FeatherPart>().feathers[s]);
-  }
+  if (target.anchors.size() != fromAnchors.size() || target.body.size() != fromBody.size())
+    throw std::invalid_argument("a target of another coat");
   const double stable = simulation_.stableTimeStep();
   if (seconds / steps > stable)
     steps = static_cast<int>(std::min(std::ceil(seconds / stable), 1e6));
@@ -118,9 +130,9 @@ void CoatMotion::advance(double seconds, int steps, const Scene* next) {
   for (int k = 1; k <= steps; ++k) {
     const double t = static_cast<double>(k) / steps;
     for (std::size_t s = 0; s < anchors.size(); ++s)
-      anchors[s] = between(fromAnchors[s], toAnchors[s], t);
+      anchors[s] = between(fromAnchors[s], target.anchors[s], t);
     for (std::size_t v = 0; v < vertices.size(); ++v)
-      vertices[v] = (1 - t) * fromBody[v] + t * toBody[v];
+      vertices[v] = (1 - t) * fromBody[v] + t * target.body[v];
     simulation_.step(seconds / steps, anchors, vertices);
   }
 }

@@ -1,22 +1,26 @@
 // The viewer's live model without a window: steps asked for are built and shown, the animation
 // keeps the .a file's swap interval on a clock moved by hand, the script's commands change what
 // is shown and wait for builds and for time, the screenshots it asks the window for fail the
-// script, the fur takes droplets and the feathers' dynamics runs and pauses on shipped models.
+// script, the fur takes droplets and the feathers' dynamics runs and pauses on shipped models; on
+// the wall clock the dynamics run on their own thread and keep real time beside a slow display.
 #include "hirsute/viewer/interaction/live_model.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <fstream>
 #include <mutex>
 #include <sstream>
 #include <thread>
 
-#include "model_pipeline.h"
-
+#include "hirsute/hairs/dynamics/coat_runner.h"
 #include "hirsute/hairs/feathers/feather_live.h"
 #include "hirsute/hairs/fur/fur_live.h"
 #include "hirsute/interpreter/feather_part.h"
+#include "hirsute/interpreter/feather_settings.h"
 #include "hirsute/interpreter/fur_part.h"
+#include "model_pipeline.h"
 
 namespace hirsute {
 namespace {
@@ -59,8 +63,10 @@ struct RecordingView : LiveModelView {
     if (organ == "feathers") {
       ++featherUpdates;
       lastFeathers = scene;
+      featherPoses.push_back(scene.organ<FeatherPart>().poses.size());
     }
   }
+  std::vector<std::size_t> featherPoses;  // the poses of each feathers' update
   bool screenshot(const std::filesystem::path& file, bool withUi) override {
     screenshots.push_back({file, withUi, live && live->model() ? live->model()->steps : -1});
     return screenshotsWork;
@@ -352,12 +358,18 @@ TEST(LiveModelTest, ABrokenBuildKeepsTheLastPlantAndIsReported) {
 
 // A model of the shipped set (models/FOLDER/NAME.l and NAME.v) built as `hirsute view` builds it.
 struct ShippedModel {
-  ShippedModel(const std::string& folder, const std::string& name) {
-    const std::filesystem::path base = kSource / "models" / folder / name;
+  ShippedModel(const std::string& folder, const std::string& name)
+      : ShippedModel(kSource / "models" / folder / name) {}
+  // The model BASE.l, BASE.v.
+  explicit ShippedModel(const std::filesystem::path& base) {
     options.lsystemFile = base.string() + ".l";
     options.viewFile = base.string() + ".v";
   }
-  LiveModelOptions liveOptions() const { return optionsFor(options.lsystemFile); }
+  LiveModelOptions liveOptions() const {
+    LiveModelOptions live = optionsFor(options.lsystemFile);
+    live.viewFile = options.viewFile;
+    return live;
+  }
 
   cli::ModelOptions options;
   ModelBuilder builder() {
@@ -510,6 +522,153 @@ TEST(LiveModelTest, ScriptGustMovesTheFurAndDryDriesIt) {
   // `dry off` stops the drying.
   live.act(organIndex("fur"), 1, {400, 400});  // the key toggles it off
   EXPECT_FALSE(fur.drying());
+}
+
+// ---- the feathers' dynamics in real time (issue 26, item 3) ----
+
+// A coat of about a dozen feathers (models/coat-bending on a smaller patch), small enough that its
+// dynamics keep pace with the wall clock on a loaded two-core machine, sanitizers included.
+const std::filesystem::path kSmallCoat = kFixtures / "small-coat" / "small-coat";
+
+// A slow display: a frame takes this long to draw (llvmpipe draws the 63-feather coat in some).
+constexpr auto kSlowFrame = 50ms;
+
+TEST(CoatRunnerTest, KeepsPaceWithTheWallClockBesideASlowDisplay) {
+  ShippedModel shipped(kSmallCoat);
+  std::ostringstream warnings;
+  Diagnostics diagnostics(&warnings);
+  const cli::BuiltScene built = cli::buildScene(shipped.options, diagnostics);
+  const std::size_t feathers = built.scene.organ<FeatherPart>().feathers.size();
+  ASSERT_GT(feathers, 0u);
+  const FeatherDynamicsSettings& settings = built.resources.view.organ<FeatherSettings>().dynamics;
+  dynamics::CoatMotion coat(built.scene, dynamics::simulationParametersOf(settings));
+  Scene posing;
+  posing.organ<FeatherPart>().types = built.scene.organ<FeatherPart>().types;
+
+  dynamics::CoatRunner runner(coat, std::move(posing), settings.substeps);
+  const auto start = Clock::now();
+  std::uint64_t generation = 0;
+  int states = 0;
+  while (Clock::now() - start < 1500ms) {
+    std::this_thread::sleep_for(kSlowFrame);
+    // What the display takes is always a whole state, and never an older one.
+    const std::shared_ptr<const dynamics::CoatSnapshot> state = runner.latest();
+    if (!state) continue;
+    EXPECT_EQ(state->poses.size(), feathers);
+    EXPECT_GE(state->generation, generation);
+    states += state->generation != generation;
+    generation = state->generation;
+  }
+  runner.stop();
+  ASSERT_TRUE(runner.failure().empty()) << runner.failure();
+  const double simulated = runner.simulatedSeconds(), wall = runner.wallSeconds();
+  EXPECT_GT(simulated / wall, 0.8) << simulated << " s simulated in " << wall << " s";
+  EXPECT_LE(simulated, wall) << "the runner ran ahead of the clock";
+  EXPECT_NEAR(coat.simulation().time(), simulated, 1e-9);
+  EXPECT_GE(states, 10);  // some 30 frames shown, nearly every one a new state
+  // Stopped, the coat is left in the last state published.
+  EXPECT_GE(runner.latest()->generation, generation);
+  EXPECT_NEAR(runner.latest()->time, simulated, 1e-9);
+  runner.stop();  // again: nothing to join
+}
+
+// Turns of the window's loop on the wall clock for `wall`, each frame drawn in kSlowFrame; the
+// state shown must only move on.
+void runSlowFrames(LiveModel& live, const LiveFeathers& coat, std::chrono::milliseconds wall) {
+  const auto start = Clock::now();
+  std::uint64_t generation = coat.shownGeneration();
+  while (Clock::now() - start < wall) {
+    live.update();
+    EXPECT_GE(coat.shownGeneration(), generation);
+    generation = coat.shownGeneration();
+    std::this_thread::sleep_for(kSlowFrame);
+  }
+}
+
+TEST(LiveModelTest, OnTheWallClockTheFeathersDynamicsKeepRealTimeOnTheirThread) {
+  ShippedModel shipped(kSmallCoat);
+  LiveModelOptions options = shipped.liveOptions();
+  RecordingView view;
+  LiveModel live(options, shipped.builder(), view);  // the wall clock
+  settle(live);
+  const std::size_t feathers = live.model()->scene.organ<FeatherPart>().feathers.size();
+  ASSERT_GT(feathers, 0u);
+  auto& coat = dynamic_cast<LiveFeathers&>(*live.organ("feathers"));
+  const std::size_t organ = organIndex("feathers");
+
+  live.act(organ, 0, {400, 400});  // D
+  ASSERT_TRUE(coat.simulating());
+  ASSERT_TRUE(coat.threaded());
+  EXPECT_EQ(coat.coat(), nullptr) << "the coat is the thread's while it runs";
+  runSlowFrames(live, coat, 1500ms);
+  ASSERT_TRUE(live.error().empty()) << live.error();
+  EXPECT_GE(view.featherUpdates, 10);
+  for (std::size_t poses : view.featherPoses) EXPECT_EQ(poses, feathers);
+  EXPECT_GT(coat.realTimeRatio(), 0.8) << coat.status();
+  EXPECT_NE(coat.status().find("x real time"), std::string::npos) << coat.status();
+
+  // A new build (as the animation's next frame brings): the thread stops before the build it
+  // stepped with goes, the body's new place is taken, and it runs on.
+  const std::uint64_t before = coat.shownGeneration();
+  live.goTo(live.currentStep());
+  settle(live);
+  ASSERT_TRUE(coat.threaded());
+  runSlowFrames(live, coat, 300ms);
+  EXPECT_GT(coat.shownGeneration(), before);
+  ASSERT_TRUE(live.error().empty()) << live.error();
+
+  // Paused, the thread is joined and the coat stays where it was drawn last.
+  live.act(organ, 0, {400, 400});
+  EXPECT_FALSE(coat.simulating());
+  EXPECT_FALSE(coat.threaded());
+  ASSERT_NE(coat.coat(), nullptr);
+  const double paused = coat.coat()->simulation().time();
+  const int updates = view.featherUpdates;
+  std::this_thread::sleep_for(100ms);
+  live.update();
+  EXPECT_EQ(coat.coat()->simulation().time(), paused);
+  EXPECT_EQ(view.featherUpdates, updates);
+  EXPECT_NE(coat.status().find("paused"), std::string::npos) << coat.status();
+}
+
+// Editing the model's files while the dynamics run stops and joins the thread before the coat
+// goes; closing the window (the live model destroyed) while they run joins it too.
+TEST(LiveModelTest, ReloadingAndClosingStopTheDynamicsThread) {
+  namespace fs = std::filesystem;
+  const fs::path folder =
+      fs::temp_directory_path() / ("hirsute_live_coat_" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  fs::copy(kSmallCoat.parent_path(), folder);
+  ShippedModel shipped(folder / "small-coat");
+  LiveModelOptions options = shipped.liveOptions();
+  options.watch = true;
+  {
+    RecordingView view;
+    LiveModel live(options, shipped.builder(), view);
+    settle(live);
+    auto& coat = dynamic_cast<LiveFeathers&>(*live.organ("feathers"));
+    const std::size_t organ = organIndex("feathers");
+    live.act(organ, 0, {400, 400});
+    ASSERT_TRUE(coat.threaded());
+    runSlowFrames(live, coat, 200ms);
+
+    std::ofstream(folder / "small-coat.l", std::ios::app) << "/* edited */\n";
+    for (int i = 0; i < 500 && coat.simulating(); ++i) {
+      live.update();
+      std::this_thread::sleep_for(10ms);
+    }
+    EXPECT_FALSE(coat.simulating()) << "the edit was not seen";
+    EXPECT_FALSE(coat.threaded());
+    EXPECT_EQ(coat.coat(), nullptr);
+    settle(live);
+    ASSERT_TRUE(live.error().empty()) << live.error();
+
+    live.act(organ, 0, {400, 400});  // runs again, on the new build
+    ASSERT_TRUE(coat.threaded());
+    runSlowFrames(live, coat, 200ms);
+    EXPECT_GT(coat.shownGeneration(), 0u);
+  }  // the live model goes while the thread runs
+  fs::remove_all(folder);
 }
 
 }  // namespace

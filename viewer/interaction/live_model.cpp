@@ -34,6 +34,7 @@ class LiveModel::OrganHost final : public LiveOrganHost {
   OrganHost(LiveModel& live, std::string_view name) : live_(live), name_(name) {}
 
   Clock::time_point now() const override { return live_.now_(); }
+  bool realTime() const override { return live_.realTime_; }
   Camera camera(glm::ivec2 viewport) const override { return live_.camera(viewport); }
   void redraw(const Scene& scene) override { live_.view_.updateOrgan(name_, scene); }
   void fail(const std::string& message) override {
@@ -49,7 +50,10 @@ class LiveModel::OrganHost final : public LiveOrganHost {
 
 LiveModel::LiveModel(const LiveModelOptions& options, ModelBuilder builder, LiveModelView& view,
                      std::function<void()> wake, Now now)
-    : options_(options), view_(view), now_(std::move(now)) {
+    : options_(options),
+      view_(view),
+      realTime_(!now),
+      now_(now ? std::move(now) : Now(&Clock::now)) {
   for (const LiveOrganType* type : liveOrgans()) {
     hosts_.push_back(std::make_unique<OrganHost>(*this, type->name()));
     organs_.push_back(type->make(*hosts_.back()));

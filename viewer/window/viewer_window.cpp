@@ -13,6 +13,7 @@
 #include <iostream>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "hirsute/viewer/gl/gl_functions.h"
@@ -279,6 +280,14 @@ void Viewer::measure(int frames) {
               << " of " << thinned << " drawn while moving";
   }
   std::cout << ")\n";
+  // What moves on its own says how it keeps up (the feathers' dynamics: simulated seconds per
+  // wall-clock second).
+  const std::span<const LiveOrganType* const> organs = liveOrgans();
+  for (std::size_t k = 0; k < organs.size(); ++k) {
+    const std::string status = live_->organ(k).status();
+    if (live_->organ(k).moving() && !status.empty())
+      std::cout << organs[k]->name() << ": " << status << '\n';
+  }
   dirty_ = true;
 }
 

@@ -6,6 +6,7 @@
 // frame in the later Scene. The feathers are the first frame's throughout (a coat the later
 // frames place anew on the moved body is not used); every frame the drawn Scene gets them, bent.
 #pragma once
+#include <Eigen/Core>
 #include <cstddef>
 #include <stdexcept>
 #include <vector>
@@ -13,8 +14,8 @@
 #include "hirsute/hairs/dynamics/feather_coat_simulation.h"
 #include "hirsute/hairs/dynamics/feather_poses.h"
 #include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/feather_settings.h"
+#include "hirsute/interpreter/scene.h"
 
 namespace hirsute::dynamics {
 
@@ -25,6 +26,13 @@ SimulationParameters simulationParametersOf(const FeatherDynamicsSettings& view)
 // triangles.
 struct FrameMismatch : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// Where a later frame puts the body's vertices and the roots (CoatMotion::targetOf): what a step
+// moves them to, taken from the frame's Scene once, so that the Scene need not outlive it.
+struct CoatTarget {
+  std::vector<StemFrame> anchors;
+  std::vector<Eigen::Vector3d> body;
 };
 
 class CoatMotion {
@@ -38,6 +46,10 @@ class CoatMotion {
   // many), else FrameMismatch. A step that
   // cannot be resolved throws StepFailure, the state left at the last step that could.
   void advance(double seconds, int steps, const Scene* next = nullptr);
+  // The same with the body and the roots moving to `target` (targetOf a later frame).
+  void advance(double seconds, int steps, const CoatTarget& target);
+  // Where `next` puts the body and the roots; FrameMismatch as advance.
+  CoatTarget targetOf(const Scene& next) const;
 
   // Gives `scene` (the frame drawn) the first frame's feathers, each bent as its stem is now
   // (FeatherPart::poses).

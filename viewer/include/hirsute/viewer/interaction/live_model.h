@@ -82,9 +82,11 @@ class LiveModel {
   using Now = std::function<Clock::time_point()>;
 
   // Starts the first build at once. `wake` is called from the builder's thread when a build has
-  // finished; `now` is the clock of the animation, the organs and the script's waits.
+  // finished; `now` is the clock of the animation, the organs and the script's waits (none: the
+  // wall clock, Clock::now, and the organs may run in real time on threads of their own; a clock
+  // given, as tests move it by hand, steps everything in update()).
   LiveModel(const LiveModelOptions& options, ModelBuilder builder, LiveModelView& view,
-            std::function<void()> wake = {}, Now now = &Clock::now);
+            std::function<void()> wake = {}, Now now = {});
   ~LiveModel();
   LiveModel(const LiveModel&) = delete;
   LiveModel& operator=(const LiveModel&) = delete;
@@ -169,6 +171,7 @@ class LiveModel {
 
   const LiveModelOptions& options_;
   LiveModelView& view_;
+  bool realTime_;  // now_ is the wall clock (made before now_, which takes the clock given)
   Now now_;
   std::unique_ptr<ModelWorker> worker_;
   std::optional<FileWatcher> watcher_;

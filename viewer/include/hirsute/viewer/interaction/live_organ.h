@@ -33,6 +33,10 @@ class LiveOrganHost {
   virtual ~LiveOrganHost() = default;
   // The clock of the animation and the script (tests move it by hand).
   virtual Clock::time_point now() const = 0;
+  // Whether that clock is the wall clock (Clock::now): an organ may then step on a thread of its
+  // own in real time and hand step() its latest state. False when tests move the clock by hand:
+  // everything then steps in step(), on that clock.
+  virtual bool realTime() const = 0;
   // The camera of a picture `viewport` pixels large, as the view file and the mouse set it.
   virtual Camera camera(glm::ivec2 viewport) const = 0;
   // The organ's drawing takes again from `scene` what moves (organ_drawing.h's update).
