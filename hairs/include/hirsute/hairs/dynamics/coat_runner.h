@@ -78,7 +78,6 @@ class CoatRunner {
 
  private:
   void run();
-  void publish(double ratio);
 
   CoatMotion& coat_;
   Scene posing_;
