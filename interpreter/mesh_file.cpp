@@ -17,6 +17,7 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <set>
 #include <string_view>
 #include <tuple>
@@ -127,14 +128,27 @@ class ConfinedFiles : public Assimp::IOSystem {
 };
 
 // An OBJ's coordinates are text: a non-finite or unreadable one is reported at its line and
-// column before Assimp (which would read it as a number of its own) sees it.
-void checkObjCoordinates(const std::string& text, const fs::path& file) {
+// column before Assimp (which would read it as a number of its own) sees it. Returns the OBJ's
+// triangles (its faces, triangulated).
+std::size_t checkObjCoordinates(const std::string& text, const fs::path& file) {
+  std::size_t triangles = 0;
   int line = 1;
   std::size_t start = 0;
   while (start < text.size()) {
     std::size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
     const std::string_view row(text.data() + start, end - start);
+    if (row.size() > 2 && row[0] == 'f' && (row[1] == ' ' || row[1] == '\t')) {
+      // A face of n corners is n − 2 triangles.
+      std::size_t corners = 0;
+      for (std::size_t i = 1; i < row.size();) {
+        while (i < row.size() && (row[i] == ' ' || row[i] == '\t' || row[i] == '\r')) ++i;
+        if (i >= row.size()) break;
+        ++corners;
+        while (i < row.size() && row[i] != ' ' && row[i] != '\t' && row[i] != '\r') ++i;
+      }
+      if (corners > 2) triangles += corners - 2;
+    }
     const bool coordinates = row.size() > 2 && row[0] == 'v' &&
                              (row[1] == ' ' || row[1] == '\t' ||
                               ((row[1] == 't' || row[1] == 'n') && (row[2] == ' ' || row[2] == '\t')));
@@ -158,6 +172,7 @@ void checkObjCoordinates(const std::string& text, const fs::path& file) {
     ++line;
     start = end + 1;
   }
+  return triangles;
 }
 
 
@@ -310,7 +325,12 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
                                 text, failure)) {
       throw DiagnosticError(at(file), "cannot read the mesh: " + failure);
     }
-    checkObjCoordinates(text, file);
+    // Counted before Assimp reads it all: a mesh past the limit costs no more than its text.
+    if (const std::size_t triangles = checkObjCoordinates(text, file); triangles > maxTriangles) {
+      throw DiagnosticError(at(file), fmt::format("the mesh has {} triangles, more than the limit "
+                                                  "of {} (raise it with --max-mesh-triangles)",
+                                                  triangles, maxTriangles));
+    }
   }
 
   Assimp::Importer importer;
@@ -420,18 +440,27 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
 
   // Vertices welded by position: the file's seams (UV cuts, hard edges) split vertices that
   // are one point of the surface, and its manifoldness is the welded mesh's.
-  std::map<std::tuple<double, double, double>, std::uint32_t> weld;
-  std::vector<std::uint32_t> welded(data.positions.size());
-  for (std::size_t v = 0; v < data.positions.size(); ++v) {
+  // Sorted by position, equal positions get one number.
+  std::vector<std::uint32_t> byPosition(data.positions.size());
+  std::iota(byPosition.begin(), byPosition.end(), 0u);
+  const auto position = [&](std::uint32_t v) {
     const glm::dvec3& p = data.positions[v];
-    welded[v] = weld.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<std::uint32_t>(weld.size()))
-                    .first->second;
+    return std::make_tuple(p.x, p.y, p.z);
+  };
+  std::sort(byPosition.begin(), byPosition.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return position(a) < position(b); });
+  std::vector<std::uint32_t> welded(data.positions.size());
+  for (std::size_t i = 0; i < byPosition.size(); ++i) {
+    welded[byPosition[i]] = i > 0 && position(byPosition[i]) == position(byPosition[i - 1])
+                                ? welded[byPosition[i - 1]]
+                                : static_cast<std::uint32_t>(i);
   }
   const double minimumArea = 1e-14 * diagonal * diagonal;
   std::size_t degenerate = 0;
   std::vector<std::uint32_t> kept;
   kept.reserve(data.indices.size());
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  std::vector<std::uint64_t> edges;  // (smaller welded end << 32) | larger, one per side
+  edges.reserve(data.indices.size());
   for (std::size_t t = 0; t + 2 < data.indices.size(); t += 3) {
     const std::uint32_t a = data.indices[t], b = data.indices[t + 1], c = data.indices[t + 2];
     const double area = 0.5 * glm::length(glm::cross(data.positions[b] - data.positions[a],
@@ -444,7 +473,7 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
     kept.insert(kept.end(), {a, b, c});
     for (auto [p, q] : {std::pair(welded[a], welded[b]), std::pair(welded[b], welded[c]),
                         std::pair(welded[c], welded[a])}) {
-      ++edges[std::minmax(p, q)];
+      edges.push_back(static_cast<std::uint64_t>(std::min(p, q)) << 32 | std::max(p, q));
     }
   }
   data.indices = std::move(kept);
@@ -453,8 +482,14 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
                                            degenerate, degenerate == 1 ? "" : "s"));
   }
   if (data.indices.empty()) throw DiagnosticError(at(file), "the mesh has no triangle with an area");
-  const auto shared = static_cast<std::size_t>(
-      std::count_if(edges.begin(), edges.end(), [](const auto& edge) { return edge.second > 2; }));
+  std::sort(edges.begin(), edges.end());
+  std::size_t shared = 0;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    shared += j - i > 2;
+    i = j;
+  }
   if (shared > 0) {
     diagnostics.warn(at(file), fmt::format("{} edge{} shared by more than two triangles "
                                            "(non-manifold); drawn and covered as they are",

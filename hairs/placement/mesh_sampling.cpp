@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <queue>
 #include <unordered_map>
 #include <utility>
 
@@ -27,7 +26,9 @@ class CandidateGrid {
     std::vector<std::uint64_t> keys(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) keys[i] = keyOf(cellOf(points[i]));
     std::sort(order_.begin(), order_.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+              [&](std::uint32_t a, std::uint32_t b) {
+                return keys[a] < keys[b] || (keys[a] == keys[b] && a < b);
+              });
     for (std::size_t i = 0; i < order_.size();) {
       std::size_t j = i;
       while (j < order_.size() && keys[order_[j]] == keys[order_[i]]) ++j;
@@ -55,6 +56,11 @@ class CandidateGrid {
         }
       }
     }
+  }
+
+  // The key of the cell of side `cell` holding p.
+  static std::uint64_t keyOf(const glm::dvec3& p, double cell) {
+    return keyOf(glm::ivec3(glm::floor(p / cell)));
   }
 
  private:
@@ -124,29 +130,82 @@ std::vector<SurfaceSample> sampleSurfaceArea(const PatchUnfolding& unfolding, st
                                                  kGamma)) *
                       kBeta;
   const auto weight = [&](double d) {
-    return std::pow(1.0 - std::max(d, rMin) / diameter, kAlpha);
+    const double x = 1.0 - std::max(d, rMin) / diameter;  // (1 − d/2r)^8, kAlpha = 8
+    const double x2 = x * x, x4 = x2 * x2;
+    return x4 * x4;
   };
+  static_assert(kAlpha == 8.0, "the weight is written out for an exponent of 8");
+  // The candidates in the order of their cells, so that neighbours lie near in memory.
+  {
+    std::vector<std::uint64_t> keys(candidates);
+    for (std::size_t i = 0; i < candidates; ++i) keys[i] = CandidateGrid::keyOf(points[i], diameter);
+    std::vector<std::uint32_t> order(candidates);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return keys[a] < keys[b] || (keys[a] == keys[b] && a < b);
+    });
+    std::vector<SurfaceSample> sortedSamples(candidates);
+    std::vector<glm::dvec3> sortedPoints(candidates);
+    for (std::size_t k = 0; k < candidates; ++k) {
+      sortedSamples[k] = samples[order[k]];
+      sortedPoints[k] = points[order[k]];
+    }
+    samples = std::move(sortedSamples);
+    points = std::move(sortedPoints);
+  }
+  // Each candidate's neighbours within the diameter, found once (compressed rows).
   const CandidateGrid grid(points, diameter);
+  std::vector<std::uint32_t> first(candidates + 1, 0), neighbours;
+  neighbours.reserve(candidates * 20);
   std::vector<double> weights(candidates, 0.0);
   for (std::uint32_t i = 0; i < candidates; ++i) {
-    grid.neighbours(i, diameter, [&](std::uint32_t, double d) { weights[i] += weight(d); });
-  }
-  // The heaviest candidate first; entries whose weight has since fallen are stale and skipped.
-  std::priority_queue<std::pair<double, std::uint32_t>> heap;
-  for (std::uint32_t i = 0; i < candidates; ++i) heap.emplace(weights[i], i);
-  std::vector<char> removed(candidates, 0);
-  std::size_t left = candidates;
-  while (left > count && !heap.empty()) {
-    const auto [w, i] = heap.top();
-    heap.pop();
-    if (removed[i] || w != weights[i]) continue;
-    removed[i] = 1;
-    --left;
     grid.neighbours(i, diameter, [&](std::uint32_t j, double d) {
-      if (removed[j]) return;
-      weights[j] -= weight(d);
-      heap.emplace(weights[j], j);
+      weights[i] += weight(d);
+      neighbours.push_back(j);
     });
+    first[i + 1] = static_cast<std::uint32_t>(neighbours.size());
+  }
+  // A max-heap of the candidates by weight that knows where each one is: weights only fall, so
+  // a candidate whose weight fell sinks from where it is.
+  std::vector<std::uint32_t> heap(candidates), at(candidates);
+  std::iota(heap.begin(), heap.end(), 0u);
+  const auto heavier = [&](std::uint32_t a, std::uint32_t b) {
+    return weights[a] > weights[b] || (weights[a] == weights[b] && a < b);
+  };
+  std::size_t size = candidates;
+  const auto place = [&](std::size_t k, std::uint32_t c) {
+    heap[k] = c;
+    at[c] = static_cast<std::uint32_t>(k);
+  };
+  const auto sink = [&](std::size_t k) {
+    const std::uint32_t c = heap[k];
+    for (;;) {
+      std::size_t child = 2 * k + 1;
+      if (child >= size) break;
+      if (child + 1 < size && heavier(heap[child + 1], heap[child])) ++child;
+      if (!heavier(heap[child], c)) break;
+      place(k, heap[child]);
+      k = child;
+    }
+    place(k, c);
+  };
+  for (std::size_t k = 0; k < size; ++k) at[heap[k]] = static_cast<std::uint32_t>(k);
+  for (std::size_t k = size / 2; k-- > 0;) sink(k);
+  std::vector<char> removed(candidates, 0);
+  while (size > count) {
+    const std::uint32_t i = heap[0];
+    removed[i] = 1;
+    --size;
+    if (size > 0) {
+      place(0, heap[size]);
+      sink(0);
+    }
+    for (std::uint32_t n = first[i]; n < first[i + 1]; ++n) {
+      const std::uint32_t j = neighbours[n];
+      if (removed[j]) continue;
+      weights[j] -= weight(glm::distance(points[i], points[j]));
+      sink(at[j]);
+    }
   }
   kept.reserve(count);
   for (std::size_t i = 0; i < candidates; ++i) {
