@@ -336,5 +336,66 @@ TEST(FurStage, ViewFileDropletsLandInTheMask) {
   EXPECT_GT(wetTexels, 0u);
 }
 
+// Fur on a mesh surface (models/mesh-body, docs/meshes.md): one fur surface of the mesh's
+// triangles whose (u, v) are its file's atlas, scaled, and whose texels are square on average
+// over the whole body: the atlas's scales are the root mean squares of ∂P/∂u and ∂P/∂v (a fit
+// over edges followed the pinched poles and made the texels ten times wider than tall).
+TEST(FurStage, FurOnAMeshFollowsItsAtlasWithSquareTexels) {
+  Built b;
+  build(b, kModels / "mesh-body" / "body.l", kModels / "mesh-body" / "body.v");
+  ASSERT_EQ(b.scene.organSurfaces.size(), 1u);
+  ASSERT_EQ(b.scene.organ<FurPart>().surfaces.size(), 1u);
+  const OrganSurface& organ = b.scene.organSurfaces[0];
+  EXPECT_EQ(organ.kind, OrganSurfaceKind::Mesh);
+  const FurSurface& fur = b.scene.organ<FurPart>().surfaces[0];
+  ASSERT_EQ(fur.uv.size(), organ.uv.size());
+  EXPECT_EQ(fur.triangleCount(), 3008u);
+  // The fur's (u, v) are the atlas's, each scaled and shifted (or mirrored, for a right-handed
+  // frame): a line through every vertex.
+  for (int axis = 0; axis < 2; ++axis) {
+    double su = 0, sf = 0, suu = 0, suf = 0;
+    const double n = static_cast<double>(fur.uv.size());
+    for (std::size_t i = 0; i < fur.uv.size(); ++i) {
+      const double u = organ.uv[i][axis], f = fur.uv[i][axis];
+      su += u;
+      sf += f;
+      suu += u * u;
+      suf += u * f;
+    }
+    const double slope = (n * suf - su * sf) / (n * suu - su * su);
+    const double offset = (sf - slope * su) / n;
+    double worst = 0;
+    for (std::size_t i = 0; i < fur.uv.size(); ++i) {
+      worst = std::max(worst, std::abs(offset + slope * organ.uv[i][axis] - fur.uv[i][axis]));
+      EXPECT_GE(fur.uv[i][axis], -1e-5f);
+      EXPECT_LE(fur.uv[i][axis], 1 + 1e-5f);
+    }
+    EXPECT_LT(worst, 1e-5) << "axis " << axis;
+    EXPECT_NE(slope, 0) << "axis " << axis;
+  }
+  // Texels square on average: the root mean squares of the world lengths of a texture unit along
+  // each direction, weighted by texture area, agree within 10%.
+  double alongU = 0, alongV = 0, weight = 0;
+  for (std::size_t t = 0; t + 2 < fur.indices.size(); t += 3) {
+    const std::uint32_t a = fur.indices[t], c1 = fur.indices[t + 1], c2 = fur.indices[t + 2];
+    const glm::dvec2 d1 = glm::dvec2(fur.texcoords[c1] - fur.texcoords[a]);
+    const glm::dvec2 d2 = glm::dvec2(fur.texcoords[c2] - fur.texcoords[a]);
+    const double det = d1.x * d2.y - d1.y * d2.x;
+    if (std::abs(det) < 1e-12) continue;
+    const glm::dvec3 e1 = glm::dvec3(fur.positions[c1] - fur.positions[a]);
+    const glm::dvec3 e2 = glm::dvec3(fur.positions[c2] - fur.positions[a]);
+    const glm::dvec3 dU = (d2.y * e1 - d1.y * e2) / det, dV = (-d2.x * e1 + d1.x * e2) / det;
+    const double w = std::abs(det);
+    alongU += w * glm::dot(dU, dU);
+    alongV += w * glm::dot(dV, dV);
+    weight += w;
+  }
+  ASSERT_GT(weight, 0);
+  const double ratio = std::sqrt(alongU / alongV);
+  std::printf("mesh fur: a texture unit is %.3f by %.3f world units\n", std::sqrt(alongU / weight),
+              std::sqrt(alongV / weight));
+  EXPECT_NEAR(ratio, 1, 0.1);
+}
+
 }  // namespace
 }  // namespace hirsute
