@@ -139,6 +139,7 @@ void loadSurfaces(ModelResources& resources, std::size_t maxMeshTriangles,
 
     surface.id = declaration.id;
     surface.viewSize = declaration.size;
+    surface.flow = declaration.flow;
     if (declaration.sPrecision > 0) surface.sPrecision = declaration.sPrecision;
     if (declaration.tPrecision > 0) surface.tPrecision = declaration.tPrecision;
     surface.texture = declaration.texture;

@@ -107,6 +107,11 @@ std::size_t appendMesh(Scene& scene, const Surface& surface, const SurfacePlacem
     record.indexCount = static_cast<std::uint32_t>(mesh.indices.size()) - firstIndex;
     record.uv = data.uv;
     record.organs = organs;
+    if (surface.flow) {
+      const glm::vec3 flow(glm::normalize(m * *surface.flow));
+      record.flow.assign(data.positions.size(), flow);
+    }
+    for (const glm::vec3& colour : data.colours) record.blend.push_back(colour.r);
     scene.organSurfaces.push_back(std::move(record));
   }
   return data.triangles();

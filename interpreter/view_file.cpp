@@ -640,6 +640,32 @@ void surface(ViewLine& c) {
   surfaces.push_back(surface);
 }
 
+// `mesh flow: X x y z`: the direction, in the mesh file's coordinates, along which the coat of
+// the mesh surface X lies (docs/meshes.md), projected on the surface at each follicle.
+void meshFlow(ViewLine& c) {
+  const SourceLocation idAt = c.args.here();
+  const std::string_view id = c.requiredWord("a one-character surface id");
+  auto& surfaces = c.view.surfaces;
+  const auto surface = std::find_if(surfaces.begin(), surfaces.end(), [&](const SurfaceDeclaration& d) {
+    return id.size() == 1 && d.id == id[0];
+  });
+  if (surface == surfaces.end()) {
+    c.fail(idAt, "no surface " + inQuotes(id) + " is declared before this line");
+  }
+  if (!isMeshFile(surface->file)) {
+    c.fail(idAt, "surface " + inQuotes(id) + " is no mesh: only a mesh's coat takes a flow");
+  }
+  const SourceLocation at = c.args.here();
+  glm::dvec3 flow;
+  flow.x = c.requiredNumber("the flow's x");
+  flow.y = c.requiredNumber("the flow's y");
+  flow.z = c.requiredNumber("the flow's z");
+  if (!(glm::length(flow) > 0) || !std::isfinite(glm::length(flow))) {
+    c.fail(at, "the flow is a direction: it cannot be 0 0 0");
+  }
+  surface->flow = flow;
+}
+
 void backgroundScene(ViewLine& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   if (tokens.empty()) c.fail(c.labelAt(), "expected a file name after 'background scene:'");
@@ -881,6 +907,7 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
            if (const auto on = c.settingFlag()) c.view.twistOfCylinders = *on;
          }},
         {"surface:", &surface},
+        {"mesh flow:", &meshFlow},
         {"tsurface:", [](ViewLine& c) { unsupported(c, "triangle-list surfaces are not drawn"); }},
         // Obsolete: a surface used as a line segment, which cpfg's GL drawing ignores too.
         {"line:", &ignoreArguments},

@@ -39,16 +39,17 @@ struct CoatPlacer {
   void surface(std::size_t index);
 };
 
-// The key feather's two types and its blend at girth position s (@Fk(k1, k2, fun)).
-void keyAt(const KeyFeather& key, const GirthFunction& function, float s, std::uint16_t& a,
-           std::uint16_t& b, float& t) {
+// The key feather's two types and its blend at girth position s (@Fk(k1, k2, fun)); on a mesh
+// with vertex colours and no function, the colours' red there (`blend`, -1 elsewhere).
+void keyAt(const KeyFeather& key, const GirthFunction& function, float s, float blend,
+           std::uint16_t& a, std::uint16_t& b, float& t) {
   a = static_cast<std::uint16_t>(std::max(1, key.type));
   b = static_cast<std::uint16_t>(std::max(1, key.blendType));
   if (a == b) {
     t = 0;
     return;
   }
-  t = key.function > 0 ? girthModulation(function, key.function, s) : s;
+  t = key.function > 0 ? girthModulation(function, key.function, s) : blend >= 0 ? blend : s;
   t = std::clamp(t, 0.0f, 1.0f);
 }
 
@@ -111,8 +112,8 @@ class SideCoat : public AttachmentVisitor {
     feather.position = frame.position;
 
     std::uint16_t a0 = 1, b0 = 1, a1 = 1, b1 = 1;
-    keyAt(startKey_, placer_.settings.function, s, a0, b0, feather.across[0]);
-    keyAt(endKey_, placer_.settings.function, s, a1, b1, feather.across[1]);
+    keyAt(startKey_, placer_.settings.function, s, point.blend, a0, b0, feather.across[0]);
+    keyAt(endKey_, placer_.settings.function, s, point.blend, a1, b1, feather.across[1]);
     feather.types = {a0, b0, a1, b1};
     feather.along = tau;
     scene.organ<FeatherPart>().feathers.push_back(feather);

@@ -380,8 +380,14 @@ void SurfaceSampler::sampleMesh(const PatchUnfolding& unfolding, SurfaceFace fac
                         placementKey(key, face == SurfaceFace::Back ? 2u : 1u));
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const SurfaceSample& sample = samples[k];
-    const glm::vec3 h = unfolding.heightVector(sample.triangle);
+    const OrganSurface& record = unfolding.surface();
     const float w[3] = {1.0f - sample.b1 - sample.b2, sample.b1, sample.b2};
+    // The flow: the view file's direction where it gives one, else where v grows.
+    glm::vec3 h = unfolding.heightVector(sample.triangle);
+    if (!record.flow.empty()) {
+      h = glm::vec3(0.0f);
+      for (int c = 0; c < 3; ++c) h += w[c] * record.flow[unfolding.corner(sample.triangle, c)];
+    }
     AttachmentPoint candidate;
     glm::vec2 at(0.0f);
     std::uint32_t vertex[3];
@@ -392,6 +398,10 @@ void SurfaceSampler::sampleMesh(const PatchUnfolding& unfolding, SurfaceFace fac
     candidate.s = at.x;
     candidate.tau = at.y;
     candidate.girthRatio = 1.0f;
+    if (!record.blend.empty()) {
+      candidate.blend = 0.0f;
+      for (int c = 0; c < 3; ++c) candidate.blend += w[c] * record.blend[vertex[c]];
+    }
     candidate.random = PlacementRandom(placementKey(key, k));
     visitor.pointTested();
     if (!visitor.keep(candidate)) continue;

@@ -212,67 +212,119 @@ TEST(FeatherStage, KeyFeathersBlendBilinearly) {
   EXPECT_GT(highest, 0.8f);
 }
 
-// A coat on a mesh surface (docs/meshes.md): a unit sphere whose atlas's v grows from its south
-// pole to its north one. Follicles cover its area at the density (the count is density × area
-// exactly), every feather stands on the outside, lifted by the lie angle, and lies along the
-// flow: the tangent part of its rachis points north along its meridian (the file's north, which
-// ~B draws along the turtle's up vector).
-TEST(FeatherStage, ACoatOnAMeshLiesAlongItsFlow) {
-  const fs::path folder = fs::temp_directory_path() / "hirsute_mesh_coat_test";
+// A unit sphere of 30 × 60 quads in `folder` (ball.obj) whose atlas's v grows from its south
+// pole to its north one, its vertex colours' red from 0 at the south pole to 1 at the north
+// one; with brown.fea and grey.fea, the view file `view` and the axiom `axiom`.
+fs::path writeBall(const std::string& name, const std::string& view, const std::string& axiom) {
+  const fs::path folder = fs::temp_directory_path() / name;
   fs::remove_all(folder);
   fs::create_directories(folder);
   fs::copy(kModels / "feather-coat" / "brown.fea", folder / "brown.fea");
-  {
-    std::ofstream obj(folder / "ball.obj");
-    constexpr int kRings = 30, kSides = 60;
-    const double pi = std::acos(-1.0);
-    for (int i = 0; i <= kRings; ++i) {
-      for (int j = 0; j <= kSides; ++j) {
-        const double theta = pi * i / kRings, phi = 2 * pi * j / kSides;
-        obj << "v " << std::sin(theta) * std::cos(phi) << ' ' << std::sin(theta) * std::sin(phi)
-            << ' ' << std::cos(theta) << "\nvt " << static_cast<double>(j) / kSides << ' '
-            << 1 - static_cast<double>(i) / kRings << '\n';
-      }
-    }
-    for (int i = 0; i < kRings; ++i) {
-      for (int j = 0; j < kSides; ++j) {
-        const int a = i * (kSides + 1) + j + 1, b = a + 1, c = a + kSides + 1, d = c + 1;
-        obj << "f " << a << '/' << a << ' ' << c << '/' << c << ' ' << b << '/' << b << '\n';
-        obj << "f " << b << '/' << b << ' ' << c << '/' << c << ' ' << d << '/' << d << '\n';
-      }
+  fs::copy(kModels / "feather-coat" / "grey.fea", folder / "grey.fea");
+  std::ofstream obj(folder / "ball.obj");
+  constexpr int kRings = 30, kSides = 60;
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i <= kRings; ++i) {
+    for (int j = 0; j <= kSides; ++j) {
+      const double theta = pi * i / kRings, phi = 2 * pi * j / kSides;
+      obj << "v " << std::sin(theta) * std::cos(phi) << ' ' << std::sin(theta) * std::sin(phi)
+          << ' ' << std::cos(theta) << ' ' << (1 + std::cos(theta)) / 2 << " 0.5 0.5\nvt "
+          << static_cast<double>(j) / kSides << ' ' << 1 - static_cast<double>(i) / kRings << '\n';
     }
   }
-  std::ofstream(folder / "ball.v") << "surface: B ball.obj 1\nfeather: brown.fea\n";
-  std::ofstream(folder / "ball.l")
-      << "Lsystem: 1\nderivation length: 0\nAxiom: @Ff(1) @Fd(40) @Fl(10) @Fk(1) ~B(1)\n"
-         "endlsystem\n";
-  Built b;
-  build(b, folder / "ball.l", folder / "ball.v");
-  ASSERT_EQ(b.scene.organSurfaces.size(), 1u);
+  for (int i = 0; i < kRings; ++i) {
+    for (int j = 0; j < kSides; ++j) {
+      const int a = i * (kSides + 1) + j + 1, b = a + 1, c = a + kSides + 1, d = c + 1;
+      obj << "f " << a << '/' << a << ' ' << c << '/' << c << ' ' << b << '/' << b << '\n';
+      obj << "f " << b << '/' << b << ' ' << c << '/' << c << ' ' << d << '/' << d << '\n';
+    }
+  }
+  std::ofstream(folder / "ball.v") << "surface: B ball.obj 1\nfeather: brown.fea\nfeather: grey.fea\n"
+                                   << view;
+  std::ofstream(folder / "ball.l") << "Lsystem: 1\nderivation length: 0\nAxiom: " << axiom
+                                   << "\nendlsystem\n";
+  return folder;
+}
+
+double meshArea(const Scene& scene) {
   double area = 0;
-  const TriangleMesh& mesh = b.scene.meshes[static_cast<std::size_t>(b.scene.organSurfaces[0].mesh)];
+  const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(scene.organSurfaces.at(0).mesh)];
   for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
     area += 0.5 * glm::length(glm::cross(mesh.positions[mesh.indices[i + 1]] - mesh.positions[mesh.indices[i]],
                                          mesh.positions[mesh.indices[i + 2]] - mesh.positions[mesh.indices[i]]));
   }
+  return area;
+}
+
+// The largest angle, in degrees, between a coat feather's rachis laid on the surface and the
+// flow `along(n)` at its root (n the outward normal), away from where the flow meets the normal.
+template <class Flow>
+double worstDeviation(const std::vector<Feather>& feathers, Flow along) {
+  double worst = 0;
+  for (const Feather& f : feathers) {
+    const glm::vec3 n = glm::normalize(f.position);
+    const glm::vec3 flow = along(n);
+    const glm::vec3 tangent = flow - glm::dot(flow, n) * n;
+    if (glm::length(tangent) < 0.45f) continue;  // within 27 degrees of a pole of the flow
+    const glm::vec3 rachis = glm::normalize(f.heading - glm::dot(f.heading, n) * n);
+    const double off = std::acos(std::min(1.0f, glm::dot(rachis, glm::normalize(tangent))));
+    worst = std::max(worst, off * 180 / 3.14159265);
+  }
+  return worst;
+}
+
+// A coat on a mesh surface (docs/meshes.md). Follicles cover its area at the density (the count
+// is density × area exactly), every feather stands on the outside, lifted by the lie angle, and
+// lies along the flow: the tangent part of its rachis points north along its meridian (the
+// file's north, which ~B draws along the turtle's up vector, world −z); with `mesh flow: B 1 0 0`
+// it points along the file's x instead (the turtle's left, world −x).
+TEST(FeatherStage, ACoatOnAMeshLiesAlongItsFlow) {
+  const fs::path folder = writeBall("hirsute_mesh_coat_test", "", "@Ff(1) @Fd(40) @Fl(10) @Fk(1) ~B(1)");
+  Built b;
+  build(b, folder / "ball.l", folder / "ball.v");
+  ASSERT_EQ(b.scene.organSurfaces.size(), 1u);
   const std::vector<Feather>& feathers = b.scene.organ<FeatherPart>().feathers;
+  const double area = meshArea(b.scene);
   EXPECT_NEAR(static_cast<double>(feathers.size()), 40 * area, 0.02 * 40 * area);
   const float lie = std::sin(10.0f * 3.14159265f / 180.0f);
-  double worst = 0;
   for (const Feather& f : feathers) {
     EXPECT_EQ(f.origin, FeatherOrigin::Coat);
     const glm::vec3 n = glm::normalize(f.position);
     EXPECT_NEAR(glm::dot(f.heading, n), lie, 0.03f);
     EXPECT_GT(glm::dot(f.up, n), 0.95f);
-    if (std::abs(n.z) > 0.9f) continue;  // the poles, where the meridians meet
-    // The file's north pole (+z) is drawn along the turtle's up vector, world −z.
-    const glm::vec3 north = glm::normalize(glm::vec3(0, 0, -1) + n.z * n);
-    const glm::vec3 along = glm::normalize(f.heading - glm::dot(f.heading, n) * n);
-    const double off = std::acos(std::min(1.0f, glm::dot(along, north)));
-    worst = std::max(worst, off);
   }
   // Within the tessellation: the rings are 6 degrees apart.
-  EXPECT_LT(worst * 180 / 3.14159265, 6.0) << "degrees off the flow";
+  EXPECT_LT(worstDeviation(feathers, [](const glm::vec3&) { return glm::vec3(0, 0, -1); }), 6.0)
+      << "degrees off the flow";
+
+  std::ofstream(folder / "ball.v", std::ios::app) << "mesh flow: B 1 0 0\n";
+  Built across;
+  build(across, folder / "ball.l", folder / "ball.v");
+  EXPECT_LT(worstDeviation(across.scene.organ<FeatherPart>().feathers,
+                           [](const glm::vec3&) { return glm::vec3(-1, 0, 0); }),
+            6.0)
+      << "degrees off the view file's flow";
+  fs::remove_all(folder);
+}
+
+// On a mesh with vertex colours, @Fk(k1, k2) without a function blends k1 into k2 by the colours'
+// red: here from brown at the file's south pole to grey at its north one.
+TEST(FeatherStage, AMeshsVertexColoursChooseItsKeyFeathers) {
+  const fs::path folder = writeBall("hirsute_mesh_keys_test", "", "@Ff(1) @Fd(20) @Fk(1, 2) ~B(1)");
+  Built b;
+  build(b, folder / "ball.l", folder / "ball.v");
+  const std::vector<Feather>& feathers = b.scene.organ<FeatherPart>().feathers;
+  ASSERT_GT(feathers.size(), 100u);
+  double worst = 0;
+  for (const Feather& f : feathers) {
+    EXPECT_EQ(f.types[0], 1);
+    EXPECT_EQ(f.types[1], 2);
+    // The file's z is drawn along the turtle's up vector, world −z.
+    const double red = (1 - glm::normalize(f.position).z) / 2;
+    worst = std::max(worst, std::abs(f.across[0] - red));
+  }
+  // The colours are linear over each triangle, the sphere's z is not: within a ring's height.
+  EXPECT_LT(worst, 0.02);
   fs::remove_all(folder);
 }
 

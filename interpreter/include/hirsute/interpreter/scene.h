@@ -145,6 +145,11 @@ struct OrganSurface {
   std::uint32_t indexCount = 0;
   std::vector<glm::vec2> uv;  // one per vertex
   OrganAttributeIndices organs;
+  // A mesh's (OrganSurfaceKind::Mesh): the direction its coat lies along at each vertex, in the
+  // world (`mesh flow:`; empty: where v grows), and the red of its file's vertex colours, which
+  // blends a coat's key feathers (empty: the file has none).
+  std::vector<glm::vec3> flow;
+  std::vector<float> blend;
 };
 
 struct Texture {

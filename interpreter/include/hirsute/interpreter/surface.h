@@ -4,6 +4,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,7 @@ struct Surface {
   // A mesh file's triangles instead of patches (mesh_file.h): its contact and end points are the
   // file's origin, its heading +y and its up +z, SIZE 1.
   std::shared_ptr<const SurfaceMeshData> mesh;
+  std::optional<glm::dvec3> flow;  // a mesh's `mesh flow:`, in the file's coordinates
 };
 
 // Reads a `.s` file. Throws DiagnosticError at the broken line.

@@ -64,6 +64,9 @@ struct SurfaceDeclaration {
   int sPrecision = 0, tPrecision = 0;  // 0: from the file
   int texture = 0;                     // 1-based, 0 none
   SourceLocation where;                // the file name on its view-file line
+  // `mesh flow: X x y z`: the direction in the mesh file's coordinates its coat lies along
+  // (docs/meshes.md); none: the direction in which its v grows.
+  std::optional<glm::dvec3> flow;
 };
 
 struct ContourDeclaration {

@@ -39,6 +39,7 @@ struct AttachmentPoint {
   float girthRatio = 1;  // where a tile is stretched: the girth (or a surface's area ratio) here
                          // over the largest
   bool edge = false;     // on an edge of an open contour (placed per unit length)
+  float blend = -1;      // a mesh's vertex colours' red here (OrganSurface::blend); -1: none
   PlacementRandom random{0};  // this point's numbers, keyed by the seed and the point
 };
 
