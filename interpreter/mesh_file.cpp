@@ -25,6 +25,7 @@
 #include <utility>
 
 #include "hirsute/core/model_folder.h"
+#include "mesh_parameterisation.h"
 
 namespace hirsute {
 namespace {
@@ -530,9 +531,13 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
     }
   }
 
-  if (!data.fileUvs) {
-    // No (u, v) in the file: x and y over their bounds, as cpfg maps one texture over a whole
-    // `.s` surface (its `S:` textures).
+  if (!data.fileUvs &&
+      parameteriseDisc(data.positions, data.indices, welded, data.uv)) {
+    data.uvSource = MeshUvSource::Conformal;
+  } else if (!data.fileUvs) {
+    // No (u, v) in the file, and no disc: x and y over their bounds, as cpfg maps one texture
+    // over a whole `.s` surface (its `S:` textures).
+    data.uvSource = MeshUvSource::Planar;
     const glm::dvec2 low(data.boundsMin), span = glm::max(glm::dvec2(data.boundsMax) - low,
                                                           glm::dvec2(1e-300));
     data.uv.clear();

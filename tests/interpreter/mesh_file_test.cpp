@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "hirsute/interpreter/hair_attributes.h"
@@ -84,6 +86,49 @@ TEST_F(MeshFileTest, AnObjGivesItsTrianglesNormalsAndTextureCoordinates) {
   }
 }
 
+// A mesh without texture coordinates: a disc gets CGAL's least-squares conformal map (the angles
+// of its triangles kept, in [0, 1]²); any other shape its x and y.
+TEST_F(MeshFileTest, AMeshWithoutCoordinatesIsParameterisedOrMappedFlat) {
+  std::ostringstream grid;
+  // A curved 8 × 8 grid of squares, each cut in two (a paraboloid: no map keeps every angle): a
+  // disc.
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j <= 8; ++j) grid << "v " << j / 8.0 << ' ' << i / 8.0 << ' ' << 0.3 * ((j / 8.0) * (j / 8.0) + (i / 8.0) * (i / 8.0)) << '\n';
+  }
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const int a = i * 9 + j + 1, b = a + 1, c = a + 9, d = c + 1;
+      grid << "f " << a << ' ' << b << ' ' << d << "\nf " << a << ' ' << d << ' ' << c << '\n';
+    }
+  }
+  write("grid.obj", grid.str());
+  const SurfaceMeshData disc = load("grid.obj");
+  EXPECT_EQ(disc.uvSource, MeshUvSource::Conformal);
+  // Conformal: each triangle's (u, v) is its world shape scaled and turned, not mirrored, so
+  // its angles are kept (within the map's discretisation).
+  double worst = 0;
+  for (std::size_t t = 0; t < disc.triangles(); ++t) {
+    const std::uint32_t* c = &disc.indices[3 * t];
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 e1 = disc.positions[c[(k + 1) % 3]] - disc.positions[c[k]];
+      const glm::dvec3 e2 = disc.positions[c[(k + 2) % 3]] - disc.positions[c[k]];
+      const glm::dvec2 f1 = glm::dvec2(disc.uv[c[(k + 1) % 3]] - disc.uv[c[k]]);
+      const glm::dvec2 f2 = glm::dvec2(disc.uv[c[(k + 2) % 3]] - disc.uv[c[k]]);
+      const double world = std::acos(glm::dot(e1, e2) / (glm::length(e1) * glm::length(e2)));
+      const double plane = std::acos(glm::dot(f1, f2) / (glm::length(f1) * glm::length(f2)));
+      worst = std::max(worst, std::abs(world - plane) * 180 / 3.14159265);
+    }
+  }
+  for (const glm::vec2& uv : disc.uv) {
+    EXPECT_GE(uv.x, -1e-6f);
+    EXPECT_LE(uv.x, 1 + 1e-6f);
+    EXPECT_GE(uv.y, -1e-6f);
+    EXPECT_LE(uv.y, 1 + 1e-6f);
+  }
+  std::printf("conformal map: angles kept within %.1f degrees\n", worst);
+  EXPECT_LT(worst, 3.0);
+}
+
 TEST_F(MeshFileTest, TheFormatIsChosenByTheFileAndAMeshWithoutCoordinatesIsMappedFlat) {
   write("tile.ply",
         "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
@@ -97,12 +142,21 @@ TEST_F(MeshFileTest, TheFormatIsChosenByTheFileAndAMeshWithoutCoordinatesIsMappe
     const SurfaceMeshData mesh = load(name);
     EXPECT_EQ(mesh.triangles(), 2u) << name;
     EXPECT_FALSE(mesh.fileUvs) << name;
-    // (u, v) are x and y over their bounds, the normals computed: +z.
+    // A disc: parameterised; the normals computed: +z.
+    EXPECT_EQ(mesh.uvSource, MeshUvSource::Conformal) << name;
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-      EXPECT_NEAR(mesh.uv[v].x, mesh.positions[v].x / 2, 1e-6) << name;
-      EXPECT_NEAR(mesh.uv[v].y, mesh.positions[v].y, 1e-6) << name;
       EXPECT_NEAR(mesh.normals[v].z, 1, 1e-6) << name;
     }
+  }
+  // A closed box (no border) is no disc: (u, v) are x and y over their bounds.
+  write("box.obj",
+        "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 1\nv 2 0 1\nv 2 1 1\nv 0 1 1\n"
+        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n");
+  const SurfaceMeshData box = load("box.obj");
+  EXPECT_EQ(box.uvSource, MeshUvSource::Planar);
+  for (std::size_t v = 0; v < box.positions.size(); ++v) {
+    EXPECT_NEAR(box.uv[v].x, box.positions[v].x / 2, 1e-6);
+    EXPECT_NEAR(box.uv[v].y, box.positions[v].y, 1e-6);
   }
   EXPECT_FALSE(isMeshFile(file("leaf.s")));
   EXPECT_FALSE(isMeshFile(file("notes.txt")));

@@ -19,6 +19,13 @@ namespace hirsute {
 // A mesh of more triangles than this is refused (`--max-mesh-triangles`).
 inline constexpr std::size_t kDefaultMaxMeshTriangles = 2'000'000;
 
+// Where a mesh's (u, v) come from.
+enum class MeshUvSource : std::uint8_t {
+  File,       // the file's texture coordinates
+  Conformal,  // none in the file; the mesh is a disc: CGAL's least-squares conformal map
+  Planar,     // none in the file, and no disc: its x and y over their bounds
+};
+
 // A mesh file's triangles in its own coordinates, ready to be placed by the turtle.
 struct SurfaceMeshData {
   std::vector<glm::dvec3> positions;
@@ -26,7 +33,8 @@ struct SurfaceMeshData {
   std::vector<glm::vec2> uv;             // one per vertex: the file's, or the planar fallback
   std::vector<glm::vec3> colours;        // the file's vertex colours, or empty
   std::vector<std::uint32_t> indices;    // three per triangle, counter-clockwise about the normal
-  bool fileUvs = false;                  // uv come from the file (else: x, y over their bounds)
+  bool fileUvs = false;                  // uv come from the file
+  MeshUvSource uvSource = MeshUvSource::File;
   glm::dvec3 boundsMin{0.0}, boundsMax{0.0};
   // A mesh sequence's frames after the first (`body.####.obj`): the positions and normals of
   // each, over the first frame's vertices, triangles and (u, v).
