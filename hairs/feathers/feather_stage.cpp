@@ -1,5 +1,7 @@
 #include "hirsute/hairs/feathers/feather_stage.h"
 
+#include "hirsute/hairs/placement/mesh_sampling.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -121,6 +123,9 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
                         placed.segmentsWithoutMesh));
       }
     } catch (const FeatherLimitError& e) {
+      throw DiagnosticError(
+          SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0}, e.what());
+    } catch (const SamplingLimitError& e) {
       throw DiagnosticError(
           SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0}, e.what());
     }

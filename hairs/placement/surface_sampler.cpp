@@ -4,6 +4,8 @@
 
 #include "hirsute/hairs/placement/mesh_sampling.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -374,6 +376,12 @@ void SurfaceSampler::sampleMesh(const PatchUnfolding& unfolding, SurfaceFace fac
   const double expected = static_cast<double>(maxDensity) * unfolding.area();
   visitor.expectPoints(expected);
   if (!(expected >= 0.5) || !std::isfinite(expected)) return;
+  if (expected > static_cast<double>(kMaxMeshPoints)) {
+    throw SamplingLimitError(fmt::format(
+        "a mesh surface would take {:.0f} points on one side at its peak density, more than the "
+        "{} a mesh side may have (lower the density)",
+        expected, kMaxMeshPoints));
+  }
   const float flip = face == SurfaceFace::Back ? -1.0f : 1.0f;
   const std::vector<SurfaceSample> samples =
       sampleSurfaceArea(unfolding, static_cast<std::size_t>(std::llround(expected)),

@@ -1,5 +1,7 @@
 #include "hirsute/hairs/plant/plant_hairs.h"
 
+#include "hirsute/hairs/placement/mesh_sampling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -57,6 +59,9 @@ HairPlacementReport growPlantHairs(Scene& scene, const ModelResources& resources
   try {
     report = placeHairs(scene, settings);
   } catch (const HairLimitError& e) {
+    throw DiagnosticError(
+        SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0}, e.what());
+  } catch (const SamplingLimitError& e) {
     throw DiagnosticError(
         SourceLocation{std::make_shared<const std::string>(options.lsystemFile), 0, 0}, e.what());
   }

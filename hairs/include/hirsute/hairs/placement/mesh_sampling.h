@@ -9,11 +9,21 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "hirsute/hairs/placement/patch_unfolding.h"
 
 namespace hirsute {
+
+// At most this many points on one side of one mesh: each costs about 650 bytes while they are
+// chosen (five candidates with their neighbours), so ten million take some 6.5 GB.
+inline constexpr std::size_t kMaxMeshPoints = 10'000'000;
+
+// Thrown for more points than kMaxMeshPoints; the organ reports it at the model.
+struct SamplingLimitError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 // A point on triangle `triangle` of the unfolding: corner 0 + b1·(corner 1 − corner 0) +
 // b2·(corner 2 − corner 0).

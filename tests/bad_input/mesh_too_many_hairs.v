@@ -1,0 +1,1 @@
+surface: B mesh_too_many_hairs.obj 1
