@@ -3,7 +3,9 @@
 // directions with the density it reports.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "hirsute/viewer/trace/hair_bsdf.h"
 #include "hirsute/viewer/trace/sampling.h"
@@ -180,6 +182,51 @@ TEST(Sampling, CosSquaredHasItsDensity) {
   for (int i = 0; i < n; ++i) below += sampleCosSquared(random.uniform()) < 0.5f;
   const double expected = (1.0 + std::sin(1.0)) / (2 * kPi) + 0.5;
   EXPECT_NEAR(static_cast<double>(below) / n, expected, 0.005);
+}
+
+TEST(Sampling, AStratifiedCallCoversItsSquareEvenlyOverAPixelsSamples) {
+  // The first 2^m samples of a pixel put one point of each call in each of the 2^m elementary
+  // rectangles of every shape (1 x 2^m, 2 x 2^(m-1), ..., 2^m x 1), for every m up to 8, and
+  // do so for calls made by uniform() (their first coordinate) as well.
+  for (std::uint64_t pixel : {0ull, 7ull, 123456ull}) {
+    constexpr int kCalls = 6, kSamples = 256;
+    std::vector<std::array<glm::vec2, kCalls>> points(kSamples);
+    for (int i = 0; i < kSamples; ++i) {
+      Random random = Random::stratified(3, pixel, static_cast<std::uint32_t>(i));
+      for (int c = 0; c < kCalls; ++c) {
+        points[i][c] = c % 2 == 0 ? random.uniform2() : glm::vec2(random.uniform(), 0.5f);
+      }
+    }
+    for (int c = 0; c < kCalls; ++c) {
+      for (int m = 1; m <= 8; ++m) {
+        const int n = 1 << m;
+        for (int xBits = (c % 2 == 0 ? 0 : m); xBits <= m; ++xBits) {
+          const int columns = 1 << xBits, rows = n / columns;
+          std::vector<int> hits(static_cast<std::size_t>(n), 0);
+          for (int i = 0; i < n; ++i) {
+            const glm::vec2 p = points[i][c];
+            const int x = static_cast<int>(p.x * static_cast<float>(columns));
+            const int y = c % 2 == 0 ? static_cast<int>(p.y * static_cast<float>(rows)) : 0;
+            ++hits[static_cast<std::size_t>(y * columns + x)];
+          }
+          for (int h : hits) ASSERT_EQ(h, 1) << "pixel " << pixel << " call " << c << " n " << n;
+        }
+      }
+    }
+  }
+  // Past the stratified calls the numbers are independent ones, and seeds and pixels differ.
+  Random a = Random::stratified(3, 1, 0), b = Random::stratified(4, 1, 0),
+         c = Random::stratified(3, 2, 0);
+  const glm::vec2 pa = a.uniform2(), pb = b.uniform2(), pc = c.uniform2();
+  EXPECT_NE(pa, pb);
+  EXPECT_NE(pa, pc);
+  double sum = 0;
+  for (int i = 0; i < 4096; ++i) {
+    Random random = Random::stratified(9, 5, static_cast<std::uint32_t>(i));
+    for (int k = 0; k < Random::kStratifiedCalls; ++k) random.uniform();
+    sum += random.uniform();
+  }
+  EXPECT_NEAR(sum / 4096, 0.5, 0.015);
 }
 
 }  // namespace

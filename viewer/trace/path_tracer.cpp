@@ -349,7 +349,10 @@ class Tracer {
         }
         const HairBsdf bsdf(fibre, tangent);
         total += throughput * directLight(bsdf, point, wo, hit, random);
-        const glm::vec4 u(random.uniform(), random.uniform(), random.uniform(), random.uniform());
+        // The lobe, then the direction's two angles as one point of a square.
+        const float lobe = random.uniform();
+        const glm::vec2 angles = random.uniform2();
+        const glm::vec4 u(lobe, angles.x, random.uniform(), angles.y);
         const HairSample s = bsdf.sample(wo, u);
         wi = s.direction;
         value = s.value;
@@ -380,7 +383,9 @@ class Tracer {
         if (glm::dot(normal, wo) < 0) normal = -normal;
         const SurfaceBsdf bsdf(surface, normal);
         total += throughput * directLight(bsdf, point, wo, hit, random);
-        const glm::vec3 u(random.uniform(), random.uniform(), random.uniform());
+        const float lobe = random.uniform();
+        const glm::vec2 direction2 = random.uniform2();
+        const glm::vec3 u(lobe, direction2);
         const SurfaceSample s = bsdf.sample(wo, u);
         wi = s.direction;
         value = s.value;
@@ -471,7 +476,8 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
           const std::size_t index =
               static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
               static_cast<std::size_t>(x);
-          Random random(options.seed, (static_cast<std::uint64_t>(pass) << 36u) ^ index);
+          Random random =
+              Random::stratified(options.seed, index, static_cast<std::uint32_t>(pass));
           const glm::vec2 jitter = random.uniform2();
           const float sx = (static_cast<float>(x) + jitter.x) / static_cast<float>(image.width) * 2 - 1;
           const float sy = 1 - (static_cast<float>(y) + jitter.y) / static_cast<float>(image.height) * 2;

@@ -19,9 +19,89 @@ std::uint32_t Random::next() {
   return (shifted >> rotation) | (shifted << ((32u - rotation) & 31u));
 }
 
-float Random::uniform() {
-  // 24 random bits, so that the result stays below 1 in float.
-  return static_cast<float>(next() >> 8u) * 0x1p-24f;
+namespace {
+
+// splitmix64's finaliser: a 64-bit key to well-mixed bits.
+std::uint64_t mix(std::uint64_t x) {
+  x ^= x >> 30u;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27u;
+  x *= 0x94d049bb133111ebULL;
+  return x ^ (x >> 31u);
+}
+
+std::uint32_t reverseBits(std::uint32_t x) {
+  x = ((x >> 1u) & 0x55555555u) | ((x & 0x55555555u) << 1u);
+  x = ((x >> 2u) & 0x33333333u) | ((x & 0x33333333u) << 2u);
+  x = ((x >> 4u) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4u);
+  x = ((x >> 8u) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8u);
+  return (x >> 16u) | (x << 16u);
+}
+
+// A random permutation of 32-bit words in which bit j of the result depends on bits 0..j of the
+// argument alone (Laine and Karras 2011): adding the seed and xoring with products by even
+// numbers only ever carry upwards.
+std::uint32_t carryUpwards(std::uint32_t x, std::uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+// Owen's nested uniform scramble of a binary fraction (bit 31 its first digit): each digit is
+// flipped by a hash of the digits before it, read as a permutation on the reversed bits. Applied
+// to a sample's index it shuffles the order within every aligned block of 2^k indices, and keeps
+// any 2^k first shuffled indices one such block.
+std::uint32_t nestedScramble(std::uint32_t x, std::uint32_t seed) {
+  return reverseBits(carryUpwards(reverseBits(x), seed));
+}
+
+// The Sobol sequence's second dimension: the index's bits through the Pascal matrix mod 2, each
+// column the one before it xored with itself moved a digit down; a byte of the index at a time.
+struct SobolSecond {
+  std::uint32_t bytes[4][256];
+
+  SobolSecond() {
+    std::uint32_t columns[32];
+    columns[0] = 0x80000000u;
+    for (int j = 1; j < 32; ++j) columns[j] = columns[j - 1] ^ (columns[j - 1] >> 1u);
+    for (int b = 0; b < 4; ++b) {
+      for (std::uint32_t value = 0; value < 256; ++value) {
+        std::uint32_t out = 0;
+        for (int j = 0; j < 8; ++j) {
+          if ((value >> j & 1u) != 0) out ^= columns[8 * b + j];
+        }
+        bytes[b][value] = out;
+      }
+    }
+  }
+
+  std::uint32_t operator()(std::uint32_t index) const {
+    return bytes[0][index & 0xffu] ^ bytes[1][index >> 8u & 0xffu] ^
+           bytes[2][index >> 16u & 0xffu] ^ bytes[3][index >> 24u];
+  }
+};
+
+const SobolSecond sobolSecond;
+
+}  // namespace
+
+Random Random::stratified(std::uint64_t seed, std::uint64_t pixel, std::uint32_t index) {
+  Random random(seed, pixel ^ (static_cast<std::uint64_t>(index) << 40u));
+  random.pixelKey_ = mix(mix(seed) ^ pixel);
+  random.index_ = index;
+  random.call_ = 0;
+  return random;
+}
+
+glm::uvec2 Random::stratifiedPoint() {
+  const std::uint64_t key = mix(pixelKey_ + static_cast<std::uint64_t>(call_++) * 0x9e3779b97f4a7c15ULL);
+  const std::uint32_t shuffled = nestedScramble(index_, static_cast<std::uint32_t>(key));
+  // The first dimension is the index's bits reversed (van der Corput in base 2).
+  return {nestedScramble(reverseBits(shuffled), static_cast<std::uint32_t>(key >> 32u)),
+          nestedScramble(sobolSecond(shuffled), static_cast<std::uint32_t>(mix(key) >> 32u))};
 }
 
 Frame Frame::around(const glm::vec3& n) {
