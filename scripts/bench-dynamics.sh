@@ -20,7 +20,6 @@ frames="${FRAMES:-240}"
 simulated="${SIMULATED:-$frames}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-ln -s "$(pwd)/models/feather-coat" "$work/feather-coat"
 printf '%-8s %9s %9s %6s %8s %8s %9s %10s %8s %11s %9s %7s %8s %11s %9s %11s %14s %11s %6s\n' \
   density feathers particles frames wall_s cpu_s peak_MiB frames/s steps/f candidates/f \
   contacts/f zones/f retried intersections kept_near calami_left calami_crossed calami_zoned left
@@ -29,7 +28,8 @@ for density in ${DENSITIES:-4.9 38 152}; do
   mkdir -p "$model"
   sed -e "s/^#define DENSITY .*/#define DENSITY $density/" \
       -e "s/^#define FRAMES .*/#define FRAMES $frames/" models/coat-bending/bending.l >"$model/bending.l"
-  cp models/coat-bending/bending.v models/coat-bending/bending.a models/coat-bending/*.map "$model/"
+  cp models/coat-bending/bending.v models/coat-bending/bending.a models/coat-bending/*.map \
+    models/coat-bending/*.fea models/coat-bending/*.con "$model/"
   status=0
   (cd "$model" && /usr/bin/time -v "$hirsute" simulate bending.l bending.v bending.a -o out \
     --frames "$simulated" --no-frames --wind 0.5 0 0 --gusts 1 --gust-scale 2 >summary.txt \
