@@ -208,14 +208,13 @@ std::size_t ParallelSteps::rewrite(const ModuleString& s, ModuleString& out,
   LeftNeighbours neighbours;
   neighbours.reset(program_);
   std::vector<LeftNeighbours> starts{neighbours};
-  const Lsystem& main = program_.lsystems.front();
   const std::uint8_t* const bytes = s.bytes();
   for (std::size_t k = 1, pos = 0; k < parts; ++k) {
     const std::size_t target = s.end() / parts * k;
     if (neighbours.enabled) {
       while (pos < target) {
         const std::uint8_t b = bytes[pos];
-        LeftNeighbours::pass(pos, static_cast<char>(b & 0x7f), main, neighbours.last,
+        LeftNeighbours::pass(pos, neighbours.kinds[b & 0x7f], neighbours.last, neighbours.depth,
                              neighbours.open);
         pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
       }

@@ -110,6 +110,14 @@ class Derivation {
   // The copying part of the rewriting loop (fusedScan_).
   void scanRun(const ModuleString& s, const Lsystem& l, std::size_t to, std::size_t& pos,
                std::size_t& runFrom, std::size_t& runCount);
+  // For ChoiceTables::leftOnly symbols: the production choose() would apply at `module`, whose
+  // left neighbour is `neighbour` (its index in the productions), or -1.
+  int chooseByNeighbour(const Lsystem& l, const std::uint8_t* module,
+                        const std::uint8_t* neighbour);
+  // The same for a stochastic program of one L-system (drawnScan_): every module draws, as in
+  // choose(), and those of tables_.drawnTable are copied or rewritten on the spot.
+  void scanDrawn(const ModuleString& s, const Lsystem& l, std::size_t to, std::size_t& pos,
+                 std::size_t& runFrom, std::size_t& runCount);
   void appendValues(const Production& p, const double* values, ModuleString& out);
   void checkSize(const ModuleString& s, const SourceLocation& where);
   void streamIfFull();
@@ -144,6 +152,7 @@ class Derivation {
   // copied as they are, left neighbours carried along, and the modules below rewritten on the
   // spot from tables_; the loop stops where choice_ must decide.
   bool fusedScan_;
+  bool drawnScan_;  // one stochastic L-system: scanDrawn
   ChoiceTables tables_;
   LeftNeighbours leftNeighbours_;  // of the rewriting pass
   ParallelSteps parallel_;
