@@ -539,7 +539,9 @@ void Derivation::rewriteStep() {
   const std::size_t parts =
       stream_ != nullptr ? 0 : parallel_.rewrite(current_, next_, matcher_, stepsDone_);
   if (parts == 0) rewriteRange(current_, 0, current_.end());
-  parallel_.measured(modules, parts, started);
+  parallel_.measured(
+      modules, next_.moduleCount() + streamed_, parts,
+      std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - started).count());
 }
 
 void Derivation::rewriteRange(const ModuleString& s, std::size_t from, std::size_t to,

@@ -37,12 +37,13 @@ struct DerivationOptions {
   // A step is split when its string has at least parallelMinimumModules modules and the last
   // step of such a string took at least parallelMinimumCost nanoseconds of one thread's time a
   // module: a step that mostly copies modules gains nothing from threads and spends memory on the
-  // parts. Steps in parts that take as long a module as one thread did make the next step run
-  // alone, to measure it again, and after three in a row every step. Tests set both to 0 to split
-  // every step that may be. 60 ns: a block of a few math calls a module (models/bench/fourier.l,
-  // about 140 ns) gains 1.7x on two cores; steps that mostly copy and match contexts (about 7 ns
-  // a module: leaves.l, signal.l) gain too little over the threads' start and the parts' copy for
-  // the measurement to tell them from noise.
+  // parts. A step in parts that takes as long a module as a steady step of about its size did on
+  // one thread sends the next 1, 2, 4, ... 32 such steps to one thread (ParallelSteps::measured);
+  // one that pays ends that. Tests set both to 0 to split every step that may be. 60 ns: a block
+  // of a few math calls a module (models/bench/fourier.l, about 140 ns) gains 1.7x on two cores;
+  // steps that mostly copy and match contexts (about 4 ns a module: leaves.l, signal.l) gain too
+  // little over the threads' start and the parts' copy for the measurement to tell them from
+  // noise.
   std::size_t parallelMinimumModules = 16384;
   double parallelMinimumCost = 60;
 };
