@@ -267,7 +267,9 @@ void Derivation::scanDrawn(const ModuleString& s, const Lsystem& l, std::size_t 
         next_.appendRange(s, runFrom, pos, runCount);
         runCount = 0;
       }
-      const std::uint32_t id = ChoiceTables::drawnProduction(*choice, draw);
+      const std::uint32_t id = choice->weighed
+                                   ? ChoiceTables::drawnProduction(*choice, draw)
+                                   : choice_.weigh(choice->ids, ModuleRef(bytes + pos), draw);
       const Production& p = l.productions.productions[id];
       if (p.after.empty() && p.successorValues.empty() && !p.callsSubLsystem) {
         std::uint8_t* at = next_.appendEncoded(p.successorBytes.size(), p.successor.size());

@@ -109,6 +109,29 @@ bool ProductionChoice::choose(int lsystem, const ModuleString& s, std::size_t at
   return true;
 }
 
+std::uint32_t ProductionChoice::weigh(const std::vector<std::uint32_t>& ids, ModuleRef m,
+                                      double draw) {
+  const RuleSet& rules = program_.lsystems.front().productions;
+  std::vector<double>& weights = weights_;
+  weights.clear();
+  for (std::uint32_t id : ids) {
+    const Production& p = rules.productions[id];
+    double* frame = frames_.of(0, 0, id);
+    bindParameters(p.strict[0], m, frame);
+    weights.push_back(weightOf(p, frame));
+  }
+  // choose()'s sums and comparisons, in its order.
+  double sum = 0;
+  for (double w : weights) sum += w;
+  const double r = draw * sum;
+  double accumulated = 0;
+  for (std::size_t i = 0; i < weights.size(); ++i) {
+    accumulated += weights[i];
+    if (r < accumulated) return ids[i];
+  }
+  return ids.back();
+}
+
 ChoiceTables::ChoiceTables(const Program& program, bool plainSuccessors) {
   for (const Lsystem& l : program.lsystems) {
     std::array<bool, 128> copied{};
@@ -184,8 +207,7 @@ ChoiceTables::ChoiceTables(const Program& program, bool plainSuccessors) {
     if (ids.empty() || c == '%' || c == '?' || c == '$') continue;
     const bool plain = std::all_of(ids.begin(), ids.end(), [&](std::uint32_t id) {
       const Production& p = main.productions.productions[id];
-      return p.strict.size() == 1 && !p.hasContext() && p.before.empty() && p.condition.empty() &&
-             (p.probability.empty() || isConstant(p.probability));
+      return p.strict.size() == 1 && !p.hasContext() && p.before.empty() && p.condition.empty();
     });
     if (!plain) continue;
     std::vector<DrawnChoice> choices;
@@ -198,6 +220,9 @@ ChoiceTables::ChoiceTables(const Program& program, bool plainSuccessors) {
         choices.push_back(DrawnChoice{count, {}, {}});
         choice = choices.end() - 1;
       }
+      choice->ids.push_back(id);
+      if (!p.probability.empty() && !isConstant(p.probability)) choice->weighed = false;
+      if (!choice->weighed) continue;
       // weightOf()'s value, added to the sum as choose() adds it.
       const double weight =
           p.probability.empty()
@@ -205,7 +230,6 @@ ChoiceTables::ChoiceTables(const Program& program, bool plainSuccessors) {
               : p.probability
                     .constants[static_cast<std::size_t>(p.probability.instructions[0].operand)];
       const double before = choice->accumulated.empty() ? 0.0 : choice->accumulated.back();
-      choice->ids.push_back(id);
       choice->accumulated.push_back(before + weight);
     }
     drawnTable[c] = static_cast<int>(drawnChoices.size());

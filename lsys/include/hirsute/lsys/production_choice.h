@@ -60,6 +60,10 @@ class ProductionChoice {
   // The stochastic stream's next number, drawn for a module whose choice the rewriting loop
   // makes itself (ChoiceTables::drawnTable), as choose() would have drawn it.
   double draw() { return stream_.next(); }
+  // The production of `ids` (one strict module each, without context, block or condition, of
+  // the parameter count of `m`) that choose() takes for `m` with `draw`: each bound to `m` and
+  // weighed in file order, as choose() binds and weighs them.
+  std::uint32_t weigh(const std::vector<std::uint32_t>& ids, ModuleRef m, double draw);
 
  private:
   // A stochastic production's weight (`: w`) in its frame.
@@ -109,13 +113,15 @@ struct ChoiceTables {
 
   // A stochastic program of one L-system: the productions a module of a symbol and parameter
   // count meets, when every production of the symbol is one strict module without context,
-  // pre-condition block or condition, and weighs a number. choose() would draw, keep those
-  // productions in file order and take the first whose running sum of weights exceeds the draw
-  // times their sum: the loop does the same from the sums made here, added in the same order.
+  // pre-condition block or condition. choose() would draw, keep those productions in file order
+  // and take the first whose running sum of weights exceeds the draw times their sum: the loop
+  // does the same, from the sums made here, added in the same order, when every weight is a
+  // number (weighed), else weighing each production at the module (ProductionChoice::weigh).
   struct DrawnChoice {
     std::size_t parameterCount = 0;
     std::vector<std::uint32_t> ids;   // in file order; empty: no production applies
-    std::vector<double> accumulated;  // the running sums of their weights
+    std::vector<double> accumulated;  // the running sums of their weights, when weighed
+    bool weighed = true;
   };
   // drawnChoices[drawnTable[symbol]], one entry a parameter count that some production wants;
   // drawnTable is -1 for a symbol choose() must decide.
