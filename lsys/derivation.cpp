@@ -155,16 +155,7 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
                 next_.appendRange(s, runFrom, pos, runCount);
                 runCount = 0;
               }
-              const auto id = static_cast<std::size_t>(chosen);
-              double* frame = frames_.of(0, 0, id);
-              const Production& p = l.productions.productions[id];
-              if (!p.after.empty()) evaluator_.run(p.after, frame);
-              const double* values = p.successorValues.empty()
-                                         ? nullptr
-                                         : evaluator_.values(p.successorValues, frame, 0);
-              appendValues(p, values, next_);
-              checkSize(next_, p.where);
-              streamIfFull();
+              applyChosen(l, static_cast<std::size_t>(chosen));
               left = room();
               LeftNeighbours::pass(pos, kinds[c], last, depth, open);
               pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
@@ -209,9 +200,23 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
   }
 }
 
+// What the rewriting loop does after choose() chose production `id` of the main L-system for a
+// module whose parameters its frame holds: the post-condition block, the successor's values.
+// Out of line, so that the scan's loop stays small.
+[[gnu::noinline]] void Derivation::applyChosen(const Lsystem& l, std::size_t id) {
+  double* frame = frames_.of(0, 0, id);
+  const Production& p = l.productions.productions[id];
+  if (!p.after.empty()) evaluator_.run(p.after, frame);
+  const double* values =
+      p.successorValues.empty() ? nullptr : evaluator_.values(p.successorValues, frame, 0);
+  appendValues(p, values, next_);
+  checkSize(next_, p.where);
+  streamIfFull();
+}
+
 // choose()'s test of the productions of a leftOnly symbol at `module`, whose left neighbour is
 // `neighbour`, in the same order with the same bindings and code run: the first that applies.
-inline int Derivation::chooseByNeighbour(const Lsystem& l, const std::uint8_t* module,
+[[gnu::noinline]] int Derivation::chooseByNeighbour(const Lsystem& l, const std::uint8_t* module,
                                          const std::uint8_t* neighbour) {
   const ModuleRef m(module), n(neighbour);
   const std::size_t count = m.parameterCount();

@@ -115,6 +115,8 @@ class Derivation {
   // left neighbour is `neighbour` (its index in the productions), or -1.
   int chooseByNeighbour(const Lsystem& l, const std::uint8_t* module,
                         const std::uint8_t* neighbour);
+  // Applies production `id` of the main L-system, chosen by the scan, its frame bound.
+  void applyChosen(const Lsystem& l, std::size_t id);
   // The same for a stochastic program of one L-system (drawnScan_): every module draws, as in
   // choose(), and those of tables_.drawnTable are copied or rewritten on the spot.
   void scanDrawn(const ModuleString& s, const Lsystem& l, std::size_t to, std::size_t& pos,
