@@ -217,7 +217,7 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
 // choose()'s test of the productions of a leftOnly symbol at `module`, whose left neighbour is
 // `neighbour`, in the same order with the same bindings and code run: the first that applies.
 [[gnu::noinline]] int Derivation::chooseByNeighbour(const Lsystem& l, const std::uint8_t* module,
-                                         const std::uint8_t* neighbour) {
+                                                    const std::uint8_t* neighbour) {
   const ModuleRef m(module), n(neighbour);
   const std::size_t count = m.parameterCount();
   const char nearest = n.symbol();
