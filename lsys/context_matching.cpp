@@ -39,8 +39,11 @@ bool matchStrict(const Production& p, const ModuleString& s, std::size_t at, std
 void LeftNeighbours::reset(const Program& program) {
   trackedTo = 0;
   last = BranchIndex::kNone;
-  open.clear();
+  depth = 0;
   const Lsystem& main = program.lsystems.front();
+  for (std::size_t c = 0; c < kinds.size(); ++c) {
+    kinds[c] = main.ignored[c] ? kPassedOver : c == '[' ? kOpen : c == ']' ? kClose : kModule;
+  }
   // Sub-L-systems have ignore sets of their own, a ring wraps around, and ignored brackets
   // would pair differently: those keep the backward search.
   enabled = program.lsystems.size() == 1 && !main.ring && !main.ignored['['] && !main.ignored[']'];

@@ -88,6 +88,7 @@ Derivation::Derivation(const Program& program, Evaluator& evaluator, Diagnostics
       frames_(program),
       choice_(program, evaluator, frames_, matcher_),
       fusedScan_(program.lsystems.size() == 1 && !program.lsystems.front().stochastic),
+      drawnScan_(program.lsystems.size() == 1 && program.lsystems.front().stochastic),
       tables_(program, fusedScan_),
       parallel_(program,
                 {options.threads, options.parallelMinimumModules, options.parallelMinimumCost,
@@ -113,11 +114,12 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
   const std::size_t end = to;
   const std::array<bool, 128>& copied = tables_.copiedAsIs.front();
   const bool tracking = leftNeighbours_.enabled;
-  if (tracking) leftNeighbours_.before(s, l, position);  // over the modules a production consumed
+  if (tracking) leftNeighbours_.before(s, position);  // over the modules a production consumed
   // Locals, which the compiler keeps in registers: the loop stores nothing through references.
   std::size_t pos = position, runFrom = runStart, runCount = runModules;
-  std::size_t last = leftNeighbours_.last;
+  std::size_t last = leftNeighbours_.last, depth = leftNeighbours_.depth;
   std::vector<std::size_t>& open = leftNeighbours_.open;
+  const std::array<std::uint8_t, 128>& kinds = leftNeighbours_.kinds;
   // The modules the run may still take before the string passes the limit.
   const auto room = [&] {
     const std::size_t used = next_.moduleCount() + streamed_;
@@ -138,12 +140,28 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
       } else {
         if (!tracking || !tables_.needsLeft[c]) break;
         if (last != BranchIndex::kNone && tables_.leftLast[c].test(bytes[last] & 0x7f)) {
-          // The neighbour may satisfy a context: a plain production for it, or choose().
+          // The neighbour may satisfy a context: a plain production for it, the productions
+          // tested here, or choose().
           const int table = tables_.contextTable[c];
-          if (table < 0 || (b & 0x80) || (bytes[last] & 0x80)) break;
-          successor =
-              tables_.contextSuccessors[static_cast<std::size_t>(table)][bytes[last] & 0x7f];
-          if (successor < 0) break;
+          if (table >= 0 && !(b & 0x80) && !(bytes[last] & 0x80)) {
+            successor =
+                tables_.contextSuccessors[static_cast<std::size_t>(table)][bytes[last] & 0x7f];
+          }
+          if (successor < 0) {
+            if (!tables_.leftOnly[c]) break;
+            const int chosen = chooseByNeighbour(l, bytes + pos, bytes + last);
+            if (chosen >= 0) {
+              if (runCount) {
+                next_.appendRange(s, runFrom, pos, runCount);
+                runCount = 0;
+              }
+              applyChosen(l, static_cast<std::size_t>(chosen));
+              left = room();
+              LeftNeighbours::pass(pos, kinds[c], last, depth, open);
+              pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
+              continue;
+            }
+          }
         }
       }
       if (successor >= 0) {
@@ -163,7 +181,7 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
         ++runCount;
       }
     }
-    if (tracking) LeftNeighbours::pass(pos, static_cast<char>(c), l, last, open);
+    if (tracking) LeftNeighbours::pass(pos, kinds[c], last, depth, open);
     pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
     // The string's length is checked as each module goes out, as if it were appended.
     if (runCount > left) {
@@ -177,8 +195,116 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
   runModules = runCount;
   if (tracking) {
     leftNeighbours_.last = last;
+    leftNeighbours_.depth = depth;
     leftNeighbours_.trackedTo = pos;
   }
+}
+
+// What the rewriting loop does after choose() chose production `id` of the main L-system for a
+// module whose parameters its frame holds: the post-condition block, the successor's values.
+// Out of line, so that the scan's loop stays small.
+[[gnu::noinline]] void Derivation::applyChosen(const Lsystem& l, std::size_t id) {
+  double* frame = frames_.of(0, 0, id);
+  const Production& p = l.productions.productions[id];
+  if (!p.after.empty()) evaluator_.run(p.after, frame);
+  const double* values =
+      p.successorValues.empty() ? nullptr : evaluator_.values(p.successorValues, frame, 0);
+  appendValues(p, values, next_);
+  checkSize(next_, p.where);
+  streamIfFull();
+}
+
+// choose()'s test of the productions of a leftOnly symbol at `module`, whose left neighbour is
+// `neighbour`, in the same order with the same bindings and code run: the first that applies.
+[[gnu::noinline]] int Derivation::chooseByNeighbour(const Lsystem& l, const std::uint8_t* module,
+                                                    const std::uint8_t* neighbour) {
+  const ModuleRef m(module), n(neighbour);
+  const std::size_t count = m.parameterCount();
+  const char nearest = n.symbol();
+  const std::size_t nearestCount = n.parameterCount();
+  const RuleSet& rules = l.productions;
+  for (std::uint32_t id : rules.bySymbol[static_cast<unsigned char>(m.symbol())]) {
+    const Production& p = rules.productions[id];
+    const ModulePattern& strict = p.strict[0];
+    const ModulePattern& context = p.left[0];
+    if (strict.parameterCount != count || context.symbol != nearest ||
+        context.parameterCount != nearestCount)
+      continue;
+    double* frame = frames_.of(0, 0, id);
+    bindParameters(strict, m, frame);
+    bindParameters(context, n, frame);
+    if (!p.before.empty()) evaluator_.run(p.before, frame);
+    if (evaluator_.isTrue(p.condition, frame)) return static_cast<int>(id);
+  }
+  return -1;
+}
+
+void Derivation::scanDrawn(const ModuleString& s, const Lsystem& l, std::size_t to,
+                           std::size_t& position, std::size_t& runStart, std::size_t& runModules) {
+  const std::uint8_t* const bytes = s.bytes();
+  const std::array<bool, 128>& copied = tables_.copiedAsIs.front();
+  std::size_t pos = position, runFrom = runStart, runCount = runModules;
+  const auto room = [&] {
+    const std::size_t used = next_.moduleCount() + streamed_;
+    return options_.maxModules > used ? options_.maxModules - used : 0;
+  };
+  std::size_t left = room();
+  while (pos < to) {
+    const std::uint8_t b = bytes[pos];
+    const auto c = static_cast<unsigned char>(b & 0x7f);
+    const std::size_t size = (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
+    const ChoiceTables::DrawnChoice* choice = nullptr;
+    if (!copied[c]) {
+      const int table = tables_.drawnTable[c];
+      if (table < 0) break;  // choose() draws and decides
+      const std::size_t count = (b & 0x80) ? bytes[pos + 1] : 0;
+      for (const ChoiceTables::DrawnChoice& d :
+           tables_.drawnChoices[static_cast<std::size_t>(table)])
+        if (d.parameterCount == count) choice = &d;
+    }
+    // cpfg draws one number for every module, whether a production applies or not.
+    const double draw = choice_.draw();
+    if (choice == nullptr) {
+      if (runCount == 0) runFrom = pos;
+      ++runCount;
+    } else {
+      if (runCount) {
+        next_.appendRange(s, runFrom, pos, runCount);
+        runCount = 0;
+      }
+      const std::uint32_t id = choice->weighed
+                                   ? ChoiceTables::drawnProduction(*choice, draw)
+                                   : choice_.weigh(choice->ids, ModuleRef(bytes + pos), draw);
+      const Production& p = l.productions.productions[id];
+      if (p.after.empty() && p.successorValues.empty() && !p.callsSubLsystem) {
+        std::uint8_t* at = next_.appendEncoded(p.successorBytes.size(), p.successor.size());
+        if (!p.successorBytes.empty())
+          std::memcpy(at, p.successorBytes.data(), p.successorBytes.size());
+      } else {
+        // As after choose(): the module's parameters bound in the production's frame, its
+        // post-condition block, its successor's values.
+        double* frame = frames_.of(0, 0, id);
+        bindParameters(p.strict[0], ModuleRef(bytes + pos), frame);
+        if (!p.after.empty()) evaluator_.run(p.after, frame);
+        const double* values =
+            p.successorValues.empty() ? nullptr : evaluator_.values(p.successorValues, frame, 0);
+        appendValues(p, values, next_);
+      }
+      checkSize(next_, p.where);
+      streamIfFull();
+      left = room();
+    }
+    pos += size;
+    // The string's length is checked as each module goes out, as if it were appended.
+    if (runCount > left) {
+      next_.appendRange(s, runFrom, pos, runCount);
+      runCount = 0;
+      checkSize(next_, l.axiomWhere);
+    }
+  }
+  position = pos;
+  runStart = runFrom;
+  runModules = runCount;
 }
 
 void Derivation::start() {
@@ -420,7 +546,9 @@ void Derivation::rewriteStep() {
   const std::size_t parts =
       stream_ != nullptr ? 0 : parallel_.rewrite(current_, next_, matcher_, stepsDone_);
   if (parts == 0) rewriteRange(current_, 0, current_.end());
-  parallel_.measured(modules, parts, started);
+  parallel_.measured(
+      modules, next_.moduleCount() + streamed_, parts,
+      std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - started).count());
 }
 
 void Derivation::rewriteRange(const ModuleString& s, std::size_t from, std::size_t to,
@@ -451,6 +579,9 @@ void Derivation::rewriteRange(const ModuleString& s, std::size_t from, std::size
       if (fusedScan_) {
         scanRun(s, l, to, pos, runFrom, runCount);
         if (pos >= to) break;
+      } else if (drawnScan_) {
+        scanDrawn(s, l, to, pos, runFrom, runCount);
+        if (pos >= to) break;
       } else if (!l.stochastic) {
         // A run of modules that no production can rewrite is copied in one piece; in the main
         // L-system, so are modules whose left neighbour no production's context ends with.
@@ -458,7 +589,7 @@ void Derivation::rewriteRange(const ModuleString& s, std::size_t from, std::size
         const std::array<bool, 128>& copied = tables_.copiedAsIs[static_cast<std::size_t>(lsystem)];
         const bool refusals = leftNeighbours_.enabled;
         while (pos < to && (copied[static_cast<unsigned char>(s.at(pos).symbol())] ||
-                            (refusals && tables_.leftRefuses(s, l, pos, leftNeighbours_)))) {
+                            (refusals && tables_.leftRefuses(s, pos, leftNeighbours_)))) {
           pos = s.next(pos);
           ++count;
         }

@@ -166,41 +166,59 @@ ParallelSteps::ParallelSteps(const Program& program, Settings settings, PartFact
 
 ParallelSteps::~ParallelSteps() = default;
 
-void ParallelSteps::measured(std::size_t modules, std::size_t parts,
-                             std::chrono::steady_clock::time_point started) {
+void ParallelSteps::measured(std::size_t modules, std::size_t produced, std::size_t parts,
+                             double nanoseconds) {
   // A short string's step is mostly the step's own fixed costs: it tells nothing.
   if (modules < std::max<std::size_t>(settings_.minimumModules, 1)) return;
-  const double cost =
-      std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - started).count() /
-      static_cast<double>(modules);
+  const double cost = nanoseconds / static_cast<double>(modules);
+  // A step that grows or shrinks the string by more than an eighth writes into memory no step
+  // has touched, and often runs other productions than the steps after it (fourier.l's last
+  // growth step turns G into Q, whose blocks cost twice as much): it is not compared with others.
+  const bool steady = produced <= modules + modules / 8 && modules <= produced + produced / 8;
   if (parts == 0) {
-    sequentialCost_ = stepCost_ = cost;
+    stepCost_ = cost;
+    if (steady) {
+      sequentialCost_ = cost;
+      sequentialModules_ = modules;
+    }
     remeasure_ = false;
+    if (stepsAlone_ > 0) --stepsAlone_;
     return;
   }
   // What the step would have cost one thread, about: the next step is judged by it.
   stepCost_ = cost * static_cast<double>(parts);
-  if (cost > 0.9 * sequentialCost_) {
-    // The parts took as long a module as one thread did (their memory grows page by page and
-    // they are copied together): the next step is measured on one thread, and after three such
-    // steps in a row the derivation stays on one.
+  // The step in parts is judged against a steady step on one thread of about its size; without
+  // one, the next step runs on one thread to measure it.
+  const bool comparable = steady && sequentialCost_ > 0 &&
+                          modules <= sequentialModules_ + sequentialModules_ / 8 &&
+                          sequentialModules_ <= modules + modules / 8;
+  if (!comparable) {
     remeasure_ = true;
-    if (++splitsUnpaid_ >= 3) splittingPays_ = false;
-  } else {
-    splitsUnpaid_ = 0;
+    return;
   }
+  if (cost > 0.9 * sequentialCost_) {
+    // The parts took about as long a module as one thread did (the other cores are busy, or the
+    // parts' copying outweighs their work): the next 1, 2, 4, ... 32 steps run on one thread,
+    // the first of them measuring again, and splitting is tried after them.
+    backOff_ = std::min(backOff_ == 0 ? 1 : 2 * backOff_, kMaxBackOff);
+    stepsAlone_ = backOff_;
+  } else {
+    backOff_ = 0;
+  }
+}
+
+bool ParallelSteps::splitsNextStep(std::size_t modules) const {
+  if (!modulesIndependent_ || threads_ < 2 ||
+      modules < std::max<std::size_t>(settings_.minimumModules, 1)) {
+    return false;
+  }
+  return settings_.minimumCost <= 0 ||
+         (stepsAlone_ == 0 && !remeasure_ && stepCost_ >= settings_.minimumCost);
 }
 
 std::size_t ParallelSteps::rewrite(const ModuleString& s, ModuleString& out,
                                    const ContextMatcher& matcher, int stepsDone) {
-  if (!modulesIndependent_ || threads_ < 2 ||
-      s.moduleCount() < std::max<std::size_t>(settings_.minimumModules, 1)) {
-    return 0;
-  }
-  if (settings_.minimumCost > 0 &&
-      (!splittingPays_ || remeasure_ || stepCost_ < settings_.minimumCost)) {
-    return 0;
-  }
+  if (!splitsNextStep(s.moduleCount())) return 0;
   const std::size_t parts = std::min(static_cast<std::size_t>(threads_), s.moduleCount());
   // The parts' boundaries: module starts about equally far apart in bytes. The way there carries
   // the left neighbours along, so that no part passes over the string before it again.
@@ -208,14 +226,13 @@ std::size_t ParallelSteps::rewrite(const ModuleString& s, ModuleString& out,
   LeftNeighbours neighbours;
   neighbours.reset(program_);
   std::vector<LeftNeighbours> starts{neighbours};
-  const Lsystem& main = program_.lsystems.front();
   const std::uint8_t* const bytes = s.bytes();
   for (std::size_t k = 1, pos = 0; k < parts; ++k) {
     const std::size_t target = s.end() / parts * k;
     if (neighbours.enabled) {
       while (pos < target) {
         const std::uint8_t b = bytes[pos];
-        LeftNeighbours::pass(pos, static_cast<char>(b & 0x7f), main, neighbours.last,
+        LeftNeighbours::pass(pos, neighbours.kinds[b & 0x7f], neighbours.last, neighbours.depth,
                              neighbours.open);
         pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
       }

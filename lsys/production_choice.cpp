@@ -73,7 +73,7 @@ bool ProductionChoice::choose(int lsystem, const ModuleString& s, std::size_t at
     // the last module of the left context. Binding has no effect a refused production sees.
     if (p.strict.size() == 1 && p.strict[0].parameterCount != parameterCount) continue;
     if (!p.left.empty() && neighbours.enabled) {
-      if (neighbour == ContextMatcher::kUnknownNeighbour) neighbour = neighbours.before(s, l, at);
+      if (neighbour == ContextMatcher::kUnknownNeighbour) neighbour = neighbours.before(s, at);
       if (neighbour == BranchIndex::kNone) continue;
       const ModuleRef left = s.at(neighbour);
       const ModulePattern& last = p.left.back();
@@ -109,6 +109,29 @@ bool ProductionChoice::choose(int lsystem, const ModuleString& s, std::size_t at
   return true;
 }
 
+std::uint32_t ProductionChoice::weigh(const std::vector<std::uint32_t>& ids, ModuleRef m,
+                                      double draw) {
+  const RuleSet& rules = program_.lsystems.front().productions;
+  std::vector<double>& weights = weights_;
+  weights.clear();
+  for (std::uint32_t id : ids) {
+    const Production& p = rules.productions[id];
+    double* frame = frames_.of(0, 0, id);
+    bindParameters(p.strict[0], m, frame);
+    weights.push_back(weightOf(p, frame));
+  }
+  // choose()'s sums and comparisons, in its order.
+  double sum = 0;
+  for (double w : weights) sum += w;
+  const double r = draw * sum;
+  double accumulated = 0;
+  for (std::size_t i = 0; i < weights.size(); ++i) {
+    accumulated += weights[i];
+    if (r < accumulated) return ids[i];
+  }
+  return ids.back();
+}
+
 ChoiceTables::ChoiceTables(const Program& program, bool plainSuccessors) {
   for (const Lsystem& l : program.lsystems) {
     std::array<bool, 128> copied{};
@@ -124,6 +147,10 @@ ChoiceTables::ChoiceTables(const Program& program, bool plainSuccessors) {
       const Production& p = main.productions.productions[id];
       return !p.left.empty() && p.strict.size() == 1;
     });
+    leftOnly[c] = plainSuccessors && std::all_of(ids.begin(), ids.end(), [&](std::uint32_t id) {
+                    const Production& p = main.productions.productions[id];
+                    return p.left.size() == 1 && p.strict.size() == 1 && p.right.empty();
+                  });
     for (std::uint32_t id : ids) {
       const Production& p = main.productions.productions[id];
       if (!p.left.empty()) {
@@ -172,6 +199,41 @@ ChoiceTables::ChoiceTables(const Program& program, bool plainSuccessors) {
     if (!any) continue;
     contextTable[c] = static_cast<int>(contextSuccessors.size());
     contextSuccessors.push_back(successors);
+  }
+  drawnTable.fill(-1);
+  const bool drawn = program.lsystems.size() == 1 && main.stochastic;
+  for (std::size_t c = 0; drawn && c < 128; ++c) {
+    const auto& ids = main.productions.bySymbol[c];
+    if (ids.empty() || c == '%' || c == '?' || c == '$') continue;
+    const bool plain = std::all_of(ids.begin(), ids.end(), [&](std::uint32_t id) {
+      const Production& p = main.productions.productions[id];
+      return p.strict.size() == 1 && !p.hasContext() && p.before.empty() && p.condition.empty();
+    });
+    if (!plain) continue;
+    std::vector<DrawnChoice> choices;
+    for (std::uint32_t id : ids) {
+      const Production& p = main.productions.productions[id];
+      const std::size_t count = p.strict[0].parameterCount;
+      auto choice = std::find_if(choices.begin(), choices.end(),
+                                 [&](const DrawnChoice& d) { return d.parameterCount == count; });
+      if (choice == choices.end()) {
+        choices.push_back(DrawnChoice{count, {}, {}});
+        choice = choices.end() - 1;
+      }
+      choice->ids.push_back(id);
+      if (!p.probability.empty() && !isConstant(p.probability)) choice->weighed = false;
+      if (!choice->weighed) continue;
+      // weightOf()'s value, added to the sum as choose() adds it.
+      const double weight =
+          p.probability.empty()
+              ? 1.0
+              : p.probability
+                    .constants[static_cast<std::size_t>(p.probability.instructions[0].operand)];
+      const double before = choice->accumulated.empty() ? 0.0 : choice->accumulated.back();
+      choice->accumulated.push_back(before + weight);
+    }
+    drawnTable[c] = static_cast<int>(drawnChoices.size());
+    drawnChoices.push_back(std::move(choices));
   }
 }
 

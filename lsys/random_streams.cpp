@@ -5,8 +5,6 @@
 namespace hirsute {
 namespace {
 
-constexpr std::uint64_t kStateMask = (std::uint64_t{1} << 48) - 1;
-
 // cpfg: srand and the initial state keep 0x330E in the low word, as POSIX srand48 does.
 constexpr std::uint16_t kLowSeedWord = 0x330E;
 
@@ -17,14 +15,6 @@ Rand48::Rand48(std::uint16_t x0, std::uint16_t x1, std::uint16_t x2)
 
 Rand48 Rand48::seed48(std::uint16_t s0, std::uint16_t s1, std::uint16_t s2) {
   return Rand48(s0, s1, s2);
-}
-
-double Rand48::next() {
-  state_ = (kMultiplier * state_ + kIncrement) & kStateMask;
-  // glibc erand48 puts the 48 bits into the top of a double's mantissa in [1, 2) and subtracts
-  // 1; that is exactly X/2^48, which a multiplication by 2^-48 computes without rounding (and
-  // without ldexp's call: this runs once per module in stochastic L-systems).
-  return static_cast<double>(state_) * 0x1p-48;
 }
 
 std::array<std::uint16_t, 3> Rand48::state() const {

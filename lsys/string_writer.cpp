@@ -1,5 +1,6 @@
 #include "hirsute/lsys/string_writer.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -290,7 +291,36 @@ void StringWriter::modules(const ModuleString& s, std::size_t from, std::size_t 
   char* p = buffer_ + used_;
   const std::uint8_t* at = s.at(from).bytes();
   const std::uint8_t* const end = at + (to - from);
+  // cpfg's -str breaks a line once its count reaches 70; compact lines never break.
+  constexpr std::size_t kLine = 70;
   while (at < end) {
+    if (!(*at & 0x80) && !strings) {
+      // Modules without parameters are their symbols: a run of them up to the line's end is
+      // copied in one piece, each counting one, as writeModule counts them.
+      const std::size_t most =
+          std::min<std::size_t>(static_cast<std::size_t>(end - at),
+                                cpfg ? kLine - static_cast<std::size_t>(lineCount) : kLine);
+      std::size_t n = 1;
+      while (n < most && !(at[n] & 0x80)) ++n;
+      if (p + n + 1 > buffer_ + sizeof buffer_) {
+        used_ = static_cast<std::size_t>(p - buffer_);
+        flush();
+        p = buffer_;
+      }
+      std::memcpy(p, at, n);
+      p += n;
+      at += n;
+      if (cpfg) {
+        lineCount += static_cast<int>(n);
+        if (lineCount >= static_cast<int>(kLine)) {
+          *p++ = '\n';
+          lineCount = 0;
+        }
+      } else {
+        lineCount = 1;
+      }
+      continue;
+    }
     ModuleRef m(at);
     std::size_t count = m.parameterCount();
     if (strings) {

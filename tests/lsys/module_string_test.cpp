@@ -10,8 +10,9 @@
 #include <functional>
 #include <span>
 #include <string>
-
+#include <vector>
 #include "hirsute/lsys/module_string.h"
+
 #include "hirsute/lsys/string_writer.h"
 
 namespace hirsute {
@@ -151,6 +152,37 @@ TEST(StringWriter, BreaksLinesAsCpfgOnEveryPath) {
   compact.pop_back();
   EXPECT_EQ(whole, compact);
   EXPECT_EQ(writeWith(StringFormat::Cpfg, [](StringWriter&) {}), "");
+}
+
+// Runs of modules without parameters are copied in pieces up to the line's end: runs of every
+// length from 1 to 200 between modules with parameters, written whole, module by module, and in
+// ranges that cut runs anywhere, through several fills of the writer's buffer, give one text.
+TEST(StringWriter, CopiesRunsOfPlainModulesAsItWritesThemOneByOne) {
+  ModuleString s;
+  const float value = 2.5f;
+  std::vector<std::size_t> cuts;
+  for (int run = 1; run <= 200; ++run) {
+    for (int k = 0; k < run * 7; ++k) s.append("F+[]-AB"[(k + run) % 7]);
+    if (run % 3 == 0) cuts.push_back(s.end() - static_cast<std::size_t>(run % 5));
+    s.append('K', std::span<const float>(&value, 1));
+  }
+  ASSERT_GT(s.byteSize(), std::size_t{1} << 17);
+  for (StringFormat format : {StringFormat::Cpfg, StringFormat::Compact}) {
+    const std::string each = writeWith(format, [&](StringWriter& w) {
+      for (std::size_t p = s.begin(); p < s.end(); p = s.next(p)) w.module(s.at(p));
+    });
+    EXPECT_EQ(writeWith(format, [&](StringWriter& w) { w.modules(s, s.begin(), s.end()); }), each);
+    EXPECT_EQ(writeWith(format,
+                        [&](StringWriter& w) {
+                          std::size_t from = s.begin();
+                          for (std::size_t cut : cuts) {
+                            w.modules(s, from, cut);
+                            from = cut;
+                          }
+                          w.modules(s, from, s.end());
+                        }),
+              each);
+  }
 }
 
 // formatParameter does not call printf; it must still agree with it byte for byte. Every

@@ -141,6 +141,49 @@ TEST(ParallelRewriting, DependentProgramsStayOnOneThread) {
 // Every model of the repository (the fixtures, models/, the benchmark kinds cut short) and, when
 // present, of ../shared/conformance: the same string, warnings and error with every step that
 // may be split rewritten in three parts.
+// The cost rule, fed with made-up step times: a step of a new kind (a growth step, or the first
+// of other productions) is not held against splitting, and steps in parts that do not pay send
+// the next 1, 2, 4, ... steps to one thread without ending splitting for good.
+TEST(ParallelRewriting, TheCostRuleBacksOffAndTriesAgain) {
+  const Program program = compiled(fixture("independent"));
+  ParallelSteps steps(program, {2, 1000, 60, 1'000'000}, [] { return nullptr; });
+  const std::size_t n = 4000;
+  const auto seconds = [](double perModule, std::size_t modules) {
+    return perModule * static_cast<double>(modules);
+  };
+  EXPECT_FALSE(steps.splitsNextStep(n)) << "nothing measured yet";
+  steps.measured(n / 2, n, 0, seconds(70, n / 2));  // a growth step, cheap enough to split after
+  ASSERT_TRUE(steps.splitsNextStep(n));
+  // The first step of the costlier productions, in parts, took longer a module than the growth
+  // step alone: not comparable, so the next step measures one thread again.
+  steps.measured(n, n, 2, seconds(160, n));
+  EXPECT_FALSE(steps.splitsNextStep(n));
+  steps.measured(n, n, 0, seconds(140, n));
+  ASSERT_TRUE(steps.splitsNextStep(n));
+  steps.measured(n, n, 2, seconds(75, n));  // pays
+  EXPECT_TRUE(steps.splitsNextStep(n));
+  // Steps in parts that do not pay: 1, then 2, then 4 steps alone after them.
+  for (int alone : {1, 2, 4}) {
+    steps.measured(n, n, 2, seconds(150, n));
+    for (int k = 0; k < alone; ++k) {
+      EXPECT_FALSE(steps.splitsNextStep(n)) << alone;
+      steps.measured(n, n, 0, seconds(140, n));
+    }
+    EXPECT_TRUE(steps.splitsNextStep(n)) << alone;
+  }
+  // One that pays ends the backing off.
+  steps.measured(n, n, 2, seconds(75, n));
+  steps.measured(n, n, 2, seconds(150, n));
+  EXPECT_FALSE(steps.splitsNextStep(n));
+  steps.measured(n, n, 0, seconds(140, n));
+  EXPECT_TRUE(steps.splitsNextStep(n));
+  // Cheap steps are not split, and neither are short strings.
+  steps.measured(n, n, 0, seconds(20, n));
+  EXPECT_FALSE(steps.splitsNextStep(n));
+  steps.measured(n, n, 0, seconds(140, n));
+  EXPECT_FALSE(steps.splitsNextStep(999));
+}
+
 TEST(ParallelRewriting, EveryModelDerivesAsOnOneThread) {
   const testing::ModelCorpus corpus(kSource, "parallel",
                                     {{"loops", 19}, {"signal", 24}, {"branching", 10}});

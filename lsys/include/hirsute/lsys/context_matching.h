@@ -6,6 +6,7 @@
 // the rewriting pass finds each module's left neighbour without searching backwards.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -31,10 +32,18 @@ bool matchStrict(const Production& p, const ModuleString& s, std::size_t at, std
 // L-system of a program without sub-L-systems, not a ring, whose brackets are not ignored and
 // some of whose productions have a left context (enabled); otherwise the search goes backwards.
 struct LeftNeighbours {
+  // How the search passes a symbol (kinds): over it (an ignored module), stopping at it (a
+  // module a context may compare with), into a branch, out of one.
+  static constexpr std::uint8_t kPassedOver = 0, kModule = 1, kOpen = 2, kClose = 3;
+
   bool enabled = false;
   std::size_t trackedTo = 0;              // modules before this are accounted for
   std::size_t last = BranchIndex::kNone;  // the neighbour of position trackedTo
-  std::vector<std::size_t> open;          // `last` at each enclosing `[`
+  // `last` at each enclosing `[`: open[0, depth); the vector is longer, so that a `[` stores
+  // without a test of its own.
+  std::vector<std::size_t> open;
+  std::size_t depth = 0;
+  std::array<std::uint8_t, 128> kinds{};  // by symbol
 
   // Back to the string's start; `enabled` says whether `program` uses the neighbours.
   void reset(const Program& program);
@@ -43,34 +52,31 @@ struct LeftNeighbours {
   // find it (ignored modules passed over, a complete branch to the left skipped, a `[` stepped
   // out of), found by carrying that search's answer forward through the string; kNone for none.
   // `at` may not be before the position of the last call.
-  std::size_t before(const ModuleString& s, const Lsystem& l, std::size_t at) {
+  std::size_t before(const ModuleString& s, std::size_t at) {
     const std::uint8_t* const bytes = s.bytes();
     for (std::size_t q = trackedTo; q < at;) {
       const std::uint8_t b = bytes[q];
-      pass(q, static_cast<char>(b & 0x7f), l, last, open);
+      pass(q, kinds[b & 0x7f], last, depth, open);
       q += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[q + 1]) : 1;
     }
     if (at > trackedTo) trackedTo = at;
     return last;
   }
 
-  // Accounts for the module at q, of symbol c, as the search passes it: `last` becomes the
-  // neighbour of the module after it. Static, so that a loop may keep `last` in a register.
-  static void pass(std::size_t q, char c, const Lsystem& l, std::size_t& last,
+  // Accounts for the module at q, of kind `kind`, as the search passes it: `last` becomes the
+  // neighbour of the module after it. Without branches on the kind, which follow no pattern in
+  // a branching string; static, so that a loop may keep `last` and `depth` in registers.
+  static void pass(std::size_t q, std::uint8_t kind, std::size_t& last, std::size_t& depth,
                    std::vector<std::size_t>& open) {
-    if (l.ignored[static_cast<unsigned char>(c)]) return;
-    if (c == '[') {
-      open.push_back(last);  // inside the branch the parent's module is to the left
-    } else if (c == ']') {
-      // Past the branch, the module before its `[` is; an unpaired `]` stops every search.
-      if (open.empty()) {
-        last = BranchIndex::kNone;
-      } else {
-        last = open.back();
-        open.pop_back();
-      }
-    } else {
+    if (kind == kModule) {
       last = q;
+    } else if (kind == kOpen) {
+      if (depth == open.size()) [[unlikely]]
+        open.resize(2 * open.size() + 32);
+      open[depth++] = last;  // inside the branch the parent's module is to the left
+    } else if (kind == kClose) {
+      // Past the branch, the module before its `[` is; an unpaired `]` stops every search.
+      last = depth != 0 ? open[--depth] : BranchIndex::kNone;
     }
   }
 };

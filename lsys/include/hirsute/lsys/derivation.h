@@ -37,12 +37,13 @@ struct DerivationOptions {
   // A step is split when its string has at least parallelMinimumModules modules and the last
   // step of such a string took at least parallelMinimumCost nanoseconds of one thread's time a
   // module: a step that mostly copies modules gains nothing from threads and spends memory on the
-  // parts. Steps in parts that take as long a module as one thread did make the next step run
-  // alone, to measure it again, and after three in a row every step. Tests set both to 0 to split
-  // every step that may be. 60 ns: a block of a few math calls a module (models/bench/fourier.l,
-  // about 140 ns) gains 1.7x on two cores; steps that mostly copy and match contexts (about 7 ns
-  // a module: leaves.l, signal.l) gain too little over the threads' start and the parts' copy for
-  // the measurement to tell them from noise.
+  // parts. A step in parts that takes as long a module as a steady step of about its size did on
+  // one thread sends the next 1, 2, 4, ... 32 such steps to one thread (ParallelSteps::measured);
+  // one that pays ends that. Tests set both to 0 to split every step that may be. 60 ns: a block
+  // of a few math calls a module (models/bench/fourier.l, about 140 ns) gains 1.7x on two cores;
+  // steps that mostly copy and match contexts (about 4 ns a module: leaves.l, signal.l) gain too
+  // little over the threads' start and the parts' copy for the measurement to tell them from
+  // noise.
   std::size_t parallelMinimumModules = 16384;
   double parallelMinimumCost = 60;
 };
@@ -110,6 +111,16 @@ class Derivation {
   // The copying part of the rewriting loop (fusedScan_).
   void scanRun(const ModuleString& s, const Lsystem& l, std::size_t to, std::size_t& pos,
                std::size_t& runFrom, std::size_t& runCount);
+  // For ChoiceTables::leftOnly symbols: the production choose() would apply at `module`, whose
+  // left neighbour is `neighbour` (its index in the productions), or -1.
+  int chooseByNeighbour(const Lsystem& l, const std::uint8_t* module,
+                        const std::uint8_t* neighbour);
+  // Applies production `id` of the main L-system, chosen by the scan, its frame bound.
+  void applyChosen(const Lsystem& l, std::size_t id);
+  // The same for a stochastic program of one L-system (drawnScan_): every module draws, as in
+  // choose(), and those of tables_.drawnTable are copied or rewritten on the spot.
+  void scanDrawn(const ModuleString& s, const Lsystem& l, std::size_t to, std::size_t& pos,
+                 std::size_t& runFrom, std::size_t& runCount);
   void appendValues(const Production& p, const double* values, ModuleString& out);
   void checkSize(const ModuleString& s, const SourceLocation& where);
   void streamIfFull();
@@ -144,6 +155,7 @@ class Derivation {
   // copied as they are, left neighbours carried along, and the modules below rewritten on the
   // spot from tables_; the loop stops where choice_ must decide.
   bool fusedScan_;
+  bool drawnScan_;  // one stochastic L-system: scanDrawn
   ChoiceTables tables_;
   LeftNeighbours leftNeighbours_;  // of the rewriting pass
   ParallelSteps parallel_;

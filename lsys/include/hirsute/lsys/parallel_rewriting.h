@@ -13,7 +13,6 @@
 // splits a step only where that pays, by the cost of the last steps.
 #pragma once
 
-#include <chrono>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -76,10 +75,12 @@ class ParallelSteps {
   // branches of `s` first when the parts' contexts search them; `stepsDone`: the steps before.
   std::size_t rewrite(const ModuleString& s, ModuleString& out, const ContextMatcher& matcher,
                       int stepsDone);
-  // The step just rewritten, begun at `started`, of `modules` modules, in `parts` parts (0: on
-  // one thread): what the next step's decision weighs.
-  void measured(std::size_t modules, std::size_t parts,
-                std::chrono::steady_clock::time_point started);
+  // The step just rewritten: `modules` modules made `produced`, in `parts` parts (0: on one
+  // thread), in `nanoseconds` of wall time: what the next steps' decision weighs.
+  void measured(std::size_t modules, std::size_t produced, std::size_t parts, double nanoseconds);
+  // Whether the next step, of `modules` modules, is to be split (rewrite() splits it unless a
+  // part warns or fails).
+  bool splitsNextStep(std::size_t modules) const;
   // Steps rewritten in parts.
   int stepsInParts() const { return stepsInParts_; }
 
@@ -93,13 +94,19 @@ class ParallelSteps {
   int threads_ = 1;
   int stepsInParts_ = 0;
   // Nanoseconds of rewriting a module: in the last step with a string of minimumModules at
-  // least (for a step in parts, its time times the parts), and in the last such step on one
-  // thread (-1: none yet).
+  // least (for a step in parts, its time times the parts), and in the last steady such step on
+  // one thread (-1: none yet), whose modules sequentialModules_ holds.
   double stepCost_ = -1;
   double sequentialCost_ = -1;
-  bool remeasure_ = false;  // the last step in parts did not pay: the next is measured alone
-  int splitsUnpaid_ = 0;    // steps in parts in a row that did not pay
-  bool splittingPays_ = true;
+  std::size_t sequentialModules_ = 0;
+  bool remeasure_ = false;  // the last step in parts was not judged: the next is measured alone
+  // Steps in parts that did not pay send the next backOff_ steps of minimumModules or more to one
+  // thread (stepsAlone_ of them still to come), doubling up to kMaxBackOff while they do not pay
+  // and back to none when one does: a busy moment of the machine does not end splitting for
+  // good, and a machine whose cores are all busy splits one step in kMaxBackOff.
+  static constexpr int kMaxBackOff = 32;
+  int backOff_ = 0;
+  int stepsAlone_ = 0;
 };
 
 }  // namespace hirsute

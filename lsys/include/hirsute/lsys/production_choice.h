@@ -57,6 +57,13 @@ class ProductionChoice {
   // a production has a left context and they are enabled.
   bool choose(int lsystem, const ModuleString& s, std::size_t at, LeftNeighbours& neighbours,
               Match& match);
+  // The stochastic stream's next number, drawn for a module whose choice the rewriting loop
+  // makes itself (ChoiceTables::drawnTable), as choose() would have drawn it.
+  double draw() { return stream_.next(); }
+  // The production of `ids` (one strict module each, without context, block or condition, of
+  // the parameter count of `m`) that choose() takes for `m` with `draw`: each bound to `m` and
+  // weighed in file order, as choose() binds and weighs them.
+  std::uint32_t weigh(const std::vector<std::uint32_t>& ids, ModuleRef m, double draw);
 
  private:
   // A stochastic production's weight (`: w`) in its frame.
@@ -99,15 +106,44 @@ struct ChoiceTables {
   // symbol without such a table.
   std::array<int, 128> contextTable{};
   std::vector<std::array<int, 128>> contextSuccessors;
+  // Symbols whose every production is one strict module with a left context of one module and
+  // no right context: the loop, which knows the left neighbour, tests them itself as choose()
+  // would (parameter counts, the neighbour, the bindings, blocks and conditions, in file order).
+  std::array<bool, 128> leftOnly{};
+
+  // A stochastic program of one L-system: the productions a module of a symbol and parameter
+  // count meets, when every production of the symbol is one strict module without context,
+  // pre-condition block or condition. choose() would draw, keep those productions in file order
+  // and take the first whose running sum of weights exceeds the draw times their sum: the loop
+  // does the same, from the sums made here, added in the same order, when every weight is a
+  // number (weighed), else weighing each production at the module (ProductionChoice::weigh).
+  struct DrawnChoice {
+    std::size_t parameterCount = 0;
+    std::vector<std::uint32_t> ids;   // in file order; empty: no production applies
+    std::vector<double> accumulated;  // the running sums of their weights, when weighed
+    bool weighed = true;
+  };
+  // drawnChoices[drawnTable[symbol]], one entry a parameter count that some production wants;
+  // drawnTable is -1 for a symbol choose() must decide.
+  std::array<int, 128> drawnTable{};
+  std::vector<std::vector<DrawnChoice>> drawnChoices;
+
+  // The production of `choice` that a draw of `draw` takes, as choose() takes it.
+  static std::uint32_t drawnProduction(const DrawnChoice& choice, double draw) {
+    const std::size_t n = choice.accumulated.size();
+    const double r = draw * choice.accumulated[n - 1];
+    for (std::size_t i = 0; i + 1 < n; ++i)
+      if (r < choice.accumulated[i]) return choice.ids[i];
+    return choice.ids[n - 1];
+  }
 
   // Whether choose() would refuse the module at `at` on its left neighbour alone, as it does
   // before binding or evaluating anything: every production of the symbol needs a left context,
   // and the neighbour ends none of them (or there is none).
-  bool leftRefuses(const ModuleString& s, const Lsystem& l, std::size_t at,
-                   LeftNeighbours& neighbours) const {
+  bool leftRefuses(const ModuleString& s, std::size_t at, LeftNeighbours& neighbours) const {
     const auto c = static_cast<unsigned char>(s.at(at).symbol());
     if (!needsLeft[c]) return false;
-    const std::size_t neighbour = neighbours.before(s, l, at);
+    const std::size_t neighbour = neighbours.before(s, at);
     return neighbour == BranchIndex::kNone ||
            !leftLast[c].test(static_cast<unsigned char>(s.at(neighbour).symbol()));
   }

@@ -17,6 +17,7 @@ class Rand48 {
  public:
   static constexpr std::uint64_t kMultiplier = 0x5DEECE66Dull;
   static constexpr std::uint64_t kIncrement = 0xB;
+  static constexpr std::uint64_t kStateMask = (std::uint64_t{1} << 48) - 1;
 
   // The state as erand48's xsubi: x0 holds the low 16 bits, x2 the high ones.
   Rand48(std::uint16_t x0, std::uint16_t x1, std::uint16_t x2);
@@ -25,8 +26,15 @@ class Rand48 {
   // defaults (this class never changes them, so it is the same as the constructor).
   static Rand48 seed48(std::uint16_t s0, std::uint16_t s1, std::uint16_t s2);
 
-  // Advances the state and returns it as a double in [0, 1), exactly as erand48.
-  double next();
+  // Advances the state and returns it as a double in [0, 1), exactly as erand48. Inline: a
+  // stochastic L-system draws once for every module of every step.
+  double next() {
+    state_ = (kMultiplier * state_ + kIncrement) & kStateMask;
+    // glibc erand48 puts the 48 bits into the top of a double's mantissa in [1, 2) and subtracts
+    // 1; that is exactly X/2^48, which a multiplication by 2^-48 computes without rounding (and
+    // without ldexp's call).
+    return static_cast<double>(state_) * 0x1p-48;
+  }
 
   std::array<std::uint16_t, 3> state() const;
 
