@@ -18,6 +18,10 @@ namespace {
 
 constexpr double kDegrees = std::numbers::pi / 180;
 constexpr double kTiny = 1e-12;
+constexpr float kTwoSegmentPixels = 32;  // thinned feathers this long or shorter: 2 barb segments
+constexpr float kPixelsPerThinnedBarb = 4;  // of a small feather's length, a barb a vane kept
+constexpr float kCoarsePixels = 64;         // a small feather: this long or shorter
+constexpr int kFewestThinnedBarbs = 8;      // a thinned vane keeps at least these
 
 // The rachis of Sec. 4.3.1 and its frame.
 class Rachis {
@@ -164,8 +168,24 @@ glm::dvec3 inFrame(const BarbAxes& axes, const glm::dvec3& v) {
 
 void buildBarbs(const FeatherType& type, const Rachis& rachis, const FeatherDetail& detail,
                 FeatherGeometry& out) {
-  const std::vector<float> positions = barbPositions(type);
-  if (positions.empty()) return;
+  const std::vector<float> all = barbPositions(type);
+  if (all.empty()) return;
+  // Thinning (FeatherDetail::barbsPerVane): every stride-th barb, the middle one of each run of
+  // stride, so that the kept barbs stand evenly over the vane; each keeps its index in the full
+  // vane (the plumulaceous table's draw) and a strip widened by the stride.
+  std::size_t stride = 1;
+  if (detail.barbsPerVane > 0 && all.size() > static_cast<std::size_t>(detail.barbsPerVane)) {
+    const std::size_t limit = static_cast<std::size_t>(detail.barbsPerVane);
+    stride = (all.size() + limit - 1) / limit;
+  }
+  std::vector<float> positions;
+  std::vector<std::size_t> indices;
+  for (std::size_t k = (stride - 1) / 2; k < all.size(); k += stride) {
+    positions.push_back(all[k]);
+    indices.push_back(k);
+  }
+  out.barbStride = static_cast<int>(stride);
+  out.appearance.stripWidth *= static_cast<float>(stride);
   const int segments = std::max(1, detail.barbSegments);
   const std::size_t perBarb = static_cast<std::size_t>(segments) + 1;
   const bool strips = type.appearance.drawing == BarbStyle::Strips;
@@ -201,7 +221,7 @@ void buildBarbs(const FeatherType& type, const Rachis& rachis, const FeatherDeta
     const Vane& vane = type.vane(side);
     for (std::size_t k = 0; k < positions.size(); ++k) {
       const float rp = positions[k];
-      const BarbCurve barb = keys.barbAt(rp, k, table);
+      const BarbCurve barb = keys.barbAt(rp, indices[k], table);
       const ChordRotation rotation = chordRotation(barb.vertices);
       const double length = vaneBarbLength(vane, rp);
       const Rachis::Frame frame = rachis.frame(rp);
@@ -280,6 +300,19 @@ FeatherDetail featherDetailForProjectedLength(float pixels) {
                        clampTo(3 + std::floor(p / 40), 3, 12)};
 }
 
+FeatherDetail thinnedFeatherDetail(float pixels, BarbStyle drawing) {
+  FeatherDetail detail = featherDetailForProjectedLength(pixels);
+  const float p = std::isfinite(pixels) ? std::max(pixels, 0.0f) : 0.0f;
+  // Above kCoarsePixels a barb per 2 pixels: there a feather's barbs begin to show apart.
+  const float perStrip = p <= kCoarsePixels ? kPixelsPerThinnedBarb : 2.0f;
+  const float perBarb = drawing == BarbStyle::Strips ? perStrip : 1.0f;
+  detail.barbsPerVane =
+      std::max(kFewestThinnedBarbs, static_cast<int>(std::min(p / perBarb, 1e6f)));
+  // A barb a few pixels long shows no curve beyond a bend: two segments.
+  if (p <= kTwoSegmentPixels) detail.barbSegments = 2;
+  return detail;
+}
+
 std::vector<float> barbPositions(const FeatherType& type) {
   std::vector<float> out;
   const double rl = type.rachisLength;
@@ -304,7 +337,14 @@ FeatherGeometry buildFeatherGeometry(const FeatherType& type, const FeatherDetai
   buildShaft(type, rachis, detail, out);
   buildBarbs(type, rachis, detail, out);
   if (type.afterfeather && type.afterfeatherSize > 0) {
-    FeatherGeometry after = buildFeatherGeometry(*type.afterfeather, detail);
+    // A thinned afterfeather keeps barbs for its own, smaller, size in the picture.
+    FeatherDetail afterDetail = detail;
+    if (detail.barbsPerVane > 0) {
+      afterDetail.barbsPerVane = std::max(
+          kFewestThinnedBarbs,
+          static_cast<int>(static_cast<float>(detail.barbsPerVane) * type.afterfeatherSize));
+    }
+    FeatherGeometry after = buildFeatherGeometry(*type.afterfeather, afterDetail);
     transform(after, glm::vec3(-type.rachisWidth / 2, 0, type.calamusLength),
               type.afterfeatherSize);
     out.afterfeathers.push_back(std::move(after));

@@ -70,6 +70,7 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
   FeatherStageReport report;
   part.types.clear();
   part.maxVertices = options.maxVertices;
+  part.fullDetail = options.fullDetail;
   for (const FeatherTypeDeclaration& declaration : resources.view.organ<FeatherSettings>().types) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(declaration.file, error)) {
@@ -201,6 +202,7 @@ namespace {
 
 struct FeatherCommandOptions : OrganOptionsOf<FeatherCommandOptions> {
   std::size_t maxFeathers = FeatherStageOptions{}.maxFeathers;
+  bool fullDetail = false;
 };
 
 class FeatherStage : public OrganStageOf<FeatherCommandOptions> {
@@ -216,6 +218,9 @@ class FeatherStage : public OrganStageOf<FeatherCommandOptions> {
     command.add_flag("!--no-feathers", s.enabled, "Leave out the feathers (@F modules)");
     command.add_option("--max-feathers", s.maxFeathers,
                        "More feathers (@Fe, @Fi and coats) are an error (default 1000000)");
+    command.add_flag("--full-feathers", s.fullDetail,
+                     "Draw and export every barb of every feather, each feather built whole "
+                     "(no thinning to the picture, no POV-Ray instances)");
   }
   std::string growFrom(const OrganStageRun& run,
                        const FeatherCommandOptions& chosen) const override {
@@ -224,6 +229,7 @@ class FeatherStage : public OrganStageOf<FeatherCommandOptions> {
     options.seed = run.seed;
     options.maxFeathers = chosen.maxFeathers;
     options.maxVertices = run.maxVertices;
+    options.fullDetail = chosen.fullDetail;
     options.progress = run.progress;
     const FeatherStageReport report =
         growFeathers(run.scene, run.resources, run.functions, options, run.diagnostics);

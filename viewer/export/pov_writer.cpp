@@ -654,14 +654,21 @@ PovWriter::Shade PovWriter::shadeOf(const glm::vec3& c, float alpha) {
 
 void PovWriter::writeShadedMesh(std::string_view comment, const std::vector<glm::vec3>& points,
                                 const std::vector<Shade>& shades,
-                                const std::vector<std::uint32_t>& faces, std::string_view finish) {
+                                const std::vector<std::uint32_t>& faces, std::string_view finish,
+                                std::string_view declaredName) {
   std::map<Shade, int> textureOf;
   for (const Shade& s : shades) textureOf.emplace(s, 0);
   int n = 0;
   for (auto& [shade, index] : textureOf) index = n++;
   out_.put("\n// ");
   out_.put(comment);
-  out_.put("\nmesh2{\nvertex_vectors{");
+  if (!declaredName.empty()) {
+    out_.put("\n#declare ");
+    out_.put(declaredName);
+    out_.put("=mesh2{\nvertex_vectors{");
+  } else {
+    out_.put("\nmesh2{\nvertex_vectors{");
+  }
   out_.putInteger(static_cast<std::int64_t>(points.size()));
   for (std::size_t i = 0; i < points.size(); ++i) {
     out_.put(i % 4 == 0 ? ",\n" : ",");

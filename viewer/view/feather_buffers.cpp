@@ -1,7 +1,11 @@
 #include "hirsute/viewer/view/feather_buffers.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <compare>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -13,6 +17,10 @@ namespace {
 
 constexpr int kMaxDetailLevel = 7;
 constexpr float kLevelZeroPixels = 16;  // level L covers up to 16·2^L pixels
+// A template's blend weights and age are rounded to 1/steps, steps = max(kFewestBlendSteps,
+// pixels / kPixelsPerBlendStep) for a feather `pixels` long in the picture (FeatherInstances).
+constexpr float kFewestBlendSteps = 32;
+constexpr float kPixelsPerBlendStep = 2;
 
 // Sec. 4.3.1: barbs are alpha blended towards their tip.
 float tipFade(float s) {
@@ -97,11 +105,14 @@ void appendPart(const Scene& scene, const FeatherGeometry& part, const FeatherMa
         out.barbColors.emplace_back(barbColour, alpha);
         out.barbTexcoords.push_back(t);
         if (strips) {
-          // Sec. 4.3.1: two strips either side of the barb, fading away from it.
+          // Sec. 4.3.1: two strips either side of the barb, fading away from it. A thinned vane's
+          // strips stand for the barbs between them, which the picture cannot tell apart: they
+          // keep their alpha to their edges (docs/feathers.md, "Dense coats").
           const glm::vec3 side = part.appearance.stripWidth * part.vertices.stripSides[i];
+          const float edgeAlpha = part.barbStride > 1 ? 0.5f * alpha : 0.0f;
           for (float sign : {1.0f, -1.0f}) {
             out.barbPositions.push_back(toWorld.point(p + sign * side));
-            out.barbColors.emplace_back(barbColour, 0.0f);
+            out.barbColors.emplace_back(barbColour, edgeAlpha);
             out.barbTexcoords.push_back(t);
           }
         }
@@ -122,7 +133,142 @@ void appendPart(const Scene& scene, const FeatherGeometry& part, const FeatherMa
   out.parts.push_back(placed);
 }
 
+// Appends the primitives of `vane` (its indices at `begin`) from each barb's tip in to the
+// rachis; a segment's primitives stay together.
+void appendTipInwards(const FeatherBuffers::Vane& vane,
+                      std::vector<std::uint32_t>::const_iterator begin,
+                      std::vector<std::uint32_t>& out) {
+  if (vane.perBarb == 0) {
+    out.insert(out.end(), begin, begin + vane.count);
+    return;
+  }
+  const std::uint32_t perSegment = vane.primitiveSize == 3 ? 4 * 3 : 2;
+  const std::uint32_t barbLength = vane.perBarb * vane.primitiveSize;
+  for (std::uint32_t barb = 0; barb + barbLength <= vane.count; barb += barbLength) {
+    for (std::uint32_t at = barbLength; at >= perSegment; at -= perSegment) {
+      out.insert(out.end(), begin + barb + at - perSegment, begin + barb + at);
+    }
+  }
+}
+
+// What makes two feathers one template: their key types, their blend weights and age rounded
+// to `steps`, and their level; a bent feather is a template of its own (`own`: its index + 1).
+struct TemplateKey {
+  std::array<std::uint16_t, 4> types{};
+  std::array<std::int32_t, 4> rounded{};  // across[0], across[1], along, age, times steps
+  std::uint8_t level = 0;
+  std::uint32_t own = 0;
+  auto operator<=>(const TemplateKey&) const = default;
+};
+
+std::int32_t roundTo(float value, float steps) {
+  const float v = std::isfinite(value) ? std::clamp(value, 0.0f, 1.0f) : 0.0f;
+  return static_cast<std::int32_t>(std::lround(v * steps));
+}
+
 }  // namespace
+
+std::size_t FeatherInstances::byteSize() const {
+  return geometry.byteSize() + templates.size() * sizeof(Template) +
+         templateOf.size() * sizeof(std::uint32_t) + toWorld.size() * sizeof(glm::mat4) +
+         levels.size();
+}
+
+FeatherInstances buildFeatherInstances(const Scene& scene, const std::vector<std::uint8_t>& levels,
+                                       bool fullDetail) {
+  FeatherInstances out;
+  out.levels = levels;
+  const FeatherPart& part = scene.organ<FeatherPart>();
+  out.templateOf.reserve(part.feathers.size());
+  out.toWorld.reserve(part.feathers.size());
+  std::map<TemplateKey, std::uint32_t> known;
+  for (std::size_t i = 0; i < part.feathers.size(); ++i) {
+    const Feather& feather = part.feathers[i];
+    const int level = i < levels.size() ? levels[i] : kMaxDetailLevel;
+    const float pixels = kLevelZeroPixels * std::exp2(static_cast<float>(level));
+    const bool posed = i < part.poses.size() && !part.poses[i].heights.empty();
+    // The blend and the age rounded to the level's steps (FeatherInstances), or, in full detail,
+    // kept exactly (their bits).
+    const float steps = std::max(kFewestBlendSteps, pixels / kPixelsPerBlendStep);
+    const std::array<float, 4> values = {feather.across[0], feather.across[1], feather.along,
+                                         feather.age};
+    TemplateKey key;
+    key.types = feather.types;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      key.rounded[k] =
+          fullDetail ? std::bit_cast<std::int32_t>(values[k]) : roundTo(values[k], steps);
+    }
+    key.level = static_cast<std::uint8_t>(level);
+    key.own = posed ? static_cast<std::uint32_t>(i + 1) : 0;
+    auto [found, added] = known.try_emplace(key, static_cast<std::uint32_t>(out.templates.size()));
+    if (added) {
+      Feather rounded = feather;
+      if (!fullDetail) {
+        rounded.across = {static_cast<float>(key.rounded[0]) / steps,
+                          static_cast<float>(key.rounded[1]) / steps};
+        rounded.along = static_cast<float>(key.rounded[2]) / steps;
+        rounded.age = static_cast<float>(key.rounded[3]) / steps;
+      }
+      const FeatherType type = featherTypeOf(scene, rounded);
+      const FeatherDetail detail = fullDetail
+                                       ? featherDetailForProjectedLength(pixels)
+                                       : thinnedFeatherDetail(pixels, type.appearance.drawing);
+      const FeatherGeometry geometry = buildFeatherGeometry(type, detail);
+      FeatherInstances::Template made;
+      made.firstPart = static_cast<std::uint32_t>(out.geometry.parts.size());
+      made.firstShaftIndex = static_cast<std::uint32_t>(out.geometry.shaftIndices.size());
+      made.barbStride = geometry.barbStride;
+      made.firstShaftVertex = static_cast<std::uint32_t>(out.geometry.shaftPositions.size());
+      made.firstBarbVertex = static_cast<std::uint32_t>(out.geometry.barbPositions.size());
+      const std::size_t verticesBefore =
+          out.geometry.shaftPositions.size() + out.geometry.barbPositions.size();
+      // A bent feather is built in the world, by its pose; the others in their own frame.
+      const FeatherMap map = posed ? FeatherMap::of(scene, i) : FeatherMap(glm::mat4(1.0f));
+      forEachFeatherPart(geometry, [&](const FeatherGeometry& piece, bool) {
+        appendPart(scene, piece, map, out.geometry);
+      });
+      made.partCount = static_cast<std::uint32_t>(out.geometry.parts.size()) - made.firstPart;
+      made.shaftIndexCount =
+          static_cast<std::uint32_t>(out.geometry.shaftIndices.size()) - made.firstShaftIndex;
+      made.vertices =
+          out.geometry.shaftPositions.size() + out.geometry.barbPositions.size() - verticesBefore;
+      made.shaftVertexCount =
+          static_cast<std::uint32_t>(out.geometry.shaftPositions.size()) - made.firstShaftVertex;
+      made.barbVertexCount =
+          static_cast<std::uint32_t>(out.geometry.barbPositions.size()) - made.firstBarbVertex;
+      made.primitives = made.shaftIndexCount / 3;
+      for (std::uint32_t p = made.firstPart; p < made.firstPart + made.partCount; ++p) {
+        for (const FeatherBuffers::Vane& vane : out.geometry.parts[p].vanes) {
+          if (vane.primitiveSize > 0) made.primitives += vane.count / vane.primitiveSize;
+        }
+      }
+      out.templates.push_back(made);
+    }
+    out.templateOf.push_back(found->second);
+    out.toWorld.push_back(posed ? glm::mat4(1.0f) : featherToWorld(feather));
+    out.drawnVertices += out.templates[found->second].vertices;
+    if (out.drawnVertices > part.maxVertices) {
+      throw GeometryLimitError(fmt::format(
+          "the feathers' geometry grew past {} vertices (--max-vertices) at feather {} of {}, "
+          "built at the detail of its size in the picture (a smaller picture, fewer feathers, "
+          "or a higher limit)",
+          part.maxVertices, i + 1, part.feathers.size()));
+    }
+  }
+  // The nearer vane's order beside the farther's, for every vane.
+  std::vector<std::uint32_t> tipInwards;
+  for (FeatherBuffers::Part& placed : out.geometry.parts) {
+    for (FeatherBuffers::Vane& vane : placed.vanes) {
+      vane.tipInwardFirst =
+          static_cast<std::uint32_t>(out.geometry.vaneIndices.size() + tipInwards.size());
+      appendTipInwards(vane, out.geometry.vaneIndices.cbegin() + vane.first, tipInwards);
+    }
+  }
+  out.geometry.vaneIndices.insert(out.geometry.vaneIndices.end(), tipInwards.begin(),
+                                  tipInwards.end());
+  out.geometry.levels = levels;
+  return out;
+}
 
 std::size_t FeatherBuffers::byteSize() const {
   return shaftPositions.size() * sizeof(glm::vec3) * 3 + shaftIndices.size() * 4 +
@@ -199,18 +345,11 @@ void orderFeatherBarbs(const FeatherBuffers& buffers, const Camera& camera,
       runs.push_back(
           FeatherDrawRun{vane.texture, triangles, static_cast<std::uint32_t>(indices.size()), 0});
     }
-    const auto begin = buffers.vaneIndices.begin() + vane.first;
-    if (!tipInwards || vane.perBarb == 0) {
+    const auto begin = buffers.vaneIndices.cbegin() + vane.first;
+    if (!tipInwards) {
       indices.insert(indices.end(), begin, begin + vane.count);
     } else {
-      // Each barb's segments from its tip to the rachis; a segment's primitives stay together.
-      const std::uint32_t perSegment = triangles ? 4 * 3 : 2;
-      const std::uint32_t barbLength = vane.perBarb * vane.primitiveSize;
-      for (std::uint32_t barb = 0; barb + barbLength <= vane.count; barb += barbLength) {
-        for (std::uint32_t at = barbLength; at >= perSegment; at -= perSegment) {
-          indices.insert(indices.end(), begin + barb + at - perSegment, begin + barb + at);
-        }
-      }
+      appendTipInwards(vane, begin, indices);
     }
     runs.back().count = static_cast<std::uint32_t>(indices.size()) - runs.back().first;
   };

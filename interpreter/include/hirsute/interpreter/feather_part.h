@@ -66,6 +66,9 @@ struct FeatherPart : OrganPartOf<FeatherPart> {
   // The outputs build each feather at the detail of its size in their picture; more vertices
   // than this in the feathers' geometry are an error (the run's --max-vertices).
   std::size_t maxVertices = kDefaultMaxVertices;
+  // Every barb of every feather, each built whole (--full-feathers): the GL drawing does not thin
+  // the barbs to the picture and the POV-Ray export writes no instances.
+  bool fullDetail = false;
 
   void addBounds(Bounds& box) const override { box.add(bounds); }
 };

@@ -1,8 +1,14 @@
 // Feathers in the GL renderer (Streit & Heidrich 2002, Sec. 4.3): the shafts as lit tubes, the
 // barbs as alpha-blended lines or strips fading to their tips, textured in the type's mapping,
-// each feather at the level of detail of its size on the screen and its vanes in the order the
-// camera asks for (feather_buffers.h). The renderer makes one by featherDrawing()
-// (organ_drawing.h).
+// each feather at the level of detail of its size on the screen, its barbs thinned where the
+// picture cannot show them all, and its vanes in the order the camera asks for
+// (feather_buffers.h). Feathers are instances (FeatherInstances): each template's geometry is
+// built once, and every frame streams the feathers through one buffer, each feather its template
+// placed by its transform, in the Scene's order (a coat from the bottom feather up, so that
+// blending stays right), a draw for up to kStreamVertices vertices: llvmpipe pays some 85 µs a
+// draw, which a draw per feather made the larger part of a coat's time. Memory follows the
+// templates and the stream, not the feathers: a full stream is rasterised before the next is
+// filled. The renderer makes one by featherDrawing() (organ_drawing.h).
 #pragma once
 
 #include <cstddef>
@@ -41,9 +47,9 @@ class FeatherDrawing : public OrganDrawing {
   void draw(const Camera& camera, const glm::vec3& light, float detail) override;
 
   std::size_t instances() const override { return scene_.organ<FeatherPart>().feathers.size(); }
-  // The barb and shaft triangles and segments built for the last camera.
+  // The barb and shaft triangles and segments drawn for the last camera, every instance's.
   std::size_t primitives() const override;
-  const FeatherBuffers& buffers() const { return buffers_; }
+  const FeatherInstances& builtInstances() const { return instances_; }
 
  private:
   void take(const Scene& scene, const std::vector<GLuint>& textures);
@@ -55,15 +61,15 @@ class FeatherDrawing : public OrganDrawing {
   GLint barbViewProjection_ = -1, barbTextured_ = -1, barbTexture_ = -1;
   Scene scene_;  // the feathers, their types and the materials (no other geometry)
   std::vector<GLuint> textures_;
-  FeatherBuffers buffers_;
+  FeatherInstances instances_;
   bool built_ = false;
   GLuint shaftArray_ = 0, barbArray_ = 0;
   GLuint vertexBuffers_[7] = {};  // shaft positions, normals, colours, indices; barb positions,
                                   // colours, texture coordinates
   GLuint barbIndices_ = 0;
-  std::vector<std::uint32_t> order_;
+  // The stream: placed vertices and indices of the feathers drawn next (FeatherBuffers' layout).
+  FeatherBuffers stream_;
   std::vector<FeatherDrawRun> runs_;
-  std::vector<char> nearSides_;  // the vane order the barb indices were last built for
   // The levels whose geometry passed the vertex limit, and the error it gave (empty: none).
   std::vector<std::uint8_t> failedLevels_;
   std::string failure_;

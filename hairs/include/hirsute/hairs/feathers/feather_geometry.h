@@ -30,12 +30,25 @@ struct FeatherDetail {
   int rachisSegments = 8;  // segments of the rachis tube, at least 1 (the calamus has 1)
   int barbSegments = 6;    // segments of every barb polyline, at least 1
   int shaftSides = 6;      // sides of the shaft's cross-section, at least 3
+  // At most this many barbs a vane, 0 for every barb. A vane of n > barbsPerVane barbs keeps
+  // every k-th, k = ceil(n / barbsPerVane), and its strips are k times as wide, so that the vane
+  // keeps its coverage and its colour when its barbs are closer than the picture can show
+  // (thinnedFeatherDetail; the paper's level of detail, Sec. 4.3, carried to the barb count).
+  int barbsPerVane = 0;
 };
 
 // The detail for a feather whose length cl + rl covers `pixels` on the screen: about a rachis
 // segment per 8 pixels (3 to 64), a barb segment per 24 pixels (3 to 32) and one more shaft side
 // per 40 pixels (3 to 12).
 FeatherDetail featherDetailForProjectedLength(float pixels);
+
+// The same detail, thinned for a picture that cannot show every barb (FeatherDetail::barbsPerVane):
+// a vane keeps a barb per 4 pixels of the feather's length up to 64 pixels, per 2 pixels above
+// (polyline barbs, which GL draws a pixel wide and cannot widen, one a pixel), and at least 8, a
+// few wide strips at the smallest sizes; barbs of a feather 32 pixels long or less have two
+// segments. The thresholds were chosen
+// by comparing coats drawn both ways (docs/feathers.md, "Dense coats").
+FeatherDetail thinnedFeatherDetail(float pixels, BarbStyle drawing);
 
 struct FeatherMesh {
   std::vector<glm::vec3> positions;
@@ -78,7 +91,8 @@ struct FeatherGeometry {
   std::vector<glm::vec3> shaftAxis;  // the calamus base, then the rachis points of the tube rings
   std::vector<Barb> barbs;           // left vane base to tip, then right vane base to tip
   BarbVertices vertices;
-  FeatherAppearance appearance;  // copied from the type
+  FeatherAppearance appearance;  // copied from the type; a thinned vane's strips widened
+  int barbStride = 1;  // every barbStride-th barb of the type (FeatherDetail::barbsPerVane)
   // The afterfeather (Sec. 3.1): its own geometry, already in this feather's frame: its calamus
   // base at the back of this calamus's tip, (-rw/2, 0, cl), parallel to this feather, scaled by
   // the type's afterfeather size. It has its own afterfeather in its own list.

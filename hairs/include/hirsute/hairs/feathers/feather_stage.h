@@ -21,6 +21,7 @@ struct FeatherStageOptions {
   std::uint64_t seed = 0;   // of the coats' follicles; 0: the view file's `hair texture:` seed
   std::size_t maxFeathers = 1'000'000;  // more feathers (@Fe and @Fi ones and coats) are an error
   std::size_t maxVertices = kDefaultMaxVertices;  // FeatherPart::maxVertices
+  bool fullDetail = false;                        // FeatherPart::fullDetail (--full-feathers)
   Progress* progress = nullptr;         // shows the coats' placement (null: nothing)
 };
 
@@ -42,7 +43,7 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
                                 const ViewFunctions& functions, const FeatherStageOptions& options,
                                 Diagnostics& diagnostics);
 
-// The feathers' stage (organ_stage.h): --no-feathers, --max-feathers; growFeathers with the run's
+// The feathers' stage (organ_stage.h): --no-feathers, --max-feathers, --full-feathers; growFeathers with the run's
 // seed when hasFeathers; switched off, the turtle's feathers are taken out.
 const OrganStage& featherStage();
 

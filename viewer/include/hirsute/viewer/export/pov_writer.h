@@ -101,10 +101,11 @@ class PovWriter : public ScenePrinter {
   };
   static constexpr int kShadeAlphaLevels = 16;
   static Shade shadeOf(const glm::vec3& colour, float alpha);
-  // A mesh2 whose vertices carry their shades (interpolated across each face), with `finish`.
+  // A mesh2 whose vertices carry their shades (interpolated across each face), with `finish`;
+  // with a `declaredName`, declared under it (`#declare NAME=mesh2{…}`) for objects to place.
   void writeShadedMesh(std::string_view comment, const std::vector<glm::vec3>& points,
                        const std::vector<Shade>& shades, const std::vector<std::uint32_t>& faces,
-                       std::string_view finish);
+                       std::string_view finish, std::string_view declaredName = {});
   // `#declare NAME=mesh2{…}` of `mesh` at the present position format.
   void writeMesh2(std::string_view name, const TriangleMesh& mesh);
   // The declared texture of a material (and texture image), declared on first use.

@@ -46,6 +46,9 @@ struct FeatherBuffers {
     // them (FeatherAppearance::crossFade); `texture` is then -1.
     bool faded = false;
     bool left = true;
+    // Where the same primitives stand from the tip in, the nearer vane's order (Sec. 4.3.1):
+    // filled by buildFeatherInstances only, which keeps both orders in vaneIndices.
+    std::uint32_t tipInwardFirst = 0;
   };
   std::vector<std::uint32_t> vaneIndices;
   // Per feather part (a feather and each of its afterfeathers): its two vanes and where it is.
@@ -82,6 +85,43 @@ FeatherBuffers buildFeatherBuffers(const Scene& scene, const std::vector<std::ui
 // GL's barb shader multiplies them: what the outputs that colour barbs by vertex (the tracer,
 // POV-Ray) draw.
 std::vector<glm::vec4> texturedBarbColours(const Scene& scene, const FeatherBuffers& buffers);
+
+// A Scene's feathers as instances of templates (DESIGN.md, "Performance"; STYLE.md: hairs as
+// instances of templates): feathers that share their key types, blend weights, age and level of
+// detail are built once, in their own frame (feather_geometry.h), and placed by a transform
+// each, so that a coat's memory follows the types and sizes in the picture, not its feather
+// count. The weights and the age are rounded to steps of 2 pixels of the feather's length in the
+// picture, at least 1/32 (feather_buffers.cpp): rounding moves a feather's outline by at most a
+// pixel where its key types' lengths differ by at most its length, and its colour by at most
+// 1/64 of its key types' difference (docs/feathers.md, "Dense coats"). A feather the dynamics bent
+// (FeatherPart::poses) is a template of its own, built in the world.
+struct FeatherInstances {
+  // Every template's geometry, one after another; each vane's barbs from the rachis out at
+  // Vane::first and from the tip in at Vane::tipInwardFirst.
+  FeatherBuffers geometry;
+  struct Template {
+    std::uint32_t firstPart = 0, partCount = 0;                // into geometry.parts
+    std::uint32_t firstShaftIndex = 0, shaftIndexCount = 0;    // into geometry.shaftIndices
+    std::uint32_t firstShaftVertex = 0, shaftVertexCount = 0;  // into the geometry's arrays
+    std::uint32_t firstBarbVertex = 0, barbVertexCount = 0;
+    std::size_t vertices = 0;    // shaft and barb vertices
+    std::size_t primitives = 0;  // shaft triangles, barb primitives
+    int barbStride = 1;          // every barbStride-th barb (thinned; feather_geometry.h)
+  };
+  std::vector<Template> templates;
+  std::vector<std::uint32_t> templateOf;  // per feather, in the Scene's order
+  std::vector<glm::mat4> toWorld;         // per feather: its template's frame to the world
+  std::vector<std::uint8_t> levels;       // as FeatherBuffers::levels
+  std::size_t drawnVertices = 0;          // every instance's template vertices
+  std::size_t byteSize() const;
+};
+
+// The feathers of `scene` as instances at `levels` (featherDetailLevels), thinned to the
+// picture (thinnedFeatherDetail); with `fullDetail` (--full-feathers) every barb, and templates
+// only for feathers exactly alike. The drawn geometry, every instance's vertices, counts against
+// FeatherPart::maxVertices (a GeometryLimitError).
+FeatherInstances buildFeatherInstances(const Scene& scene, const std::vector<std::uint8_t>& levels,
+                                       bool fullDetail);
 
 // A run of barb indices drawn with one texture, in drawing order.
 struct FeatherDrawRun {
