@@ -37,7 +37,8 @@ for vanes in ${VANES:-on}; do
   mkdir -p "$model"
   sed -e "s/^#define DENSITY .*/#define DENSITY $density/" \
       -e "s/^#define FRAMES .*/#define FRAMES $frames/" models/coat-bending/bending.l >"$model/bending.l"
-  cp models/coat-bending/bending.v models/coat-bending/bending.a models/coat-bending/*.map "$model/"
+  cp models/coat-bending/bending.v models/coat-bending/bending.a models/coat-bending/*.map \
+    models/coat-bending/*.fea models/coat-bending/*.con "$model/"
   status=0
   (cd "$model" && /usr/bin/time -v "$hirsute" simulate bending.l bending.v bending.a -o out \
     --frames "$simulated" --no-frames --wind 0.5 0 0 --gusts 1 --gust-scale 2 $vaneOption >summary.txt \
