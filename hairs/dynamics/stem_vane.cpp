@@ -53,6 +53,31 @@ bool apartByFeatures(double distance, double heights, const Vector3d& scale) {
   return distance > heights + 1e-9 * (1 + scale.cwiseAbs().maxCoeff());
 }
 
+// Whether every one of `points` is farther than `margin` from the plane of the triangle (a, b,
+// c), all on one side: then all they span is, and nothing of it comes within `margin` of the
+// triangle. The cheap answer for the layered vanes of a coat, a plane's width apart; a margin
+// of 1e-9 of the coordinates covers the rounding. False for a triangle with no plane.
+template <std::size_t N>
+bool beyondPlane(const std::array<Vector3d, N>& points, const Vector3d& a, const Vector3d& b,
+                 const Vector3d& c, double margin) {
+  const Vector3d n = (b - a).cross(c - a);
+  if (!(n.norm() > 0)) return false;
+  const Vector3d unit = n.normalized();
+  const double m = margin + 1e-9 * (1 + a.cwiseAbs().maxCoeff());
+  bool above = true, below = true;
+  for (const Vector3d& p : points) {
+    const double h = unit.dot(p - a);
+    above = above && h > m;
+    below = below && h < -m;
+  }
+  return above || below;
+}
+
+bool trianglesBeyond(const std::array<Vector3d, 3>& u, const std::array<Vector3d, 3>& t,
+                     double margin) {
+  return beyondPlane(u, t[0], t[1], t[2], margin) || beyondPlane(t, u[0], u[1], u[2], margin);
+}
+
 }  // namespace
 
 bool hasVaneQuad(const FeatherStem& stem, int segment, int side) {
@@ -133,6 +158,7 @@ std::size_t VaneOverlaps::release(const std::vector<FeatherStem>& stems, double 
         // The distance first: overlapping vanes lie in one plane, where the exact test needs
         // exact arithmetic.
         if (!apart) break;
+        if (trianglesBeyond(u, t, clearance)) continue;
         const double d = triangleTriangleDistance(u, t);
         apart =
             d > clearance &&
@@ -206,6 +232,8 @@ std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double
     bool meet = false;
     if (!p.triangle) {
       const Vector3d &p0 = p.points[0], &p1 = p.points[1];
+      if (beyondPlane(std::array<Vector3d, 2>{p0, p1}, t[0], t[1], t[2], minimumDistance))
+        continue;
       const double d = segmentTriangleDistance(p0, p1, t[0], t[1], t[2]);
       meet = d < minimumDistance ||
              (!apartByFeatures(d, heightAbove(std::array<Vector3d, 2>{p0, p1}, t[0], t[1], t[2]),
@@ -213,6 +241,7 @@ std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double
               segmentIntersectsTriangle(p0, p1, t[0], t[1], t[2]));
     } else {
       const auto& u = p.points;
+      if (trianglesBeyond(u, t, minimumDistance)) continue;
       // The distance first: it decides most pairs without the exact test.
       const double d = triangleTriangleDistance(u, t);
       meet = d < minimumDistance ||
