@@ -113,6 +113,7 @@ dynamics::SimulationParameters parametersFor(const FeatherDynamicsSettings& view
   if (o.gustSeed) p.wind.seed = static_cast<int>(*o.gustSeed);
   if (o.drag) p.dragCoefficient = *o.drag;
   if (o.segments) p.segmentsPerFeather = *o.segments;
+  if (o.noVaneCollisions) p.vaneCollisions = false;
   return p;
 }
 
@@ -367,7 +368,7 @@ int runSimulate(SimulateOptions o) {
   std::string table =
       "frame,time,steps,substeps,retries,candidates,contacts,impulses,repulsions,"
       "impact_zones,penetrations,kept_near,calami_left,calami_crossed,calami_zoned,"
-      "seconds\n";
+      "seconds,vane_candidates,vane_contacts,vane_penetrations,vane_intersections_left\n";
   std::string furTable =
       "frame,time,droplets,mean_bend,largest_bend,largest_speed,wet_texels,mean_wetness,"
       "seconds\n";
@@ -391,6 +392,7 @@ int runSimulate(SimulateOptions o) {
     return 0;
   };
   dynamics::SimulationCounters before;
+  std::size_t vaneIntersectionsLeft = 0;  // over every frame's state
   double simulating = 0;  // seconds in the steps, apart from deriving and writing
   Scene drawn = first.scene;
   try {
@@ -467,14 +469,19 @@ int runSimulate(SimulateOptions o) {
     if (fur) furTable += fur->row(frame, (frame - 1) * frameTime, drawn, frameSeconds);
     if (!motion) continue;
     const dynamics::SimulationCounters& c = motion->simulation().counters();
+    // Vanes that meet in the frame's state: 0 when they collide, what passed through when not.
+    const std::size_t vanesLeft = motion->vaneIntersections();
+    vaneIntersectionsLeft += vanesLeft;
     table += fmt::format(
-        "{},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f}\n", frame,
+        "{},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f},{},{},{},{}\n", frame,
         motion->simulation().time(), c.steps - before.steps, c.substeps - before.substeps,
         c.retries - before.retries, c.candidates - before.candidates, c.contacts - before.contacts,
         c.impulses - before.impulses, c.repulsions - before.repulsions,
         c.impactZones - before.impactZones, c.penetrations - before.penetrations,
         c.keptNear - before.keptNear, c.calamiLeft - before.calamiLeft,
-        c.calamiCrossed - before.calamiCrossed, c.calamiZoned - before.calamiZoned, frameSeconds);
+        c.calamiCrossed - before.calamiCrossed, c.calamiZoned - before.calamiZoned, frameSeconds,
+        c.vaneCandidates - before.vaneCandidates, c.vaneContacts - before.vaneContacts,
+        c.vanePenetrations - before.vanePenetrations, vanesLeft);
     before = c;
   }
   if (const int failed = writeTables(); failed != 0) return failed;
@@ -494,11 +501,15 @@ int runSimulate(SimulateOptions o) {
       "{} frames of {} feathers ({} rooted on the body) in {:.2f} s, {:.3f} s of it simulating "
       "({:.1f} frames/s): {} steps, {} retried; {} candidates, {} contacts, {} impact zones; "
       "{} intersections found and undone, {} calamus crossings put into zones at the smallest "
-      "step, {} left\n",
+      "step, {} left; vanes {}: {} vane candidates, {} vane contacts, {} pairs of segments "
+      "whose vanes overlapped at the start left out ({} still at the end), {} vane intersections "
+      "left\n",
       frames, motion->simulation().stems().size(), motion->boundRoots(), seconds, simulating,
       frames > 1 ? (frames - 1) / std::max(simulating, 1e-9) : 0.0, c.substeps, c.retries,
       c.candidates, c.contacts, c.impactZones, c.penetrations, c.calamiZoned,
-      motion->penetrations());
+      motion->penetrations(), parameters.vaneCollisions ? "colliding" : "not colliding",
+      c.vaneCandidates, c.vaneContacts, motion->simulation().vaneOverlapsAtStart(),
+      motion->simulation().vaneOverlaps().size(), vaneIntersectionsLeft);
   return kExitOk;
 }
 

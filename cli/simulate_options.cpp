@@ -87,6 +87,8 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
   command.add_flag("--obj", options.obj, "Write a Wavefront OBJ of every frame too");
   command.add_flag("--no-frames", options.noFrames,
                    "Write no scenes, only simulation.csv (to measure the simulation alone)");
+  command.add_flag("--no-vane-collisions", options.noVaneCollisions,
+                   "The feathers' vanes do not collide (their stems still do): to compare");
   command.add_option("--width", options.width, "The frames' width in pixels (default 800)")
       ->check(CLI::Range(1, 16384));
   command.add_option("--height", options.height, "The frames' height in pixels (default 600)")

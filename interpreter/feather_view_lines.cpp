@@ -103,6 +103,14 @@ const ViewLineCommand kLines[] = {
        feathers(c).dynamics.substeps =
            static_cast<int>(c.requiredInteger("the steps per frame", 1, 1000));
      }},
+    {"dynamics vanes:",
+     [](ViewLine& c) {
+       const SourceLocation where = c.args.here();
+       const std::string_view word = c.requiredWord("on or off");
+       if (word != "on" && word != "off")
+         c.fail(where, "expected on or off, found " + inQuotes(word));
+       feathers(c).dynamics.vanes = word == "on";
+     }},
 };
 
 }  // namespace

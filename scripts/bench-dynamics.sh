@@ -10,9 +10,13 @@
 # separation, the pairs with a calamus they left within the separation (calami are not
 # guaranteed) and the pairs with a calamus found meeting their stem in a step tried (then
 # retried as halves) and of those the ones put into impact zones at the smallest step, and the
-# intersections left in accepted states (must be 0).
+# intersections left in accepted states (must be 0). The vane columns (docs/dynamics.md, "Vanes"):
+# per frame the candidates and contacts with a vane's primitive, then the intersections of vanes
+# with other vanes or stems in the frames' states, summed over the frames (0 with vanes on; with
+# them off, what passed through).
 # SIMULATED (default FRAMES) frames of them are simulated: fewer measure the start of the bend.
-#   HIRSUTE=path/to/hirsute FRAMES=240 DENSITIES="4.9 38 152" scripts/bench-dynamics.sh
+# VANES: "on" (the default), "off" (--no-vane-collisions) or both, one row each.
+#   HIRSUTE=path/to/hirsute FRAMES=240 DENSITIES="4.9 38 152" VANES="off on" scripts/bench-dynamics.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 hirsute="$(realpath "${HIRSUTE:-build/release/cli/hirsute}")"
@@ -20,11 +24,15 @@ frames="${FRAMES:-240}"
 simulated="${SIMULATED:-$frames}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-printf '%-8s %9s %9s %6s %8s %8s %9s %10s %8s %11s %9s %7s %8s %11s %9s %11s %14s %11s %6s\n' \
-  density feathers particles frames wall_s cpu_s peak_MiB frames/s steps/f candidates/f \
-  contacts/f zones/f retried intersections kept_near calami_left calami_crossed calami_zoned left
+printf '%-8s %5s %9s %9s %6s %8s %8s %9s %10s %8s %11s %9s %7s %8s %11s %9s %11s %14s %11s %6s %12s %11s %10s\n' \
+  density vanes feathers particles frames wall_s cpu_s peak_MiB frames/s steps/f candidates/f \
+  contacts/f zones/f retried intersections kept_near calami_left calami_crossed calami_zoned left \
+  vane_cand/f vane_cont/f vane_left
 for density in ${DENSITIES:-4.9 38 152}; do
-  model="$work/coat-$density"
+for vanes in ${VANES:-on}; do
+  model="$work/coat-$density-$vanes"
+  vaneOption=""
+  [ "$vanes" = "off" ] && vaneOption="--no-vane-collisions"
   mkdir -p "$model"
   sed -e "s/^#define DENSITY .*/#define DENSITY $density/" \
       -e "s/^#define FRAMES .*/#define FRAMES $frames/" models/coat-bending/bending.l >"$model/bending.l"
@@ -32,7 +40,7 @@ for density in ${DENSITIES:-4.9 38 152}; do
     models/coat-bending/*.fea models/coat-bending/*.con "$model/"
   status=0
   (cd "$model" && /usr/bin/time -v "$hirsute" simulate bending.l bending.v bending.a -o out \
-    --frames "$simulated" --no-frames --wind 0.5 0 0 --gusts 1 --gust-scale 2 >summary.txt \
+    --frames "$simulated" --no-frames --wind 0.5 0 0 --gusts 1 --gust-scale 2 $vaneOption >summary.txt \
     2>time.txt) || status=$?
   if [ "$status" -ne 0 ]; then
     # A step that could not be resolved: the frames before it have their rows in the table.
@@ -40,19 +48,24 @@ for density in ${DENSITIES:-4.9 38 152}; do
     [ -f "$model/out/simulation.csv" ] || exit "$status"
     feathers="-"
     left="failed"
+    vaneLeft="-"
   else
     summary="$(cat "$model/summary.txt")"
     feathers="$(sed -E 's/^[0-9]+ frames of ([0-9]+) feathers.*/\1/' <<<"$summary")"
-    left="$(sed -E 's/.* ([0-9]+) left$/\1/' <<<"$summary")"
+    left="$(sed -E 's/.* ([0-9]+) left; vanes.*/\1/' <<<"$summary")"
+    vaneLeft="$(sed -E 's/.* ([0-9]+) vane intersections left$/\1/' <<<"$summary")"
   fi
   wall="$(awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s}' "$model/time.txt")"
   cpu="$(awk -F': ' '/User time/ {u = $2} /System time/ {s = $2} END {print u + s}' "$model/time.txt")"
   peak="$(awk -F': ' '/Maximum resident/ {printf "%.0f", $2 / 1024}' "$model/time.txt")"
-  awk -F, -v d="$density" -v f="$feathers" -v wall="$wall" -v cpu="$cpu" -v peak="$peak" \
-      -v left="$left" -v segments=9 '
+  awk -F, -v d="$density" -v v="$vanes" -v f="$feathers" -v wall="$wall" -v cpu="$cpu" -v peak="$peak" \
+      -v left="$left" -v vaneLeft="$vaneLeft" -v segments=9 '
     NR > 2 {n++; steps += $4; candidates += $6; contacts += $7; zones += $10; retried += $5;
-            found += $11; near += $12; calami += $13; crossed += $14; zoned += $15; seconds += $16}
-    END {printf "%-8s %9s %9s %6d %8.1f %8.1f %9s %10.1f %8.1f %11.0f %9.1f %7.2f %8d %11d %9d %11d %14d %11d %6s\n",
-         d, f, f == "-" ? "-" : f * segments, n + 1, wall, cpu, peak, n / seconds, steps / n, candidates / n,
-         contacts / n, zones / n, retried, found, near, calami, crossed, zoned, left}' "$model/out/simulation.csv"
+            found += $11; near += $12; calami += $13; crossed += $14; zoned += $15; seconds += $16;
+            vaneCandidates += $17; vaneContacts += $18}
+    END {printf "%-8s %5s %9s %9s %6d %8.1f %8.1f %9s %10.1f %8.1f %11.0f %9.1f %7.2f %8d %11d %9d %11d %14d %11d %6s %12.0f %11.1f %10s\n",
+         d, v, f, f == "-" ? "-" : f * segments, n + 1, wall, cpu, peak, n / seconds, steps / n, candidates / n,
+         contacts / n, zones / n, retried, found, near, calami, crossed, zoned, left,
+         vaneCandidates / n, vaneContacts / n, vaneLeft}' "$model/out/simulation.csv"
+done
 done

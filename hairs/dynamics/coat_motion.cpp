@@ -7,6 +7,7 @@
 #include <string>
 
 #include "hirsute/hairs/dynamics/feather_stem.h"
+#include "hirsute/hairs/dynamics/stem_vane.h"
 #include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute::dynamics {
@@ -59,6 +60,7 @@ SimulationParameters simulationParametersOf(const FeatherDynamicsSettings& view)
   p.thickness = view.thickness;
   p.minimumSeparation = view.separation;
   p.segmentsPerFeather = view.segments;
+  p.vaneCollisions = view.vanes;
   return p;
 }
 
@@ -77,6 +79,11 @@ std::size_t CoatMotion::boundRoots() const {
 std::size_t CoatMotion::penetrations() const {
   return countPenetrations(simulation_.stems(), simulation_.body(),
                            simulation_.nearestAllowed());
+}
+
+std::size_t CoatMotion::vaneIntersections() const {
+  return countVaneIntersections(simulation_.stems(), simulation_.nearestAllowed(),
+                                &simulation_.vaneOverlaps());
 }
 
 CoatTarget CoatMotion::targetOf(const Scene& next) const {
@@ -135,6 +142,8 @@ void CoatMotion::advance(double seconds, int steps, const CoatTarget& target) {
       vertices[v] = (1 - t) * fromBody[v] + t * target.body[v];
     simulation_.step(seconds / steps, anchors, vertices);
   }
+  // Vanes that overlapped from the start and have come apart collide from the next frame on.
+  simulation_.releaseVaneOverlaps();
 }
 
 void CoatMotion::pose(Scene& scene) const {

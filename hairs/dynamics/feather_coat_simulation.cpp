@@ -18,6 +18,7 @@
 #include "hirsute/hairs/dynamics/collision_grid.h"
 #include "hirsute/hairs/dynamics/continuous_collision.h"
 #include "hirsute/hairs/dynamics/static_intersection.h"
+#include "hirsute/hairs/dynamics/stem_vane.h"
 #include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute::dynamics {
@@ -25,14 +26,37 @@ namespace {
 
 using Eigen::Vector3d;
 
-// The kinds of collision primitives, in the order their boxes are listed.
-enum class Kind : std::uint8_t { StemEdge, BodyEdge, StemNode, BodyTriangle };
+// The kinds of collision primitives, in the order their boxes are listed. The vane's
+// (stem_vane.h): its edges (the outer edge, the quad's diagonal and the edge from a node to its
+// corner), its corners and its triangles.
+enum class Kind : std::uint8_t {
+  StemEdge,
+  BodyEdge,
+  StemNode,
+  BodyTriangle,
+  VaneEdge,
+  VaneCorner,
+  VaneTriangle
+};
+
+bool isTriangle(Kind k) {
+  return k == Kind::BodyTriangle || k == Kind::VaneTriangle;
+}
+bool isVane(Kind k) {
+  return k >= Kind::VaneEdge;
+}
+int vertexCountOf(Kind k) {
+  return k == Kind::StemNode || k == Kind::VaneCorner ? 1 : isTriangle(k) ? 3 : 2;
+}
 
 struct Primitive {
   Kind kind;
   std::array<int, 3> vertices;  // global vertex indices (edges use two, nodes one)
-  int stem = -1;                // the stem of a stem edge or node
+  int stem = -1;                // the stem of a stem or vane primitive
   int segment = -1;             // a stem edge's segment, a stem node's node
+  // The stem segments (with their vanes) the primitive belongs to, from `first` to `last`: a
+  // node, a corner and the edge between them to the segments either side of the node.
+  int first = -1, last = -1;
 };
 
 // A pair of primitives about to touch, as four vertices with coefficients c: the gap between them
@@ -45,10 +69,24 @@ struct Contact {
   std::array<int, 2> primitives{};  // the pair, as indices of the primitive list
 };
 
-// The state of a step as one set of vertices: every stem node, then every body vertex.
+// The state of a step as one set of vertices: every stem node, then every body vertex, then
+// every vane corner. A vane corner is carried by its node (its owner): whatever moves the node
+// in the collisions moves the corner alike, and an impulse on the corner is the node's.
 struct StepState {
   std::vector<Vector3d> start, end;
-  std::vector<double> inverseMass;  // 0: kinematic (anchors, the body)
+  std::vector<double> inverseMass;  // 0: kinematic (anchors, the body); a corner: its node's
+  std::vector<int> owner;           // the vertex itself, or a corner's node
+  std::vector<std::array<int, 2>> corners;  // per stem node: its left and right corners, or -1
+
+  // Moves the end of `v` (a node or a body vertex) and the corners it carries.
+  void moveEnd(int v, const Vector3d& by) {
+    end[v] += by;
+    if (v < static_cast<int>(corners.size()))
+      for (int c : corners[v])
+        if (c >= 0) end[c] += by;
+  }
+  // The mass a zone's motion gives `v`: a corner's is its node's.
+  double weight(int v) const { return owner[v] == v ? 1 / inverseMass[v] : 0.0; }
 };
 
 // The collision primitives of the coat and the body over the global vertex numbering.
@@ -56,15 +94,32 @@ struct Primitives {
   std::vector<Primitive> list;
   std::vector<int> stemOffset;  // global index of each stem's node 0
   int bodyOffset = 0;
+  int vaneOffset = 0;                      // global index of the first vane corner
+  std::vector<std::array<int, 3>> corner;  // per vane corner: its stem, node and side
+  std::vector<std::array<int, 2>> cornerOf;  // per stem node: its corners' global indices, or -1
+
+  const VaneOverlaps* overlaps = nullptr;  // segment pairs whose vanes are left out
 
   Primitives(const std::vector<FeatherStem>& stems, const BodyMesh& body,
-             const std::vector<std::array<int, 2>>& bodyEdges) {
+             const std::vector<std::array<int, 2>>& bodyEdges, bool vanes,
+             const VaneOverlaps* leftOut)
+      : overlaps(leftOut) {
     int offset = 0;
     for (const FeatherStem& stem : stems) {
       stemOffset.push_back(offset);
       offset += static_cast<int>(stem.nodeCount());
     }
     bodyOffset = offset;
+    vaneOffset = bodyOffset + static_cast<int>(body.vertices.size());
+    cornerOf.assign(bodyOffset, {-1, -1});
+    if (vanes)
+      for (int s = 0; s < static_cast<int>(stems.size()); ++s)
+        for (int i = 0; i < static_cast<int>(stems[s].vaneWidths.size()); ++i)
+          for (int side = 0; side < 2; ++side)
+            if (hasVaneCorner(stems[s], i, side)) {
+              cornerOf[stemOffset[s] + i][side] = vaneOffset + static_cast<int>(corner.size());
+              corner.push_back({s, i, side});
+            }
     for (int s = 0; s < static_cast<int>(stems.size()); ++s)
       for (int i = 0; i + 1 < static_cast<int>(stems[s].nodeCount()); ++i)
         list.push_back({Kind::StemEdge, {stemOffset[s] + i, stemOffset[s] + i + 1, -1}, s, i});
@@ -76,6 +131,63 @@ struct Primitives {
     for (const auto& t : body.triangles)
       list.push_back(
           {Kind::BodyTriangle, {bodyOffset + t[0], bodyOffset + t[1], bodyOffset + t[2]}, -1, -1});
+    if (corner.empty()) return;
+    // The segments a stem primitive belongs to, as the vanes' check sees them (stem_vane.h): a
+    // rachis segment other than the calamus, and the vane's quads.
+    const auto spanOf = [&](Primitive& p, int node, int side) {
+      const FeatherStem& stem = stems[p.stem];
+      const auto holds = [&](int j) {
+        if (j < 0 || j + 2 > static_cast<int>(stem.nodeCount())) return false;
+        if (side >= 0) return hasVaneQuad(stem, j, side);
+        return j >= 1 || hasVaneQuad(stem, j, 0) || hasVaneQuad(stem, j, 1);
+      };
+      p.first = holds(node - 1) ? node - 1 : node;
+      p.last = holds(node) ? node : node - 1;
+    };
+    for (Primitive& p : list)
+      if (p.kind == Kind::StemEdge)
+        p.first = p.last = p.segment;
+      else if (p.kind == Kind::StemNode)
+        spanOf(p, p.segment, -1);
+    // The vanes: edges, corners, triangles (in that order, after the rest).
+    std::vector<std::vector<VaneTriangle>> triangles;
+    for (const FeatherStem& stem : stems) triangles.push_back(vaneTrianglesOf(stem));
+    const auto vertexOf = [&](int s, VaneVertex v) {
+      return v.side < 0 ? stemOffset[s] + v.node : cornerOf[stemOffset[s] + v.node][v.side];
+    };
+    for (int s = 0; s < static_cast<int>(stems.size()); ++s) {
+      for (const VaneTriangle& t : triangles[s]) {
+        // The first triangle of a quad holds its diagonal (p_i, c_i+1), the second its outer
+        // edge (c_i+1, c_i): each quad's edges once, the rachis being the stem's.
+        const int a = vertexOf(s, t.vertices[0]), b = vertexOf(s, t.vertices[1]),
+                  c = vertexOf(s, t.vertices[2]);
+        const int j = t.segment;
+        if (t.vertices[0].side < 0 && t.vertices[1].side < 0)
+          list.push_back({Kind::VaneEdge, {a, c, -1}, s, j, j, j});
+        else
+          list.push_back({Kind::VaneEdge, {b, c, -1}, s, j, j, j});
+      }
+      for (int i = 0; i < static_cast<int>(stems[s].vaneWidths.size()); ++i)
+        for (int side = 0; side < 2; ++side)
+          if (const int c = cornerOf[stemOffset[s] + i][side]; c >= 0) {
+            list.push_back({Kind::VaneEdge, {stemOffset[s] + i, c, -1}, s, i});
+            spanOf(list.back(), i, side);
+          }
+    }
+    for (int k = 0; k < static_cast<int>(corner.size()); ++k) {
+      const auto& [s, i, side] = corner[k];
+      list.push_back({Kind::VaneCorner, {vaneOffset + k, -1, -1}, s, i});
+      spanOf(list.back(), i, side);
+    }
+    for (int s = 0; s < static_cast<int>(stems.size()); ++s)
+      for (const VaneTriangle& t : triangles[s])
+        list.push_back({Kind::VaneTriangle,
+                        {vertexOf(s, t.vertices[0]), vertexOf(s, t.vertices[1]),
+                         vertexOf(s, t.vertices[2])},
+                        s,
+                        t.segment,
+                        t.segment,
+                        t.segment});
   }
 
   // The primitives' kinds as groups of the broad phase: the stems' move; stem edges meet stem
@@ -90,6 +202,16 @@ struct Primitives {
     out.pairsWith[static_cast<int>(Kind::StemNode)] = bit(Kind::BodyTriangle);
     out.pairsWith[static_cast<int>(Kind::BodyTriangle)] = bit(Kind::StemNode);
     out.moving = bit(Kind::StemEdge) | bit(Kind::StemNode);
+    if (!corner.empty()) {
+      // Vanes meet other feathers' vanes and stems, not the body (docs/dynamics.md, "Vanes").
+      out.pairsWith[static_cast<int>(Kind::StemEdge)] |= bit(Kind::VaneEdge);
+      out.pairsWith[static_cast<int>(Kind::StemNode)] |= bit(Kind::VaneTriangle);
+      out.pairsWith[static_cast<int>(Kind::VaneEdge)] = bit(Kind::StemEdge) | bit(Kind::VaneEdge);
+      out.pairsWith[static_cast<int>(Kind::VaneCorner)] = bit(Kind::VaneTriangle);
+      out.pairsWith[static_cast<int>(Kind::VaneTriangle)] =
+          bit(Kind::StemNode) | bit(Kind::VaneCorner);
+      out.moving |= bit(Kind::VaneEdge) | bit(Kind::VaneCorner) | bit(Kind::VaneTriangle);
+    }
     return out;
   }
 
@@ -99,6 +221,21 @@ struct Primitives {
   // whose root lies on the body.
   bool wanted(int a, int b) const {
     const Primitive &p = list[a], &q = list[b];
+    // A vane meets the vanes and stems of other feathers (the groups say which kinds), unless
+    // every pair of segments the two belong to is left out (their vanes overlapped from the
+    // start and have not yet come apart).
+    if (isVane(q.kind)) {
+      // A calamus is left out: the bare base of the quill, in its follicle under the vanes of
+      // the feathers around it.
+      if (p.stem == q.stem || (p.kind == Kind::StemEdge && p.segment == 0)) return false;
+      if (overlaps == nullptr || overlaps->empty()) return true;
+      for (int x = p.first; x <= p.last; ++x)
+        for (int y = q.first; y <= q.last; ++y)
+          if (!overlaps->contains(overlaps->segmentIndex(p.stem, x),
+                                  overlaps->segmentIndex(q.stem, y)))
+            return true;
+      return false;
+    }
     if (p.kind == Kind::StemEdge && q.kind == Kind::StemEdge)
       return (p.stem != q.stem && (p.segment > 0 || q.segment > 0)) ||
              (p.stem == q.stem && std::abs(p.segment - q.segment) > 1);
@@ -120,7 +257,7 @@ struct Primitives {
     std::vector<Box> out;
     out.reserve(list.size());
     for (const Primitive& p : list) {
-      const int n = p.kind == Kind::StemNode ? 1 : p.kind == Kind::BodyTriangle ? 3 : 2;
+      const int n = vertexCountOf(p.kind);
       Box box = boxOf({state.start[p.vertices[0]], state.end[p.vertices[0]]}, margin);
       for (int k = 1; k < n; ++k) {
         const Box more = boxOf({state.start[p.vertices[k]], state.end[p.vertices[k]]}, margin);
@@ -141,7 +278,7 @@ struct Primitives {
     Contact c;
     c.timeOfImpact = t;
     c.primitives = {a, b};
-    if (q.kind == Kind::BodyTriangle) {
+    if (isTriangle(q.kind)) {
       const auto w = closestOnTriangle(at(p.vertices[0]), at(q.vertices[0]), at(q.vertices[1]),
                                        at(q.vertices[2]));
       c.vertices = {p.vertices[0], q.vertices[0], q.vertices[1], q.vertices[2]};
@@ -170,6 +307,11 @@ struct Primitives {
 
   // A vertex as a user finds it: "feather 12's node 3" or "body vertex 40".
   std::string vertexName(int v) const {
+    if (v >= vaneOffset) {
+      const auto& [s, node, side] = corner[v - vaneOffset];
+      return "feather " + std::to_string(s) + "'s " + (side == 0 ? "left" : "right") +
+             " vane corner at node " + std::to_string(node);
+    }
     if (v >= bodyOffset) return "body vertex " + std::to_string(v - bodyOffset);
     const auto s = std::upper_bound(stemOffset.begin(), stemOffset.end(), v) - 1;
     return "feather " + std::to_string(s - stemOffset.begin()) + "'s node " +
@@ -179,7 +321,7 @@ struct Primitives {
   MovingPrimitives motion(int a, int b, const StepState& state) const {
     const Primitive &p = list[a], &q = list[b];
     const std::array<int, 4> v =
-        q.kind == Kind::BodyTriangle
+        isTriangle(q.kind)
             ? std::array<int, 4>{p.vertices[0], q.vertices[0], q.vertices[1], q.vertices[2]}
             : std::array<int, 4>{p.vertices[0], p.vertices[1], q.vertices[0], q.vertices[1]};
     MovingPrimitives m;
@@ -208,18 +350,28 @@ Vector3d contactNormal(const Contact& c, const StepState& state) {
 // An impulse along `normal` that makes the gap's velocity along it at least `target` (per step:
 // a change of the end positions), shared by inverse masses. Returns whether it was needed and
 // possible.
+// A vane corner's share goes to the node that carries it (the corner is the node plus an offset
+// the impulse does not change), and the node's move moves its corners.
 bool applyImpulse(const Contact& c, const Vector3d& normal, double target, StepState& state) {
   double approach = 0, weight = 0;
+  std::array<int, 4> owners{};
+  std::array<double, 4> shares{};
+  int count = 0;
   for (int k = 0; k < 4; ++k) {
     approach +=
         c.coefficients[k] * normal.dot(state.end[c.vertices[k]] - state.start[c.vertices[k]]);
-    weight += c.coefficients[k] * c.coefficients[k] * state.inverseMass[c.vertices[k]];
+    const int owner = state.owner[c.vertices[k]];
+    int j = 0;
+    while (j < count && owners[j] != owner) ++j;
+    if (j == count) owners[count++] = owner;
+    shares[j] += c.coefficients[k];
   }
+  for (int j = 0; j < count; ++j) weight += shares[j] * shares[j] * state.inverseMass[owners[j]];
   if (approach >= target || weight <= 0) return false;
   const double impulse = (target - approach) / weight;
-  for (int k = 0; k < 4; ++k)
-    state.end[c.vertices[k]] +=
-        impulse * c.coefficients[k] * state.inverseMass[c.vertices[k]] * normal;
+  for (int j = 0; j < count; ++j)
+    if (state.inverseMass[owners[j]] > 0)
+      state.moveEnd(owners[j], impulse * shares[j] * state.inverseMass[owners[j]] * normal);
   return true;
 }
 
@@ -270,7 +422,7 @@ ZoneMotion moveRigidly(const std::vector<int>& members, StepState& state) {
     if (state.inverseMass[v] == 0) kinematic.push_back(v);
   const ZoneMotion m =
       kinematic.empty()
-          ? fittedMotion(members, state, [&](int v) { return 1 / state.inverseMass[v]; })
+          ? fittedMotion(members, state, [&](int v) { return state.weight(v); })
           : fittedMotion(kinematic, state, [](int) { return 1.0; });
   for (int v : members)
     if (state.inverseMass[v] > 0)
@@ -418,7 +570,17 @@ FeatherCoatSimulation::FeatherCoatSimulation(std::vector<FeatherStem> stems, Bod
     for (int k = 0; k < 3; ++k)
       edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
   bodyEdges_.assign(edges.begin(), edges.end());
-  for (const FeatherStem& stem : stems_) anchors_.push_back(stem.frames.front());
+  for (FeatherStem& stem : stems_) {
+    anchors_.push_back(stem.frames.front());
+    if (stem.hasVane() && stem.vaneWidths.size() != stem.nodeCount())
+      throw std::invalid_argument("a stem's vane needs a width per node");
+    if (stem.hasVane() && stem.vaneCorners.size() != stem.nodeCount())
+      stem.vaneCorners = vaneCornersOf(stem);
+  }
+  // Vanes that already meet are left out of each other's collisions until they come apart.
+  vaneOverlaps_ = VaneOverlaps(stems_);
+  countVaneIntersections(stems_, nearestAllowed(), grid_, nullptr, &vaneOverlaps_);
+  vaneOverlapsAtStart_ = vaneOverlaps_.size();
 }
 
 FeatherCoatSimulation FeatherCoatSimulation::fromScene(const Scene& scene,
@@ -487,6 +649,10 @@ void FeatherCoatSimulation::step(double dt, const std::vector<StemFrame>& anchor
   body_.vertices = bodyVertices;
 }
 
+std::size_t FeatherCoatSimulation::releaseVaneOverlaps() {
+  return vaneOverlaps_.empty() ? 0 : vaneOverlaps_.release(stems_, parameters_.minimumSeparation);
+}
+
 void FeatherCoatSimulation::advanceOrHalve(double h, const Kinematics& from, const Kinematics& to,
                                            int depth) {
   const std::vector<FeatherStem> saved = stems_;
@@ -520,9 +686,13 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
                                     const Kinematics& toState, bool smallest) {
   const std::vector<StemFrame>& from = fromState.anchors;
   const std::vector<StemFrame>& to = toState.anchors;
-  const Primitives primitives(stems_, body_, bodyEdges_);
+  const Primitives primitives(stems_, body_, bodyEdges_, parameters_.vaneCollisions,
+                              &vaneOverlaps_);
   const BoxGroups groups = primitives.groups();
   StepState state;
+  // Where the vanes' corners would be at the end of the step: from the frames of the stems'
+  // candidate positions.
+  std::vector<std::vector<std::array<Vector3d, 2>>> cornersAtEnd(stems_.size());
   // 1-3: half a step of velocity, candidate positions, strain limiting (Sec. 3.3.3).
   for (std::size_t s = 0; s < stems_.size(); ++s) {
     FeatherStem& stem = stems_[s];
@@ -540,18 +710,31 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       state.end.push_back(stem.positions[i]);
       state.inverseMass.push_back(i == 0 ? 0.0 : 1 / stem.masses[i]);
     }
+    if (stem.hasVane()) cornersAtEnd[s] = vaneCornersAt(stem, to[s]);
   }
   for (std::size_t v = 0; v < body_.vertices.size(); ++v) {
     state.start.push_back(fromState.body[v]);
     state.end.push_back(toState.body[v]);
     state.inverseMass.push_back(0);
   }
+  state.owner.resize(state.start.size());
+  std::iota(state.owner.begin(), state.owner.end(), 0);
+  state.corners = primitives.cornerOf;
+  // The vanes' corners: from where the last step left them to the candidate frames' (a linear
+  // move, as every vertex's, which the CCD sees exactly), carried by their nodes.
+  for (const auto& [s, node, side] : primitives.corner) {
+    const int owner = primitives.stemOffset[s] + node;
+    state.start.push_back(stems_[s].vaneCorners[node][side]);
+    state.end.push_back(cornersAtEnd[s][node][side]);
+    state.inverseMass.push_back(state.inverseMass[owner]);
+    state.owner.push_back(owner);
+  }
 
   // 4: repulsion at the start of the step, apart from the internal forces (Bridson et al. 2002,
   // Sec. 7.2): a pair nearer than the thickness closes no further, and opens by a part of the gap.
   const double thickness = parameters_.thickness;
   {
-    const StepState still{state.start, state.start, state.inverseMass};
+    const StepState still{state.start, state.start, state.inverseMass, state.owner, state.corners};
     const auto pairs =
         grid_.overlappingPairs(primitives.boxes(still, thickness / 2), groups,
                                [&](int a, int b) { return primitives.wanted(a, b); });
@@ -585,9 +768,13 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     counters_.candidates += pairs.size();
     for (const auto& [a, b] : pairs) {
       const MovingPrimitives m = primitives.motion(a, b, state);
-      const CcdResult r = primitives.list[b].kind == Kind::BodyTriangle ? vertexFaceCcd(m, options)
-                                                                        : edgeEdgeCcd(m, options);
-      if (r.contact) contacts.push_back(primitives.contactAt(a, b, state, r.timeOfImpact));
+      const Kind kind = primitives.list[b].kind;  // a vane's, where the pair holds one
+      const CcdResult r = isTriangle(kind) ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
+      counters_.vaneCandidates += isVane(kind);
+      if (r.contact) {
+        contacts.push_back(primitives.contactAt(a, b, state, r.timeOfImpact));
+        counters_.vaneContacts += isVane(kind);
+      }
     }
     counters_.contacts += contacts.size();
     std::stable_sort(contacts.begin(), contacts.end(), [](const Contact& x, const Contact& y) {
@@ -649,9 +836,18 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
                    " passes of rigid impact zones; the first: " + describe(pending.front());
         return false;
       }
+      // A vane corner moves with its node: a zone that takes one takes the other, and the
+      // node's other corner.
+      const auto join = [&](int v, int w) { parent[findRoot(parent, v)] = findRoot(parent, w); };
       for (const Contact& c : pending)
-        for (int k = 1; k < 4; ++k)
-          parent[findRoot(parent, c.vertices[k])] = findRoot(parent, c.vertices[0]);
+        for (int k = 0; k < 4; ++k) {
+          const int v = c.vertices[k], owner = state.owner[v];
+          join(v, c.vertices[0]);
+          join(owner, c.vertices[0]);
+          if (owner < static_cast<int>(state.corners.size()))
+            for (int corner : state.corners[owner])
+              if (corner >= 0) join(corner, c.vertices[0]);
+        }
       std::map<int, std::vector<int>> zones;
       std::set<int> touched;
       for (const Contact& c : pending)
@@ -709,8 +905,8 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     std::vector<Contact> crossings;
     for (const auto& [a, b] : pairs) {
       const MovingPrimitives m = primitives.motion(a, b, state);
-      const CcdResult r = primitives.list[b].kind == Kind::BodyTriangle ? vertexFaceCcd(m, touching)
-                                                                        : edgeEdgeCcd(m, touching);
+      const CcdResult r = isTriangle(primitives.list[b].kind) ? vertexFaceCcd(m, touching)
+                                                              : edgeEdgeCcd(m, touching);
       if (r.contact) crossings.push_back(primitives.contactAt(a, b, state, r.timeOfImpact));
     }
     return crossings;
@@ -750,13 +946,27 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       stem.positions[i] = state.end[offset + i];
       stem.velocities[i] = (state.end[offset + i] - state.start[offset + i]) / h;
     }
+    // Vanes that do not collide follow the frames of where the stem ended up.
+    if (stem.hasVane())
+      stem.vaneCorners =
+          parameters_.vaneCollisions ? std::move(cornersAtEnd[s]) : vaneCornersAt(stem, to[s]);
+  }
+  for (std::size_t k = 0; k < primitives.corner.size(); ++k) {
+    const auto& [s, node, side] = primitives.corner[k];
+    stems_[s].vaneCorners[node][side] = state.end[primitives.vaneOffset + k];
   }
   // 6: the exact check of the final state.
   const BodyMesh bodyAtEnd{toState.body, body_.triangles};
   const std::size_t penetrations = countPenetrations(stems_, bodyAtEnd, nearestAllowed(), grid_);
-  if (penetrations > 0) {
-    counters_.penetrations += penetrations;
-    failure_ = "the final check found " + std::to_string(penetrations) + " intersections";
+  const std::size_t vanes =
+      parameters_.vaneCollisions
+          ? countVaneIntersections(stems_, nearestAllowed(), grid_, &vaneOverlaps_)
+          : 0;
+  if (penetrations + vanes > 0) {
+    counters_.penetrations += penetrations + vanes;
+    counters_.vanePenetrations += vanes;
+    failure_ = "the final check found " + std::to_string(penetrations + vanes) +
+               " intersections (" + std::to_string(vanes) + " of vanes)";
     return false;
   }
   // 7: the second half step of velocity at the new positions.

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "hirsute/hairs/feathers/bezier_curve.h"
+#include "hirsute/hairs/feathers/feather_geometry.h"
 #include "hirsute/hairs/feathers/feather_instances.h"
 
 namespace hirsute::dynamics {
@@ -69,7 +70,83 @@ FeatherStem buildFeatherStem(const Scene& scene, const Feather& feather, int seg
   for (const glm::vec3& p : local) points.push_back(toEigen(glm::vec3(toWorld * glm::vec4(p, 1))));
   FeatherStem stem = buildStemFromPoints(points, anchorFrameOf(feather), parameters);
   for (const glm::vec3& p : local) stem.heights.push_back(p.z);
+  std::vector<Vector3d> nodes;
+  for (const glm::vec3& p : local) nodes.push_back(toEigen(p));
+  stem.vaneWidths = vaneHalfWidths(type, nodes);
+  for (auto& w : stem.vaneWidths) w = {w[0] * feather.size, w[1] * feather.size};
+  stem.vaneCorners = vaneCornersOf(stem);
   return stem;
+}
+
+std::vector<std::array<double, 2>> vaneHalfWidths(const FeatherType& type,
+                                                  const std::vector<Vector3d>& nodes) {
+  std::vector<std::array<double, 2>> widths(nodes.size(), {0.0, 0.0});
+  if (nodes.empty() || !(type.rachisLength > 0)) return widths;
+  // The drawn barbs at a coarse detail: the barbs' shapes (their polylines' corners) are what
+  // the vane's outline is made of, and a few segments a barb follow it to a small part of its
+  // length; the number of barbs is the type's.
+  FeatherDetail detail;
+  detail.rachisSegments = 3;
+  detail.barbSegments = 6;
+  detail.shaftSides = 3;
+  const FeatherGeometry geometry = buildFeatherGeometry(type, detail);
+  const double base = type.calamusLength;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].z() < base) continue;
+    const double below = i > 0 ? 0.5 * (nodes[i].z() + nodes[i - 1].z()) : nodes[i].z();
+    const double above = i + 1 < nodes.size() ? 0.5 * (nodes[i].z() + nodes[i + 1].z())
+                                              : nodes[i].z();
+    const double from = std::max(below, base), to = above;
+    for (const Barb& barb : geometry.barbs) {
+      const int side = barb.side == BarbSide::Right ? 1 : 0;
+      const double sign = side == 0 ? 1 : -1;
+      auto reach = [&](double y) {
+        widths[i][side] = std::max(widths[i][side], sign * (y - nodes[i].y()));
+      };
+      // Every barb point within the heights, and where the barb's segments cross their ends.
+      for (std::uint32_t k = 0; k < barb.vertexCount; ++k) {
+        const glm::vec3& p = geometry.vertices.positions[barb.firstVertex + k];
+        if (p.z >= from && p.z <= to) reach(p.y);
+        if (k == 0) continue;
+        const glm::vec3& q = geometry.vertices.positions[barb.firstVertex + k - 1];
+        for (const double z : {from, to}) {
+          if ((q.z - z) * (p.z - z) < 0) reach(q.y + (p.y - q.y) * (z - q.z) / (p.z - q.z));
+        }
+      }
+    }
+  }
+  return widths;
+}
+
+std::vector<std::array<Vector3d, 2>> vaneCornersAt(const FeatherStem& stem,
+                                                   const StemFrame& anchor) {
+  std::vector<std::array<Vector3d, 2>> corners(stem.vaneWidths.size());
+  // The frames of rebuildFrames, walked without keeping them.
+  Eigen::Matrix3d axes = anchor.axes;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    if (i > 0) {
+      const Vector3d along = stem.positions[i] - stem.positions[i - 1];
+      const Vector3d tangent = along.norm() > 0 ? along.normalized() : Vector3d(axes.col(2));
+      const Vector3d binormal = perpendicularTowards(axes.col(0), tangent, axes.col(1));
+      axes.col(0) = binormal;
+      axes.col(1) = tangent.cross(binormal);
+      axes.col(2) = tangent;
+    }
+    const Vector3d left = axes.col(1);
+    corners[i] = {stem.positions[i] + stem.vaneWidths[i][0] * left,
+                  stem.positions[i] - stem.vaneWidths[i][1] * left};
+  }
+  return corners;
+}
+
+std::vector<std::array<Vector3d, 2>> vaneCornersOf(const FeatherStem& stem) {
+  std::vector<std::array<Vector3d, 2>> corners(stem.vaneWidths.size());
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Vector3d left = stem.frames[i].axes.col(1);
+    corners[i] = {stem.positions[i] + stem.vaneWidths[i][0] * left,
+                  stem.positions[i] - stem.vaneWidths[i][1] * left};
+  }
+  return corners;
 }
 
 FeatherStem buildStemFromPoints(const std::vector<Vector3d>& points, const StemFrame& anchor,

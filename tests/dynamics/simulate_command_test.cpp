@@ -98,6 +98,32 @@ TEST_F(SimulateCommand, TheBendingBodyCarriesItsCoatAndNothingIntersects) {
   }
   // The body bends from frame to frame, and so the scenes differ.
   EXPECT_NE(readText(folder_ / "frame-0001.pov"), readText(folder_ / "frame-0004.pov"));
+  // The vanes collide (docs/dynamics.md, "Vanes"): candidates every frame, none left meeting.
+  EXPECT_NE(out.text.find("vanes colliding"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find(" 0 vane intersections left"), std::string::npos) << out.text;
+  ASSERT_EQ(rows[0].size(), 20u);
+  EXPECT_EQ(rows[0][16], "vane_candidates");
+  EXPECT_EQ(rows[0][19], "vane_intersections_left");
+  for (std::size_t r = 2; r < rows.size(); ++r) {
+    EXPECT_NE(rows[r][16], "0") << "frame " << r;
+    EXPECT_EQ(rows[r][19], "0") << "frame " << r;
+  }
+}
+
+// Without vane collisions the same frames have vanes passing through each other (so the test
+// above can fail), and no vane is a candidate.
+TEST_F(SimulateCommand, WithoutVaneCollisionsTheBendingCoatsVanesPassThrough) {
+  const Output out = simulate("coat-bending", "bending.l bending.v bending.a",
+                              "--frames 4 --no-frames --no-vane-collisions", folder_);
+  ASSERT_EQ(out.status, 0) << out.text;
+  EXPECT_NE(out.text.find("vanes not colliding: 0 vane candidates"), std::string::npos)
+      << out.text;
+  EXPECT_NE(out.text.find("0 left;"), std::string::npos) << out.text;  // the stems still don't
+  const auto rows = table(folder_);
+  ASSERT_EQ(rows.size(), 5u);
+  int met = 0;
+  for (std::size_t r = 1; r < rows.size(); ++r) met += std::stoi(rows[r][19]);
+  EXPECT_GT(met, 0);
 }
 
 TEST_F(SimulateCommand, WindMovesTheAwnsAndTheSameRunGivesTheSameFrames) {

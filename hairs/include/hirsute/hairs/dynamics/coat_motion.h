@@ -60,6 +60,9 @@ class CoatMotion {
   std::size_t boundRoots() const;
   // Intersections in the current state, by the exact check (0 after every accepted step).
   std::size_t penetrations() const;
+  // Vanes that meet other vanes or stems in the current state, by the exact check
+  // (countVaneIntersections): 0 after every accepted step when the vanes collide.
+  std::size_t vaneIntersections() const;
 
  private:
   FeatherCoatSimulation simulation_;

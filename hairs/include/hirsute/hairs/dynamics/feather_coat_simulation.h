@@ -20,10 +20,10 @@
 //      halves, counted in `retries`;
 //   7. the other half step of velocity at x^{n+1}: v^{n+1}.
 //
-// Stems are thin: the vane is not a collision object yet. Each stem is its rachis polyline, kept
-// at `thickness` from other stems and from the body by repulsion, aimed at `minimumSeparation`
-// by the impulses and never closer than a quarter of it; the vane's width is not taken into
-// account.
+// Each stem is its rachis polyline and, where it carries one, its vane (stem_vane.h: a ribbon of
+// triangles either side, its corners carried by the nodes), kept at `thickness` from other stems
+// and vanes by repulsion, aimed at `minimumSeparation` by the impulses and never closer than a
+// quarter of it. The body meets the rachis, not the vane.
 #pragma once
 
 #include <Eigen/Core>
@@ -35,6 +35,7 @@
 
 #include "hirsute/hairs/dynamics/collision_grid.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
+#include "hirsute/hairs/dynamics/stem_vane.h"
 #include "hirsute/hairs/dynamics/wind_field.h"
 #include "hirsute/interpreter/scene.h"
 
@@ -62,6 +63,10 @@ struct SimulationParameters {
   int impulsePasses = 4;                 // CCD and impulse passes before zones
   int zoneIterations = 64;               // rigid impact zone passes before a retry
   int maxHalvings = 8;                   // a step is halved at most this many times
+  // Stems that carry a vane (FeatherStem::vaneWidths) collide with it: vanes of different
+  // feathers, and a vane and another feather's stem, are kept apart as stems are, and the final
+  // check holds them to it. Off: the vanes follow their stems' frames and may pass through.
+  bool vaneCollisions = true;
 };
 
 // What the simulation did, summed over all steps since it was built.
@@ -82,6 +87,9 @@ struct SimulationCounters {
                                     // in a step tried (retried as halves, or at the smallest
                                     // step put into impact zones)
   std::uint64_t calamiZoned = 0;  // of those, put into impact zones at the smallest step
+  std::uint64_t vaneCandidates = 0;    // of the candidates, pairs with a vane's primitive
+  std::uint64_t vaneContacts = 0;      // of the contacts, pairs with a vane's primitive
+  std::uint64_t vanePenetrations = 0;  // of the penetrations, vanes' (stem_vane.h)
 };
 
 // A step that could not be resolved even at the smallest time step: the state is left as it
@@ -136,6 +144,13 @@ class FeatherCoatSimulation {
   // body, nearer than this (a quarter of the minimum separation the impulses keep).
   double nearestAllowed() const { return 0.25 * parameters_.minimumSeparation; }
   double time() const { return time_; }
+  // The pairs of segments whose vanes are left out of each other's collisions: they met when the
+  // simulation was built, and have not yet come apart (stem_vane.h).
+  const VaneOverlaps& vaneOverlaps() const { return vaneOverlaps_; }
+  std::size_t vaneOverlapsAtStart() const { return vaneOverlapsAtStart_; }
+  // Takes back into the collisions the pairs of vanes left out that have come apart by more
+  // than the minimum separation (CoatMotion does so after each frame); returns how many.
+  std::size_t releaseVaneOverlaps();
 
  private:
   // Where the anchors and the body's vertices are at the start or the end of a (sub)step.
@@ -164,6 +179,8 @@ class FeatherCoatSimulation {
   std::vector<StemFrame> anchors_;
   std::string failure_;  // why the last advance() failed, for the error of a step
   CollisionGrid grid_;   // the broad phase's working memory, kept from step to step
+  VaneOverlaps vaneOverlaps_;
+  std::size_t vaneOverlapsAtStart_ = 0;
   SimulationCounters counters_;
   double time_ = 0;
 };

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <vector>
 
 #include "hirsute/interpreter/feather_part.h"
@@ -40,9 +41,36 @@ struct FeatherStem {
   // place along the rachis), increasing; empty for stems built from points.
   std::vector<double> heights;
   StemParameters parameters;
+  // The vane as collision geometry (docs/dynamics.md, "Vanes"): per node, the half-width of the
+  // vane to the left (+L of the node's frame) and to the right at that rachis position; empty:
+  // the stem is its rachis alone. The vane between nodes i and i + 1 is a quad on each side
+  // where both nodes have a width there: the rachis segment and the two corners.
+  std::vector<std::array<double, 2>> vaneWidths;
+  // Per node, where the vane's left and right corners are (world space): the node plus its
+  // width along the frame's L at the end of each step, moved with the node by the collisions
+  // (FeatherCoatSimulation keeps them; a step starts from where the last one left them).
+  std::vector<std::array<Eigen::Vector3d, 2>> vaneCorners;
 
   std::size_t nodeCount() const { return positions.size(); }
+  bool hasVane() const { return !vaneWidths.empty(); }
 };
+
+// The vane's half-widths of a feather type, in its local units, at the local rachis points
+// `nodes` (x front, y left, z along the rachis; feather_geometry.h): the extent of the drawn
+// barbs projected on the vane plane (their x dropped), to the left and the right of the node's
+// y, over the heights from half-way to the node below to half-way to the node above. The
+// calamus has no vane: a node below the rachis base (z < cl) has none, and the heights searched
+// start at the rachis base. Nodes must be in increasing z.
+std::vector<std::array<double, 2>> vaneHalfWidths(const FeatherType& type,
+                                                  const std::vector<Eigen::Vector3d>& nodes);
+
+// The corners of the vane from the stem's frames: node i's left corner at p_i + w_left L_i,
+// its right one at p_i - w_right L_i.
+std::vector<std::array<Eigen::Vector3d, 2>> vaneCornersOf(const FeatherStem& stem);
+// The same from the frames rebuildFrames(stem, anchor) would give, leaving the stem's frames as
+// they are.
+std::vector<std::array<Eigen::Vector3d, 2>> vaneCornersAt(const FeatherStem& stem,
+                                                           const StemFrame& anchor);
 
 // The anchor frame of a Scene feather: origin at the calamus base, axes (up, left, heading).
 StemFrame anchorFrameOf(const Feather& feather);
@@ -51,6 +79,7 @@ StemFrame anchorFrameOf(const Feather& feather);
 // then points of the rachis (the cubic Bézier of feather_geometry.h, calamus included as its
 // first segment) at equal parameter steps, in world space by the feather's frame and size, the
 // type blended and grown as it is drawn. Gold positions are this rest shape; velocities zero.
+// The stem carries its vane (vaneHalfWidths, times the feather's size).
 FeatherStem buildFeatherStem(const Scene& scene, const Feather& feather, int segments,
                              const StemParameters& parameters = {});
 

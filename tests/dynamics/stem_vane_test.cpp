@@ -1,0 +1,170 @@
+// Vanes as collision geometry (docs/dynamics.md, "Vanes"; issue 26, item 2): a feather type's
+// vane widths follow its drawn barbs, the final check counts vanes that meet, and two feathers
+// driven so that their vanes (not their rachises) would cross do not with vanes colliding and
+// do without.
+#include "hirsute/hairs/dynamics/stem_vane.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hirsute/hairs/dynamics/feather_coat_simulation.h"
+
+namespace hirsute::dynamics {
+namespace {
+
+using Eigen::Vector3d;
+
+// A straight stem along `heading` from `root`, its front towards `up`, its vane `halfWidth`
+// either side on every node but the anchor.
+FeatherStem vanedStem(const Vector3d& root, const Vector3d& heading, const Vector3d& up,
+                      int segments, double length, double halfWidth,
+                      const StemParameters& parameters) {
+  std::vector<Vector3d> points;
+  for (int i = 0; i <= segments; ++i) points.push_back(root + i * length * heading);
+  StemFrame anchor;
+  anchor.origin = root;
+  anchor.axes.col(0) = up;
+  anchor.axes.col(1) = heading.cross(up);
+  anchor.axes.col(2) = heading;
+  FeatherStem stem = buildStemFromPoints(points, anchor, parameters);
+  stem.vaneWidths.assign(points.size(), {halfWidth, halfWidth});
+  stem.vaneWidths[0] = {0, 0};
+  stem.vaneCorners = vaneCornersOf(stem);
+  return stem;
+}
+
+FeatherType straightBarbedType(float angle) {
+  FeatherType type;
+  type.calamusLength = 0.1f;
+  type.rachisLength = 1.0f;
+  type.left.baseAngle = type.left.tipAngle = angle;
+  type.right = type.left;
+  type.left.barbLength = type.right.barbLength = 0.3f;
+  for (float position : {0.0f, 1.0f}) {
+    KeyBarb barb;
+    barb.position = position;
+    barb.vertices = {glm::vec3(0), glm::vec3(1, 0, 0)};
+    type.keyBarbs.push_back(barb);
+  }
+  return type;
+}
+
+TEST(StemVane, TheVanesWidthIsTheDrawnBarbsExtentAcrossTheRachis) {
+  std::vector<Vector3d> nodes;
+  for (int i = 0; i <= 5; ++i) nodes.emplace_back(0, 0, 0.1 + 0.2 * i);
+  nodes.insert(nodes.begin(), Vector3d(0, 0, 0));  // the calamus base: no vane
+  for (const float angle : {90.0f, 120.0f}) {
+    const auto widths = vaneHalfWidths(straightBarbedType(angle), nodes);
+    ASSERT_EQ(widths.size(), nodes.size());
+    EXPECT_EQ(widths[0][0], 0);
+    EXPECT_EQ(widths[0][1], 0);
+    // Straight barbs 0.3 long at the angle: 0.3 sin(angle) across the rachis along the vane.
+    const double across = 0.3 * std::sin(angle * M_PI / 180);
+    for (std::size_t i = 2; i + 1 < nodes.size(); ++i)
+      for (int side = 0; side < 2; ++side)
+        EXPECT_NEAR(widths[i][side], across, 0.01 * across) << angle << " node " << i;
+  }
+  // A rachis curved to the left: the widths are measured from the node, so the left one is
+  // narrower by the node's offset where the barbs cross it.
+  FeatherType curved = straightBarbedType(90);
+  std::vector<Vector3d> offset = nodes;
+  for (std::size_t i = 1; i < offset.size(); ++i) offset[i].y() = 0.05;
+  const auto shifted = vaneHalfWidths(curved, offset);
+  EXPECT_NEAR(shifted[3][0], 0.25, 0.005);
+  EXPECT_NEAR(shifted[3][1], 0.35, 0.005);
+}
+
+TEST(StemVane, TheFinalCheckCountsVanesThatMeet) {
+  StemParameters parameters;
+  // A: along x, its vane in the x-y plane at z = 0, 0.2 either side.
+  const FeatherStem a =
+      vanedStem({0, 0, 0}, Vector3d::UnitX(), Vector3d::UnitZ(), 4, 0.25, 0.2, parameters);
+  ASSERT_EQ(vaneTrianglesOf(a).size(), 3u * 2 * 2);  // the calamus segment has no vane
+  // B: along y above A, its vane in the y-z plane, crossing A's vane at height h.
+  const auto b = [&](double height, double x) {
+    return vanedStem({x, -0.5, height}, Vector3d::UnitY(), Vector3d::UnitX(), 4, 0.25, 0.2,
+                     parameters);
+  };
+  // B's vane reaches 0.2 down from its rachis: through A's vane, touching it, near, apart.
+  EXPECT_GT(countVaneIntersections({a, b(0.1, 0.6)}, 0.001), 0u);
+  EXPECT_GT(countVaneIntersections({a, b(0.2, 0.6)}, 0.001), 0u);
+  EXPECT_GT(countVaneIntersections({a, b(0.2005, 0.6)}, 0.001), 0u);
+  EXPECT_EQ(countVaneIntersections({a, b(0.21, 0.6)}, 0.001), 0u);
+  // Vanes off the stems' check: the rachises are 0.1 apart, only the vanes meet.
+  EXPECT_EQ(countPenetrations({a, b(0.1, 0.6)}, {}, 0.001), 0u);
+  // B's rachis through A's vane (B's vane lying beside it): a vane and another stem.
+  const FeatherStem pierce =
+      vanedStem({0.6, 0.1, -0.5}, Vector3d::UnitZ(), Vector3d::UnitY(), 4, 0.25, 0.001, parameters);
+  EXPECT_GT(countVaneIntersections({a, pierce}, 0.0001), 0u);
+  // Over A's calamus (x from 0 to 0.25), where A has no vane, nothing meets A's vane.
+  EXPECT_EQ(countVaneIntersections({a, b(0.1, 0.1)}, 0.001), 0u);
+  // One stem's own vane is not tested against itself.
+  EXPECT_EQ(countVaneIntersections({a}, 0.001), 0u);
+}
+
+// Two feathers side by side, their rachises 0.2 apart in x and never nearer: A stands along z
+// with its vane across y (0.4 either side, in the plane x = 0), B stands 1 away in y with its
+// vane across x (from x = -0.2 to 0.6) and is carried towards A along -y, its root moved 0.08 a
+// step for 10 steps and its nodes moving with it, so that B's vane would cut 0.2 into A's.
+FeatherCoatSimulation across(bool vanes) {
+  SimulationParameters parameters;
+  parameters.gravity = Vector3d::Zero();
+  parameters.vaneCollisions = vanes;
+  FeatherCoatSimulation sim(
+      {vanedStem({0, 0, 0}, Vector3d::UnitZ(), Vector3d::UnitX(), 4, 0.25, 0.4, parameters.stem),
+       vanedStem({0.2, 1, 0}, Vector3d::UnitZ(), Vector3d::UnitY(), 4, 0.25, 0.4, parameters.stem)},
+      {}, parameters);
+  FeatherStem& b = sim.stem(1);
+  for (std::size_t i = 1; i < b.nodeCount(); ++i) b.velocities[i] = Vector3d(0, -8, 0);
+  return sim;
+}
+
+void carryB(FeatherCoatSimulation& sim, int step) {
+  std::vector<StemFrame> anchors = sim.anchors();
+  if (step < 10) anchors[1].origin.y() -= 0.08;
+  sim.step(0.01, anchors);
+}
+
+// The side of B's vane that A's vane edge is on, the most towards B's front over A's corners:
+// each corner against the plane of B's vane at the node of B nearest it in height (through the
+// node, across B's front). Negative while A's vane stays on its side of B's; positive once B's
+// vane has cut past A's edge.
+double sideOfBsVane(const FeatherCoatSimulation& sim) {
+  const FeatherStem &a = sim.stems()[0], &b = sim.stems()[1];
+  double most = -1e9;
+  for (std::size_t i = 1; i < a.nodeCount(); ++i) {
+    const Vector3d& corner = a.vaneCorners[i][0];
+    std::size_t nearest = 1;
+    for (std::size_t j = 2; j < b.nodeCount(); ++j)
+      if (std::abs(b.positions[j].z() - corner.z()) <
+          std::abs(b.positions[nearest].z() - corner.z()))
+        nearest = j;
+    most = std::max(most, (corner - b.positions[nearest]).dot(b.frames[nearest].axes.col(0)));
+  }
+  return most;
+}
+
+TEST(StemVane, VanesDrivenIntoEachOtherDoNotPassThroughWhenTheyCollide) {
+  FeatherCoatSimulation sim = across(true);
+  for (int step = 0; step < 20; ++step) {
+    carryB(sim, step);
+    ASSERT_EQ(countVaneIntersections(sim.stems(), sim.nearestAllowed()), 0u) << "step " << step;
+    ASSERT_LT(sideOfBsVane(sim), 0) << "step " << step;
+  }
+  EXPECT_GT(sim.counters().vaneContacts, 0u);                       // they met
+  EXPECT_EQ(sim.counters().contacts, sim.counters().vaneContacts);  // and only their vanes
+  // Without vane collisions B's vane goes through A's (and so the test above can fail).
+  FeatherCoatSimulation free = across(false);
+  std::size_t met = 0;
+  for (int step = 0; step < 20; ++step) {
+    carryB(free, step);
+    met += countVaneIntersections(free.stems(), free.nearestAllowed());
+  }
+  EXPECT_GT(met, 0u);
+  EXPECT_GT(sideOfBsVane(free), 0.1);
+  EXPECT_EQ(free.counters().vaneCandidates, 0u);
+}
+
+}  // namespace
+}  // namespace hirsute::dynamics
