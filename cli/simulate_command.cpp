@@ -113,6 +113,7 @@ dynamics::SimulationParameters parametersFor(const FeatherDynamicsSettings& view
   if (o.gustSeed) p.wind.seed = static_cast<int>(*o.gustSeed);
   if (o.drag) p.dragCoefficient = *o.drag;
   if (o.segments) p.segmentsPerFeather = *o.segments;
+  if (o.vaneCollisions) p.vaneCollisions = true;
   if (o.noVaneCollisions) p.vaneCollisions = false;
   return p;
 }

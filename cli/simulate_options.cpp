@@ -87,8 +87,14 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
   command.add_flag("--obj", options.obj, "Write a Wavefront OBJ of every frame too");
   command.add_flag("--no-frames", options.noFrames,
                    "Write no scenes, only simulation.csv (to measure the simulation alone)");
-  command.add_flag("--no-vane-collisions", options.noVaneCollisions,
-                   "The feathers' vanes do not collide (their stems still do): to compare");
+  CLI::Option* vanes =
+      command.add_flag("--vane-collisions", options.vaneCollisions,
+                       "The feathers' vanes collide with other feathers' vanes and stems "
+                       "(docs/dynamics.md, \"Vanes\"; many times the stems' cost)");
+  command
+      .add_flag("--no-vane-collisions", options.noVaneCollisions,
+                "The vanes do not collide, whatever the view file says (their stems still do)")
+      ->excludes(vanes);
   command.add_option("--width", options.width, "The frames' width in pixels (default 800)")
       ->check(CLI::Range(1, 16384));
   command.add_option("--height", options.height, "The frames' height in pixels (default 600)")

@@ -22,6 +22,7 @@ struct SimulateOptions {
   double fps = 24;
   bool obj = false;
   bool noFrames = false;  // only the table: for measuring the simulation alone
+  bool vaneCollisions = false;    // the vanes collide (as `dynamics vanes: on`)
   bool noVaneCollisions = false;  // the vanes follow their stems and may pass through
   int width = 800, height = 600;
   // Overrides of the view file's `dynamics …:` lines.

@@ -15,7 +15,7 @@
 # with other vanes or stems in the frames' states, summed over the frames (0 with vanes on; with
 # them off, what passed through).
 # SIMULATED (default FRAMES) frames of them are simulated: fewer measure the start of the bend.
-# VANES: "on" (the default), "off" (--no-vane-collisions) or both, one row each.
+# VANES: "off" (the default), "on" (--vane-collisions) or both, one row each.
 #   HIRSUTE=path/to/hirsute FRAMES=240 DENSITIES="4.9 38 152" VANES="off on" scripts/bench-dynamics.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,10 +29,10 @@ printf '%-8s %5s %9s %9s %6s %8s %8s %9s %10s %8s %11s %9s %7s %8s %11s %9s %11s
   contacts/f zones/f retried intersections kept_near calami_left calami_crossed calami_zoned left \
   vane_cand/f vane_cont/f vane_left
 for density in ${DENSITIES:-4.9 38 152}; do
-for vanes in ${VANES:-on}; do
+for vanes in ${VANES:-off}; do
   model="$work/coat-$density-$vanes"
   vaneOption=""
-  [ "$vanes" = "off" ] && vaneOption="--no-vane-collisions"
+  [ "$vanes" = "on" ] && vaneOption="--vane-collisions"
   mkdir -p "$model"
   sed -e "s/^#define DENSITY .*/#define DENSITY $density/" \
       -e "s/^#define FRAMES .*/#define FRAMES $frames/" models/coat-bending/bending.l >"$model/bending.l"

@@ -81,7 +81,7 @@ class SimulateCommand : public ::testing::Test {
 
 TEST_F(SimulateCommand, TheBendingBodyCarriesItsCoatAndNothingIntersects) {
   const Output out =
-      simulate("coat-bending", "bending.l bending.v bending.a", "--frames 4", folder_);
+      simulate("coat-bending", "bending.l bending.v bending.a", "--frames 4 --vane-collisions", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("4 frames of"), std::string::npos) << out.text;
   EXPECT_NE(out.text.find("0 left"), std::string::npos) << out.text;

@@ -145,14 +145,14 @@ TEST(OrganSettings, TheCoatsDynamicsLinesAreTheFeathers) {
   Diagnostics diagnostics;
   const ViewSettings view = parseViewFile(
       "feather follicles: hexagonal\ndynamics gravity: 0 -2 0\ndynamics substeps: 7\n"
-      "dynamics vanes: off\n",
+      "dynamics vanes: on\n",
       "organs.v", diagnostics);
   const FeatherSettings& feathers = view.organ<FeatherSettings>();
   EXPECT_EQ(feathers.follicleLayout, FollicleLayout::Hexagonal);
   EXPECT_EQ(feathers.dynamics.gravity, glm::vec3(0, -2, 0));
   EXPECT_EQ(feathers.dynamics.substeps, 7);
-  EXPECT_FALSE(feathers.dynamics.vanes);
-  EXPECT_TRUE(FeatherDynamicsSettings{}.vanes);  // the vanes collide unless told
+  EXPECT_TRUE(feathers.dynamics.vanes);
+  EXPECT_FALSE(FeatherDynamicsSettings{}.vanes);  // the vanes collide only when asked
   EXPECT_FLOAT_EQ(feathers.dynamics.drag, FeatherDynamicsSettings{}.drag);
   Diagnostics wrong;
   EXPECT_THROW(parseViewFile("dynamics vanes: sometimes\n", "organs.v", wrong), DiagnosticError);

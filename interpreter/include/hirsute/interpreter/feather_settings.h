@@ -41,7 +41,7 @@ struct FeatherDynamicsSettings {
   float separation = 0.002f;
   int segments = 8;                 // `dynamics segments: n`: of each feather's stem
   int substeps = 4;                 // `dynamics substeps: n`: steps per frame
-  bool vanes = true;                // `dynamics vanes: on|off`: the vanes collide
+  bool vanes = false;               // `dynamics vanes: on|off`: the vanes collide
 };
 
 struct FeatherSettings : OrganSettingsOf<FeatherSettings> {

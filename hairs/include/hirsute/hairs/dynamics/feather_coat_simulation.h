@@ -66,7 +66,7 @@ struct SimulationParameters {
   // Stems that carry a vane (FeatherStem::vaneWidths) collide with it: vanes of different
   // feathers, and a vane and another feather's stem, are kept apart as stems are, and the final
   // check holds them to it. Off: the vanes follow their stems' frames and may pass through.
-  bool vaneCollisions = true;
+  bool vaneCollisions = false;
 };
 
 // What the simulation did, summed over all steps since it was built.
