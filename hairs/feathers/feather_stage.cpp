@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -162,10 +163,20 @@ FeatherStageReport growFeathers(Scene& scene, const ModelResources& resources,
     }
     typeBoxes[t].add(glm::vec3(0, 0, type.calamusLength + type.rachisLength + barb));
   }
+  // A single feather's geometry depends on its types, blend and age alone; a run of feathers
+  // alike (4 095 @Fe(1) at one spot) builds it once.
+  std::optional<FeatherGeometry> previous;
+  const Feather* previousFeather = nullptr;
+  const auto alike = [](const Feather& a, const Feather& b) {
+    return a.types == b.types && a.across == b.across && a.along == b.along && a.age == b.age;
+  };
   for (const Feather& feather : part.feathers) {
     const glm::mat4 toWorld = featherToWorld(feather);
     if (feather.origin == FeatherOrigin::Single) {
-      addBounds(featherGeometryOf(scene, feather, kBoundsDetail), toWorld, part.bounds);
+      if (!previous || !alike(feather, *previousFeather))
+        previous = featherGeometryOf(scene, feather, kBoundsDetail);
+      previousFeather = &feather;
+      addBounds(*previous, toWorld, part.bounds);
       continue;
     }
     // The blend's box: the key types' boxes weighted as the feather blends them (its lengths
