@@ -75,59 +75,49 @@ TEST(PathTracer, TheSphericalLightGivesItsIrradiance) {
   }
 }
 
-TEST(PathTracer, APixelsErrorFallsAsOneOverTheRootOfItsSamples) {
+// The error of 200 pixels of `samples` paths each at h = 0.4 on a diffuse sphere (ρ 0.7) under a
+// uniform sky: their mean (the bias) and RMS.
+struct PixelErrors {
+  double mean, rms;
+};
+
+PixelErrors skyLitPixelErrors(int samples, bool stratified) {
   TraceScene scene(TraceSettings{});
   addSphere(scene, 0.7f);
   scene.commit();
   TraceLights lights;
   lights.sky = glm::vec3(0.5f);
   const float h = 0.4f;
-  const float expected = 0.7f * 0.5f * (1 + h) / 2;
-  auto rmsError = [&](int samples) {
-    double sum = 0;
-    const int pixels = 200;
-    for (int p = 0; p < pixels; ++p) {
-      const float e = pixel(scene, lights, h, samples, 100 + static_cast<std::uint64_t>(p)).g - expected;
-      sum += static_cast<double>(e) * e;
-    }
-    return std::sqrt(sum / pixels);
-  };
-  const double few = rmsError(16), many = rmsError(256);
+  const double expected = 0.7 * 0.5 * (1 + h) / 2;
+  double sum = 0, squares = 0;
+  const int pixels = 200;
+  for (int p = 0; p < pixels; ++p) {
+    const double e =
+        pixel(scene, lights, h, samples, 100 + static_cast<std::uint64_t>(p), stratified).g - expected;
+    sum += e;
+    squares += e * e;
+  }
+  return {sum / pixels, std::sqrt(squares / pixels)};
+}
+
+TEST(PathTracer, APixelsErrorFallsAsOneOverTheRootOfItsSamples) {
+  const double few = skyLitPixelErrors(16, false).rms, many = skyLitPixelErrors(256, false).rms;
   // Sixteen times the samples: a quarter of the error.
   EXPECT_GT(few / many, 3.0) << few << " " << many;
   EXPECT_LT(few / many, 5.3) << few << " " << many;
 }
 
 TEST(PathTracer, APixelsStratifiedSamplesConvergeFasterWithoutBias) {
-  TraceScene scene(TraceSettings{});
-  addSphere(scene, 0.7f);
-  scene.commit();
-  TraceLights lights;
-  lights.sky = glm::vec3(0.5f);
-  const float h = 0.4f;
-  const float expected = 0.7f * 0.5f * (1 + h) / 2;
-  auto errors = [&](int samples, bool stratified) {
-    double sum = 0, squares = 0;
-    const int pixels = 200;
-    for (int p = 0; p < pixels; ++p) {
-      const double e =
-          pixel(scene, lights, h, samples, 100 + static_cast<std::uint64_t>(p), stratified).g - expected;
-      sum += e;
-      squares += e * e;
-    }
-    return std::pair(sum / pixels, std::sqrt(squares / pixels));
-  };
-  const auto [biasFew, few] = errors(16, true);
-  const auto [biasMany, many] = errors(256, true);
-  const double independent = errors(256, false).second;
+  const PixelErrors few = skyLitPixelErrors(16, true), many = skyLitPixelErrors(256, true);
+  const double independent = skyLitPixelErrors(256, false).rms;
   // Sixteen times the samples: well under a quarter of the error (the sky's hemisphere is
   // sampled evenly; 7.2 times less), and at 256 samples a third of the independent samples'
   // error at most.
-  EXPECT_GT(few / many, 6.0) << few << " " << many;
-  EXPECT_LT(many, independent / 3) << many << " " << independent;
+  EXPECT_GT(few.rms / many.rms, 6.0) << few.rms << " " << many.rms;
+  EXPECT_LT(many.rms, independent / 3) << many.rms << " " << independent;
   // No bias: over 200 pixels the mean error is about 1/14 of the spread, not a share of it.
-  EXPECT_LT(std::abs(biasFew), 0.25 * few) << biasFew;
-  EXPECT_LT(std::abs(biasMany), 0.25 * many) << biasMany;
+  EXPECT_LT(std::abs(few.mean), 0.25 * few.rms) << few.mean;
+  EXPECT_LT(std::abs(many.mean), 0.25 * many.rms) << many.mean;
 }
 
 Camera frontCamera(int width, int height, float half) {
