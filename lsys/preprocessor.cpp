@@ -5,6 +5,8 @@
 #include "hirsute/core/program_path.h"
 
 #include <fcntl.h>
+#include <poll.h>
+#include <sys/syscall.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -41,6 +43,36 @@ bool isDirectiveName(const std::string& word) {
     if (word == name) return true;
   }
   return false;
+}
+
+// Waits for the child `pid` to exit, at most `limit`: true with its status, or false after
+// killing and reaping it when the limit passed. The wait wakes as the child exits (a pidfd
+// polled with the time left), so a fast cpp costs no more than it runs; kernels without
+// pidfd_open fall back to polling every millisecond.
+bool waitForExit(pid_t pid, std::chrono::milliseconds limit, int& status) {
+  using Clock = std::chrono::steady_clock;
+  const auto until = Clock::now() + limit;
+  const int pidfd = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
+  for (;;) {
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == pid || (done < 0 && errno != EINTR)) break;
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
+    if (left.count() <= 0) {
+      kill(pid, SIGKILL);
+      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      if (pidfd >= 0) close(pidfd);
+      return false;
+    }
+    if (pidfd >= 0) {
+      pollfd readable{pidfd, POLLIN, 0};
+      (void)poll(&readable, 1, static_cast<int>(std::min<long long>(left.count() + 1, 1'000'000)));
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
+  if (pidfd >= 0) close(pidfd);
+  return true;
 }
 
 // A temporary file removed when it goes out of scope.
@@ -300,22 +332,7 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
     _exit(127);
   }
   int status = 0;
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(options.timeoutSeconds);
-  auto pause = std::chrono::microseconds(200);
-  bool timedOut = false;
-  for (;;) {
-    const pid_t done = waitpid(pid, &status, WNOHANG);
-    if (done == pid || (done < 0 && errno != EINTR)) break;
-    if (std::chrono::steady_clock::now() > until) {
-      kill(pid, SIGKILL);
-      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-      }
-      timedOut = true;
-      break;
-    }
-    std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::microseconds(20'000));
-  }
+  const bool timedOut = !waitForExit(pid, std::chrono::seconds(options.timeoutSeconds), status);
   if (timedOut) {
     throw DiagnosticError(fileLocation, "the C preprocessor ran for more than " +
                                             std::to_string(options.timeoutSeconds) +
