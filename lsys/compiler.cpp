@@ -145,6 +145,10 @@ class Compiler {
   void compileRuleSet(const std::vector<ast::Production>& in, RuleSet& out, const NameMap& shared,
                       const NameMap& arrays);
   Production compileProduction(const ast::Production& in, const NameMap& shared, const NameMap& arrays);
+  // Production::guard of a condition, for a production without a pre-condition block.
+  // `formals`: the frame slots below it are the production's formal parameters.
+  std::vector<ParameterTest> guardOf(const ast::Expr& condition, const ModulePattern& first,
+                                     int formals, const NameMap& locals);
   void noteQueries(const ast::ModuleList& modules);
   // The id of `text` in Program::strings, added when new; equal literals share an id.
   int internString(const std::string& text, const SourceLocation& where);
@@ -607,6 +611,97 @@ void Compiler::compileModules(const ast::ModuleList& modules, const Scope& scope
   values = finish(b);
 }
 
+namespace {
+
+// Whether evaluating `e` can have no effect, raise no error and warn of nothing: numbers, the
+// production's formal parameters (`formal`), negation, `!`, comparisons, `&&`, `||`, `+`, `-`,
+// `*`, `^` and `? :`, nothing else (a variable may be unassigned, which warns).
+bool pureAndSafe(const ast::Expr& e, const std::function<bool(const std::string&)>& formal) {
+  using K = ast::Expr::Kind;
+  switch (e.kind) {
+    case K::Number:
+      return true;
+    case K::Variable:
+      return formal(e.name);
+    case K::Unary:
+      if (e.unaryOp == ast::UnaryOp::AddressOf) return false;
+      break;
+    case K::Binary:
+      if (e.binaryOp == ast::BinaryOp::Divide || e.binaryOp == ast::BinaryOp::Modulo) return false;
+      break;
+    case K::Conditional:
+      break;
+    default:
+      return false;
+  }
+  return std::all_of(e.operands.begin(), e.operands.end(),
+                     [&](const ast::ExprPtr& operand) { return pureAndSafe(*operand, formal); });
+}
+
+// The top-level operands of a chain of `&&`, left to right.
+void conjuncts(const ast::Expr& e, std::vector<const ast::Expr*>& out) {
+  if (e.kind == ast::Expr::Kind::Binary && e.binaryOp == ast::BinaryOp::And) {
+    conjuncts(*e.operands[0], out);
+    conjuncts(*e.operands[1], out);
+  } else {
+    out.push_back(&e);
+  }
+}
+
+bool isComparison(ast::BinaryOp op) {
+  return op == ast::BinaryOp::Equal || op == ast::BinaryOp::NotEqual || op == ast::BinaryOp::Less ||
+         op == ast::BinaryOp::LessEqual || op == ast::BinaryOp::Greater ||
+         op == ast::BinaryOp::GreaterEqual;
+}
+
+// `a op b` as `b op' a`.
+ast::BinaryOp mirrored(ast::BinaryOp op) {
+  switch (op) {
+    case ast::BinaryOp::Less: return ast::BinaryOp::Greater;
+    case ast::BinaryOp::LessEqual: return ast::BinaryOp::GreaterEqual;
+    case ast::BinaryOp::Greater: return ast::BinaryOp::Less;
+    case ast::BinaryOp::GreaterEqual: return ast::BinaryOp::LessEqual;
+    default: return op;
+  }
+}
+
+}  // namespace
+
+std::vector<ParameterTest> Compiler::guardOf(const ast::Expr& condition, const ModulePattern& first,
+                                             int formals, const NameMap& locals) {
+  std::vector<ParameterTest> guard;
+  const auto formal = [&](const std::string& name) {
+    const auto local = locals.find(name);
+    return local != locals.end() && local->second < formals;
+  };
+  if (!pureAndSafe(condition, formal)) return guard;
+  // The parameter of `first` that a variable names, if any.
+  const auto parameterNamed = [&](const ast::Expr& e) -> std::optional<std::uint8_t> {
+    if (e.kind != ast::Expr::Kind::Variable) return std::nullopt;
+    const auto local = locals.find(e.name);
+    if (local == locals.end()) return std::nullopt;
+    const auto slot = std::find(first.slots.begin(), first.slots.end(), local->second);
+    if (slot == first.slots.end()) return std::nullopt;
+    return static_cast<std::uint8_t>(slot - first.slots.begin());
+  };
+  std::vector<const ast::Expr*> terms;
+  conjuncts(condition, terms);
+  for (const ast::Expr* term : terms) {
+    if (term->kind != ast::Expr::Kind::Binary || !isComparison(term->binaryOp)) continue;
+    const ast::Expr& left = *term->operands[0];
+    const ast::Expr& right = *term->operands[1];
+    if (const auto parameter = parameterNamed(left)) {
+      if (const auto constant = foldConstant(right, nullptr))
+        guard.push_back({*parameter, comparisonOutcomes(term->binaryOp), *constant});
+    } else if (const auto parameter = parameterNamed(right)) {
+      if (const auto constant = foldConstant(left, nullptr))
+        guard.push_back(
+            {*parameter, comparisonOutcomes(mirrored(term->binaryOp)), *constant});
+    }
+  }
+  return guard;
+}
+
 Production Compiler::compileProduction(const ast::Production& in, const NameMap& shared,
                                        const NameMap& arrays) {
   Production out;
@@ -646,6 +741,7 @@ Production Compiler::compileProduction(const ast::Production& in, const NameMap&
       fail(in.left.front().where, std::string("'") + p.symbol + "' in a left context is not supported");
     }
   }
+  const int formals = static_cast<int>(out.slotNames.size());
   std::vector<std::string> assigned;
   collectAssigned(in.before, assigned);
   collectAssigned(in.after, assigned);
@@ -674,6 +770,8 @@ Production Compiler::compileProduction(const ast::Production& in, const NameMap&
     }
   }
   out.successorBytes.assign(encoded.bytes(), encoded.bytes() + encoded.byteSize());
+  if (in.before.empty() && in.condition && !out.strict.empty())
+    out.guard = guardOf(*in.condition, out.strict.front(), formals, locals);
   out.probability = compileValue(in.probability.get(), scope);
   out.frameSize = static_cast<int>(out.slotNames.size());
   return out;

@@ -135,7 +135,9 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
       ++runCount;
     } else {
       int successor = -1;
-      if (!(b & 0x80) && tables_.plainSuccessor[c] >= 0) {
+      if ((b & 0x80) && tables_.guardedOnly[c] && tables_.guardsRefuse(c, bytes + pos)) {
+        // No production's condition can hold: copied as it is.
+      } else if (!(b & 0x80) && tables_.plainSuccessor[c] >= 0) {
         successor = tables_.plainSuccessor[c];
       } else {
         if (!tracking || !tables_.needsLeft[c]) break;
@@ -230,6 +232,7 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
     if (strict.parameterCount != count || context.symbol != nearest ||
         context.parameterCount != nearestCount)
       continue;
+    if (guardRefuses(p, m)) continue;
     double* frame = frames_.of(0, 0, id);
     bindParameters(strict, m, frame);
     bindParameters(context, n, frame);

@@ -72,6 +72,9 @@ bool ProductionChoice::choose(int lsystem, const ModuleString& s, std::size_t at
     // Cheap refusals first: the module's own parameter count, then (with the neighbour known)
     // the last module of the left context. Binding has no effect a refused production sees.
     if (p.strict.size() == 1 && p.strict[0].parameterCount != parameterCount) continue;
+    if (!p.guard.empty() && p.strict[0].parameterCount == parameterCount &&
+        guardRefuses(p, s.at(at)))
+      continue;
     if (!p.left.empty() && neighbours.enabled) {
       if (neighbour == ContextMatcher::kUnknownNeighbour) neighbour = neighbours.before(s, at);
       if (neighbour == BranchIndex::kNone) continue;
@@ -156,6 +159,23 @@ ChoiceTables::ChoiceTables(const Program& program, bool plainSuccessors) {
       if (!p.left.empty()) {
         leftLast[c].set(static_cast<unsigned char>(p.left.back().symbol) & 0x7f);
       }
+    }
+  }
+  for (std::size_t c = 0; c < 128; ++c) {
+    const auto& ids = main.productions.bySymbol[c];
+    if (ids.empty() || c == '%' || c == '?' || c == '$') continue;
+    guardedOnly[c] = std::all_of(ids.begin(), ids.end(), [&](std::uint32_t id) {
+      const Production& p = main.productions.productions[id];
+      return p.strict.size() == 1 && !p.guard.empty();
+    });
+    if (!guardedOnly[c]) continue;
+    for (std::uint32_t id : ids) {
+      const Production& p = main.productions.productions[id];
+      GuardedProduction g;
+      g.parameterCount = p.strict[0].parameterCount;
+      g.tests = std::min(p.guard.size(), g.test.size());
+      std::copy_n(p.guard.begin(), g.tests, g.test.begin());
+      guards[c].push_back(g);
     }
   }
   plainSuccessor.fill(-1);

@@ -135,6 +135,42 @@ TEST(Blocks, LoopInvariantCallsAreComputedBeforeTheLoop) {
   EXPECT_GT(productions[0].frameSize, productions[1].frameSize);  // the slot of cos(x)
 }
 
+// Conditions that compare a parameter of the strict predecessor with a constant are tested
+// before the contexts and the binding (guards.l; guards.expected holds the strings the
+// conditions give): those comparisons, either way round, and only where the whole condition is
+// free of effects, errors and warnings.
+TEST(Conditions, ParameterComparisonsAreTestedFirst) {
+  Diagnostics diagnostics;
+  const Model model = loadModel(fixtures() / "guards.l", std::nullopt, diagnostics);
+  const auto& productions = model.program.lsystems.front().productions.productions;
+  ASSERT_EQ(productions.size(), 8u);
+  const auto tests = [&](std::size_t i) { return productions[i].guard; };
+  ASSERT_EQ(tests(0).size(), 1u);  // x == 0
+  EXPECT_EQ(tests(0)[0].parameter, 0);
+  EXPECT_EQ(tests(0)[0].constant, 0.0);
+  EXPECT_TRUE(tests(0)[0].holds(0.0));
+  EXPECT_FALSE(tests(0)[0].holds(-1.0));
+  EXPECT_FALSE(tests(0)[0].holds(std::nan("")));
+  ASSERT_EQ(tests(1).size(), 2u);  // x != 0 && ONE < x
+  EXPECT_TRUE(tests(1)[0].holds(std::nan("")));
+  EXPECT_FALSE(tests(1)[0].holds(0.0));
+  EXPECT_EQ(tests(1)[1].constant, 1.0);
+  EXPECT_TRUE(tests(1)[1].holds(2.0));  // 1 < x read as x > 1
+  EXPECT_FALSE(tests(1)[1].holds(1.0));
+  EXPECT_FALSE(tests(1)[1].holds(std::nan("")));
+  ASSERT_EQ(tests(2).size(), 1u);  // 0 >= x read as x <= 0
+  EXPECT_TRUE(tests(2)[0].holds(0.0));
+  EXPECT_TRUE(tests(2)[0].holds(-1.0));
+  EXPECT_FALSE(tests(2)[0].holds(1.0));
+  EXPECT_EQ(tests(3).size(), 1u);
+  ASSERT_EQ(tests(4).size(), 1u);  // S(s) < L(y) : y == 0
+  ASSERT_EQ(tests(5).size(), 1u);  // x > 0 compares the context's parameter: not tested first
+  EXPECT_EQ(tests(5)[0].parameter, 0);
+  EXPECT_TRUE(tests(6).empty());   // a division may fail
+  EXPECT_TRUE(tests(7).empty());   // z is no parameter: it may be unassigned, which warns
+  EXPECT_EQ(derive(fixtures() / "guards.l", false).warnings.size(), 1u);
+}
+
 TEST(Stochastic, WeightsAreNormalisedByTheirSum) {
   std::string text = derive(fixtures() / "stochastic.l", false).text;
   double b = static_cast<double>(std::count(text.begin(), text.end(), 'B'));

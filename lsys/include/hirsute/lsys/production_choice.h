@@ -25,6 +25,15 @@ inline const RuleSet& ruleSet(const Lsystem& l, int set) {
   return set == 0 ? l.productions : set == 1 ? l.decomposition : l.homomorphism;
 }
 
+// Whether a module `m` of p's first strict module's parameter count fails p's guard, and so its
+// condition (Production::guard).
+inline bool guardRefuses(const Production& p, ModuleRef m) {
+  for (const ParameterTest& test : p.guard) {
+    if (!test.holds(m.parameter(test.parameter))) return true;
+  }
+  return false;
+}
+
 // One frame of variables for every production of every rule set, kept between uses as cpfg
 // keeps a production's variables (a block may read what the last module left).
 class ProductionFrames {
@@ -110,6 +119,27 @@ struct ChoiceTables {
   // no right context: the loop, which knows the left neighbour, tests them itself as choose()
   // would (parameter counts, the neighbour, the bindings, blocks and conditions, in file order).
   std::array<bool, 128> leftOnly{};
+  // Symbols of the main L-system whose every production is one strict module with a guard
+  // (Production::guard): a module with parameters that every production of its parameter count
+  // refuses by its guard joins the run copied as it is, its neighbour untested. The guards of a
+  // symbol's productions, up to two tests each (fewer tests refuse less, never wrongly):
+  struct GuardedProduction {
+    std::size_t parameterCount = 0;
+    std::size_t tests = 0;
+    std::array<ParameterTest, 2> test{};
+  };
+  std::array<bool, 128> guardedOnly{};
+  std::array<std::vector<GuardedProduction>, 128> guards;
+  bool guardsRefuse(unsigned char symbol, ModuleRef m) const {
+    const std::size_t count = m.parameterCount();
+    for (const GuardedProduction& g : guards[symbol]) {
+      if (g.parameterCount != count) continue;
+      bool refused = false;
+      for (std::size_t i = 0; i < g.tests; ++i) refused |= !g.test[i].holds(m.parameter(g.test[i].parameter));
+      if (!refused) return false;
+    }
+    return true;
+  }
 
   // A stochastic program of one L-system: the productions a module of a symbol and parameter
   // count meets, when every production of the symbol is one strict module without context,

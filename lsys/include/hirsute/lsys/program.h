@@ -37,6 +37,35 @@ struct ModuleArgument {
   std::optional<double> constant;
 };
 
+// A test of one parameter of a production's first strict module against a constant, taken
+// from its condition: `parameter comparison constant`, with the comparison one of Equal …
+// GreaterEqual. See Production::guard.
+struct ParameterTest {
+  std::uint8_t parameter = 0;
+  // The comparison's outcomes: bit 1 when the parameter is less than the constant, bit 2 when
+  // equal, bit 4 when greater, bit 0 when unordered (a NaN); Equal is 0b00100, Less 0b00010.
+  std::uint8_t holdsWhen = 0;
+  double constant = 0;
+
+  bool holds(double value) const {
+    const unsigned outcome = (value < constant) | (value == constant) << 1 | (value > constant) << 2;
+    return (holdsWhen >> outcome) & 1;
+  }
+};
+
+inline std::uint8_t comparisonOutcomes(ast::BinaryOp comparison) {
+  constexpr std::uint8_t kUnordered = 1, kLess = 2, kEqual = 4, kGreater = 16;
+  switch (comparison) {
+    case ast::BinaryOp::Equal: return kEqual;
+    case ast::BinaryOp::NotEqual: return kUnordered | kLess | kGreater;
+    case ast::BinaryOp::Less: return kLess;
+    case ast::BinaryOp::LessEqual: return kLess | kEqual;
+    case ast::BinaryOp::Greater: return kGreater;
+    case ast::BinaryOp::GreaterEqual: return kEqual | kGreater;
+    default: return 0;
+  }
+}
+
 struct Production {
   SourceLocation where;
   std::vector<ModulePattern> left;   // in string order
@@ -56,6 +85,12 @@ struct Production {
   bool callsSubLsystem = false;      // the successor has a `?(id…)` module: its id is checked
   int frameSize = 0;                 // formal parameters and local variables
   std::vector<std::string> slotNames;
+  // Conjuncts of the condition that compare a parameter of the first strict module with a
+  // constant, when the production has no pre-condition block and its condition can neither
+  // have an effect nor fail (no call, array element, division or modulo): a module that fails
+  // one of them is refused before its contexts are searched and its parameters bound, with the
+  // result the condition would give. Empty: nothing to test early.
+  std::vector<ParameterTest> guard;
   bool hasContext() const { return !left.empty() || !right.empty(); }
 };
 
