@@ -126,9 +126,28 @@ void Derivation::scanRun(const ModuleString& s, const Lsystem& l, std::size_t to
     return options_.maxModules > used ? options_.maxModules - used : 0;
   };
   std::size_t left = room();
+  const std::uint8_t* const quiet = tables_.quiet.data();
   while (pos < end) {
     const std::uint8_t b = bytes[pos];
     const auto c = static_cast<unsigned char>(b & 0x7f);
+    if (tracking) {
+      // Most modules of a long string with left contexts are copied as they are, whether or
+      // not their symbol has productions: one table, the neighbour tracked without branches
+      // where the compiler can.
+      const unsigned neighbour = last != BranchIndex::kNone ? bytes[last] & 0x7fu : 0u;
+      if (quiet[c * 128u + neighbour]) [[likely]] {
+        runFrom = runCount ? runFrom : pos;
+        ++runCount;
+        LeftNeighbours::pass(pos, kinds[c], last, depth, open);
+        pos += (b & 0x80) ? 3 + 4 * static_cast<std::size_t>(bytes[pos + 1]) : 1;
+        if (runCount > left) {
+          next_.appendRange(s, runFrom, pos, runCount);
+          runCount = 0;
+          checkSize(next_, l.axiomWhere);
+        }
+        continue;
+      }
+    }
     // Most modules of a long string are copied as they are: that path falls through.
     if (copied[c]) [[likely]] {
       if (runCount == 0) runFrom = pos;

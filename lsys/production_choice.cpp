@@ -161,6 +161,12 @@ ChoiceTables::ChoiceTables(const Program& program, bool plainSuccessors) {
       }
     }
   }
+  quiet.assign(128 * 128, 0);
+  for (std::size_t c = 0; c < 128; ++c) {
+    const bool copied = copiedAsIs.front()[c];
+    for (std::size_t n = 0; n < 128; ++n)
+      quiet[c * 128 + n] = copied || (needsLeft[c] && (n == 0 || !leftLast[c].test(n)));
+  }
   for (std::size_t c = 0; c < 128; ++c) {
     const auto& ids = main.productions.bySymbol[c];
     if (ids.empty() || c == '%' || c == '?' || c == '$') continue;

@@ -119,6 +119,10 @@ struct ChoiceTables {
   // no right context: the loop, which knows the left neighbour, tests them itself as choose()
   // would (parameter counts, the neighbour, the bindings, blocks and conditions, in file order).
   std::array<bool, 128> leftOnly{};
+  // Of the main L-system, by symbol * 128 + its left neighbour's symbol (0 for no neighbour):
+  // whether a module is copied as it is whatever its parameters, because no production starts
+  // with its symbol or because every one needs a left context that the neighbour cannot end.
+  std::vector<std::uint8_t> quiet;
   // Symbols of the main L-system whose every production is one strict module with a guard
   // (Production::guard): a module with parameters that every production of its parameter count
   // refuses by its guard joins the run copied as it is, its neighbour untested. The guards of a
