@@ -271,6 +271,7 @@ void Derivation::scanDrawn(const ModuleString& s, const Lsystem& l, std::size_t 
     return options_.maxModules > used ? options_.maxModules - used : 0;
   };
   std::size_t left = room();
+  std::uint64_t undrawn = 0;
   while (pos < to) {
     const std::uint8_t b = bytes[pos];
     const auto c = static_cast<unsigned char>(b & 0x7f);
@@ -284,12 +285,16 @@ void Derivation::scanDrawn(const ModuleString& s, const Lsystem& l, std::size_t 
            tables_.drawnChoices[static_cast<std::size_t>(table)])
         if (d.parameterCount == count) choice = &d;
     }
-    // cpfg draws one number for every module, whether a production applies or not.
-    const double draw = choice_.draw();
+    // cpfg draws one number for every module, whether a production applies or not: the draws
+    // of copied modules are counted and skipped in one go before the next number read.
     if (choice == nullptr) {
+      ++undrawn;
       if (runCount == 0) runFrom = pos;
       ++runCount;
     } else {
+      choice_.skipDraws(undrawn);
+      undrawn = 0;
+      const double draw = choice_.draw();
       if (runCount) {
         next_.appendRange(s, runFrom, pos, runCount);
         runCount = 0;
@@ -324,6 +329,7 @@ void Derivation::scanDrawn(const ModuleString& s, const Lsystem& l, std::size_t 
       checkSize(next_, l.axiomWhere);
     }
   }
+  choice_.skipDraws(undrawn);
   position = pos;
   runStart = runFrom;
   runModules = runCount;

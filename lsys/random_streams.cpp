@@ -17,6 +17,16 @@ Rand48 Rand48::seed48(std::uint16_t s0, std::uint16_t s1, std::uint16_t s2) {
   return Rand48(s0, s1, s2);
 }
 
+void Rand48::skipLong(std::uint64_t n) {
+  // Squaring the step: (m, c) applied twice is (m m, m c + c).
+  std::uint64_t multiplier = kMultiplier, increment = kIncrement;
+  for (; n != 0; n >>= 1) {
+    if (n & 1) state_ = (multiplier * state_ + increment) & kStateMask;
+    increment = (multiplier * increment + increment) & kStateMask;
+    multiplier = (multiplier * multiplier) & kStateMask;
+  }
+}
+
 std::array<std::uint16_t, 3> Rand48::state() const {
   return {static_cast<std::uint16_t>(state_), static_cast<std::uint16_t>(state_ >> 16),
           static_cast<std::uint16_t>(state_ >> 32)};

@@ -235,3 +235,22 @@ TEST(BlockRandomTest, BiranCountsWholeTrials) {
 
 }  // namespace
 }  // namespace hirsute
+
+namespace hirsute {
+namespace {
+
+// Skipping n draws leaves the state where n calls of next() leave it, for the counts the
+// table serves directly, its edge and the counts skipped by squaring.
+TEST(Rand48Skip, LandsWhereTheDrawsWould) {
+  for (std::uint64_t n : {0ull, 1ull, 2ull, 7ull, 63ull, 64ull, 65ull, 1000ull, 123457ull}) {
+    Rand48 drawn = Rand48::seed48(0x330E, 2718, 0);
+    Rand48 skipped = drawn;
+    for (std::uint64_t i = 0; i < n; ++i) drawn.next();
+    skipped.skip(n);
+    EXPECT_EQ(skipped.state(), drawn.state()) << n << " draws";
+    EXPECT_EQ(skipped.next(), drawn.next()) << "the draw after " << n;
+  }
+}
+
+}  // namespace
+}  // namespace hirsute

@@ -69,6 +69,8 @@ class ProductionChoice {
   // The stochastic stream's next number, drawn for a module whose choice the rewriting loop
   // makes itself (ChoiceTables::drawnTable), as choose() would have drawn it.
   double draw() { return stream_.next(); }
+  // n draws whose numbers nobody reads (modules no production can rewrite), at the cost of one.
+  void skipDraws(std::uint64_t n) { stream_.skip(n); }
   // The production of `ids` (one strict module each, without context, block or condition, of
   // the parameter count of `m`) that choose() takes for `m` with `draw`: each bound to `m` and
   // weighed in file order, as choose() binds and weighs them.

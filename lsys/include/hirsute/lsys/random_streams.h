@@ -7,9 +7,27 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace hirsute {
+
+// n steps of the generator below as one, for n < kCount:
+// X_n = (multiplier[n] X + increment[n]) mod 2^48.
+struct Rand48Skips {
+  static constexpr std::size_t kCount = 64;
+  std::array<std::uint64_t, kCount> multiplier{};
+  std::array<std::uint64_t, kCount> increment{};
+};
+constexpr Rand48Skips rand48Skips(std::uint64_t a, std::uint64_t c, std::uint64_t mask) {
+  Rand48Skips table;
+  table.multiplier[0] = 1;
+  for (std::size_t n = 1; n < Rand48Skips::kCount; ++n) {
+    table.multiplier[n] = (a * table.multiplier[n - 1]) & mask;
+    table.increment[n] = (a * table.increment[n - 1] + c) & mask;
+  }
+  return table;
+}
 
 // POSIX 48-bit linear congruential generator, identical to glibc's erand48:
 // X' = (0x5DEECE66D·X + 0xB) mod 2^48, result X'/2^48.
@@ -18,6 +36,8 @@ class Rand48 {
   static constexpr std::uint64_t kMultiplier = 0x5DEECE66Dull;
   static constexpr std::uint64_t kIncrement = 0xB;
   static constexpr std::uint64_t kStateMask = (std::uint64_t{1} << 48) - 1;
+  static constexpr std::size_t kDirectSkips = Rand48Skips::kCount;
+  static constexpr Rand48Skips kSkips = rand48Skips(kMultiplier, kIncrement, kStateMask);
 
   // The state as erand48's xsubi: x0 holds the low 16 bits, x2 the high ones.
   Rand48(std::uint16_t x0, std::uint16_t x1, std::uint16_t x2);
@@ -36,9 +56,21 @@ class Rand48 {
     return static_cast<double>(state_) * 0x1p-48;
   }
 
+  // Advances the state by `n` draws whose values nobody reads, as n calls of next() would: one
+  // multiplication for n up to kDirectSkips, one for each set bit of n beyond.
+  void skip(std::uint64_t n) {
+    if (n < kDirectSkips) [[likely]] {
+      state_ = (kSkips.multiplier[n] * state_ + kSkips.increment[n]) & kStateMask;
+      return;
+    }
+    skipLong(n);
+  }
+
   std::array<std::uint16_t, 3> state() const;
 
  private:
+  void skipLong(std::uint64_t n);
+
   std::uint64_t state_;  // 48 significant bits
 };
 
