@@ -4,6 +4,7 @@
 // one (drawing_loader.h).
 #pragma once
 
+#include <cctype>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -19,7 +20,7 @@ struct RenderOptions {
   std::string output;
   std::string size = "800x600";
   int samples = 4;
-  // --trace: the path tracer instead of GL (trace_run.cpp, in the program itself).
+  // --trace: the path tracer instead of GL (trace_run.cpp, in the trace module).
   bool trace = false;
   int traceSamples = 64;
   double traceSeconds = 0;
@@ -48,10 +49,15 @@ inline glm::ivec2 imageSize(const std::string& size) {
 
 // In the drawing module.
 int runRender(const RenderOptions& options);
-// In the program: the path tracer needs no GL.
+// In the trace module: the path tracer needs no GL.
 int runTrace(const RenderOptions& options);
 // Whether `render -o PATH` asks for an OpenEXR file (its name ends in .exr, any case).
-bool hasExrExtension(const std::string& path);
+inline bool hasExrExtension(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string ext = path.substr(path.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr";
+}
 int runView(const ViewOptions& options);
 
 }  // namespace hirsute::cli

@@ -11,13 +11,6 @@
 
 namespace hirsute::cli {
 
-bool hasExrExtension(const std::string& path) {
-  if (path.size() < 4) return false;
-  std::string ext = path.substr(path.size() - 4);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".exr";
-}
-
 void registerRenderCommand(CLI::App& app, Action& action) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* render = app.add_subcommand(
@@ -69,7 +62,7 @@ void registerRenderCommand(CLI::App& app, Action& action) {
       throw CLI::ValidationError("--bits", "an OpenEXR file holds half floats; --bits is for PNGs");
     }
     if (options->trace) {
-      action = [options] { return runTrace(*options); };
+      action = [options] { return runInTraceModule("hirsuteRunTrace", options.get()); };
       return;
     }
     action = [options] { return runInDrawingModule("hirsuteRunRender", options.get()); };

@@ -546,10 +546,6 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
   return data;
 }
 
-bool isMeshSequence(const fs::path& file) {
-  return file.filename().string().find('#') != std::string::npos;
-}
-
 SurfaceMeshData loadMeshSequence(const fs::path& pattern, const fs::path& folder,
                                  std::size_t maxTriangles, Diagnostics& diagnostics) {
   const std::string name = pattern.filename().string();
@@ -620,3 +616,10 @@ SurfaceMeshData loadMeshSequence(const fs::path& pattern, const fs::path& folder
 }
 
 }  // namespace hirsute
+
+extern "C" __attribute__((visibility("default"))) const hirsute::MeshFileFunctions*
+hirsuteMeshFileFunctions() {
+  static const hirsute::MeshFileFunctions functions{&hirsute::isMeshFile, &hirsute::loadMeshFile,
+                                                    &hirsute::loadMeshSequence};
+  return &functions;
+}

@@ -463,7 +463,8 @@ TEST(OutputFile, DevStdoutWritesToTheProcessOutput) {
 }
 
 // The program links no GL library: commands that draw nothing start without OSMesa, libGL, GLFW,
-// X11 or LLVM, which only the drawing module (libhirsute-drawing.so) loads.
+// X11 or LLVM, which only the drawing module (libhirsute-drawing.so) loads; nor Embree, TBB and
+// OpenEXR (the trace module's) or Assimp (the mesh module's).
 TEST(DrawingModule, ProgramLinksNoGlLibrary) {
   const RunResult run = [] {
     // ldd prints the libraries the dynamic loader would map.
@@ -477,7 +478,8 @@ TEST(DrawingModule, ProgramLinksNoGlLibrary) {
   }();
   ASSERT_EQ(run.exitCode, 0);
   ASSERT_NE(run.out.find("libc.so"), std::string::npos) << run.out;
-  for (const char* library : {"libOSMesa", "libGL", "libglfw", "libX11", "libLLVM"})
+  for (const char* library : {"libOSMesa", "libGL", "libglfw", "libX11", "libLLVM", "libembree",
+                              "libtbb", "libOpenEXR", "libassimp"})
     EXPECT_EQ(run.out.find(library), std::string::npos) << library << " in\n" << run.out;
 }
 
@@ -489,12 +491,48 @@ TEST(DrawingModule, MissingModuleIsAClearError) {
                                     "-o", (folder.path() / "herb.png").string()});
   unsetenv("HIRSUTE_DRAWING_MODULE");
   EXPECT_EQ(run.exitCode, 1) << run.err;
-  EXPECT_NE(run.err.find("cannot load the drawing library"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("cannot load " + (folder.path() / "libnothing.so").string()),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("need the drawing library"), std::string::npos) << run.err;
   EXPECT_EQ(folder.entries(), std::vector<std::string>{});
   // Commands that draw nothing do not need it.
   setenv("HIRSUTE_DRAWING_MODULE", (folder.path() / "libnothing.so").c_str(), 1);
   const RunResult derive = runHirsute({"derive", (herb / "herb.l").string()});
   unsetenv("HIRSUTE_DRAWING_MODULE");
+  EXPECT_EQ(derive.exitCode, 0) << derive.err;
+}
+
+// The trace module and the mesh module likewise: a clear message and exit code 1 when missing,
+// not needed by the commands that do not use them.
+TEST(TraceModule, MissingModuleIsAClearError) {
+  const fs::path herb = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "herb";
+  TemporaryFolder folder;
+  setenv("HIRSUTE_TRACE_MODULE", (folder.path() / "libnothing.so").c_str(), 1);
+  const RunResult run =
+      runHirsute({"render", "--trace", (herb / "herb.l").string(), (herb / "herb.v").string(),
+                  "--size", "8x6", "-o", (folder.path() / "herb.png").string()});
+  const RunResult gl = runHirsute({"render", (herb / "herb.l").string(), (herb / "herb.v").string(),
+                                   "--size", "8x6", "-o", (folder.path() / "gl.png").string()});
+  unsetenv("HIRSUTE_TRACE_MODULE");
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("render --trace needs the trace library"), std::string::npos) << run.err;
+  EXPECT_EQ(gl.exitCode, 0) << gl.err;
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"gl.png"});
+}
+
+TEST(MeshModule, MissingModuleIsAClearError) {
+  const fs::path leaf = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "mesh-leaf";
+  TemporaryFolder folder;
+  setenv("HIRSUTE_MESHES_MODULE", (folder.path() / "libnothing.so").c_str(), 1);
+  const RunResult run =
+      runHirsute({"export", (leaf / "leaf.l").string(), (leaf / "leaf.v").string(), "--obj",
+                  (folder.path() / "leaf.obj").string()});
+  const RunResult derive = runHirsute({"derive", (leaf / "leaf.l").string()});
+  unsetenv("HIRSUTE_MESHES_MODULE");
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("need the mesh library and Assimp"), std::string::npos) << run.err;
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{});
   EXPECT_EQ(derive.exitCode, 0) << derive.err;
 }
 

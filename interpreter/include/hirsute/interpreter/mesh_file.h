@@ -75,7 +75,9 @@ SurfaceMeshData loadMeshFile(const std::filesystem::path& file, const std::files
 
 // Whether a name is a mesh sequence's: a run of '#' in its file name stands for the frame number
 // (`body.####.obj`: body.0001.obj, body.0002.obj, …).
-bool isMeshSequence(const std::filesystem::path& file);
+inline bool isMeshSequence(const std::filesystem::path& file) {
+  return file.filename().string().find('#') != std::string::npos;
+}
 
 // A mesh sequence: its frames are the files whose numbers, written with at least as many digits
 // as the run of '#', are consecutive from the lowest there is; every frame has the first one's
@@ -85,5 +87,18 @@ bool isMeshSequence(const std::filesystem::path& file);
 SurfaceMeshData loadMeshSequence(const std::filesystem::path& pattern,
                                  const std::filesystem::path& folder, std::size_t maxTriangles,
                                  Diagnostics& diagnostics);
+
+// The mesh module (libhirsute-meshes.so, with Assimp and CGAL; loadable_module.h) defines the
+// three functions above; the program's own definitions load it on first use and call these.
+// Its entry point hirsuteMeshFileFunctions returns them.
+struct MeshFileFunctions {
+  bool (*isMeshFile)(const std::filesystem::path& file);
+  SurfaceMeshData (*loadMeshFile)(const std::filesystem::path& file,
+                                  const std::filesystem::path& folder, std::size_t maxTriangles,
+                                  Diagnostics& diagnostics);
+  SurfaceMeshData (*loadMeshSequence)(const std::filesystem::path& pattern,
+                                      const std::filesystem::path& folder,
+                                      std::size_t maxTriangles, Diagnostics& diagnostics);
+};
 
 }  // namespace hirsute
