@@ -29,14 +29,16 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "hirsute/hairs/dynamics/collision_grid.h"
+#include "hirsute/hairs/dynamics/box_tree.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
 #include "hirsute/hairs/dynamics/stem_vane.h"
 #include "hirsute/hairs/dynamics/wind_field.h"
+#include "hirsute/hairs/dynamics/worker_pool.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::dynamics {
@@ -67,6 +69,10 @@ struct SimulationParameters {
   // feathers, and a vane and another feather's stem, are kept apart as stems are, and the final
   // check holds them to it. Off: the vanes follow their stems' frames and may pass through.
   bool vaneCollisions = false;
+  // Threads of the step's parallel loops (the stems' dynamics and wind, the broad phase's
+  // searches, the CCD of the candidates, the final checks); 0: one per core. The results are the
+  // same bit for bit whatever the number.
+  int threads = 0;
 };
 
 // What the simulation did, summed over all steps since it was built.
@@ -107,9 +113,10 @@ struct StepFailure : std::runtime_error {
 // impulses keep it off them where they can (`calamiLeft` counts where they did not).
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
                               double minimumDistance);
-// The same searching in `grid`, whose memory it keeps for the next search.
+// The same searching in `tree`, refitted from the last search where it can be (and its pool's
+// threads testing the pairs).
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
-                              double minimumDistance, CollisionGrid& grid);
+                              double minimumDistance, BoxTree& tree);
 
 class FeatherCoatSimulation {
  public:
@@ -178,7 +185,10 @@ class FeatherCoatSimulation {
   std::vector<std::vector<AirSample>> air_;
   std::vector<StemFrame> anchors_;
   std::string failure_;  // why the last advance() failed, for the error of a step
-  CollisionGrid grid_;   // the broad phase's working memory, kept from step to step
+  std::unique_ptr<WorkerPool> pool_;  // on the heap: the trees point to it
+  // The broad phase of the steps' collisions and of the final checks: each refits its trees
+  // to the next search of the same primitives.
+  BoxTree stepTree_, checkTree_, vaneTree_;
   VaneOverlaps vaneOverlaps_;
   std::size_t vaneOverlapsAtStart_ = 0;
   SimulationCounters counters_;

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/hairs/dynamics/collision_grid.h"
+#include "hirsute/hairs/dynamics/box_tree.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
 
 namespace hirsute::dynamics {
@@ -79,10 +79,11 @@ class VaneOverlaps {
 // not tested against each other, nor against the body.
 std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double minimumDistance,
                                    const VaneOverlaps* skip = nullptr);
-// The same searching in `grid`, whose memory it keeps for the next search; each pair of
+// The same searching in `tree` (refitted from its last search where it can be; the pairs tested
+// on its pool's threads); each pair of
 // segments found (their segmentIndex in `numbering`) is added to `found` where one is given.
 std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double minimumDistance,
-                                   CollisionGrid& grid, const VaneOverlaps* skip,
+                                   BoxTree& tree, const VaneOverlaps* skip,
                                    VaneOverlaps* found = nullptr);
 
 // The distance between a segment and a triangle, and between two triangles (closed).
