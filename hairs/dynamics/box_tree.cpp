@@ -191,4 +191,50 @@ std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
   return pairs;
 }
 
+std::vector<std::pair<int, int>> BoxTree::coherentPairs(
+    const std::vector<Box>& boxes, const BoxGroups& groups, double slack, std::uint64_t version,
+    const std::function<bool(int, int)>& lasting, const std::function<bool(int, int)>& wanted) {
+  bool inside = keptValid_ && version == keptVersion_ && groups.of == keptGroups_ &&
+                groups.pairsWith == keptPairsWith_ && groups.moving == keptMoving_ &&
+                grown_.size() == boxes.size();
+  // (A box with a NaN overlaps nothing, wherever it is.)
+  for (std::size_t i = 0; inside && i < boxes.size(); ++i)
+    inside = !holdsPoints(boxes[i]) || ((boxes[i].min.array() >= grown_[i].min.array()).all() &&
+                                        (boxes[i].max.array() <= grown_[i].max.array()).all());
+  if (!inside) {
+    grown_ = boxes;
+    for (Box& box : grown_) {
+      box.min.array() -= slack;
+      box.max.array() += slack;
+    }
+    kept_ = overlappingPairs(grown_, groups, lasting);
+    keptGroups_ = groups.of;
+    keptPairsWith_ = groups.pairsWith;
+    keptMoving_ = groups.moving;
+    keptVersion_ = version;
+    keptValid_ = true;
+    ++listSearches_;
+  } else {
+    ++listFilters_;
+  }
+  // The kept list is sorted; its chunks filtered one after the other stay so.
+  constexpr std::size_t kGrain = 4096;
+  std::vector<std::vector<std::pair<int, int>>> chunks((kept_.size() + kGrain - 1) / kGrain);
+  forEach(pool_, kept_.size(), kGrain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; b += kGrain) {
+      auto& out = chunks[b / kGrain];
+      for (std::size_t k = b; k < std::min(end, b + kGrain); ++k) {
+        const auto [i, j] = kept_[k];
+        if (boxes[i].overlaps(boxes[j]) && wanted(i, j)) out.emplace_back(i, j);
+      }
+    }
+  });
+  std::size_t total = 0;
+  for (const auto& chunk : chunks) total += chunk.size();
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(total);
+  for (const auto& chunk : chunks) pairs.insert(pairs.end(), chunk.begin(), chunk.end());
+  return pairs;
+}
+
 }  // namespace hirsute::dynamics

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -656,7 +657,10 @@ void FeatherCoatSimulation::step(double dt, const std::vector<StemFrame>& anchor
 }
 
 std::size_t FeatherCoatSimulation::releaseVaneOverlaps() {
-  return vaneOverlaps_.empty() ? 0 : vaneOverlaps_.release(stems_, parameters_.minimumSeparation);
+  if (vaneOverlaps_.empty()) return 0;
+  const std::size_t released = vaneOverlaps_.release(stems_, parameters_.minimumSeparation);
+  vaneOverlapsVersion_ += released > 0;
+  return released;
 }
 
 void FeatherCoatSimulation::advanceOrHalve(double h, const Kinematics& from, const Kinematics& to,
@@ -696,6 +700,50 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
                               &vaneOverlaps_);
   const BoxGroups groups = primitives.groups();
   StepState state;
+  // The candidates of a search over `searched`, the boxes grown by `margin`, for which `wanted`
+  // holds, from the list the tree keeps (BoxTree::coherentPairs). The list holds the pairs tested
+  // (Primitives::wanted, which changes only with the vanes' pairs left out:
+  // vaneOverlapsVersion_) whose boxes grown by the slack overlap, less those that a plane keeps
+  // farther apart than the thickness and twice the slack (separatedOverStep) where the list is
+  // made. While every vertex stays within the slack of where it was then (in every coordinate;
+  // else the list is made anew), such a pair's projections on that plane's normal come no nearer
+  // than the thickness: no search may find it, the repulsion (which acts within the thickness)
+  // nor the CCD (within the separation, at most the thickness). The layered vanes of a coat,
+  // whose boxes overlap all round, are left out of the list so, once per list instead of once a
+  // search.
+  const double slack = parameters_.candidateSlack;
+  CcdOptions listReach;
+  listReach.minimumSeparation =
+      std::max(parameters_.thickness, parameters_.minimumSeparation) + 2 * slack;
+  const auto candidatesOf = [&](const StepState& searched, double margin,
+                                const std::function<bool(int, int)>& wanted) {
+    const std::size_t vertices = searched.start.size();
+    bool within = listLow_.size() == vertices;
+    for (std::size_t v = 0; within && v < vertices; ++v)
+      for (const Vector3d* x : {&searched.start[v], &searched.end[v]})
+        within = within && (x->array() >= listLow_[v].array() - slack).all() &&
+                 (x->array() <= listHigh_[v].array() + slack).all();
+    listEpoch_ += !within;
+    const std::uint64_t searches = stepTree_.listSearches();
+    auto pairs = stepTree_.coherentPairs(
+        primitives.boxes(searched, margin), groups, slack, listEpoch_ + vaneOverlapsVersion_,
+        [&](int a, int b) {
+          return primitives.wanted(a, b) &&
+                 !separatedOverStep(primitives.motion(a, b, searched),
+                                    isTriangle(primitives.list[b].kind), listReach);
+        },
+        wanted);
+    if (stepTree_.listSearches() != searches) {
+      // The list was made from these positions: the slack is counted from here.
+      listLow_.resize(vertices);
+      listHigh_.resize(vertices);
+      for (std::size_t v = 0; v < vertices; ++v) {
+        listLow_[v] = searched.start[v].cwiseMin(searched.end[v]);
+        listHigh_[v] = searched.start[v].cwiseMax(searched.end[v]);
+      }
+    }
+    return pairs;
+  };
   // Where the vanes' corners would be at the end of the step: from the frames of the stems'
   // candidate positions.
   std::vector<std::vector<std::array<Vector3d, 2>>> cornersAtEnd(stems_.size());
@@ -749,9 +797,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   const double thickness = parameters_.thickness;
   {
     const StepState still{state.start, state.start, state.inverseMass, state.owner, state.corners};
-    const auto pairs =
-        stepTree_.overlappingPairs(primitives.boxes(still, thickness / 2), groups,
-                                   [&](int a, int b) { return primitives.wanted(a, b); });
+    const auto pairs = candidatesOf(still, thickness / 2, [](int, int) { return true; });
     // The pairs' closest points on the threads; the impulses, which move what later pairs
     // see, in the pairs' order.
     std::vector<Contact> nearest(pairs.size());
@@ -781,10 +827,9 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   zoneCcd.minimumSeparation = nearestAllowed();
   auto findContacts = [&](const CcdOptions& options, bool calami) {
     std::vector<Contact> contacts;
-    const auto pairs = stepTree_.overlappingPairs(
-        primitives.boxes(state, options.minimumSeparation), groups, [&](int a, int b) {
-          return primitives.wanted(a, b) && (calami || !primitives.holdsCalamus(a, b));
-        });
+    const auto pairs = candidatesOf(state, options.minimumSeparation, [&](int a, int b) {
+      return calami || !primitives.holdsCalamus(a, b);
+    });
     counters_.candidates += pairs.size();
     // The CCD of each pair on the threads, into its own slot; the contacts in the pairs' order.
     std::vector<CcdResult> results(pairs.size());
@@ -792,8 +837,10 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       for (std::size_t k = begin; k < end; ++k) {
         const auto [a, b] = pairs[k];
         const MovingPrimitives m = primitives.motion(a, b, state);
-        results[k] = isTriangle(primitives.list[b].kind) ? vertexFaceCcd(m, options)
-                                                         : edgeEdgeCcd(m, options);
+        // Pairs a plane keeps apart over the step first: the CCD would find no contact.
+        const bool vertexFace = isTriangle(primitives.list[b].kind);
+        if (separatedOverStep(m, vertexFace, options)) continue;
+        results[k] = vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
       }
     });
     for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -928,16 +975,16 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   const auto calamusCrossings = [&] {
     CcdOptions touching;  // no separation: the pair meets (or passes through)
     touching.minimumSeparation = 0;
-    const auto pairs = stepTree_.overlappingPairs(
-        primitives.boxes(state, 0), groups,
-        [&](int a, int b) { return primitives.wanted(a, b) && primitives.holdsCalamus(a, b); });
+    const auto pairs =
+        candidatesOf(state, 0, [&](int a, int b) { return primitives.holdsCalamus(a, b); });
     std::vector<CcdResult> results(pairs.size());
     forEach(pool_.get(), pairs.size(), 256, [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const auto [a, b] = pairs[k];
         const MovingPrimitives m = primitives.motion(a, b, state);
-        results[k] = isTriangle(primitives.list[b].kind) ? vertexFaceCcd(m, touching)
-                                                         : edgeEdgeCcd(m, touching);
+        const bool vertexFace = isTriangle(primitives.list[b].kind);
+        if (separatedOverStep(m, vertexFace, touching)) continue;
+        results[k] = vertexFace ? vertexFaceCcd(m, touching) : edgeEdgeCcd(m, touching);
       }
     });
     std::vector<Contact> crossings;

@@ -73,6 +73,39 @@ TEST(BoxTree, FindsEveryOverlappingPairOfGroupsThatPairOnceSortedAfterMovesAndOn
   EXPECT_EQ(alone.refits(), 2u);
 }
 
+// The kept list, filtered while the boxes stay within the slack and made anew when one leaves
+// it or the version changes, finds what a search finds.
+TEST(BoxTree, TheKeptListFindsWhatASearchFinds) {
+  std::mt19937 random(21);
+  std::vector<Box> boxes = randomBoxes(random, 1200);
+  BoxGroups groups;
+  for (int i = 0; i < static_cast<int>(boxes.size()); ++i) groups.of.push_back(i % 3);
+  groups.pairsWith = {0b011, 0b101, 0b010};
+  groups.moving = 0b011;
+  const auto wanted = [](int a, int b) { return (a * b) % 7 != 3; };
+  WorkerPool pool(2);
+  BoxTree tree(&pool);
+  std::normal_distribution<double> move(0, 0.001);
+  for (int search = 0; search < 12; ++search) {
+    const int version = search / 5;  // what `lasting` holds changes with it
+    const auto lasting = [version](int a, int b) { return (a + b + version) % 11 != 0; };
+    const auto both = [&](int a, int b) { return lasting(a, b) && wanted(a, b); };
+    EXPECT_EQ(tree.coherentPairs(boxes, groups, 0.01, version, lasting, wanted),
+              everyPair(boxes, groups, both))
+        << "search " << search;
+    for (Box& box : boxes) {
+      const Vector3d by(move(random), move(random), move(random));
+      box.min += by;
+      box.max += by;
+    }
+  }
+  // Made again when a box left its slack (the moves, 0.001 a search in each coordinate, add up
+  // to 0.01 for some of the boxes) and when the version changed, filtered the other times.
+  EXPECT_GT(tree.listSearches(), 2u);
+  EXPECT_GT(tree.listFilters(), 2u);
+  EXPECT_EQ(tree.listSearches() + tree.listFilters(), 12u);
+}
+
 TEST(BoxTree, TwoGroupsFindWhatTheGridFinds) {
   std::mt19937 random(5);
   const std::vector<Box> boxes = randomBoxes(random, 1200);

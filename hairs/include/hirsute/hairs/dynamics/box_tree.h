@@ -37,6 +37,23 @@ class BoxTree {
                                                     const std::vector<char>& moving,
                                                     const std::function<bool(int, int)>& wanted);
 
+  // The pairs overlappingPairs(boxes, groups, ...) finds for which both `lasting` and `wanted`
+  // hold, from a list kept from an earlier search (Verlet's neighbour lists, from molecular
+  // dynamics): that search took every box grown by `slack`, so while each box stays inside its
+  // grown box of then, every pair that overlaps now was found then, and the list need only be
+  // filtered. It is searched anew when a box has left its grown box, when the groups are not
+  // those of then, or when `version` changed (`lasting` may change only with `version`; `wanted`
+  // may differ from call to call). The same pairs as a search, for the cost of filtering a list
+  // of somewhat more: a simulation searches several times a step, its primitives moving little.
+  std::vector<std::pair<int, int>> coherentPairs(const std::vector<Box>& boxes,
+                                                 const BoxGroups& groups, double slack,
+                                                 std::uint64_t version,
+                                                 const std::function<bool(int, int)>& lasting,
+                                                 const std::function<bool(int, int)>& wanted);
+  // How many times coherentPairs searched its list anew, and how many times it filtered it.
+  std::uint64_t listSearches() const { return listSearches_; }
+  std::uint64_t listFilters() const { return listFilters_; }
+
   WorkerPool* pool() const { return pool_; }
   std::uint64_t builds() const { return builds_; }
   std::uint64_t refits() const { return refits_; }
@@ -65,6 +82,16 @@ class BoxTree {
   int sinceBuild_ = 0;
   std::uint64_t builds_ = 0, refits_ = 0;
   BoxGroups twoGroups_;
+  // coherentPairs' list: the boxes grown by the slack, the pairs of them, and what they were
+  // found for.
+  std::vector<Box> grown_;
+  std::vector<std::pair<int, int>> kept_;
+  std::vector<std::uint8_t> keptGroups_;
+  std::array<std::uint8_t, 8> keptPairsWith_{};
+  std::uint8_t keptMoving_ = 0;
+  std::uint64_t keptVersion_ = 0;
+  bool keptValid_ = false;
+  std::uint64_t listSearches_ = 0, listFilters_ = 0;
 };
 
 }  // namespace hirsute::dynamics

@@ -73,6 +73,11 @@ struct SimulationParameters {
   // searches, the CCD of the candidates, the final checks); 0: one per core. The results are the
   // same bit for bit whatever the number.
   int threads = 0;
+  // The step's searches for candidates filter a list of the pairs whose boxes, grown by this
+  // much, overlap, until a primitive moves farther than this from where the list was made
+  // (BoxTree::coherentPairs): more makes longer lists, made less often. The pairs found do not
+  // depend on it.
+  double candidateSlack = 0.01;
 };
 
 // What the simulation did, summed over all steps since it was built.
@@ -190,6 +195,11 @@ class FeatherCoatSimulation {
   // to the next search of the same primitives.
   BoxTree stepTree_, checkTree_, vaneTree_;
   VaneOverlaps vaneOverlaps_;
+  std::uint64_t vaneOverlapsVersion_ = 0;  // counts the releases: which pairs are tested
+  // Where each vertex of the steps' collisions was (its box over the step searched) when the
+  // tree's list of candidates was made, and the lists made for vertices that moved away.
+  std::vector<Eigen::Vector3d> listLow_, listHigh_;
+  std::uint64_t listEpoch_ = 0;
   std::size_t vaneOverlapsAtStart_ = 0;
   SimulationCounters counters_;
   double time_ = 0;
