@@ -193,20 +193,38 @@ std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
 
 std::vector<std::pair<int, int>> BoxTree::coherentPairs(
     const std::vector<Box>& boxes, const BoxGroups& groups, double slack, std::uint64_t version,
-    const std::function<bool(int, int)>& lasting, const std::function<bool(int, int)>& wanted) {
+    const std::function<bool(int, int)>& lasting, const std::function<bool(int, int)>& wanted,
+    const std::vector<Box>* vertices) {
   bool inside = keptValid_ && version == keptVersion_ && groups.of == keptGroups_ &&
                 groups.pairsWith == keptPairsWith_ && groups.moving == keptMoving_ &&
                 grown_.size() == boxes.size();
+  const auto within = [](const Box& box, const Box& grown) {
+    return (box.min.array() >= grown.min.array()).all() &&
+           (box.max.array() <= grown.max.array()).all();
+  };
   // (A box with a NaN overlaps nothing, wherever it is.)
   for (std::size_t i = 0; inside && i < boxes.size(); ++i)
-    inside = !holdsPoints(boxes[i]) || ((boxes[i].min.array() >= grown_[i].min.array()).all() &&
-                                        (boxes[i].max.array() <= grown_[i].max.array()).all());
+    inside = !holdsPoints(boxes[i]) || within(boxes[i], grown_[i]);
+  if (vertices != nullptr) {
+    inside = inside && vertices->size() == grownVertices_.size();
+    for (std::size_t v = 0; inside && v < vertices->size(); ++v)
+      inside = within((*vertices)[v], grownVertices_[v]);
+  } else {
+    inside = inside && grownVertices_.empty();
+  }
   if (!inside) {
-    grown_ = boxes;
-    for (Box& box : grown_) {
-      box.min.array() -= slack;
-      box.max.array() += slack;
-    }
+    const auto grow = [slack](std::vector<Box>& grown, const std::vector<Box>& from) {
+      grown = from;
+      for (Box& box : grown) {
+        box.min.array() -= slack;
+        box.max.array() += slack;
+      }
+    };
+    grow(grown_, boxes);
+    if (vertices != nullptr)
+      grow(grownVertices_, *vertices);
+    else
+      grownVertices_.clear();
     kept_ = overlappingPairs(grown_, groups, lasting);
     keptGroups_ = groups.of;
     keptPairsWith_ = groups.pairsWith;

@@ -513,7 +513,7 @@ std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyM
 }
 
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
-                              double minimumDistance, BoxTree& tree) {
+                              double minimumDistance, BoxTree& tree, double slack) {
   // Stem segments as (stem, segment) boxes, then body triangles.
   struct Item {
     int stem, segment, triangle;
@@ -533,13 +533,20 @@ std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyM
   }
   std::vector<char> moving;
   for (const Item& item : items) moving.push_back(item.triangle < 0);
-  const auto pairs = tree.overlappingPairs(boxes, moving, [&](int a, int b) {
+  const auto tested = [&](int a, int b) {
     const Item &p = items[a], &q = items[b];
     if (p.triangle >= 0) return false;  // triangles come last: a triangle pairs only as q
     if (q.triangle >= 0) return p.segment > 0;
     return p.segment > 0 && q.segment > 0 &&
            (p.stem != q.stem || std::abs(p.segment - q.segment) > 1);
-  });
+  };
+  BoxGroups groups;
+  for (char m : moving) groups.of.push_back(m ? 0 : 1);
+  groups.pairsWith = {0b11, 0b01};
+  groups.moving = 1;
+  const auto pairs =
+      slack > 0 ? tree.coherentPairs(boxes, groups, slack, 0, tested, [](int, int) { return true; })
+                : tree.overlappingPairs(boxes, groups, tested);
   const auto meet = [&](int a, int b) {
     const Item &p = items[a], &q = items[b];
     const Vector3d& p0 = stems[p.stem].positions[p.segment];
@@ -706,43 +713,29 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // vaneOverlapsVersion_) whose boxes grown by the slack overlap, less those that a plane keeps
   // farther apart than the thickness and twice the slack (separatedOverStep) where the list is
   // made. While every vertex stays within the slack of where it was then (in every coordinate;
-  // else the list is made anew), such a pair's projections on that plane's normal come no nearer
-  // than the thickness: no search may find it, the repulsion (which acts within the thickness)
-  // nor the CCD (within the separation, at most the thickness). The layered vanes of a coat,
-  // whose boxes overlap all round, are left out of the list so, once per list instead of once a
-  // search.
+  // else the tree makes the list anew), such a pair's projections on that plane's normal come no
+  // nearer than the thickness: no search may find it, the repulsion (which acts within the
+  // thickness) nor the CCD (within the separation, at most the thickness). The layered vanes of a
+  // coat, whose boxes overlap all round, are left out of the list so, once per list instead of once
+  // a search.
   const double slack = parameters_.candidateSlack;
   CcdOptions listReach;
   listReach.minimumSeparation =
       std::max(parameters_.thickness, parameters_.minimumSeparation) + 2 * slack;
   const auto candidatesOf = [&](const StepState& searched, double margin,
                                 const std::function<bool(int, int)>& wanted) {
-    const std::size_t vertices = searched.start.size();
-    bool within = listLow_.size() == vertices;
-    for (std::size_t v = 0; within && v < vertices; ++v)
-      for (const Vector3d* x : {&searched.start[v], &searched.end[v]})
-        within = within && (x->array() >= listLow_[v].array() - slack).all() &&
-                 (x->array() <= listHigh_[v].array() + slack).all();
-    listEpoch_ += !within;
-    const std::uint64_t searches = stepTree_.listSearches();
-    auto pairs = stepTree_.coherentPairs(
-        primitives.boxes(searched, margin), groups, slack, listEpoch_ + vaneOverlapsVersion_,
+    std::vector<Box> vertices(searched.start.size());
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+      vertices[v] = {searched.start[v].cwiseMin(searched.end[v]),
+                     searched.start[v].cwiseMax(searched.end[v])};
+    return stepTree_.coherentPairs(
+        primitives.boxes(searched, margin), groups, slack, vaneOverlapsVersion_,
         [&](int a, int b) {
           return primitives.wanted(a, b) &&
                  !separatedOverStep(primitives.motion(a, b, searched),
                                     isTriangle(primitives.list[b].kind), listReach);
         },
-        wanted);
-    if (stepTree_.listSearches() != searches) {
-      // The list was made from these positions: the slack is counted from here.
-      listLow_.resize(vertices);
-      listHigh_.resize(vertices);
-      for (std::size_t v = 0; v < vertices; ++v) {
-        listLow_[v] = searched.start[v].cwiseMin(searched.end[v]);
-        listHigh_[v] = searched.start[v].cwiseMax(searched.end[v]);
-      }
-    }
-    return pairs;
+        wanted, &vertices);
   };
   // Where the vanes' corners would be at the end of the step: from the frames of the stems'
   // candidate positions.
@@ -1041,11 +1034,11 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // 6: the exact check of the final state.
   const BodyMesh bodyAtEnd{toState.body, body_.triangles};
   const std::size_t penetrations =
-      countPenetrations(stems_, bodyAtEnd, nearestAllowed(), checkTree_);
-  const std::size_t vanes =
-      parameters_.vaneCollisions
-          ? countVaneIntersections(stems_, nearestAllowed(), vaneTree_, &vaneOverlaps_)
-          : 0;
+      countPenetrations(stems_, bodyAtEnd, nearestAllowed(), checkTree_, slack);
+  const std::size_t vanes = parameters_.vaneCollisions
+                                ? countVaneIntersections(stems_, nearestAllowed(), vaneTree_,
+                                                         &vaneOverlaps_, nullptr, slack)
+                                : 0;
   if (penetrations + vanes > 0) {
     counters_.penetrations += penetrations + vanes;
     counters_.vanePenetrations += vanes;

@@ -184,7 +184,8 @@ std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double
 }
 
 std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double minimumDistance,
-                                   BoxTree& tree, const VaneOverlaps* skip, VaneOverlaps* found) {
+                                   BoxTree& tree, const VaneOverlaps* skip, VaneOverlaps* found,
+                                   double slack) {
   // Stem segments other than calami, then vane triangles.
   struct Item {
     int stem, segment;
@@ -221,9 +222,32 @@ std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double
   groups.pairsWith[0] = 0b10;
   groups.pairsWith[1] = 0b11;
   groups.moving = 0b11;
-  const auto pairs = tree.overlappingPairs(boxes, groups, [&](int a, int b) {
-    return items[a].stem != items[b].stem && !left(items[a], items[b]);
-  });
+  std::vector<std::pair<int, int>> pairs;
+  if (slack > 0) {
+    // Every point within the slack of where it was when the list was made (in each coordinate;
+    // else the list is made anew) moves at most sqrt(3) slack along a unit normal: a pair one
+    // of whose planes keeps the other farther than the distance and twice that stays clear.
+    const double margin = minimumDistance + 3.5 * slack;
+    std::vector<Box> vertices;
+    vertices.reserve(3 * items.size());
+    for (const Item& item : items)
+      for (const Vector3d& x : item.points) vertices.push_back({x, x});
+    pairs = tree.coherentPairs(
+        boxes, groups, slack, 0,
+        [&](int a, int b) {
+          const Item &p = items[a], &q = items[b];
+          if (p.stem == q.stem) return false;
+          const auto& t = q.points;
+          return p.triangle ? !trianglesBeyond(p.points, t, margin)
+                            : !beyondPlane(std::array<Vector3d, 2>{p.points[0], p.points[1]}, t[0],
+                                           t[1], t[2], margin);
+        },
+        [&](int a, int b) { return !left(items[a], items[b]); }, &vertices);
+  } else {
+    pairs = tree.overlappingPairs(boxes, groups, [&](int a, int b) {
+      return items[a].stem != items[b].stem && !left(items[a], items[b]);
+    });
+  }
   // Whether box a's item and box b's triangle meet or come too near.
   const auto meet = [&](int a, int b) {
     const Item &p = items[a], &q = items[b];  // q is a triangle (triangles come last)

@@ -101,6 +101,19 @@ TEST(StemVane, TheFinalCheckCountsVanesThatMeet) {
   EXPECT_EQ(countVaneIntersections({a, b(0.1, 0.1)}, 0.001), 0u);
   // One stem's own vane is not tested against itself.
   EXPECT_EQ(countVaneIntersections({a}, 0.001), 0u);
+  // With a kept list (a slack of 0.01, B lowered 0.0025 a check, a list made anew every few
+  // checks), the counts are those of a fresh search, down through A's vane and out of it.
+  BoxTree tree;
+  std::size_t met = 0;
+  for (int k = 0; k < 80; ++k) {
+    const std::vector<FeatherStem> pair{a, b(0.3 - 0.0025 * k, 0.6)};
+    const std::size_t count = countVaneIntersections(pair, 0.001, tree, nullptr, nullptr, 0.01);
+    EXPECT_EQ(count, countVaneIntersections(pair, 0.001)) << "check " << k;
+    met += count > 0;
+  }
+  EXPECT_GT(met, 10u);
+  EXPECT_LT(met, 70u);
+  EXPECT_GT(tree.listFilters(), tree.listSearches());
 }
 
 // Two feathers side by side, their rachises 0.2 apart in x and never nearer: A stands along z

@@ -45,11 +45,16 @@ class BoxTree {
   // those of then, or when `version` changed (`lasting` may change only with `version`; `wanted`
   // may differ from call to call). The same pairs as a search, for the cost of filtering a list
   // of somewhat more: a simulation searches several times a step, its primitives moving little.
+  // Where `vertices` are given (the boxes of the primitives' vertices, over a step or still), the
+  // list is also made anew once one of them leaves its box of then grown by the slack, so that
+  // `lasting` may count on every vertex staying within the slack of where it was (a test that a
+  // plane keeps the pair apart, with twice the slack allowed for).
   std::vector<std::pair<int, int>> coherentPairs(const std::vector<Box>& boxes,
                                                  const BoxGroups& groups, double slack,
                                                  std::uint64_t version,
                                                  const std::function<bool(int, int)>& lasting,
-                                                 const std::function<bool(int, int)>& wanted);
+                                                 const std::function<bool(int, int)>& wanted,
+                                                 const std::vector<Box>* vertices = nullptr);
   // How many times coherentPairs searched its list anew, and how many times it filtered it.
   std::uint64_t listSearches() const { return listSearches_; }
   std::uint64_t listFilters() const { return listFilters_; }
@@ -84,7 +89,7 @@ class BoxTree {
   BoxGroups twoGroups_;
   // coherentPairs' list: the boxes grown by the slack, the pairs of them, and what they were
   // found for.
-  std::vector<Box> grown_;
+  std::vector<Box> grown_, grownVertices_;
   std::vector<std::pair<int, int>> kept_;
   std::vector<std::uint8_t> keptGroups_;
   std::array<std::uint8_t, 8> keptPairsWith_{};

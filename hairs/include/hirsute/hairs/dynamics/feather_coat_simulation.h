@@ -10,8 +10,9 @@
 //   3. strain limiting from the anchor to the tip, its corrections added to v^{n+1/2};
 //   4. repulsion: pairs closer than the thickness at x^n stop approaching (impulses kept apart
 //      from the internal forces);
-//   5. continuous collisions over x^n -> x^{n+1}: candidates from swept boxes in a hashed grid,
-//      the CCD of continuous_collision.h on each, inelastic impulses in time-of-impact order,
+//   5. continuous collisions over x^n -> x^{n+1}: candidates from swept boxes (box_tree.h: a
+//      list kept over several searches, less the pairs a plane keeps apart), the CCD of
+//      continuous_collision.h on each, inelastic impulses in time-of-impact order,
 //      repeated a few passes; then rigid impact zones (Provot 1997) until no contact within a
 //      quarter of the minimum separation is left (the CCD's separation is a box, wider than a
 //      ball of it, and a zone cannot open a gap it holds);
@@ -119,9 +120,10 @@ struct StepFailure : std::runtime_error {
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
                               double minimumDistance);
 // The same searching in `tree`, refitted from the last search where it can be (and its pool's
-// threads testing the pairs).
+// threads testing the pairs); with a `slack`, filtering the tree's kept list of the pairs whose
+// boxes grown by it overlap (BoxTree::coherentPairs).
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
-                              double minimumDistance, BoxTree& tree);
+                              double minimumDistance, BoxTree& tree, double slack = 0);
 
 class FeatherCoatSimulation {
  public:
@@ -196,10 +198,6 @@ class FeatherCoatSimulation {
   BoxTree stepTree_, checkTree_, vaneTree_;
   VaneOverlaps vaneOverlaps_;
   std::uint64_t vaneOverlapsVersion_ = 0;  // counts the releases: which pairs are tested
-  // Where each vertex of the steps' collisions was (its box over the step searched) when the
-  // tree's list of candidates was made, and the lists made for vertices that moved away.
-  std::vector<Eigen::Vector3d> listLow_, listHigh_;
-  std::uint64_t listEpoch_ = 0;
   std::size_t vaneOverlapsAtStart_ = 0;
   SimulationCounters counters_;
   double time_ = 0;

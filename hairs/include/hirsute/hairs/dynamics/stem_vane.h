@@ -80,11 +80,13 @@ class VaneOverlaps {
 std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double minimumDistance,
                                    const VaneOverlaps* skip = nullptr);
 // The same searching in `tree` (refitted from its last search where it can be; the pairs tested
-// on its pool's threads); each pair of
-// segments found (their segmentIndex in `numbering`) is added to `found` where one is given.
+// on its pool's threads); each pair of segments found (their segmentIndex in `numbering`) is
+// added to `found` where one is given. With a `slack`, the tree's kept list of the pairs whose
+// boxes grown by it overlap is filtered (BoxTree::coherentPairs), less the pairs a plane of one
+// of them keeps farther apart than `minimumDistance` and the slack's moves allow for.
 std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double minimumDistance,
                                    BoxTree& tree, const VaneOverlaps* skip,
-                                   VaneOverlaps* found = nullptr);
+                                   VaneOverlaps* found = nullptr, double slack = 0);
 
 // The distance between a segment and a triangle, and between two triangles (closed).
 double segmentTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
