@@ -2,9 +2,11 @@
 // backed by a bound on the rounding error (continuous_collision.h states the guarantee).
 #include "hirsute/hairs/dynamics/continuous_collision.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -262,6 +264,60 @@ CcdResult detect(const MovingPrimitives& motion, const CcdOptions& options) {
 
 CcdResult vertexFaceCcd(const MovingPrimitives& motion, const CcdOptions& options) {
   return detect<Kind::VertexFace>(motion, options);
+}
+
+bool separatedOverStep(const MovingPrimitives& motion, bool vertexFace, const CcdOptions& options) {
+  // The reach of a reported contact: F within eta + 2 err + 3 acceptChange in every coordinate
+  // (continuous_collision.h), more where boxes stopped at the smallest width (their spread is
+  // under 3 * 8 M 2^-40); err and acceptChange as prepare() finds them, over all axes.
+  double largest = 0;
+  Vector3d low = motion.start[0], high = motion.start[0];
+  for (int i = 0; i < 4; ++i)
+    for (const Vector3d* x : {&motion.start[i], &motion.end[i]}) {
+      if (!x->allFinite()) return false;  // the CCD says what is wrong with it
+      largest = std::max(largest, x->cwiseAbs().maxCoeff());
+      low = low.cwiseMin(*x);
+      high = high.cwiseMax(*x);
+    }
+  if (!(options.minimumSeparation >= 0) || !(options.relativeTolerance >= 0)) return false;
+  const double error = largest * kErrorPerMagnitude + kUnderflowError;
+  const double acceptChange =
+      std::max(4.0 * error, options.relativeTolerance * (high - low).maxCoeff());
+  // Also the rounding of the projections below (a few units in the last place of 1-norm times
+  // largest coordinate, far under 1e-10 of it).
+  const double reach =
+      options.minimumSeparation + 2 * error + 3 * acceptChange + 1e-9 * largest + kUnderflowError;
+  // The first primitive's vertices are [0, split), the second's [split, 4).
+  const int split = vertexFace ? 1 : 2;
+  const auto apartAlong = [&](const Vector3d& n) {
+    if (!n.allFinite() || !(n.cwiseAbs().sum() > 0)) return false;
+    double lowA = std::numeric_limits<double>::infinity(), highA = -lowA, lowB = lowA,
+           highB = -lowA;
+    for (int i = 0; i < 4; ++i)
+      for (const Vector3d* x : {&motion.start[i], &motion.end[i]}) {
+        const double along = n.dot(*x);
+        if (i < split) {
+          lowA = std::min(lowA, along);
+          highA = std::max(highA, along);
+        } else {
+          lowB = std::min(lowB, along);
+          highB = std::max(highB, along);
+        }
+      }
+    const double needed = n.cwiseAbs().sum() * reach;
+    return lowB - highA > needed || lowA - highB > needed;
+  };
+  const auto at = [&](int i, double t) -> Vector3d {
+    return motion.start[i] + t * (motion.end[i] - motion.start[i]);
+  };
+  for (double t : {0.0, 0.5, 1.0}) {
+    const Vector3d n = vertexFace ? (at(2, t) - at(1, t)).cross(at(3, t) - at(1, t))
+                                  : (at(1, t) - at(0, t)).cross(at(3, t) - at(2, t));
+    if (apartAlong(n)) return true;
+  }
+  Vector3d centreA = Vector3d::Zero(), centreB = Vector3d::Zero();
+  for (int i = 0; i < 4; ++i) (i < split ? centreA : centreB) += motion.start[i];
+  return apartAlong(centreB / (4 - split) - centreA / split);
 }
 
 CcdResult edgeEdgeCcd(const MovingPrimitives& motion, const CcdOptions& options) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -14,8 +15,8 @@
 #include <set>
 #include <string>
 
+#include "hirsute/hairs/dynamics/box_tree.h"
 #include "hirsute/hairs/dynamics/closest_points.h"
-#include "hirsute/hairs/dynamics/collision_grid.h"
 #include "hirsute/hairs/dynamics/continuous_collision.h"
 #include "hirsute/hairs/dynamics/static_intersection.h"
 #include "hirsute/hairs/dynamics/stem_vane.h"
@@ -507,13 +508,12 @@ BodyMesh bodyMeshOf(const Scene& scene) {
 
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
                               double minimumDistance) {
-  CollisionGrid grid;
-  return countPenetrations(stems, body, minimumDistance, grid);
+  BoxTree tree;
+  return countPenetrations(stems, body, minimumDistance, tree);
 }
 
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
-                              double minimumDistance, CollisionGrid& grid) {
-  std::size_t found = 0;
+                              double minimumDistance, BoxTree& tree, double slack) {
   // Stem segments as (stem, segment) boxes, then body triangles.
   struct Item {
     int stem, segment, triangle;
@@ -533,30 +533,41 @@ std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyM
   }
   std::vector<char> moving;
   for (const Item& item : items) moving.push_back(item.triangle < 0);
-  const auto pairs = grid.overlappingPairs(boxes, moving, [&](int a, int b) {
+  const auto tested = [&](int a, int b) {
     const Item &p = items[a], &q = items[b];
     if (p.triangle >= 0) return false;  // triangles come last: a triangle pairs only as q
     if (q.triangle >= 0) return p.segment > 0;
     return p.segment > 0 && q.segment > 0 &&
            (p.stem != q.stem || std::abs(p.segment - q.segment) > 1);
-  });
-  for (const auto& [a, b] : pairs) {
+  };
+  BoxGroups groups;
+  for (char m : moving) groups.of.push_back(m ? 0 : 1);
+  groups.pairsWith = {0b11, 0b01};
+  groups.moving = 1;
+  const auto pairs =
+      slack > 0 ? tree.coherentPairs(boxes, groups, slack, 0, tested, [](int, int) { return true; })
+                : tree.overlappingPairs(boxes, groups, tested);
+  const auto meet = [&](int a, int b) {
     const Item &p = items[a], &q = items[b];
     const Vector3d& p0 = stems[p.stem].positions[p.segment];
     const Vector3d& p1 = stems[p.stem].positions[p.segment + 1];
     if (q.triangle >= 0) {
       const auto& tri = body.triangles[q.triangle];
-      found += segmentIntersectsTriangle(p0, p1, body.vertices[tri[0]], body.vertices[tri[1]],
-                                         body.vertices[tri[2]]);
-      continue;
+      return segmentIntersectsTriangle(p0, p1, body.vertices[tri[0]], body.vertices[tri[1]],
+                                       body.vertices[tri[2]]);
     }
     const Vector3d& q0 = stems[q.stem].positions[q.segment];
     const Vector3d& q1 = stems[q.stem].positions[q.segment + 1];
     const auto [s, u] = closestOnSegments(p0, p1, q0, q1);
     const double distance = ((p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0))).norm();
-    found += segmentsIntersect(p0, p1, q0, q1) || distance < minimumDistance;
-  }
-  return found;
+    return segmentsIntersect(p0, p1, q0, q1) || distance < minimumDistance;
+  };
+  // Each pair into its own flag on the tree's threads.
+  std::vector<char> meets(pairs.size(), 0);
+  forEach(tree.pool(), pairs.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) meets[k] = meet(pairs[k].first, pairs[k].second);
+  });
+  return static_cast<std::size_t>(std::count(meets.begin(), meets.end(), 1));
 }
 
 FeatherCoatSimulation::FeatherCoatSimulation(std::vector<FeatherStem> stems, BodyMesh body,
@@ -564,7 +575,11 @@ FeatherCoatSimulation::FeatherCoatSimulation(std::vector<FeatherStem> stems, Bod
     : stems_(std::move(stems)),
       body_(std::move(body)),
       parameters_(parameters),
-      wind_(parameters.wind) {
+      wind_(parameters.wind),
+      pool_(std::make_unique<WorkerPool>(parameters.threads)),
+      stepTree_(pool_.get()),
+      checkTree_(pool_.get()),
+      vaneTree_(pool_.get()) {
   std::set<std::array<int, 2>> edges;
   for (const auto& t : body_.triangles)
     for (int k = 0; k < 3; ++k)
@@ -579,7 +594,7 @@ FeatherCoatSimulation::FeatherCoatSimulation(std::vector<FeatherStem> stems, Bod
   }
   // Vanes that already meet are left out of each other's collisions until they come apart.
   vaneOverlaps_ = VaneOverlaps(stems_);
-  countVaneIntersections(stems_, nearestAllowed(), grid_, nullptr, &vaneOverlaps_);
+  countVaneIntersections(stems_, nearestAllowed(), vaneTree_, nullptr, &vaneOverlaps_);
   vaneOverlapsAtStart_ = vaneOverlaps_.size();
 }
 
@@ -595,8 +610,7 @@ FeatherCoatSimulation FeatherCoatSimulation::fromScene(const Scene& scene,
 std::vector<Vector3d> FeatherCoatSimulation::externalForces(std::size_t s) {
   const FeatherStem& stem = stems_[s];
   std::vector<Vector3d> forces(stem.nodeCount(), Vector3d::Zero());
-  if (air_.size() != stems_.size()) air_.resize(stems_.size());
-  std::vector<AirSample>& samples = air_[s];
+  std::vector<AirSample>& samples = air_[s];  // sized for every stem before the loops
   samples.resize(stem.nodeCount());
   for (std::size_t i = 1; i < stem.nodeCount(); ++i) {
     // Drag on the length of rachis a node carries, relative to the air.
@@ -650,7 +664,10 @@ void FeatherCoatSimulation::step(double dt, const std::vector<StemFrame>& anchor
 }
 
 std::size_t FeatherCoatSimulation::releaseVaneOverlaps() {
-  return vaneOverlaps_.empty() ? 0 : vaneOverlaps_.release(stems_, parameters_.minimumSeparation);
+  if (vaneOverlaps_.empty()) return 0;
+  const std::size_t released = vaneOverlaps_.release(stems_, parameters_.minimumSeparation);
+  vaneOverlapsVersion_ += released > 0;
+  return released;
 }
 
 void FeatherCoatSimulation::advanceOrHalve(double h, const Kinematics& from, const Kinematics& to,
@@ -690,28 +707,66 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
                               &vaneOverlaps_);
   const BoxGroups groups = primitives.groups();
   StepState state;
+  // The candidates of a search over `searched`, the boxes grown by `margin`, for which `wanted`
+  // holds, from the list the tree keeps (BoxTree::coherentPairs). The list holds the pairs tested
+  // (Primitives::wanted, which changes only with the vanes' pairs left out:
+  // vaneOverlapsVersion_) whose boxes grown by the slack overlap, less those that a plane keeps
+  // farther apart than the thickness and twice the slack (separatedOverStep) where the list is
+  // made. While every vertex stays within the slack of where it was then (in every coordinate;
+  // else the tree makes the list anew), such a pair's projections on that plane's normal come no
+  // nearer than the thickness: no search may find it, the repulsion (which acts within the
+  // thickness) nor the CCD (within the separation, at most the thickness). The layered vanes of a
+  // coat, whose boxes overlap all round, are left out of the list so, once per list instead of once
+  // a search.
+  const double slack = parameters_.candidateSlack;
+  CcdOptions listReach;
+  listReach.minimumSeparation =
+      std::max(parameters_.thickness, parameters_.minimumSeparation) + 2 * slack;
+  const auto candidatesOf = [&](const StepState& searched, double margin,
+                                const std::function<bool(int, int)>& wanted) {
+    std::vector<Box> vertices(searched.start.size());
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+      vertices[v] = {searched.start[v].cwiseMin(searched.end[v]),
+                     searched.start[v].cwiseMax(searched.end[v])};
+    return stepTree_.coherentPairs(
+        primitives.boxes(searched, margin), groups, slack, vaneOverlapsVersion_,
+        [&](int a, int b) {
+          return primitives.wanted(a, b) &&
+                 !separatedOverStep(primitives.motion(a, b, searched),
+                                    isTriangle(primitives.list[b].kind), listReach);
+        },
+        wanted, &vertices);
+  };
   // Where the vanes' corners would be at the end of the step: from the frames of the stems'
   // candidate positions.
   std::vector<std::vector<std::array<Vector3d, 2>>> cornersAtEnd(stems_.size());
-  // 1-3: half a step of velocity, candidate positions, strain limiting (Sec. 3.3.3).
-  for (std::size_t s = 0; s < stems_.size(); ++s) {
-    FeatherStem& stem = stems_[s];
-    rebuildFrames(stem, from[s]);
-    const std::vector<Vector3d> forces = externalForces(s);
-    const Vector3d anchorVelocity = (to[s].origin - from[s].origin) / h;
-    advanceGoldSprings(stem, h / 2, forces, anchorVelocity);
-    for (std::size_t i = 0; i < stem.nodeCount(); ++i) {
-      state.start.push_back(stem.positions[i]);
-      stem.positions[i] += h * stem.velocities[i];
+  // 1-3: half a step of velocity, candidate positions, strain limiting (Sec. 3.3.3). Each stem
+  // on its own, on the threads (the wind's gusts are most of it), into its own places.
+  if (air_.size() != stems_.size()) air_.resize(stems_.size());
+  state.start.resize(primitives.bodyOffset);
+  state.end.resize(primitives.bodyOffset);
+  state.inverseMass.resize(primitives.bodyOffset);
+  forEach(pool_.get(), stems_.size(), 32, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) {
+      FeatherStem& stem = stems_[s];
+      const std::size_t offset = primitives.stemOffset[s];
+      rebuildFrames(stem, from[s]);
+      const std::vector<Vector3d> forces = externalForces(s);
+      const Vector3d anchorVelocity = (to[s].origin - from[s].origin) / h;
+      advanceGoldSprings(stem, h / 2, forces, anchorVelocity);
+      for (std::size_t i = 0; i < stem.nodeCount(); ++i) {
+        state.start[offset + i] = stem.positions[i];
+        stem.positions[i] += h * stem.velocities[i];
+      }
+      stem.positions[0] = to[s].origin;
+      limitStrain(stem, h);
+      for (std::size_t i = 0; i < stem.nodeCount(); ++i) {
+        state.end[offset + i] = stem.positions[i];
+        state.inverseMass[offset + i] = i == 0 ? 0.0 : 1 / stem.masses[i];
+      }
+      if (stem.hasVane()) cornersAtEnd[s] = vaneCornersAt(stem, to[s]);
     }
-    stem.positions[0] = to[s].origin;
-    limitStrain(stem, h);
-    for (std::size_t i = 0; i < stem.nodeCount(); ++i) {
-      state.end.push_back(stem.positions[i]);
-      state.inverseMass.push_back(i == 0 ? 0.0 : 1 / stem.masses[i]);
-    }
-    if (stem.hasVane()) cornersAtEnd[s] = vaneCornersAt(stem, to[s]);
-  }
+  });
   for (std::size_t v = 0; v < body_.vertices.size(); ++v) {
     state.start.push_back(fromState.body[v]);
     state.end.push_back(toState.body[v]);
@@ -735,11 +790,15 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   const double thickness = parameters_.thickness;
   {
     const StepState still{state.start, state.start, state.inverseMass, state.owner, state.corners};
-    const auto pairs =
-        grid_.overlappingPairs(primitives.boxes(still, thickness / 2), groups,
-                               [&](int a, int b) { return primitives.wanted(a, b); });
-    for (const auto& [a, b] : pairs) {
-      const Contact c = primitives.contactAt(a, b, still, 0);
+    const auto pairs = candidatesOf(still, thickness / 2, [](int, int) { return true; });
+    // The pairs' closest points on the threads; the impulses, which move what later pairs
+    // see, in the pairs' order.
+    std::vector<Contact> nearest(pairs.size());
+    forEach(pool_.get(), pairs.size(), 512, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
+        nearest[k] = primitives.contactAt(pairs[k].first, pairs[k].second, still, 0);
+    });
+    for (const Contact& c : nearest) {
       Vector3d gap = Vector3d::Zero();
       for (int k = 0; k < 4; ++k) gap += c.coefficients[k] * state.start[c.vertices[k]];
       const double distance = gap.norm();
@@ -761,18 +820,28 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   zoneCcd.minimumSeparation = nearestAllowed();
   auto findContacts = [&](const CcdOptions& options, bool calami) {
     std::vector<Contact> contacts;
-    const auto pairs = grid_.overlappingPairs(
-        primitives.boxes(state, options.minimumSeparation), groups, [&](int a, int b) {
-          return primitives.wanted(a, b) && (calami || !primitives.holdsCalamus(a, b));
-        });
+    const auto pairs = candidatesOf(state, options.minimumSeparation, [&](int a, int b) {
+      return calami || !primitives.holdsCalamus(a, b);
+    });
     counters_.candidates += pairs.size();
-    for (const auto& [a, b] : pairs) {
-      const MovingPrimitives m = primitives.motion(a, b, state);
+    // The CCD of each pair on the threads, into its own slot; the contacts in the pairs' order.
+    std::vector<CcdResult> results(pairs.size());
+    forEach(pool_.get(), pairs.size(), 256, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        const auto [a, b] = pairs[k];
+        const MovingPrimitives m = primitives.motion(a, b, state);
+        // Pairs a plane keeps apart over the step first: the CCD would find no contact.
+        const bool vertexFace = isTriangle(primitives.list[b].kind);
+        if (separatedOverStep(m, vertexFace, options)) continue;
+        results[k] = vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
+      }
+    });
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const auto [a, b] = pairs[k];
       const Kind kind = primitives.list[b].kind;  // a vane's, where the pair holds one
-      const CcdResult r = isTriangle(kind) ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
       counters_.vaneCandidates += isVane(kind);
-      if (r.contact) {
-        contacts.push_back(primitives.contactAt(a, b, state, r.timeOfImpact));
+      if (results[k].contact) {
+        contacts.push_back(primitives.contactAt(a, b, state, results[k].timeOfImpact));
         counters_.vaneContacts += isVane(kind);
       }
     }
@@ -899,16 +968,23 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   const auto calamusCrossings = [&] {
     CcdOptions touching;  // no separation: the pair meets (or passes through)
     touching.minimumSeparation = 0;
-    const auto pairs = grid_.overlappingPairs(
-        primitives.boxes(state, 0), groups,
-        [&](int a, int b) { return primitives.wanted(a, b) && primitives.holdsCalamus(a, b); });
+    const auto pairs =
+        candidatesOf(state, 0, [&](int a, int b) { return primitives.holdsCalamus(a, b); });
+    std::vector<CcdResult> results(pairs.size());
+    forEach(pool_.get(), pairs.size(), 256, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        const auto [a, b] = pairs[k];
+        const MovingPrimitives m = primitives.motion(a, b, state);
+        const bool vertexFace = isTriangle(primitives.list[b].kind);
+        if (separatedOverStep(m, vertexFace, touching)) continue;
+        results[k] = vertexFace ? vertexFaceCcd(m, touching) : edgeEdgeCcd(m, touching);
+      }
+    });
     std::vector<Contact> crossings;
-    for (const auto& [a, b] : pairs) {
-      const MovingPrimitives m = primitives.motion(a, b, state);
-      const CcdResult r = isTriangle(primitives.list[b].kind) ? vertexFaceCcd(m, touching)
-                                                              : edgeEdgeCcd(m, touching);
-      if (r.contact) crossings.push_back(primitives.contactAt(a, b, state, r.timeOfImpact));
-    }
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      if (results[k].contact)
+        crossings.push_back(
+            primitives.contactAt(pairs[k].first, pairs[k].second, state, results[k].timeOfImpact));
     return crossings;
   };
   bool zonesMoved = false;
@@ -957,11 +1033,12 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   }
   // 6: the exact check of the final state.
   const BodyMesh bodyAtEnd{toState.body, body_.triangles};
-  const std::size_t penetrations = countPenetrations(stems_, bodyAtEnd, nearestAllowed(), grid_);
-  const std::size_t vanes =
-      parameters_.vaneCollisions
-          ? countVaneIntersections(stems_, nearestAllowed(), grid_, &vaneOverlaps_)
-          : 0;
+  const std::size_t penetrations =
+      countPenetrations(stems_, bodyAtEnd, nearestAllowed(), checkTree_, slack);
+  const std::size_t vanes = parameters_.vaneCollisions
+                                ? countVaneIntersections(stems_, nearestAllowed(), vaneTree_,
+                                                         &vaneOverlaps_, nullptr, slack)
+                                : 0;
   if (penetrations + vanes > 0) {
     counters_.penetrations += penetrations + vanes;
     counters_.vanePenetrations += vanes;
@@ -972,12 +1049,14 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // 7: the second half step of velocity at the new positions.
   const double later = time_;
   time_ += h;  // the forces of the end of the step
-  for (std::size_t s = 0; s < stems_.size(); ++s) {
-    FeatherStem& stem = stems_[s];
-    rebuildFrames(stem, to[s]);
-    const std::vector<Vector3d> forces = externalForces(s);
-    advanceGoldSprings(stem, h / 2, forces, (to[s].origin - from[s].origin) / h);
-  }
+  forEach(pool_.get(), stems_.size(), 32, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) {
+      FeatherStem& stem = stems_[s];
+      rebuildFrames(stem, to[s]);
+      const std::vector<Vector3d> forces = externalForces(s);
+      advanceGoldSprings(stem, h / 2, forces, (to[s].origin - from[s].origin) / h);
+    }
+  });
   time_ = later;
   return true;
 }

@@ -179,13 +179,13 @@ std::size_t VaneOverlaps::release(const std::vector<FeatherStem>& stems, double 
 
 std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double minimumDistance,
                                    const VaneOverlaps* skip) {
-  CollisionGrid grid;
-  return countVaneIntersections(stems, minimumDistance, grid, skip);
+  BoxTree tree;
+  return countVaneIntersections(stems, minimumDistance, tree, skip);
 }
 
 std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double minimumDistance,
-                                   CollisionGrid& grid, const VaneOverlaps* skip,
-                                   VaneOverlaps* found) {
+                                   BoxTree& tree, const VaneOverlaps* skip, VaneOverlaps* found,
+                                   double slack) {
   // Stem segments other than calami, then vane triangles.
   struct Item {
     int stem, segment;
@@ -222,37 +222,69 @@ std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double
   groups.pairsWith[0] = 0b10;
   groups.pairsWith[1] = 0b11;
   groups.moving = 0b11;
-  const auto pairs = grid.overlappingPairs(boxes, groups, [&](int a, int b) {
-    return items[a].stem != items[b].stem && !left(items[a], items[b]);
-  });
-  std::size_t count = 0;
-  for (const auto& [a, b] : pairs) {
+  std::vector<std::pair<int, int>> pairs;
+  if (slack > 0) {
+    // Every point within the slack of where it was when the list was made (in each coordinate;
+    // else the list is made anew) moves at most sqrt(3) slack along a unit normal: a pair one
+    // of whose planes keeps the other farther than the distance and twice that stays clear.
+    const double margin = minimumDistance + 3.5 * slack;
+    std::vector<Box> vertices;
+    vertices.reserve(3 * items.size());
+    for (const Item& item : items)
+      for (const Vector3d& x : item.points) vertices.push_back({x, x});
+    pairs = tree.coherentPairs(
+        boxes, groups, slack, 0,
+        [&](int a, int b) {
+          const Item &p = items[a], &q = items[b];
+          if (p.stem == q.stem) return false;
+          const auto& t = q.points;
+          return p.triangle ? !trianglesBeyond(p.points, t, margin)
+                            : !beyondPlane(std::array<Vector3d, 2>{p.points[0], p.points[1]}, t[0],
+                                           t[1], t[2], margin);
+        },
+        [&](int a, int b) { return !left(items[a], items[b]); }, &vertices);
+  } else {
+    pairs = tree.overlappingPairs(boxes, groups, [&](int a, int b) {
+      return items[a].stem != items[b].stem && !left(items[a], items[b]);
+    });
+  }
+  // Whether box a's item and box b's triangle meet or come too near.
+  const auto meet = [&](int a, int b) {
     const Item &p = items[a], &q = items[b];  // q is a triangle (triangles come last)
     const auto& t = q.points;
-    bool meet = false;
     if (!p.triangle) {
       const Vector3d &p0 = p.points[0], &p1 = p.points[1];
       if (beyondPlane(std::array<Vector3d, 2>{p0, p1}, t[0], t[1], t[2], minimumDistance))
-        continue;
+        return false;
       const double d = segmentTriangleDistance(p0, p1, t[0], t[1], t[2]);
-      meet = d < minimumDistance ||
+      return d < minimumDistance ||
              (!apartByFeatures(d, heightAbove(std::array<Vector3d, 2>{p0, p1}, t[0], t[1], t[2]),
                                p0) &&
               segmentIntersectsTriangle(p0, p1, t[0], t[1], t[2]));
-    } else {
-      const auto& u = p.points;
-      if (trianglesBeyond(u, t, minimumDistance)) continue;
-      // The distance first: it decides most pairs without the exact test.
-      const double d = triangleTriangleDistance(u, t);
-      meet = d < minimumDistance ||
-             (!apartByFeatures(
-                  d, std::max(heightAbove(u, t[0], t[1], t[2]), heightAbove(t, u[0], u[1], u[2])),
-                  u[0]) &&
-              trianglesIntersect(u[0], u[1], u[2], t[0], t[1], t[2]));
     }
-    count += meet;
-    if (meet && found != nullptr)
+    const auto& u = p.points;
+    if (trianglesBeyond(u, t, minimumDistance)) return false;
+    // The distance first: it decides most pairs without the exact test.
+    const double d = triangleTriangleDistance(u, t);
+    return d < minimumDistance ||
+           (!apartByFeatures(
+                d, std::max(heightAbove(u, t[0], t[1], t[2]), heightAbove(t, u[0], u[1], u[2])),
+                u[0]) &&
+            trianglesIntersect(u[0], u[1], u[2], t[0], t[1], t[2]));
+  };
+  // The pairs are tested on the tree's threads, each into its own flag; counted in order.
+  std::vector<char> meets(pairs.size(), 0);
+  forEach(tree.pool(), pairs.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) meets[k] = meet(pairs[k].first, pairs[k].second);
+  });
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (!meets[k]) continue;
+    ++count;
+    if (found != nullptr) {
+      const Item &p = items[pairs[k].first], &q = items[pairs[k].second];
       found->insert(found->segmentIndex(p.stem, p.segment), found->segmentIndex(q.stem, q.segment));
+    }
   }
   return count;
 }

@@ -234,6 +234,34 @@ TEST(Ccd, SeparatedMotionsAreNoContacts) {
   }
 }
 
+// Seeded random near misses and contacts in a small cube, at separations from none to a third
+// of the cube: a pair the plane test calls separated is never one the CCD finds in contact, and
+// the test decides a good part of those the CCD finds none in (else it would be of no use).
+TEST(Ccd, SeparatedOverStepNeverHidesAContact) {
+  std::mt19937_64 random(78);
+  std::uniform_real_distribution<double> coordinate(-1, 1), separation(0, 0.3), shift(-3, 3);
+  int separated = 0, apart = 0;
+  for (int i = 0; i < 4000; ++i) {
+    MovingPrimitives m;
+    const Vector3d offset(shift(random), shift(random), shift(random));
+    for (int k = 0; k < 4; ++k) {
+      m.start[k] = offset + Vector3d(coordinate(random), coordinate(random), coordinate(random));
+      m.end[k] = m.start[k] + 0.3 * Vector3d(coordinate(random), coordinate(random), 0);
+    }
+    CcdOptions options;
+    options.minimumSeparation = i % 4 == 0 ? 0.0 : separation(random);
+    for (const bool vertexFace : {true, false}) {
+      const bool contact =
+          (vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options)).contact;
+      const bool planeApart = separatedOverStep(m, vertexFace, options);
+      EXPECT_FALSE(contact && planeApart) << i << (vertexFace ? " vertex-face" : " edge-edge");
+      apart += !contact;
+      separated += planeApart;
+    }
+  }
+  EXPECT_GT(separated, apart / 4);
+}
+
 std::filesystem::path publicQueries() {
   return std::filesystem::path(HIRSUTE_SOURCE_DIR) / ".." / "shared" / "ccd-queries";
 }
@@ -256,7 +284,8 @@ TEST(PublicCcdQueries, NoCollisionIsMissed) {
   }
   const std::vector<std::filesystem::path> files = queryFiles(publicQueries());
   ASSERT_FALSE(files.empty()) << "no query files under " << publicQueries();
-  std::size_t queries = 0, colliding = 0, falsePositives = 0, exhausted = 0, checks = 0;
+  std::size_t queries = 0, colliding = 0, falsePositives = 0, exhausted = 0, checks = 0,
+              planeSeparated = 0;
   for (const std::filesystem::path& path : files) {
     const CcdQueryFile file = readCcdQueryFile(path);
     for (const CcdQuery& query : file.queries) {
@@ -265,6 +294,12 @@ TEST(PublicCcdQueries, NoCollisionIsMissed) {
       colliding += query.collides;
       exhausted += result.budgetExhausted;
       checks += static_cast<std::size_t>(result.checks);
+      CcdOptions options;
+      options.minimumSeparation = 2 * query.roundingError;  // as runCcdQuery
+      if (separatedOverStep(query.motion, file.kind == CcdQueryKind::VertexFace, options)) {
+        ++planeSeparated;
+        EXPECT_FALSE(result.contact) << path << ":" << query.line << ": separated, yet a contact";
+      }
       if (query.collides) {
         EXPECT_TRUE(result.contact) << path << ":" << query.line << ": a collision missed";
       } else {
@@ -274,9 +309,9 @@ TEST(PublicCcdQueries, NoCollisionIsMissed) {
   }
   std::printf(
       "[   INFO   ] %zu queries (%zu colliding): %zu false positives, %zu out of budget, %.0f box "
-      "checks a query\n",
+      "checks a query; %zu separated by a plane before the search\n",
       queries, colliding, falsePositives, exhausted,
-      static_cast<double>(checks) / static_cast<double>(queries));
+      static_cast<double>(checks) / static_cast<double>(queries), planeSeparated);
   RecordProperty("false_positives", static_cast<int>(falsePositives));
   EXPECT_GT(colliding, 0u);
   // A detector that answers "contact" to everything has no false negatives either.

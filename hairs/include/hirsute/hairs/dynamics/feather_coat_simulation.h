@@ -10,8 +10,9 @@
 //   3. strain limiting from the anchor to the tip, its corrections added to v^{n+1/2};
 //   4. repulsion: pairs closer than the thickness at x^n stop approaching (impulses kept apart
 //      from the internal forces);
-//   5. continuous collisions over x^n -> x^{n+1}: candidates from swept boxes in a hashed grid,
-//      the CCD of continuous_collision.h on each, inelastic impulses in time-of-impact order,
+//   5. continuous collisions over x^n -> x^{n+1}: candidates from swept boxes (box_tree.h: a
+//      list kept over several searches, less the pairs a plane keeps apart), the CCD of
+//      continuous_collision.h on each, inelastic impulses in time-of-impact order,
 //      repeated a few passes; then rigid impact zones (Provot 1997) until no contact within a
 //      quarter of the minimum separation is left (the CCD's separation is a box, wider than a
 //      ball of it, and a zone cannot open a gap it holds);
@@ -29,14 +30,16 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "hirsute/hairs/dynamics/collision_grid.h"
+#include "hirsute/hairs/dynamics/box_tree.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
 #include "hirsute/hairs/dynamics/stem_vane.h"
 #include "hirsute/hairs/dynamics/wind_field.h"
+#include "hirsute/hairs/dynamics/worker_pool.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::dynamics {
@@ -67,6 +70,15 @@ struct SimulationParameters {
   // feathers, and a vane and another feather's stem, are kept apart as stems are, and the final
   // check holds them to it. Off: the vanes follow their stems' frames and may pass through.
   bool vaneCollisions = false;
+  // Threads of the step's parallel loops (the stems' dynamics and wind, the broad phase's
+  // searches, the CCD of the candidates, the final checks); 0: one per core. The results are the
+  // same bit for bit whatever the number.
+  int threads = 0;
+  // The step's searches for candidates filter a list of the pairs whose boxes, grown by this
+  // much, overlap, until a primitive moves farther than this from where the list was made
+  // (BoxTree::coherentPairs): more makes longer lists, made less often. The pairs found do not
+  // depend on it.
+  double candidateSlack = 0.01;
 };
 
 // What the simulation did, summed over all steps since it was built.
@@ -107,9 +119,11 @@ struct StepFailure : std::runtime_error {
 // impulses keep it off them where they can (`calamiLeft` counts where they did not).
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
                               double minimumDistance);
-// The same searching in `grid`, whose memory it keeps for the next search.
+// The same searching in `tree`, refitted from the last search where it can be (and its pool's
+// threads testing the pairs); with a `slack`, filtering the tree's kept list of the pairs whose
+// boxes grown by it overlap (BoxTree::coherentPairs).
 std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyMesh& body,
-                              double minimumDistance, CollisionGrid& grid);
+                              double minimumDistance, BoxTree& tree, double slack = 0);
 
 class FeatherCoatSimulation {
  public:
@@ -178,8 +192,12 @@ class FeatherCoatSimulation {
   std::vector<std::vector<AirSample>> air_;
   std::vector<StemFrame> anchors_;
   std::string failure_;  // why the last advance() failed, for the error of a step
-  CollisionGrid grid_;   // the broad phase's working memory, kept from step to step
+  std::unique_ptr<WorkerPool> pool_;  // on the heap: the trees point to it
+  // The broad phase of the steps' collisions and of the final checks: each refits its trees
+  // to the next search of the same primitives.
+  BoxTree stepTree_, checkTree_, vaneTree_;
   VaneOverlaps vaneOverlaps_;
+  std::uint64_t vaneOverlapsVersion_ = 0;  // counts the releases: which pairs are tested
   std::size_t vaneOverlapsAtStart_ = 0;
   SimulationCounters counters_;
   double time_ = 0;

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/hairs/dynamics/collision_grid.h"
+#include "hirsute/hairs/dynamics/box_tree.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
 
 namespace hirsute::dynamics {
@@ -79,11 +79,14 @@ class VaneOverlaps {
 // not tested against each other, nor against the body.
 std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double minimumDistance,
                                    const VaneOverlaps* skip = nullptr);
-// The same searching in `grid`, whose memory it keeps for the next search; each pair of
-// segments found (their segmentIndex in `numbering`) is added to `found` where one is given.
+// The same searching in `tree` (refitted from its last search where it can be; the pairs tested
+// on its pool's threads); each pair of segments found (their segmentIndex in `numbering`) is
+// added to `found` where one is given. With a `slack`, the tree's kept list of the pairs whose
+// boxes grown by it overlap is filtered (BoxTree::coherentPairs), less the pairs a plane of one
+// of them keeps farther apart than `minimumDistance` and the slack's moves allow for.
 std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double minimumDistance,
-                                   CollisionGrid& grid, const VaneOverlaps* skip,
-                                   VaneOverlaps* found = nullptr);
+                                   BoxTree& tree, const VaneOverlaps* skip,
+                                   VaneOverlaps* found = nullptr, double slack = 0);
 
 // The distance between a segment and a triangle, and between two triangles (closed).
 double segmentTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& q,

@@ -1,0 +1,258 @@
+// A bounding-volume hierarchy of boxes per group, refitted from search to search.
+#include "hirsute/hairs/dynamics/box_tree.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace hirsute::dynamics {
+namespace {
+
+constexpr int kLeafSize = 4;
+
+// Whether the box holds anything: false for a box with a NaN coordinate, which overlaps nothing.
+bool holdsPoints(const Box& box) {
+  return (box.min.array() <= box.max.array()).all();
+}
+
+Box emptyBox() {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  return {Eigen::Vector3d::Constant(inf), Eigen::Vector3d::Constant(-inf)};
+}
+
+// Where a box is for sorting: its centre, a coordinate that is not finite (an unbounded box)
+// taken as 0. Only the tree's shape depends on it, never what a search finds.
+Eigen::Vector3d centreOf(const Box& box) {
+  Eigen::Vector3d c = 0.5 * (box.min + box.max);
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(c[k])) c[k] = 0;
+  return c;
+}
+
+}  // namespace
+
+void BoxTree::build(Tree& tree, const std::vector<Box>& boxes) {
+  tree.nodes.clear();
+  const int n = static_cast<int>(tree.order.size());
+  if (n == 0) return;
+  std::vector<Eigen::Vector3d> centres(boxes.size());
+  for (int i : tree.order) centres[i] = centreOf(boxes[i]);
+  struct Task {
+    int node, begin, end;
+  };
+  tree.nodes.reserve(2 * (n / kLeafSize + 1));
+  tree.nodes.emplace_back();
+  std::vector<Task> tasks{{0, 0, n}};
+  while (!tasks.empty()) {
+    const Task task = tasks.back();
+    tasks.pop_back();
+    Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Array3d hi = -lo;
+    for (int k = task.begin; k < task.end; ++k) {
+      lo = lo.min(centres[tree.order[k]].array());
+      hi = hi.max(centres[tree.order[k]].array());
+    }
+    int axis = 0;
+    const double spread = (hi - lo).maxCoeff(&axis);
+    if (task.end - task.begin <= kLeafSize || !(spread > 0)) {
+      tree.nodes[task.node].first = task.begin;
+      tree.nodes[task.node].count = task.end - task.begin;
+      continue;
+    }
+    // Split at the median along the centres' widest spread (ties by box number: the same
+    // boxes always make the same tree).
+    const int middle = (task.begin + task.end) / 2;
+    std::nth_element(tree.order.begin() + task.begin, tree.order.begin() + middle,
+                     tree.order.begin() + task.end, [&](int a, int b) {
+                       const double x = centres[a][axis], y = centres[b][axis];
+                       return x < y || (x == y && a < b);
+                     });
+    const int child = static_cast<int>(tree.nodes.size());
+    tree.nodes.emplace_back();
+    tree.nodes.emplace_back();
+    tree.nodes[task.node].first = child;
+    tree.nodes[task.node].count = 0;
+    tasks.push_back({child, task.begin, middle});
+    tasks.push_back({child + 1, middle, task.end});
+  }
+  ++builds_;
+}
+
+void BoxTree::refit(Tree& tree, const std::vector<Box>& boxes) {
+  tree.leafBoxes.resize(tree.order.size());
+  for (std::size_t k = 0; k < tree.order.size(); ++k) tree.leafBoxes[k] = boxes[tree.order[k]];
+  // Children come after their parent: from the last node back, each node's children are done.
+  for (int i = static_cast<int>(tree.nodes.size()) - 1; i >= 0; --i) {
+    Node& node = tree.nodes[i];
+    Box box = emptyBox();
+    int largest = -1;
+    const auto take = [&](const Box& b) {
+      if (!holdsPoints(b)) return;
+      box.min = box.min.cwiseMin(b.min);
+      box.max = box.max.cwiseMax(b.max);
+    };
+    if (node.count > 0) {
+      for (int k = node.first; k < node.first + node.count; ++k) {
+        take(tree.leafBoxes[k]);
+        largest = std::max(largest, tree.order[k]);
+      }
+    } else {
+      for (int c = node.first; c < node.first + 2; ++c) {
+        take(tree.nodes[c].box);
+        largest = std::max(largest, tree.nodes[c].largest);
+      }
+    }
+    node.box = box;
+    node.largest = largest;
+  }
+}
+
+std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
+    const std::vector<Box>& boxes, const std::vector<char>& moving,
+    const std::function<bool(int, int)>& wanted) {
+  twoGroups_.of.clear();
+  for (char m : moving) twoGroups_.of.push_back(m ? 0 : 1);
+  twoGroups_.pairsWith = {0b11, 0b01};
+  twoGroups_.moving = 1;
+  return overlappingPairs(boxes, twoGroups_, wanted);
+}
+
+std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
+    const std::vector<Box>& boxes, const BoxGroups& groups,
+    const std::function<bool(int, int)>& wanted) {
+  const auto moves = [&](int g) { return (groups.moving >> g) & 1; };
+  // A group has a tree when it pairs with anything; still groups too, so that every pair can be
+  // found from its smaller box number, which makes the pairs come out sorted.
+  const bool sameShape =
+      groups.of == lastGroups_ && groups.moving == lastMoving_ && sinceBuild_ < kRefitsPerBuild;
+  if (!sameShape) {
+    for (Tree& tree : trees_) tree.order.clear();
+    for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+      if (groups.pairsWith[groups.of[i]]) trees_[groups.of[i]].order.push_back(i);
+    for (Tree& tree : trees_) build(tree, boxes);
+    lastGroups_ = groups.of;
+    lastMoving_ = groups.moving;
+    sinceBuild_ = 0;
+  } else {
+    ++refits_;
+    ++sinceBuild_;
+  }
+  for (Tree& tree : trees_) refit(tree, boxes);
+
+  // Each box looks for the boxes of larger numbers it pairs with, in the trees of the groups
+  // its group pairs with (two still groups never). Its pairs are sorted, and the boxes' lists
+  // one after the other are the sorted list of all pairs.
+  const auto search = [&](int i, std::vector<std::pair<int, int>>& out, std::vector<int>& stack) {
+    const Box& box = boxes[i];
+    const int g = groups.of[i];
+    if (!groups.pairsWith[g] || !holdsPoints(box)) return;
+    const std::size_t start = out.size();
+    for (int h = 0; h < 8; ++h) {
+      if (!((groups.pairsWith[g] >> h) & 1) || (!moves(g) && !moves(h))) continue;
+      const Tree& tree = trees_[h];
+      if (tree.nodes.empty()) continue;
+      stack.assign(1, 0);
+      while (!stack.empty()) {
+        const Node& node = tree.nodes[stack.back()];
+        stack.pop_back();
+        if (node.largest <= i || !node.box.overlaps(box)) continue;
+        if (node.count == 0) {
+          stack.push_back(node.first);
+          stack.push_back(node.first + 1);
+          continue;
+        }
+        for (int k = node.first; k < node.first + node.count; ++k) {
+          const int j = tree.order[k];
+          if (j > i && tree.leafBoxes[k].overlaps(box) && wanted(i, j)) out.emplace_back(i, j);
+        }
+      }
+    }
+    std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end());
+  };
+  const std::size_t count = boxes.size();
+  constexpr std::size_t kGrain = 512;
+  std::vector<std::vector<std::pair<int, int>>> chunks((count + kGrain - 1) / kGrain);
+  const auto searchChunk = [&](std::size_t begin, std::size_t end) {
+    std::vector<int> stack;
+    for (std::size_t b = begin; b < end; b += kGrain) {
+      auto& out = chunks[b / kGrain];
+      for (std::size_t i = b; i < std::min(end, b + kGrain); ++i)
+        search(static_cast<int>(i), out, stack);
+    }
+  };
+  if (pool_ != nullptr)
+    pool_->forEach(count, kGrain, searchChunk);
+  else
+    searchChunk(0, count);
+  std::size_t total = 0;
+  for (const auto& chunk : chunks) total += chunk.size();
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(total);
+  for (const auto& chunk : chunks) pairs.insert(pairs.end(), chunk.begin(), chunk.end());
+  return pairs;
+}
+
+std::vector<std::pair<int, int>> BoxTree::coherentPairs(
+    const std::vector<Box>& boxes, const BoxGroups& groups, double slack, std::uint64_t version,
+    const std::function<bool(int, int)>& lasting, const std::function<bool(int, int)>& wanted,
+    const std::vector<Box>* vertices) {
+  bool inside = keptValid_ && version == keptVersion_ && groups.of == keptGroups_ &&
+                groups.pairsWith == keptPairsWith_ && groups.moving == keptMoving_ &&
+                grown_.size() == boxes.size();
+  const auto within = [](const Box& box, const Box& grown) {
+    return (box.min.array() >= grown.min.array()).all() &&
+           (box.max.array() <= grown.max.array()).all();
+  };
+  // (A box with a NaN overlaps nothing, wherever it is.)
+  for (std::size_t i = 0; inside && i < boxes.size(); ++i)
+    inside = !holdsPoints(boxes[i]) || within(boxes[i], grown_[i]);
+  if (vertices != nullptr) {
+    inside = inside && vertices->size() == grownVertices_.size();
+    for (std::size_t v = 0; inside && v < vertices->size(); ++v)
+      inside = within((*vertices)[v], grownVertices_[v]);
+  } else {
+    inside = inside && grownVertices_.empty();
+  }
+  if (!inside) {
+    const auto grow = [slack](std::vector<Box>& grown, const std::vector<Box>& from) {
+      grown = from;
+      for (Box& box : grown) {
+        box.min.array() -= slack;
+        box.max.array() += slack;
+      }
+    };
+    grow(grown_, boxes);
+    if (vertices != nullptr)
+      grow(grownVertices_, *vertices);
+    else
+      grownVertices_.clear();
+    kept_ = overlappingPairs(grown_, groups, lasting);
+    keptGroups_ = groups.of;
+    keptPairsWith_ = groups.pairsWith;
+    keptMoving_ = groups.moving;
+    keptVersion_ = version;
+    keptValid_ = true;
+    ++listSearches_;
+  } else {
+    ++listFilters_;
+  }
+  // The kept list is sorted; its chunks filtered one after the other stay so.
+  constexpr std::size_t kGrain = 4096;
+  std::vector<std::vector<std::pair<int, int>>> chunks((kept_.size() + kGrain - 1) / kGrain);
+  forEach(pool_, kept_.size(), kGrain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; b += kGrain) {
+      auto& out = chunks[b / kGrain];
+      for (std::size_t k = b; k < std::min(end, b + kGrain); ++k) {
+        const auto [i, j] = kept_[k];
+        if (boxes[i].overlaps(boxes[j]) && wanted(i, j)) out.emplace_back(i, j);
+      }
+    }
+  });
+  std::size_t total = 0;
+  for (const auto& chunk : chunks) total += chunk.size();
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(total);
+  for (const auto& chunk : chunks) pairs.insert(pairs.end(), chunk.begin(), chunk.end());
+  return pairs;
+}
+
+}  // namespace hirsute::dynamics
