@@ -23,6 +23,8 @@ struct RenderOptions {
   // --trace: the path tracer instead of GL (trace_run.cpp, in the trace module).
   bool trace = false;
   int traceSamples = 64;
+  float traceNoise = 4;          // --noise: adaptive sampling's target, display levels (0: off)
+  std::string sampleCountImage;  // --spp-image: each pixel's sample count as grey
   double traceSeconds = 0;
   std::uint64_t traceSeed = 1;
   int bits = 8;  // --bits: 8 (sRGB) or 16 (linear light, with --trace)

@@ -43,6 +43,18 @@ void registerRenderCommand(CLI::App& app, Action& action) {
   render->add_option("--spp", options->traceSamples,
                      "With --trace: samples a pixel, at most (default 64)")
       ->check(CLI::Range(1, 1 << 20));
+  render
+      ->add_option("--noise", options->traceNoise,
+                   "With --trace: adaptive sampling; a tile of 8x8 pixels stops taking samples "
+                   "once its noisiest pixel's estimated error is under LEVELS display levels "
+                   "(default 4; 0-255, 0: every pixel takes --spp)")
+      ->type_name("LEVELS")
+      ->check(CLI::Range(0.0, 255.0));
+  render
+      ->add_option("--spp-image", options->sampleCountImage,
+                   "With --trace: also write each pixel's sample count to this PNG "
+                   "(grey, white for --spp)")
+      ->type_name("FILE");
   render->add_option("--time", options->traceSeconds,
                      "With --trace: stop the passes before this many seconds (default: none)")
       ->check(CLI::Range(0.0, 1e7));
@@ -57,6 +69,9 @@ void registerRenderCommand(CLI::App& app, Action& action) {
     if (!options->trace && (exr || options->bits != 8)) {
       throw CLI::ValidationError(exr ? "--output" : "--bits",
                                  "an OpenEXR file and 16-bit PNGs are made by --trace only");
+    }
+    if (!options->trace && !options->sampleCountImage.empty()) {
+      throw CLI::ValidationError("--spp-image", "sample counts are made by --trace only");
     }
     if (exr && options->bits != 8) {
       throw CLI::ValidationError("--bits", "an OpenEXR file holds half floats; --bits is for PNGs");

@@ -38,6 +38,7 @@ int runTrace(const RenderOptions& o) {
 
   trace::TraceOptions options;
   options.samples = o.traceSamples;
+  options.noise = o.traceNoise;
   options.seconds = o.traceSeconds;
   options.threads = o.model.threads;
   options.seed = o.traceSeed;
@@ -70,8 +71,9 @@ int runTrace(const RenderOptions& o) {
   }
   progress.clear();
   if (o.model.verbose) {
-    std::cerr << fmt::format("traced {} samples a pixel at {}x{} in {:.3f} s\n", image.passes,
-                             image.width, image.height, image.seconds);
+    std::cerr << fmt::format(
+        "traced {:.1f} samples a pixel on average, at most {}, at {}x{} in {:.3f} s\n",
+        image.meanSamples(), image.passes, image.width, image.height, image.seconds);
   }
   try {
     if (hasExrExtension(o.output)) {
@@ -80,6 +82,9 @@ int runTrace(const RenderOptions& o) {
       writeLinearPng16(o.output, image.width, image.height, image.radiance);
     } else {
       writePng(o.output, trace::displayImage(image));
+    }
+    if (!o.sampleCountImage.empty()) {
+      writePng(o.sampleCountImage, trace::sampleCountImage(image, o.traceSamples));
     }
   } catch (const std::runtime_error& e) {
     std::cerr << "hirsute: error: " << e.what() << '\n';

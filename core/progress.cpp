@@ -16,9 +16,8 @@ constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
 // Progress::lastStage(): names are string literals, so the pointer is all there is to keep.
 std::atomic<const char*> lastStageBegun{""};
 
-}  // namespace
-
-std::string progressLine(const char* stage, Progress::Unit unit, double done, double total) {
+// The line without its note.
+std::string countLine(const char* stage, Progress::Unit unit, double done, double total) {
   switch (unit) {
     case Progress::Unit::Steps:
       return fmt::format("{}: step {}/{}", stage, static_cast<long long>(done),
@@ -37,6 +36,13 @@ std::string progressLine(const char* stage, Progress::Unit unit, double done, do
   if (done >= 1e6) return fmt::format("{}: {:.1f} M", stage, done / 1e6);
   if (done >= 1e4) return fmt::format("{}: {:.0f} k", stage, done / 1e3);
   return fmt::format("{}: {}", stage, static_cast<long long>(done));
+}
+
+}  // namespace
+
+std::string progressLine(const char* stage, Progress::Unit unit, double done, double total,
+                         const std::string& note) {
+  return countLine(stage, unit, done, total) + note;
 }
 
 Progress::Progress(std::FILE* terminal, std::chrono::milliseconds quietStart)
@@ -61,13 +67,14 @@ void Progress::begin(const char* name, Unit unit, double total) {
   total_ = total;
   countdown_ = kTicksPerPoll;
   lastDrawn_ = {};  // a new stage is shown at its first update
+  note_.clear();
 }
 
 void Progress::poll(double done) {
   const Clock::time_point now = Clock::now();
   if (now - started_ < quietStart_ || now - lastDrawn_ < kRedrawInterval) return;
   lastDrawn_ = now;
-  line_ = progressLine(stage_, unit_, done, total_);
+  line_ = progressLine(stage_, unit_, done, total_, note_);
   // Spaces cover what is left of a longer line drawn before.
   const std::size_t width = line_.size();
   if (width < shownWidth_) line_.append(shownWidth_ - width, ' ');

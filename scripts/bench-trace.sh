@@ -1,17 +1,22 @@
 #!/usr/bin/env bash
 # The path tracer against POV-Ray on the same view of the same model (issue 23's benchmark),
 # all timed as whole processes with GNU time (wall seconds, peak MiB): `hirsute render --trace`
-# at SPP samples a pixel; `hirsute export --pov` followed by POV-Ray 3.7 rendering the exported
+# at each of SETTINGS; `hirsute export --pov` followed by POV-Ray 3.7 rendering the exported
 # scene at the same size, once with the view's GL lights (+A0.3 antialiasing) and once with the
 # tracer's own lights (`--trace-lights`: an area light and the sky by radiosity, the same set-up
 # as the tracer's). The tracer's noise is the RMS difference, in 8-bit display levels, between
-# its picture and one of another seed, over sqrt(2) (scripts/image-noise.py). Prints one row a
+# its picture and one of another seed, over sqrt(2), over the whole plant and in its noisiest
+# 8x8 tiles (the 99th percentile; scripts/image-noise.py --tiles). Prints one row a
 # model; the speed columns are POV-Ray's export and render time over the tracer's.
 #   scripts/bench-trace.sh                 (builds build/release first)
-# HIRSUTE=PATH skips the build; SIZE (default 800x600), SPP (default 64) and MODELS (default
-# "nankin-cherry/nankin-cherry oriental-poppy/oriental-poppy wild-crocus/wild-crocus", each a
-# models/ folder and the base name of its .l and .v) choose what is run; POVRAY_LIMIT (seconds,
-# default 1800) stops a POV-Ray run that takes longer, reported as failed.
+# HIRSUTE=PATH skips the build; SIZE (default 800x600), SETTINGS (default "64:0": one or more
+# SPP:NOISE, the --spp and --noise of a tracer's run, each its own row, run one after another
+# for each model, so that uniform and adaptive sampling are timed side by side) and MODELS
+# (default "nankin-cherry/nankin-cherry oriental-poppy/oriental-poppy wild-crocus/wild-crocus",
+# each a models/ folder and the base name of its .l and .v) choose what is run; POVRAY=0 leaves
+# POV-Ray out; POVRAY_LIMIT (seconds, default 1800) stops a POV-Ray run that takes longer,
+# reported as failed. A row's "spp" is the mean samples a pixel the tracer took. KEEP=DIR keeps
+# the tracer's pictures and sample counts there (MODEL-SPP-NOISE.png, ...-spp.png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$PWD"
@@ -23,7 +28,7 @@ if [[ -z "$program" ]]; then
 fi
 program="$(realpath "$program")"
 size="${SIZE:-800x600}"
-spp="${SPP:-64}"
+settings="${SETTINGS:-64:0}"
 models="${MODELS:-nankin-cherry/nankin-cherry oriental-poppy/oriental-poppy wild-crocus/wild-crocus}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -38,24 +43,43 @@ timed() {  # prints "seconds MiB" of the command, or "failed"
   fi
 }
 
-printf '%-16s %15s %6s %15s %15s %8s %15s %15s %8s\n' "model" "trace s/MiB" "noise" \
-  "export s/MiB" "POV GL s/MiB" "speed" "export s/MiB" "POV trace s/MiB" "speed"
+printf '%-16s %9s %7s %15s %12s %15s %15s %8s %15s %15s %8s\n' "model" "spp:noise" "spp" \
+  "trace s/MiB" "noise/tiles" "export s/MiB" "POV GL s/MiB" "speed" "export s/MiB" "POV trace s/MiB" "speed"
 for m in $models; do
   folder="$root/models/$(dirname "$m")"
   base="$(basename "$m")"
-  read -r ts tm < <(timed "$program" render "$folder/$base.l" "$folder/$base.v" --trace \
-    --spp "$spp" --size "$size" -o "$work/$base-trace.png")
-  "$program" render "$folder/$base.l" "$folder/$base.v" --trace --spp "$spp" --size "$size" \
-    --seed 2 -o "$work/$base-trace2.png" 2> /dev/null
-  noise="$(python3 "$root/scripts/image-noise.py" "$work/$base-trace.png" "$work/$base-trace2.png")"
-  row="$(printf '%-16s %15s %6s' "$base" "$ts/$tm" "$noise")"
-  for lights in "" "--trace-lights"; do
-    read -r es em < <(timed "$program" export "$folder/$base.l" "$folder/$base.v" $lights \
-      --pov "$work/$base.pov" --width "${size%x*}" --height "${size#*x}")
-    read -r ps pm < <(timed timeout "${POVRAY_LIMIT:-1800}" povray -D +A0.3 +W"${size%x*}" \
-      +H"${size#*x}" +I"$work/$base.pov" +O"$work/$base-pov.png")
-    ratio="$(awk -v t="$ts" -v e="$es" -v p="$ps" 'BEGIN { if (p == "failed") print "-"; else printf "%.1fx", (e + p) / t }')"
-    row+="$(printf ' %15s %15s %8s' "$es/$em" "$ps/$pm" "$ratio")"
+  pov=""
+  for setting in $settings; do
+    spp="${setting%:*}"
+    noise="${setting#*:}"
+    trace=("$program" render "$folder/$base.l" "$folder/$base.v" --trace --spp "$spp" --noise
+      "$noise" --size "$size" -v)
+    read -r ts tm < <(timed "${trace[@]}" -o "$work/$base-trace.png" --spp-image "$work/$base-spp.png")
+    mean="$(sed -n 's/^traced \([0-9.]*\) samples a pixel on average.*/\1/p' "$work/err.txt")"
+    "${trace[@]}" --seed 2 -o "$work/$base-trace2.png" 2> /dev/null
+    measured="$(python3 "$root/scripts/image-noise.py" --tiles "$work/$base-trace.png" "$work/$base-trace2.png")"
+    row="$(printf '%-16s %9s %7s %15s %12s' "$base" "$setting" "$mean" "$ts/$tm" "${measured/ //}")"
+    if [[ -n "${KEEP:-}" ]]; then
+      mkdir -p "$KEEP"
+      cp "$work/$base-trace.png" "$KEEP/$base-$spp-$noise.png"
+      cp "$work/$base-spp.png" "$KEEP/$base-$spp-$noise-spp.png"
+    fi
+    if [[ "${POVRAY:-1}" != 0 && -z "$pov" ]]; then
+      for lights in "" "--trace-lights"; do
+        read -r es em < <(timed "$program" export "$folder/$base.l" "$folder/$base.v" $lights \
+          --pov "$work/$base.pov" --width "${size%x*}" --height "${size#*x}")
+        read -r ps pm < <(timed timeout "${POVRAY_LIMIT:-1800}" povray -D +A0.3 +W"${size%x*}" \
+          +H"${size#*x}" +I"$work/$base.pov" +O"$work/$base-pov.png")
+        pov+="$(printf ' %15s %15s' "$es/$em" "$ps/$pm") $es $ps "
+      done
+    fi
+    # POV-Ray's columns: measured once a model, the speed against each of the tracer's rows.
+    set -- $pov
+    while (( $# >= 4 )); do
+      ratio="$(awk -v t="$ts" -v e="$3" -v p="$4" 'BEGIN { if (p == "failed") print "-"; else printf "%.1fx", (e + p) / t }')"
+      row+="$(printf ' %15s %15s %8s' "$1" "$2" "$ratio")"
+      shift 4
+    done
+    echo "$row"
   done
-  echo "$row"
 done

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """The Monte-Carlo noise of a traced picture, from two renders that differ in their seed only.
 
-    scripts/image-noise.py A.png B.png
+    scripts/image-noise.py [--tiles] A.png B.png
 
 Prints the noise of one picture: the RMS of the per-pixel difference over sqrt(2), in 8-bit
 display levels (sRGB, as the eye sees the PNG), over the pixels that are not background in
-either. Reads
+either. With --tiles, also the noise of the noisiest tiles, where a picture looks least clean:
+the same RMS within each 8x8 tile of at least 48 such pixels, and of those the 99th percentile.
+Reads
 8- and 16-bit RGB/RGBA PNGs without interlacing (what `render` writes), with the standard
 library alone.
 """
@@ -72,10 +74,13 @@ def read_png(path):
 
 
 def main():
-    if len(sys.argv) != 3:
+    args = sys.argv[1:]
+    tiles = "--tiles" in args
+    args = [a for a in args if a != "--tiles"]
+    if len(args) != 2:
         sys.exit(__doc__)
-    wa, ha, a = read_png(sys.argv[1])
-    wb, hb, b = read_png(sys.argv[2])
+    wa, ha, a = read_png(args[0])
+    wb, hb, b = read_png(args[1])
     if (wa, ha) != (wb, hb):
         sys.exit("the pictures differ in size")
     # The background: the most common value of the first picture.
@@ -88,15 +93,24 @@ def main():
         return 255 * (12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055)
 
     squares, count = 0.0, 0
-    for p, q in zip(a, b):
+    tile_sums = {}
+    for i, (p, q) in enumerate(zip(a, b)):
         if p == background and q == background:
             continue
-        for k in range(3):
-            squares += (display(p[k]) - display(q[k])) ** 2
+        pixel = sum((display(p[k]) - display(q[k])) ** 2 for k in range(3))
+        squares += pixel
         count += 3
+        tile = tile_sums.setdefault((i % wa // 8, i // wa // 8), [0.0, 0])
+        tile[0] += pixel
+        tile[1] += 1
     if count == 0:
         sys.exit("the pictures are background only")
-    print(f"{math.sqrt(squares / count) / math.sqrt(2):.2f}")
+    line = f"{math.sqrt(squares / count) / math.sqrt(2):.2f}"
+    if tiles:
+        noise = sorted(math.sqrt(s / (3 * n) / 2) for s, n in tile_sums.values() if n >= 48)
+        if noise:
+            line += f" {noise[min(len(noise) - 1, int(0.99 * len(noise)))]:.2f}"
+    print(line)
 
 
 if __name__ == "__main__":

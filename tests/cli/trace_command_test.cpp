@@ -8,6 +8,7 @@
 #include <iterator>
 #include <string>
 
+#include "hirsute/viewer/view/png_image.h"
 #include "support/run_hirsute.h"
 
 namespace {
@@ -44,6 +45,33 @@ TEST(TraceCommand, WritesOpenExrAndSixteenBitPngAndTheGlRenderRefusesThem) {
   EXPECT_EQ(run.exitCode, 2);
   EXPECT_NE(run.err.find("made by --trace only"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(refused));
+}
+
+TEST(TraceCommand, WritesTheSampleCountsOfAdaptiveSampling) {
+  TemporaryFolder folder;
+  const std::string model = (kCrocus / "wild-crocus.l").string();
+  const std::string view = (kCrocus / "closeup.v").string();
+  const fs::path png = folder.path() / "still.png", counts = folder.path() / "counts.png";
+  RunResult run =
+      runHirsute({"render", model, view, "--trace", "--spp", "32", "--noise", "3", "--size",
+                  "40x24", "-o", png.string(), "--spp-image", counts.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const hirsute::RgbaImage image = hirsute::readPng(counts);
+  ASSERT_EQ(image.width, 40);
+  ASSERT_EQ(image.height, 24);
+  // Grey, each pixel between the first 16 samples (half white) and the 32 at most (white).
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const glm::u8vec4 p = image.pixel(x, y);
+      EXPECT_EQ(p.r, p.g);
+      EXPECT_GE(p.r, 127);
+    }
+  }
+  run = runHirsute({"render", model, view, "--spp-image", counts.string(), "-o", png.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("made by --trace only"), std::string::npos) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--noise", "-1", "-o", png.string()});
+  EXPECT_EQ(run.exitCode, 2);
 }
 
 TEST(TraceCommand, ExportTakesTheTracersLights) {

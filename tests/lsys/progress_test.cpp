@@ -51,6 +51,8 @@ TEST(ProgressLine, NamesTheStageAndHowFarItHasGot) {
   EXPECT_EQ(progressLine("placing hairs", Progress::Unit::Count, 45'600, 0), "placing hairs: 46 k");
   EXPECT_EQ(progressLine("placing hairs", Progress::Unit::Count, 812, 0), "placing hairs: 812");
   EXPECT_EQ(progressLine("rendering", Progress::Unit::None, 0, 0), "rendering");
+  EXPECT_EQ(progressLine("tracing", Progress::Unit::Steps, 40, 256, ", 31% of pixels active"),
+            "tracing: step 40/256, 31% of pixels active");
 }
 
 TEST_F(ProgressTest, NothingIsShownInTheFirstSecond) {
@@ -97,6 +99,17 @@ TEST_F(ProgressTest, AfterTheQuietStartTheLineIsRewrittenInPlaceAndCleared) {
   // Destroyed: the line is blanked and the cursor back at its start.
   const std::string text = contents(file_);
   EXPECT_EQ(text.substr(text.size() - 23), "\r" + std::string(21, ' ') + "\r");
+}
+
+TEST_F(ProgressTest, ANoteFollowsTheCountUntilTheNextStage) {
+  Progress progress(file_, 0ms);
+  progress.begin("tracing", Progress::Unit::Steps, 64);
+  progress.note(", 31% of pixels active");
+  progress.update(20);
+  EXPECT_EQ(contents(file_), "\rtracing: step 20/64, 31% of pixels active");
+  progress.begin("writing", Progress::Unit::None);
+  progress.update(0);
+  EXPECT_EQ(contents(file_).substr(42), "\rwriting" + std::string(34, ' '));
 }
 
 TEST_F(ProgressTest, TickLooksAtTheClockOnlyEveryFewThousandCalls) {

@@ -3,6 +3,7 @@
 // on any number of threads, and the hairy-plants paper's backlit halo (Fig. 5).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "hirsute/viewer/trace/path_tracer.h"
@@ -153,6 +154,119 @@ TEST(PathTracer, ASeedGivesOnePictureOnAnyNumberOfThreads) {
   options.seed = 43;
   const TraceImage other = traceImage(scene, frontCamera(24, 16, 1.5f), lights, options);
   EXPECT_NE(one.radiance, other.radiance);
+  // And adaptively, on a wider picture whose side tiles are background: each tile stops after
+  // the same pass on any number of threads.
+  options.seed = 42;
+  options.samples = 40;
+  options.firstSamples = 8;
+  options.noise = 6;
+  options.threads = 1;
+  const TraceImage adaptiveOne = traceImage(scene, frontCamera(40, 24, 1.5f), lights, options);
+  options.threads = 3;
+  const TraceImage adaptiveThree = traceImage(scene, frontCamera(40, 24, 1.5f), lights, options);
+  EXPECT_EQ(adaptiveOne.samples, adaptiveThree.samples);
+  EXPECT_EQ(adaptiveOne.radiance, adaptiveThree.radiance);
+  const auto [fewest, most] =
+      std::minmax_element(adaptiveOne.samples.begin(), adaptiveOne.samples.end());
+  EXPECT_LT(*fewest, *most);  // some tiles stopped early, others did not
+}
+
+// Adaptive sampling on a diffuse sphere (ρ 0.7) under a uniform sky in front of a black
+// background, seen from the front by a parallel camera over [-1.5, 1.5]²: a pixel at (x, y)
+// inside the disc sees the point whose normal is (x, y, z), of radiance ρ L (1 + y) / 2.
+struct SkyLitSphere {
+  TraceScene scene{TraceSettings{}};
+  TraceLights lights;
+  SkyLitSphere() {
+    addSphere(scene, 0.7f);
+    scene.commit();
+    lights.sky = glm::vec3(0.5f);
+  }
+  static constexpr int kSide = 48;
+  static constexpr float kHalf = 1.5f;
+  static glm::vec2 world(int x, int y) {
+    return {kHalf * ((x + 0.5f) / kSide * 2 - 1), kHalf * (1 - (y + 0.5f) / kSide * 2)};
+  }
+};
+
+TEST(PathTracer, AdaptiveSamplingStopsOnTheFlatBackgroundAndGoesOnWhereItIsNoisy) {
+  SkyLitSphere sky;
+  TraceOptions options;
+  options.samples = 64;
+  options.firstSamples = 16;
+  options.noise = 0.5f;
+  options.seed = 3;
+  const TraceImage image = traceImage(
+      sky.scene, frontCamera(SkyLitSphere::kSide, SkyLitSphere::kSide, 1.5f), sky.lights, options);
+  EXPECT_EQ(image.passes, 64);
+  int background = 0, noisy = 0;
+  for (int y = 0; y < SkyLitSphere::kSide; ++y) {
+    for (int x = 0; x < SkyLitSphere::kSide; ++x) {
+      // The distance from the disc of the tile's nearest and farthest pixel centres.
+      float nearest = 1e9f, farthest = 0;
+      const int tx = x / kTileSize * kTileSize, ty = y / kTileSize * kTileSize;
+      for (int v = ty; v < ty + kTileSize; ++v) {
+        for (int u = tx; u < tx + kTileSize; ++u) {
+          const float r = glm::length(SkyLitSphere::world(u, v));
+          nearest = std::min(nearest, r);
+          farthest = std::max(farthest, r);
+        }
+      }
+      const std::uint32_t n = image.samples[static_cast<std::size_t>(y) * SkyLitSphere::kSide + x];
+      if (nearest > 1.05f) {  // a tile of background alone: every sample black, no noise
+        EXPECT_EQ(n, 16u) << x << " " << y;
+        ++background;
+      } else if (farthest < 0.95f) {  // a tile on the sphere: a few levels of noise at 64
+        EXPECT_EQ(n, 64u) << x << " " << y;
+        ++noisy;
+      }
+    }
+  }
+  EXPECT_GT(background, 500);
+  EXPECT_GT(noisy, 200);
+  EXPECT_LT(image.meanSamples(), 48);
+}
+
+TEST(PathTracer, AdaptiveSamplingLeavesTheSkyLitSphereUnbiased) {
+  SkyLitSphere sky;
+  TraceOptions options;
+  options.samples = 256;
+  options.firstSamples = 16;
+  options.noise = 3.5f;
+  double sum = 0, squares = 0, levels = 0;
+  int count = 0;
+  std::uint32_t fewest = 1u << 30u, most = 0;
+  for (std::uint64_t seed : {5u, 6u}) {
+    options.seed = seed;
+    const TraceImage image =
+        traceImage(sky.scene, frontCamera(SkyLitSphere::kSide, SkyLitSphere::kSide, 1.5f),
+                   sky.lights, options);
+    for (int y = 0; y < SkyLitSphere::kSide; ++y) {
+      for (int x = 0; x < SkyLitSphere::kSide; ++x) {
+        const glm::vec2 p = SkyLitSphere::world(x, y);
+        if (glm::length(p) > 0.9f) continue;
+        const std::size_t index = static_cast<std::size_t>(y) * SkyLitSphere::kSide + x;
+        const float expected = 0.7f * 0.5f * (1 + p.y) / 2;
+        const float value = image.radiance[index].g;
+        sum += value - expected;
+        squares += (value - expected) * (value - expected);
+        const float off = displayLevel(value) - displayLevel(expected);
+        levels += off * off;
+        fewest = std::min(fewest, image.samples[index]);
+        most = std::max(most, image.samples[index]);
+        ++count;
+      }
+    }
+  }
+  // The tiles stopped at many different counts (the darker lower half takes more).
+  EXPECT_LT(fewest + 32, most) << fewest << " " << most;
+  // Each pixel within the target: the estimate from the samples' spread ignores their
+  // stratification and errs on the safe side.
+  EXPECT_LT(std::sqrt(levels / count), options.noise) << std::sqrt(levels / count);
+  // No bias from stopping where the first samples happened to agree: the mean error over the
+  // 1 200 pixels within three of its standard errors of 0.
+  const double mean = sum / count, rms = std::sqrt(squares / count);
+  EXPECT_LT(std::abs(mean), 3 * rms / std::sqrt(count)) << mean << " " << rms << " " << count;
 }
 
 // Fig. 5 of the hairy-plants paper: a twig with fine hairs, lit from behind, glows in a band

@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "hirsute/viewer/trace/hair_bsdf.h"
 #include "hirsute/viewer/trace/surface_bsdf.h"
@@ -461,70 +463,172 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
   const int threads = options.threads > 0
                           ? options.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  std::vector<glm::vec3> sum(pixels, glm::vec3(0.0f));
   const int passes = std::max(1, options.samples);
+  const bool adaptive = options.noise > 0;
+  const int firstJudged = std::max(2, options.firstSamples);  // a variance needs two samples
+  std::vector<glm::vec3> sum(pixels, glm::vec3(0.0f));
+  std::vector<glm::dvec3> squares(adaptive ? pixels : 0, glm::dvec3(0.0));
+  image.samples.assign(pixels, 0);
+
+  // The tiles still sampled, in raster order; the threads take them one at a time.
+  const int tilesX = (image.width + kTileSize - 1) / kTileSize;
+  const int tilesY = (image.height + kTileSize - 1) / kTileSize;
+  std::vector<int> active(static_cast<std::size_t>(tilesX) * static_cast<std::size_t>(tilesY));
+  for (std::size_t t = 0; t < active.size(); ++t) active[t] = static_cast<int>(t);
+  std::size_t activePixels = pixels;
+  auto tileRect = [&](int tile) {
+    const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
+    return glm::ivec4(x0, y0, std::min(x0 + kTileSize, image.width),
+                      std::min(y0 + kTileSize, image.height));
+  };
+  // A tile stops when the noisiest of its pixels is under the target: the tile, not the
+  // pixel, so that one whose first samples happen to agree goes on with its neighbours.
+  auto quietTile = [&](const glm::ivec4& rect, std::uint32_t count) {
+    for (int y = rect.y; y < rect.w; ++y) {
+      for (int x = rect.x; x < rect.z; ++x) {
+        const std::size_t index =
+            static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+            static_cast<std::size_t>(x);
+        if (pixelNoise(sum[index], squares[index], count) > options.noise) return false;
+      }
+    }
+    return true;
+  };
+
   if (options.progress) options.progress->begin("tracing", Progress::Unit::Steps, passes);
   double lastPass = 0;
-  for (int pass = 0; pass < passes; ++pass) {
+  for (int pass = 0; pass < passes && !active.empty(); ++pass) {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     if (options.seconds > 0 && pass > 0 && elapsed + lastPass > options.seconds) break;
     const Clock::time_point passStart = Clock::now();
-    std::atomic<int> nextRow{0};
+    std::atomic<std::size_t> nextTile{0};
+    // A tile is judged by the thread that sampled it, as soon as it has: its pixels are its
+    // own, and its fate depends on them alone.
+    const bool judged = adaptive && pass + 1 >= firstJudged;
+    const auto count = static_cast<std::uint32_t>(pass + 1);
+    std::vector<std::uint8_t> stops(judged ? active.size() : 0, 0);
     auto work = [&] {
-      for (int y; (y = nextRow.fetch_add(1)) < image.height;) {
-        for (int x = 0; x < image.width; ++x) {
-          const std::size_t index =
-              static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
-              static_cast<std::size_t>(x);
-          Random random =
-              Random::stratified(options.seed, index, static_cast<std::uint32_t>(pass));
-          const glm::vec2 jitter = random.uniform2();
-          const float sx = (static_cast<float>(x) + jitter.x) / static_cast<float>(image.width) * 2 - 1;
-          const float sy = 1 - (static_cast<float>(y) + jitter.y) / static_cast<float>(image.height) * 2;
-          glm::vec3 origin, direction;
-          float near, far;
-          if (perspective) {
-            origin = camera.eye;
-            direction = glm::normalize(camera.forward + sx * tanHalf * aspect * camera.right +
-                                       sy * tanHalf * camera.up);
-            const float along = glm::dot(direction, camera.forward);
-            near = std::max(0.0f, camera.nearPlane / along);
-            far = camera.farPlane / along;
-          } else {
-            // The near plane may lie behind the eye (cpfg's front distance): rays start on it.
-            origin = camera.eye + sx * camera.halfWidth * camera.right +
-                     sy * camera.halfHeight * camera.up + camera.nearPlane * camera.forward;
-            direction = camera.forward;
-            near = 0;
-            far = camera.farPlane - camera.nearPlane;
+      for (std::size_t k; (k = nextTile.fetch_add(1)) < active.size();) {
+        const glm::ivec4 rect = tileRect(active[k]);
+        for (int y = rect.y; y < rect.w; ++y) {
+          for (int x = rect.x; x < rect.z; ++x) {
+            const std::size_t index =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+                static_cast<std::size_t>(x);
+            Random random =
+                Random::stratified(options.seed, index, static_cast<std::uint32_t>(pass));
+            const glm::vec2 jitter = random.uniform2();
+            const float sx =
+                (static_cast<float>(x) + jitter.x) / static_cast<float>(image.width) * 2 - 1;
+            const float sy =
+                1 - (static_cast<float>(y) + jitter.y) / static_cast<float>(image.height) * 2;
+            glm::vec3 origin, direction;
+            float near, far;
+            if (perspective) {
+              origin = camera.eye;
+              direction = glm::normalize(camera.forward + sx * tanHalf * aspect * camera.right +
+                                         sy * tanHalf * camera.up);
+              const float along = glm::dot(direction, camera.forward);
+              near = std::max(0.0f, camera.nearPlane / along);
+              far = camera.farPlane / along;
+            } else {
+              // The near plane may lie behind the eye (cpfg's front distance): rays start on it.
+              origin = camera.eye + sx * camera.halfWidth * camera.right +
+                       sy * camera.halfHeight * camera.up + camera.nearPlane * camera.forward;
+              direction = camera.forward;
+              near = 0;
+              far = camera.farPlane - camera.nearPlane;
+            }
+            glm::vec3 value = tracer.radiance(origin, direction, near, far, random);
+            // A path that found no number is dropped rather than spoiling the pixel.
+            if (!std::isfinite(value.x + value.y + value.z)) value = glm::vec3(0.0f);
+            sum[index] += value;
+            if (adaptive) squares[index] += glm::dvec3(value) * glm::dvec3(value);
+            ++image.samples[index];
           }
-          glm::vec3 value = tracer.radiance(origin, direction, near, far, random);
-          // A path that found no number is dropped rather than spoiling the pixel.
-          if (!std::isfinite(value.x + value.y + value.z)) value = glm::vec3(0.0f);
-          sum[index] += value;
         }
+        if (judged) stops[k] = quietTile(rect, count) ? 1 : 0;
       }
     };
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+    for (int t = 1; t < threads && static_cast<std::size_t>(t) < active.size(); ++t) {
+      pool.emplace_back(work);
+    }
     work();
     for (std::thread& t : pool) t.join();
     lastPass = std::chrono::duration<double>(Clock::now() - passStart).count();
     image.passes = pass + 1;
-    if (options.progress) options.progress->update(pass + 1);
+    if (judged) {
+      std::size_t kept = 0;
+      for (std::size_t k = 0; k < active.size(); ++k) {
+        if (stops[k] == 0) {
+          active[kept++] = active[k];
+          continue;
+        }
+        const glm::ivec4 rect = tileRect(active[k]);
+        activePixels -=
+            static_cast<std::size_t>(rect.z - rect.x) * static_cast<std::size_t>(rect.w - rect.y);
+      }
+      active.resize(kept);
+    }
+    if (options.progress) {
+      if (adaptive) {
+        const double share = static_cast<double>(activePixels) / static_cast<double>(pixels);
+        options.progress->note(", " + std::to_string(static_cast<int>(std::ceil(100 * share))) +
+                               "% of pixels active");
+      }
+      options.progress->update(pass + 1);
+    }
   }
-  for (std::size_t i = 0; i < pixels; ++i) image.radiance[i] = sum[i] / static_cast<float>(image.passes);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    image.radiance[i] = sum[i] / static_cast<float>(std::max<std::uint32_t>(1, image.samples[i]));
+  }
   image.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return image;
 }
 
+double TraceImage::meanSamples() const {
+  double total = 0;
+  for (const std::uint32_t n : samples) total += n;
+  return samples.empty() ? 0.0 : total / static_cast<double>(samples.size());
+}
+
+float displayLevel(float linear) {
+  const float v = std::clamp(linear, 0.0f, 1.0f);
+  return 255 * (v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f);
+}
+
+float pixelNoise(const glm::vec3& sum, const glm::dvec3& squares, std::uint32_t count) {
+  if (count < 2) return 0;
+  const double n = count;
+  float noise = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double mean = sum[c] / n;
+    const double variance = std::max(0.0, (squares[c] - n * mean * mean) / (n - 1));
+    if (variance == 0) continue;  // every sample alike: the background
+    const double error = std::sqrt(variance / n);
+    const float levels = displayLevel(static_cast<float>(mean + error)) -
+                         displayLevel(static_cast<float>(mean - error));
+    noise = std::max(noise, levels / 2);
+  }
+  return noise;
+}
+
+RgbaImage sampleCountImage(const TraceImage& image, int maximum) {
+  RgbaImage out(image.width, image.height);
+  const double top = std::max(1, maximum);
+  for (std::size_t i = 0; i < image.samples.size(); ++i) {
+    const auto grey = static_cast<std::uint8_t>(
+        std::lround(255 * std::min(1.0, static_cast<double>(image.samples[i]) / top)));
+    out.rgba[4 * i] = out.rgba[4 * i + 1] = out.rgba[4 * i + 2] = grey;
+    out.rgba[4 * i + 3] = 255;
+  }
+  return out;
+}
+
 RgbaImage displayImage(const TraceImage& image) {
   RgbaImage out(image.width, image.height);
-  auto encode = [](float v) {
-    v = std::clamp(v, 0.0f, 1.0f);
-    const float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
-    return static_cast<std::uint8_t>(std::lround(s * 255));
-  };
+  auto encode = [](float v) { return static_cast<std::uint8_t>(std::lround(displayLevel(v))); };
   for (std::size_t i = 0; i < image.radiance.size(); ++i) {
     const glm::vec3 c = image.radiance[i];
     out.rgba[4 * i] = encode(c.r);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace hirsute {
 
@@ -60,6 +61,9 @@ class Progress {
   // Clears the line (if anything is shown); the next update draws it again. Called before other
   // text goes to the same stream, and when the run ends.
   void clear();
+  // Words shown after the count until the next begin() (", 31% of pixels active"): what a stage
+  // knows beside its steps.
+  void note(std::string text) { note_ = std::move(text); }
 
   static constexpr std::uint32_t kTicksPerPoll = 4096;
 
@@ -81,9 +85,12 @@ class Progress {
   double total_ = 0;
   std::size_t shownWidth_ = 0;  // characters on the line now; 0: nothing shown
   std::string line_;
+  std::string note_;
 };
 
-// The text of the line for a stage at `done` (of `total`): "deriving: step 37/216".
-std::string progressLine(const char* stage, Progress::Unit unit, double done, double total);
+// The text of the line for a stage at `done` (of `total`): "deriving: step 37/216", followed by
+// `note` (Progress::note).
+std::string progressLine(const char* stage, Progress::Unit unit, double done, double total,
+                         const std::string& note = "");
 
 }  // namespace hirsute

@@ -8,6 +8,13 @@
 // The picture is made in passes of one sample a pixel, over all the threads; a pixel's samples
 // depend on the seed, the pixel and the pass alone, so a seed gives the same picture on any
 // number of threads. A time budget stops the passes between two of them.
+//
+// Adaptive sampling (TraceOptions::noise): after `firstSamples` passes, each tile of kTileSize²
+// pixels is judged after each pass by the largest estimated standard error of its pixels'
+// means, in display levels; a tile under the target takes no more samples. A pixel's samples
+// stay its first ones (passes 0, 1, 2, ...), so their stratification holds, and a tile's fate
+// depends on its own samples alone, so the picture is still one a seed on any number of
+// threads.
 #pragma once
 
 #include <cstdint>
@@ -39,22 +46,33 @@ struct TraceLights {
 // sized to subtend `look.lightAngle` and bright enough to give `look.lightIrradiance`.
 TraceLights traceLights(const TraceSettings& look, const Bounds& plant, const glm::vec3& fallback);
 
+// The side of the tiles adaptive sampling judges as one: a lucky pixel whose first samples
+// happen to agree does not stop while its neighbours are noisy.
+inline constexpr int kTileSize = 8;
+
 struct TraceOptions {
-  int samples = 64;       // a pixel, at most
-  double seconds = 0;     // the time budget (0: none); the passes stop before it runs out
-  int threads = 0;        // 0: one a core
+  int samples = 64;  // a pixel, at most
+  // Adaptive sampling: the standard error a pixel's mean may keep, in 8-bit sRGB display levels
+  // (pixelNoise); 0 gives every pixel `samples`. Judged from `firstSamples` on.
+  float noise = 0;
+  int firstSamples = 16;
+  double seconds = 0;  // the time budget (0: none); the passes stop before it runs out
+  int threads = 0;     // 0: one a core
   std::uint64_t seed = 1;
   int maxBounces = 16;
   glm::vec3 background{0.0f};  // what camera rays that hit nothing see (a display colour)
   Progress* progress = nullptr;
 };
 
-// Linear radiance a pixel, row 0 at the top, averaged over `passes` samples.
+// Linear radiance a pixel, row 0 at the top, each the mean of its samples.
 struct TraceImage {
   int width = 0, height = 0;
-  int passes = 0;
+  int passes = 0;  // the most samples a pixel took
   double seconds = 0;
   std::vector<glm::vec3> radiance;
+  std::vector<std::uint32_t> samples;  // a pixel's, in the order of `radiance`
+
+  double meanSamples() const;
 
   glm::vec3 at(int x, int y) const {
     return radiance[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
@@ -67,6 +85,18 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
 
 // The picture as a display shows it: sRGB, clamped, 8 bits.
 RgbaImage displayImage(const TraceImage& image);
+
+// A linear value (1 = white) as 8-bit sRGB display levels, clamped to [0, 255], unrounded.
+float displayLevel(float linear);
+
+// The standard error of the mean of `count` samples of sum `sum` and sum of squares `squares`,
+// in display levels: half the distance in display levels between the mean less and the mean
+// plus its standard error in linear light (so that it follows sRGB's slope and its clamp),
+// the most of the three channels. 0 for a single sample.
+float pixelNoise(const glm::vec3& sum, const glm::dvec3& squares, std::uint32_t count);
+
+// Each pixel's sample count as grey, white for `maximum` and black for none.
+RgbaImage sampleCountImage(const TraceImage& image, int maximum);
 
 // The radiance one path from `origin` along `direction` (unit) brings back, for tests of the
 // integrator: `depth` 0 is a camera ray.
