@@ -28,6 +28,16 @@ Eigen::Vector3d centreOf(const Box& box) {
   return c;
 }
 
+// The pairs of chunks filled on the threads, one chunk after the other.
+std::vector<std::pair<int, int>> joined(const std::vector<std::vector<std::pair<int, int>>>& chunks) {
+  std::size_t total = 0;
+  for (const auto& chunk : chunks) total += chunk.size();
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(total);
+  for (const auto& chunk : chunks) pairs.insert(pairs.end(), chunk.begin(), chunk.end());
+  return pairs;
+}
+
 }  // namespace
 
 void BoxTree::build(Tree& tree, const std::vector<Box>& boxes) {
@@ -109,10 +119,7 @@ void BoxTree::refit(Tree& tree, const std::vector<Box>& boxes) {
 std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
     const std::vector<Box>& boxes, const std::vector<char>& moving,
     const std::function<bool(int, int)>& wanted) {
-  twoGroups_.of.clear();
-  for (char m : moving) twoGroups_.of.push_back(m ? 0 : 1);
-  twoGroups_.pairsWith = {0b11, 0b01};
-  twoGroups_.moving = 1;
+  BoxGroups::ofMoving(moving, twoGroups_);
   return overlappingPairs(boxes, twoGroups_, wanted);
 }
 
@@ -183,12 +190,7 @@ std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
     pool_->forEach(count, kGrain, searchChunk);
   else
     searchChunk(0, count);
-  std::size_t total = 0;
-  for (const auto& chunk : chunks) total += chunk.size();
-  std::vector<std::pair<int, int>> pairs;
-  pairs.reserve(total);
-  for (const auto& chunk : chunks) pairs.insert(pairs.end(), chunk.begin(), chunk.end());
-  return pairs;
+  return joined(chunks);
 }
 
 std::vector<std::pair<int, int>> BoxTree::coherentPairs(
@@ -247,12 +249,7 @@ std::vector<std::pair<int, int>> BoxTree::coherentPairs(
       }
     }
   });
-  std::size_t total = 0;
-  for (const auto& chunk : chunks) total += chunk.size();
-  std::vector<std::pair<int, int>> pairs;
-  pairs.reserve(total);
-  for (const auto& chunk : chunks) pairs.insert(pairs.end(), chunk.begin(), chunk.end());
-  return pairs;
+  return joined(chunks);
 }
 
 }  // namespace hirsute::dynamics

@@ -55,10 +55,7 @@ std::vector<std::pair<int, int>> overlappingPairs(const std::vector<Box>& boxes,
 std::vector<std::pair<int, int>> CollisionGrid::overlappingPairs(
     const std::vector<Box>& boxes, const std::vector<char>& moving,
     const std::function<bool(int, int)>& wanted) {
-  twoGroups_.of.clear();
-  for (char m : moving) twoGroups_.of.push_back(m ? 0 : 1);
-  twoGroups_.pairsWith = {0b11, 0b01};
-  twoGroups_.moving = 1;
+  BoxGroups::ofMoving(moving, twoGroups_);
   return overlappingPairs(boxes, twoGroups_, wanted);
 }
 

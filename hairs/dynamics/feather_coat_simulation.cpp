@@ -818,24 +818,29 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   CcdOptions ccd, zoneCcd;
   ccd.minimumSeparation = parameters_.minimumSeparation;
   zoneCcd.minimumSeparation = nearestAllowed();
+  // The CCD of each pair on the threads, into its own slot, so that the results keep the pairs'
+  // order; pairs a plane keeps apart over the step are left out first (the CCD would find no
+  // contact).
+  const auto ccdOf = [&](const std::vector<std::pair<int, int>>& pairs, const CcdOptions& options) {
+    std::vector<CcdResult> results(pairs.size());
+    forEach(pool_.get(), pairs.size(), 256, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        const auto [a, b] = pairs[k];
+        const MovingPrimitives m = primitives.motion(a, b, state);
+        const bool vertexFace = isTriangle(primitives.list[b].kind);
+        if (separatedOverStep(m, vertexFace, options)) continue;
+        results[k] = vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
+      }
+    });
+    return results;
+  };
   auto findContacts = [&](const CcdOptions& options, bool calami) {
     std::vector<Contact> contacts;
     const auto pairs = candidatesOf(state, options.minimumSeparation, [&](int a, int b) {
       return calami || !primitives.holdsCalamus(a, b);
     });
     counters_.candidates += pairs.size();
-    // The CCD of each pair on the threads, into its own slot; the contacts in the pairs' order.
-    std::vector<CcdResult> results(pairs.size());
-    forEach(pool_.get(), pairs.size(), 256, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        const auto [a, b] = pairs[k];
-        const MovingPrimitives m = primitives.motion(a, b, state);
-        // Pairs a plane keeps apart over the step first: the CCD would find no contact.
-        const bool vertexFace = isTriangle(primitives.list[b].kind);
-        if (separatedOverStep(m, vertexFace, options)) continue;
-        results[k] = vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
-      }
-    });
+    const std::vector<CcdResult> results = ccdOf(pairs, options);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const auto [a, b] = pairs[k];
       const Kind kind = primitives.list[b].kind;  // a vane's, where the pair holds one
@@ -970,16 +975,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     touching.minimumSeparation = 0;
     const auto pairs =
         candidatesOf(state, 0, [&](int a, int b) { return primitives.holdsCalamus(a, b); });
-    std::vector<CcdResult> results(pairs.size());
-    forEach(pool_.get(), pairs.size(), 256, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        const auto [a, b] = pairs[k];
-        const MovingPrimitives m = primitives.motion(a, b, state);
-        const bool vertexFace = isTriangle(primitives.list[b].kind);
-        if (separatedOverStep(m, vertexFace, touching)) continue;
-        results[k] = vertexFace ? vertexFaceCcd(m, touching) : edgeEdgeCcd(m, touching);
-      }
-    });
+    const std::vector<CcdResult> results = ccdOf(pairs, touching);
     std::vector<Contact> crossings;
     for (std::size_t k = 0; k < pairs.size(); ++k)
       if (results[k].contact)

@@ -40,6 +40,15 @@ struct BoxGroups {
   std::vector<std::uint8_t> of;
   std::array<std::uint8_t, 8> pairsWith{};
   std::uint8_t moving = 0;
+
+  // The two groups of a search by `moving` flags, into `groups` (its memory reused): moving boxes
+  // (group 0) pair with every box, still ones (group 1) with moving ones alone.
+  static void ofMoving(const std::vector<char>& moving, BoxGroups& groups) {
+    groups.of.clear();
+    for (char m : moving) groups.of.push_back(m ? 0 : 1);
+    groups.pairsWith = {0b11, 0b01};
+    groups.moving = 1;
+  }
 };
 
 // The same over groups: the cell size is the upper quartile of the largest extents of the
