@@ -27,6 +27,7 @@ struct RenderOptions {
   std::string sampleCountImage;  // --spp-image: each pixel's sample count as grey
   double traceSeconds = 0;
   std::uint64_t traceSeed = 1;
+  bool traceDenoise = false;    // --denoise: filter the traced picture (denoise.h)
   int bits = 8;  // --bits: 8 (sRGB) or 16 (linear light, with --trace)
 };
 

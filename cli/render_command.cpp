@@ -58,6 +58,9 @@ void registerRenderCommand(CLI::App& app, Action& action) {
   render->add_option("--time", options->traceSeconds,
                      "With --trace: stop the passes before this many seconds (default: none)")
       ->check(CLI::Range(0.0, 1e7));
+  render->add_flag("--denoise", options->traceDenoise,
+                   "With --trace: filter the finished picture by each pixel's noise and what its "
+                   "camera rays met first (needs --spp 2 or more)");
   render->add_option("--seed", options->traceSeed,
                      "With --trace: the seed of the samples (default 1; one seed, one picture)");
   render
@@ -72,6 +75,12 @@ void registerRenderCommand(CLI::App& app, Action& action) {
     }
     if (!options->trace && !options->sampleCountImage.empty()) {
       throw CLI::ValidationError("--spp-image", "sample counts are made by --trace only");
+    }
+    if (!options->trace && options->traceDenoise) {
+      throw CLI::ValidationError("--denoise", "only a traced picture (--trace) is denoised");
+    }
+    if (options->traceDenoise && options->traceSamples < 2) {
+      throw CLI::ValidationError("--denoise", "the denoiser needs each pixel's noise: --spp 2 or more");
     }
     if (exr && options->bits != 8) {
       throw CLI::ValidationError("--bits", "an OpenEXR file holds half floats; --bits is for PNGs");

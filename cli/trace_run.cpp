@@ -42,6 +42,7 @@ int runTrace(const RenderOptions& o) {
   options.seconds = o.traceSeconds;
   options.threads = o.model.threads;
   options.seed = o.traceSeed;
+  options.denoise = o.traceDenoise;
   options.background = backgroundColor(scene, built->resources.materialMode);
   options.progress = &progress;
   trace::TraceImage image;
@@ -72,8 +73,9 @@ int runTrace(const RenderOptions& o) {
   progress.clear();
   if (o.model.verbose) {
     std::cerr << fmt::format(
-        "traced {:.1f} samples a pixel on average, at most {}, at {}x{} in {:.3f} s\n",
-        image.meanSamples(), image.passes, image.width, image.height, image.seconds);
+        "traced {:.1f} samples a pixel on average, at most {}, at {}x{} in {:.3f} s{}\n",
+        image.meanSamples(), image.passes, image.width, image.height, image.seconds,
+        o.traceDenoise ? fmt::format(" (denoised in {:.3f} s)", image.denoiseSeconds) : "");
   }
   try {
     if (hasExrExtension(o.output)) {

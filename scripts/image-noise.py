@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """The Monte-Carlo noise of a traced picture, from two renders that differ in their seed only.
 
-    scripts/image-noise.py [--tiles] A.png B.png
+    scripts/image-noise.py [--tiles] [--reference] A.png B.png
 
 Prints the noise of one picture: the RMS of the per-pixel difference over sqrt(2), in 8-bit
 display levels (sRGB, as the eye sees the PNG), over the pixels that are not background in
-either. With --tiles, also the noise of the noisiest tiles, where a picture looks least clean:
+either. With --reference, B is a reference (a render of many more samples) and what is printed
+is A's error against it: the RMS of the difference itself, which counts what a filter blurs as
+well as what noise it leaves. With --tiles, also the noise of the noisiest tiles, where a picture looks least clean:
 the same RMS within each 8x8 tile of at least 48 such pixels, and of those the 99th percentile.
 Reads
 8- and 16-bit RGB/RGBA PNGs without interlacing (what `render` writes), with the standard
@@ -76,7 +78,10 @@ def read_png(path):
 def main():
     args = sys.argv[1:]
     tiles = "--tiles" in args
-    args = [a for a in args if a != "--tiles"]
+    reference = "--reference" in args
+    args = [a for a in args if a not in ("--tiles", "--reference")]
+    # Two pictures of one noise differ by sqrt(2) times it; a picture and a reference by its error.
+    spread = 1 if reference else 2
     if len(args) != 2:
         sys.exit(__doc__)
     wa, ha, a = read_png(args[0])
@@ -105,9 +110,9 @@ def main():
         tile[1] += 1
     if count == 0:
         sys.exit("the pictures are background only")
-    line = f"{math.sqrt(squares / count) / math.sqrt(2):.2f}"
+    line = f"{math.sqrt(squares / count / spread):.2f}"
     if tiles:
-        noise = sorted(math.sqrt(s / (3 * n) / 2) for s, n in tile_sums.values() if n >= 48)
+        noise = sorted(math.sqrt(s / (3 * n) / spread) for s, n in tile_sums.values() if n >= 48)
         if noise:
             line += f" {noise[min(len(noise) - 1, int(0.99 * len(noise)))]:.2f}"
     print(line)

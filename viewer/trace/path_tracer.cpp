@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "hirsute/viewer/trace/denoise.h"
 #include "hirsute/viewer/trace/hair_bsdf.h"
 #include "hirsute/viewer/trace/surface_bsdf.h"
 #include "hirsute/viewer/view/view_lighting.h"
@@ -293,8 +294,10 @@ class Tracer {
     return value * radiance * (through * weight / pdf);
   }
 
-  glm::vec3 radiance(glm::vec3 origin, glm::vec3 direction, float near, float far,
-                     Random& random) const {
+  // The radiance a path brings back; `first`, when given, receives the colour and facing
+  // normal of the first shape the camera ray stops at (zero where it stops at none).
+  glm::vec3 radiance(glm::vec3 origin, glm::vec3 direction, float near, float far, Random& random,
+                     FirstHit* first = nullptr) const {
     glm::vec3 total(0.0f), throughput(1.0f);
     unsigned leftGeometry = RTC_INVALID_GEOMETRY_ID, leftPrimitive = RTC_INVALID_GEOMETRY_ID;
     float lastPdf = 0;
@@ -344,11 +347,12 @@ class Tracer {
         fibre.diffuse *= glm::vec3(tint);
         glm::vec3 tangent(0, 1, 0);
         if (shape.curve) {
-          const std::uint32_t first = shape.curveSegments[hit.primitive];
-          const glm::vec3 along =
-              glm::vec3(shape.curveVertices[first + 1]) - glm::vec3(shape.curveVertices[first]);
+          const std::uint32_t segment = shape.curveSegments[hit.primitive];
+          const glm::vec3 along = glm::vec3(shape.curveVertices[segment + 1]) -
+                                  glm::vec3(shape.curveVertices[segment]);
           if (glm::length(along) > 0) tangent = glm::normalize(along);
         }
+        if (camera && first) *first = {fibre.diffuse + fibre.specular, tangent};
         const HairBsdf bsdf(fibre, tangent);
         total += throughput * directLight(bsdf, point, wo, hit, random);
         // The lobe, then the direction's two angles as one point of a square.
@@ -383,6 +387,7 @@ class Tracer {
         }
         if (material.veins >= 0 && shape.surface) addVeins(material, shape, hit, surface, normal);
         if (glm::dot(normal, wo) < 0) normal = -normal;
+        if (camera && first) *first = {surface.reflectance + surface.transmittance, normal};
         const SurfaceBsdf bsdf(surface, normal);
         total += throughput * directLight(bsdf, point, wo, hit, random);
         const float lobe = random.uniform();
@@ -421,6 +426,15 @@ class Tracer {
   float lightChoice_ = 0.5f;  // the probability that a direct sample goes to the sphere
   float epsilon_;
 };
+
+// The variance of the mean of `count` samples with sum `sum` and sum of squares `squares`; with
+// fewer than two samples nothing is known of it, and it counts as large.
+glm::dvec3 varianceOfMean(const glm::dvec3& sum, const glm::dvec3& squares, std::uint32_t count) {
+  if (count < 2) return glm::dvec3(1e30);
+  const double n = count;
+  const glm::dvec3 mean = sum / n;
+  return glm::max(glm::dvec3(0.0), (squares - n * mean * mean) / (n - 1)) / n;
+}
 
 }  // namespace
 
@@ -467,7 +481,11 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
   const bool adaptive = options.noise > 0;
   const int firstJudged = std::max(2, options.firstSamples);  // a variance needs two samples
   std::vector<glm::vec3> sum(pixels, glm::vec3(0.0f));
-  std::vector<glm::dvec3> squares(adaptive ? pixels : 0, glm::dvec3(0.0));
+  std::vector<glm::dvec3> squares(adaptive || options.denoise ? pixels : 0, glm::dvec3(0.0));
+  // The denoiser's features: the sums of the first hits' colours and normals and their squares.
+  const std::size_t featurePixels = options.denoise ? pixels : 0;
+  std::vector<glm::vec3> albedoSum(featurePixels, glm::vec3(0.0f)), albedoSquares = albedoSum,
+                         normalSum = albedoSum, normalSquares = albedoSum;
   image.samples.assign(pixels, 0);
 
   // The tiles still sampled, in raster order; the threads take them one at a time.
@@ -539,11 +557,19 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
               near = 0;
               far = camera.farPlane - camera.nearPlane;
             }
-            glm::vec3 value = tracer.radiance(origin, direction, near, far, random);
+            FirstHit first;
+            glm::vec3 value = tracer.radiance(origin, direction, near, far, random,
+                                              options.denoise ? &first : nullptr);
             // A path that found no number is dropped rather than spoiling the pixel.
             if (!std::isfinite(value.x + value.y + value.z)) value = glm::vec3(0.0f);
             sum[index] += value;
-            if (adaptive) squares[index] += glm::dvec3(value) * glm::dvec3(value);
+            if (!squares.empty()) squares[index] += glm::dvec3(value) * glm::dvec3(value);
+            if (options.denoise) {
+              albedoSum[index] += first.albedo;
+              albedoSquares[index] += first.albedo * first.albedo;
+              normalSum[index] += first.normal;
+              normalSquares[index] += first.normal * first.normal;
+            }
             ++image.samples[index];
           }
         }
@@ -582,6 +608,33 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
   }
   for (std::size_t i = 0; i < pixels; ++i) {
     image.radiance[i] = sum[i] / static_cast<float>(std::max<std::uint32_t>(1, image.samples[i]));
+  }
+  if (options.denoise) {
+    if (options.progress) options.progress->begin("denoising", Progress::Unit::None);
+    const Clock::time_point denoiseStart = Clock::now();
+    NoisyImage noisy;
+    noisy.width = image.width;
+    noisy.height = image.height;
+    noisy.colour = image.radiance;
+    noisy.colourVariance.resize(pixels);
+    noisy.albedo.resize(pixels);
+    noisy.albedoVariance.resize(pixels);
+    noisy.normal.resize(pixels);
+    noisy.normalVariance.resize(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) {
+      const std::uint32_t n = image.samples[i];
+      noisy.colourVariance[i] = glm::vec3(varianceOfMean(glm::dvec3(sum[i]), squares[i], n));
+      noisy.albedo[i] = albedoSum[i] / static_cast<float>(std::max<std::uint32_t>(1, n));
+      noisy.albedoVariance[i] =
+          glm::vec3(varianceOfMean(glm::dvec3(albedoSum[i]), glm::dvec3(albedoSquares[i]), n));
+      noisy.normal[i] = normalSum[i] / static_cast<float>(std::max<std::uint32_t>(1, n));
+      noisy.normalVariance[i] =
+          glm::vec3(varianceOfMean(glm::dvec3(normalSum[i]), glm::dvec3(normalSquares[i]), n));
+    }
+    DenoiseOptions denoising;
+    denoising.threads = threads;
+    image.radiance = denoise(noisy, denoising);
+    image.denoiseSeconds = std::chrono::duration<double>(Clock::now() - denoiseStart).count();
   }
   image.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return image;

@@ -60,8 +60,19 @@ struct TraceOptions {
   int threads = 0;     // 0: one a core
   std::uint64_t seed = 1;
   int maxBounces = 16;
+  // Filter the finished picture by its noise and its first hits (denoise.h); needs two samples
+  // a pixel or more.
+  bool denoise = false;
   glm::vec3 background{0.0f};  // what camera rays that hit nothing see (a display colour)
   Progress* progress = nullptr;
+};
+
+// What a camera ray met first, for the denoiser: the colour of the shape it stopped at (a
+// surface's reflectance and transmittance, a hair's diffuse and specular albedo) and its normal
+// towards the eye (a hair's tangent); zero where it met nothing.
+struct FirstHit {
+  glm::vec3 albedo{0.0f};
+  glm::vec3 normal{0.0f};
 };
 
 // Linear radiance a pixel, row 0 at the top, each the mean of its samples.
@@ -69,6 +80,7 @@ struct TraceImage {
   int width = 0, height = 0;
   int passes = 0;  // the most samples a pixel took
   double seconds = 0;
+  double denoiseSeconds = 0;  // of `seconds`, the denoiser's
   std::vector<glm::vec3> radiance;
   std::vector<std::uint32_t> samples;  // a pixel's, in the order of `radiance`
 
