@@ -10,8 +10,10 @@
 # model; the speed columns are POV-Ray's export and render time over the tracer's.
 #   scripts/bench-trace.sh                 (builds build/release first)
 # HIRSUTE=PATH skips the build; SIZE (default 800x600), SETTINGS (default "64:0": one or more
-# SPP:NOISE, the --spp and --noise of a tracer's run, each its own row, run one after another
-# for each model, so that uniform and adaptive sampling are timed side by side) and MODELS
+# SPP:NOISE or SPP:NOISE:dn, the --spp and --noise of a tracer's run, and with ":dn" --denoise,
+# each its own row, run one after another for each model, so that uniform and adaptive sampling
+# are timed side by side; a denoised picture's noise between seeds leaves out what the filter
+# blurs: scripts/image-noise.py --reference measures that against a reference) and MODELS
 # (default "nankin-cherry/nankin-cherry oriental-poppy/oriental-poppy wild-crocus/wild-crocus",
 # each a models/ folder and the base name of its .l and .v) choose what is run; POVRAY=0 leaves
 # POV-Ray out; POVRAY_LIMIT (seconds, default 1800) stops a POV-Ray run that takes longer,
@@ -50,10 +52,10 @@ for m in $models; do
   base="$(basename "$m")"
   pov=""
   for setting in $settings; do
-    spp="${setting%:*}"
-    noise="${setting#*:}"
+    IFS=: read -r spp noise denoise <<<"$setting"
     trace=("$program" render "$folder/$base.l" "$folder/$base.v" --trace --spp "$spp" --noise
       "$noise" --size "$size" -v)
+    [[ "$denoise" == dn ]] && trace+=(--denoise)
     read -r ts tm < <(timed "${trace[@]}" -o "$work/$base-trace.png" --spp-image "$work/$base-spp.png")
     mean="$(sed -n 's/^traced \([0-9.]*\) samples a pixel on average.*/\1/p' "$work/err.txt")"
     "${trace[@]}" --seed 2 -o "$work/$base-trace2.png" 2> /dev/null
@@ -61,7 +63,7 @@ for m in $models; do
     row="$(printf '%-16s %9s %7s %15s %12s' "$base" "$setting" "$mean" "$ts/$tm" "${measured/ //}")"
     if [[ -n "${KEEP:-}" ]]; then
       mkdir -p "$KEEP"
-      cp "$work/$base-trace.png" "$KEEP/$base-$spp-$noise.png"
+      cp "$work/$base-trace.png" "$KEEP/$base-$spp-$noise${denoise:+-$denoise}.png"
       cp "$work/$base-spp.png" "$KEEP/$base-$spp-$noise-spp.png"
     fi
     if [[ "${POVRAY:-1}" != 0 && -z "$pov" ]]; then

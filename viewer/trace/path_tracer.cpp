@@ -100,14 +100,7 @@ struct Hit {
 class Tracer {
  public:
   Tracer(const TraceScene& scene, const TraceLights& lights, const TraceOptions& options)
-      : scene_(scene), lights_(lights), options_(options) {
-    if (!lights.sphere) {
-      lightChoice_ = 0;
-    } else {
-      lightChoice_ = luminance(lights.sky) > 0 ? 0.5f : 1.0f;
-    }
-    epsilon_ = 1e-5f;
-  }
+      : scene_(scene), lights_(lights), options_(options), epsilon_(1e-5f) {}
 
   void setScale(float diagonal) { epsilon_ = std::max(1e-7f, 2e-6f * diagonal); }
 
@@ -260,11 +253,23 @@ class Tracer {
     normal = glm::dot(unit, normal) < 0 ? -unit : unit;
   }
 
+  // The light arriving directly from both lights, each sampled once (a choice between them
+  // would leave half the hits without the one that matters, the sun of a backlit leaf).
   template <class Bsdf>
   glm::vec3 directLight(const Bsdf& bsdf, const glm::vec3& point, const glm::vec3& wo,
                         const Hit& hit, Random& random) const {
-    const glm::vec2 u = random.uniform2();
-    const bool sphere = random.uniform() < lightChoice_;
+    glm::vec3 total(0.0f);
+    if (lights_.sphere) total += lightSample(bsdf, point, wo, hit, random.uniform2(), true);
+    if (luminance(lights_.sky) > 0) {
+      total += lightSample(bsdf, point, wo, hit, random.uniform2(), false);
+    }
+    return total;
+  }
+
+  // One sample towards the sphere or the sky, weighted against the material's own sampling.
+  template <class Bsdf>
+  glm::vec3 lightSample(const Bsdf& bsdf, const glm::vec3& point, const glm::vec3& wo,
+                        const Hit& hit, const glm::vec2& u, bool sphere) const {
     glm::vec3 wi, radiance;
     float pdf, far;
     if (sphere) {
@@ -274,12 +279,12 @@ class Tracer {
       if (sin2 >= 1) return glm::vec3(0.0f);
       const float cosMax = std::sqrt(1 - sin2);
       wi = Frame::around(toCentre / distance).toWorld(sampleUniformCone(u, cosMax));
-      pdf = lightChoice_ / (2 * kPi * (1 - cosMax));
+      pdf = 1 / (2 * kPi * (1 - cosMax));
       radiance = lights_.radiance;
       far = distance - lights_.radius;
     } else {
       wi = Frame::around(lights_.up).toWorld(sampleUniformHemisphere(u));
-      pdf = (1 - lightChoice_) * kUniformHemispherePdf;
+      pdf = kUniformHemispherePdf;
       radiance = lights_.sky;
       far = std::numeric_limits<float>::infinity();
     }
@@ -309,7 +314,7 @@ class Tracer {
       if (!camera) {
         const float toLight = lightDistance(origin, direction);
         if (toLight > 0 && (!hit.found || toLight < hit.distance)) {
-          const float weight = powerHeuristic(lastPdf, lightChoice_ * lightPdf(origin));
+          const float weight = powerHeuristic(lastPdf, lightPdf(origin));
           total += throughput * lights_.radiance * weight;
           break;
         }
@@ -318,7 +323,7 @@ class Tracer {
         if (camera) {
           total += throughput * options_.background;
         } else {
-          const float weight = powerHeuristic(lastPdf, (1 - lightChoice_) * kUniformHemispherePdf);
+          const float weight = powerHeuristic(lastPdf, kUniformHemispherePdf);
           total += throughput * skyRadiance(direction) * weight;
         }
         break;
@@ -423,7 +428,6 @@ class Tracer {
   const TraceScene& scene_;
   const TraceLights& lights_;
   const TraceOptions& options_;
-  float lightChoice_ = 0.5f;  // the probability that a direct sample goes to the sphere
   float epsilon_;
 };
 
