@@ -148,6 +148,20 @@ TEST(CameraTest, PerspectiveViewingAngleIsVertical) {
   EXPECT_NEAR(camera.toPixels({20, 0, 0}).x, 400, 1e-2);
 }
 
+TEST(CameraTest, APixelWidensWithDepthInPerspectiveAndNotInParallel) {
+  ViewSettings view;
+  view.projection = Projection::Perspective;
+  const Camera camera = fitCamera(view, box({-1, -1, -1}, {1, 1, 1}), {200, 100});
+  const float atTarget = camera.pixelSize();
+  EXPECT_NEAR(camera.pixelSizeAt(camera.target), atTarget, 1e-6f * atTarget);
+  const glm::vec3 twice = camera.eye + 2.0f * (camera.target - camera.eye);
+  EXPECT_NEAR(camera.pixelSizeAt(twice), 2 * atTarget, 1e-5f * atTarget);
+  EXPECT_EQ(camera.pixelSizeAt(camera.eye - camera.forward), 0.0f);  // behind the eye
+  view.projection = Projection::Parallel;
+  const Camera flat = fitCamera(view, box({-1, -1, -1}, {1, 1, 1}), {200, 100});
+  EXPECT_EQ(flat.pixelSizeAt(flat.eye + 10.0f * flat.forward), flat.pixelSize());
+}
+
 TEST(CameraTest, PerspectiveWithFrontDistanceBelowZeroStillSeesThePlant) {
   ViewSettings view;  // cpfg-ArticulatedLamp: perspective with front distance -100
   view.projection = Projection::Perspective;

@@ -152,6 +152,14 @@ float Camera::pixelSize() const {
   return 2 * glm::length(target - eye) * std::tan(glm::radians(fieldOfViewY) / 2) / rows;
 }
 
+float Camera::pixelSizeAt(const glm::vec3& world) const {
+  if (projection == Projection::Parallel) return pixelSize();
+  const float target = glm::length(this->target - eye);
+  const float depth = glm::dot(world - eye, forward);
+  if (!(depth > 0) || !(target > 0)) return 0;
+  return pixelSize() * depth / target;
+}
+
 Camera fitCamera(const ViewSettings& view, const Bounds& plant, glm::ivec2 viewport) {
   Camera camera;
   camera.projection = view.projection;

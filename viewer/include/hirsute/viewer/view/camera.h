@@ -30,6 +30,9 @@ struct Camera {
   glm::vec3 toPixels(const glm::vec3& world) const;
   // The width of a pixel in world units at the point looked at.
   float pixelSize() const;
+  // The width of a pixel in world units at `world` (its depth along the line of sight, for a
+  // perspective camera; 0 at or behind the eye).
+  float pixelSizeAt(const glm::vec3& world) const;
 };
 
 // The camera cpfg sets up for `view` and a plant with the given bounds, for an image of
