@@ -407,9 +407,12 @@ class Tracer {
       throughput *= value / pdf;
       lastPdf = pdf;
       if (++bounce > options_.maxBounces) break;
-      // Russian roulette after the third bounce (Arvo and Kirk 1990).
-      if (bounce > 3) {
-        const float keep = std::min(0.95f, std::max(throughput.r, std::max(throughput.g, throughput.b)));
+      // Russian roulette after the first bounce (Arvo and Kirk 1990): a path in a hairy
+      // plant's fuzz scatters many times, most of them carrying little. (From the first, its
+      // random choice spoilt the stratification of the light a first hit gathers.)
+      if (bounce > 1) {
+        const float keep =
+            std::min(0.95f, std::max(throughput.r, std::max(throughput.g, throughput.b)));
         if (random.uniform() >= keep) break;
         throughput /= keep;
       }
