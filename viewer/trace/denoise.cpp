@@ -81,9 +81,10 @@ constexpr std::size_t kLanes = 8;
 // The filter's work for one offset, with the scratch buffers of the thread that runs it.
 class Filter {
  public:
-  Filter(const NoisyImage& image, const DenoiseOptions& options, const Feature& albedo,
-         const Feature& normal)
+  Filter(const NoisyImage& image, const std::vector<glm::vec3>& variance,
+         const DenoiseOptions& options, const Feature& albedo, const Feature& normal)
       : image_(image),
+        variance_(variance),
         options_(options),
         albedo_(albedo),
         normal_(normal),
@@ -107,8 +108,8 @@ class Filter {
       for (int x = x0; x < x1; ++x) {
         const std::size_t p = index(x, y), q = index(x + dx, y + dy);
         const glm::vec3 difference = image_.colour[p] - image_.colour[q];
-        const glm::vec3& vp = image_.colourVariance[p];
-        const glm::vec3& vq = image_.colourVariance[q];
+        const glm::vec3& vp = variance_[p];
+        const glm::vec3& vq = variance_[q];
         const glm::vec3 cancelled = difference * difference - (vp + glm::min(vp, vq));
         distance_[p] = mean3(cancelled / (kColourFloor + k2 * (vp + vq)));
       }
@@ -153,14 +154,46 @@ class Filter {
   }
 
  private:
-  bool exact(std::size_t p) const { return image_.colourVariance[p] == glm::vec3(0.0f); }
+  bool exact(std::size_t p) const { return variance_[p] == glm::vec3(0.0f); }
 
   const NoisyImage& image_;
+  const std::vector<glm::vec3>& variance_;
   const DenoiseOptions& options_;
   const Feature& albedo_;
   const Feature& normal_;
   std::vector<float> distance_, rows_, column_;
 };
+
+// The colours' variances as the filter takes them. A pixel whose samples all agree among
+// neighbours that are noisy is a hole in a sparse fuzz (every sample missed the hairs, or hit
+// them): it is taken to be as noisy as those neighbours, on average, so that it is filtered with
+// them instead of standing out as a dot. One whose neighbours agree too (the background) keeps
+// no noise, and so its value.
+std::vector<glm::vec3> colourVarianceOf(const NoisyImage& image) {
+  std::vector<glm::vec3> variance = image.colourVariance;
+  const int w = image.width, h = image.height;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                            static_cast<std::size_t>(x);
+      if (image.colourVariance[p] != glm::vec3(0.0f)) continue;
+      glm::vec3 sum(0.0f);
+      int noisy = 0;
+      for (int v = std::max(0, y - 1); v <= std::min(h - 1, y + 1); ++v) {
+        for (int u = std::max(0, x - 1); u <= std::min(w - 1, x + 1); ++u) {
+          const glm::vec3& n = image.colourVariance[static_cast<std::size_t>(v) *
+                                                        static_cast<std::size_t>(w) +
+                                                    static_cast<std::size_t>(u)];
+          if (n == glm::vec3(0.0f)) continue;
+          sum += n;
+          ++noisy;
+        }
+      }
+      if (noisy > 0) variance[p] = sum / static_cast<float>(noisy);
+    }
+  }
+  return variance;
+}
 
 }  // namespace
 
@@ -180,6 +213,8 @@ std::vector<glm::vec3> denoise(const NoisyImage& image, const DenoiseOptions& op
   const Feature normal =
       featureOf(image.normal, image.normalVariance, image.width, image.height, options.featureScale);
 
+  const std::vector<glm::vec3> variance = colourVarianceOf(image);
+
   std::vector<glm::ivec2> offsets;
   for (int dy = -options.window; dy <= options.window; ++dy) {
     for (int dx = -options.window; dx <= options.window; ++dx) offsets.emplace_back(dx, dy);
@@ -194,7 +229,7 @@ std::vector<glm::vec3> denoise(const NoisyImage& image, const DenoiseOptions& op
       1, static_cast<int>(lanes.size()));
   std::atomic<std::size_t> nextLane{0};
   auto work = [&] {
-    Filter filter(image, options, albedo, normal);
+    Filter filter(image, variance, options, albedo, normal);
     for (std::size_t l; (l = nextLane.fetch_add(1)) < lanes.size();) {
       for (std::size_t k = l; k < offsets.size(); k += lanes.size()) {
         filter.add(offsets[k].x, offsets[k].y, lanes[l]);

@@ -6,8 +6,10 @@
 // (non-local means with the variance of each pixel's mean, after Rousselle, Knaus and Zwicker
 // 2012), and when their first hits' colour and direction differ by no more than those features'
 // own noise explains (the feature weights of Rousselle, Manzi and Zwicker 2013); a pair's
-// weight is the smaller of the two. A pixel whose samples all agree (the background) has no
-// noise and keeps its value, and one whose neighbours differ by more than
+// weight is the smaller of the two. A pixel whose samples all agree, among neighbours whose
+// samples agree too (the background), has no noise and keeps its value; among noisy neighbours
+// (a hole in a sparse fuzz, every sample having missed its hairs) it counts as noisy as they are,
+// and is filtered with them; and one whose neighbours differ by more than
 // noise (an edge, a hair standing against the sky) keeps its own.
 #pragma once
 
