@@ -1,6 +1,6 @@
 // `hirsute render --trace` and `export --trace-lights` from the command line, on a shipped model:
 // the outputs for compositing are what their names say, the GL render refuses them, and the
-// POV-Ray export takes the tracer's lights.
+// POV-Ray export takes the tracer's lights; --denoise filters a traced picture and nothing else.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -72,6 +72,33 @@ TEST(TraceCommand, WritesTheSampleCountsOfAdaptiveSampling) {
   EXPECT_NE(run.err.find("made by --trace only"), std::string::npos) << run.err;
   run = runHirsute({"render", model, view, "--trace", "--noise", "-1", "-o", png.string()});
   EXPECT_EQ(run.exitCode, 2);
+}
+
+TEST(TraceCommand, DenoisesATracedPictureOnlyAndSaysHowLongItTook) {
+  TemporaryFolder folder;
+  const std::string model = (kCrocus / "wild-crocus.l").string();
+  const std::string view = (kCrocus / "closeup.v").string();
+  const fs::path plain = folder.path() / "plain.png", filtered = folder.path() / "filtered.png";
+  RunResult run = runHirsute({"render", model, view, "--trace", "--spp", "4", "--size", "40x30",
+                              "-o", plain.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--spp", "4", "--size", "40x30",
+                    "--denoise", "-v", "-o", filtered.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.err.find("(denoised in "), std::string::npos) << run.err;
+  // The same samples, filtered: the same size, other pixels.
+  const hirsute::RgbaImage a = hirsute::readPng(plain), b = hirsute::readPng(filtered);
+  ASSERT_EQ(a.width, b.width);
+  EXPECT_NE(a.rgba, b.rgba);
+  const fs::path refused = folder.path() / "refused.png";
+  run = runHirsute({"render", model, view, "--denoise", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("only a traced picture"), std::string::npos) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--spp", "1", "--denoise", "-o",
+                    refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("--spp 2 or more"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(refused));
 }
 
 TEST(TraceCommand, ExportTakesTheTracersLights) {
