@@ -95,6 +95,9 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
       .add_flag("--no-vane-collisions", options.noVaneCollisions,
                 "The vanes do not collide, whatever the view file says (their stems still do)")
       ->excludes(vanes);
+  command.add_flag("--count-vane-intersections", options.countVaneIntersections,
+                   "With the vanes not colliding, count in every frame's state the vanes that "
+                   "pass through each other or through stems (counted anyway when they collide)");
   command.add_option("--width", options.width, "The frames' width in pixels (default 800)")
       ->check(CLI::Range(1, 16384));
   command.add_option("--height", options.height, "The frames' height in pixels (default 600)")

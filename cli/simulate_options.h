@@ -24,6 +24,9 @@ struct SimulateOptions {
   bool noFrames = false;  // only the table: for measuring the simulation alone
   bool vaneCollisions = false;    // the vanes collide (as `dynamics vanes: on`)
   bool noVaneCollisions = false;  // the vanes follow their stems and may pass through
+  // Count, with the vanes not colliding, those that meet in every frame's state (they are
+  // counted anyway when they collide: the check that none is left).
+  bool countVaneIntersections = false;
   int width = 800, height = 600;
   // Overrides of the view file's `dynamics …:` lines.
   std::vector<double> gravity, wind;

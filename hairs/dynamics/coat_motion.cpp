@@ -2,8 +2,6 @@
 #include "hirsute/hairs/dynamics/coat_motion.h"
 
 #include <Eigen/Geometry>
-#include <algorithm>
-#include <cmath>
 #include <string>
 
 #include "hirsute/hairs/dynamics/feather_stem.h"
@@ -129,9 +127,6 @@ void CoatMotion::advance(double seconds, int steps, const CoatTarget& target) {
   const std::vector<Vector3d> fromBody = simulation_.body().vertices;
   if (target.anchors.size() != fromAnchors.size() || target.body.size() != fromBody.size())
     throw std::invalid_argument("a target of another coat");
-  const double stable = simulation_.stableTimeStep();
-  if (seconds / steps > stable)
-    steps = static_cast<int>(std::min(std::ceil(seconds / stable), 1e6));
   std::vector<StemFrame> anchors(fromAnchors.size());
   std::vector<Vector3d> vertices(fromBody.size());
   for (int k = 1; k <= steps; ++k) {

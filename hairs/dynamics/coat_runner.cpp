@@ -90,8 +90,8 @@ void CoatRunner::run() {
       }
     }
     const double seconds = std::min(due, kMaxChunkSeconds);
-    // The steps are as long as a frame of kMaxChunkSeconds in `substeps` would take (no longer
-    // than the stable one, CoatMotion::advance): a short chunk takes fewer, not shorter, steps.
+    // The steps are as long as a frame of kMaxChunkSeconds in `substeps` would take: a short
+    // chunk takes fewer, not shorter, steps.
     const int steps =
         std::max(1, static_cast<int>(std::ceil(substeps_ * seconds / kMaxChunkSeconds - 1e-9)));
     try {

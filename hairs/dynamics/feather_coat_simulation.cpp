@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -624,16 +623,6 @@ std::vector<Vector3d> FeatherCoatSimulation::externalForces(std::size_t s) {
   return forces;
 }
 
-double FeatherCoatSimulation::stableTimeStep() const {
-  double step = std::numeric_limits<double>::infinity();
-  for (const FeatherStem& stem : stems_) {
-    if (!(stem.parameters.goldStiffness > 0)) continue;
-    for (std::size_t i = 1; i < stem.nodeCount(); ++i)
-      step = std::min(step, std::sqrt(stem.masses[i] / stem.parameters.goldStiffness));
-  }
-  return step;
-}
-
 void FeatherCoatSimulation::step(double dt) {
   step(dt, anchors_, body_.vertices);
 }
@@ -753,7 +742,10 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       rebuildFrames(stem, from[s]);
       const std::vector<Vector3d> forces = externalForces(s);
       const Vector3d anchorVelocity = (to[s].origin - from[s].origin) / h;
-      advanceGoldSprings(stem, h / 2, forces, anchorVelocity);
+      // The positions move with this velocity over the whole step: the springs look that far
+      // ahead, so that a stiff stem's fast turns are damped rather than flipped about their rest
+      // each step (docs/dynamics.md, "How long a step may be").
+      advanceGoldSprings(stem, h / 2, h, forces, anchorVelocity);
       for (std::size_t i = 0; i < stem.nodeCount(); ++i) {
         state.start[offset + i] = stem.positions[i];
         stem.positions[i] += h * stem.velocities[i];
@@ -1050,7 +1042,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       FeatherStem& stem = stems_[s];
       rebuildFrames(stem, to[s]);
       const std::vector<Vector3d> forces = externalForces(s);
-      advanceGoldSprings(stem, h / 2, forces, (to[s].origin - from[s].origin) / h);
+      advanceGoldSprings(stem, h / 2, h / 2, forces, (to[s].origin - from[s].origin) / h);
     }
   });
   time_ = later;

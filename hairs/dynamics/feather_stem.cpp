@@ -2,12 +2,13 @@
 // gold springs of Sec. 3.3.1 and strain limiting.
 #include "hirsute/hairs/dynamics/feather_stem.h"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <glm/mat4x4.hpp>
 #include <stdexcept>
+#include <utility>
 
 #include "hirsute/hairs/feathers/bezier_curve.h"
 #include "hirsute/hairs/feathers/feather_geometry.h"
@@ -32,6 +33,13 @@ Vector3d perpendicularTowards(const Vector3d& preferred, const Vector3d& tangent
   }
   // Both along the tangent: any perpendicular will do.
   return tangent.unitOrthogonal();
+}
+
+// [v]x: the matrix of v x .
+Eigen::Matrix3d skew(const Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
 }
 
 }  // namespace
@@ -200,35 +208,55 @@ Vector3d worldGoldPosition(const FeatherStem& stem, std::size_t node) {
   return parent.origin + parent.axes * stem.goldPositions[node];
 }
 
-void advanceGoldSprings(FeatherStem& stem, double h, const std::vector<Vector3d>& forces,
-                        const Vector3d& anchorVelocity) {
-  const int n = static_cast<int>(stem.nodeCount()) - 1;  // the free nodes 1..n are rows 0..n-1
+void advanceGoldSprings(FeatherStem& stem, double h, double lookahead,
+                        const std::vector<Vector3d>& forces, const Vector3d& anchorVelocity) {
+  const int nodes = static_cast<int>(stem.nodeCount());
   const double k = stem.parameters.goldStiffness, b = stem.parameters.goldDamping;
-  const double coupling = h * (h * k + b);
-  // A stem's system is small and tridiagonal: a dense factorization beats a sparse one's
-  // ordering and allocations.
-  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(n, n);
-  Eigen::MatrixX3d rhs(n, 3);
-  for (int row = 0; row < n; ++row) {
-    const std::size_t node = row + 1;
-    const bool hasChild = node + 1 < stem.nodeCount();
-    system(row, row) = stem.masses[node] + coupling * (hasChild ? 2 : 1);
-    if (row > 0) system(row, row - 1) = -coupling;
-    if (hasChild) system(row, row + 1) = -coupling;
-    rhs.row(row) = (stem.masses[node] * stem.velocities[node] + h * forces[node]).transpose();
+  // The whole chain's system, anchor included, in 3 x 3 blocks: M + h b L + h lookahead K. The
+  // anchor's rows are dropped and its columns, its velocity being known, go to the right-hand
+  // side.
+  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(3 * nodes, 3 * nodes);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 * nodes);
+  auto block = [&](int row, int column) { return system.block<3, 3>(3 * row, 3 * column); };
+  for (int node = 1; node < nodes; ++node) {
+    block(node, node).diagonal().setConstant(stem.masses[node]);
+    rhs.segment<3>(3 * node) = stem.masses[node] * stem.velocities[node] + h * forces[node];
   }
-  // The elastic part at the current positions: spring i pulls node i to its gold position and
-  // pushes its parent the other way.
-  for (std::size_t node = 1; node < stem.nodeCount(); ++node) {
-    const Vector3d f = -k * (stem.positions[node] - worldGoldPosition(stem, node));
-    rhs.row(node - 1) += h * f.transpose();
-    if (node >= 2) rhs.row(node - 2) -= h * f.transpose();
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+  for (int node = 1; node < nodes; ++node) {
+    // Spring `node` stretches by d = p_i - p_{i-1} - R_{i-1} g_i and pulls node i by -k d, its
+    // parent by +k d, so that the springs keep momentum.
+    const StemFrame& parent = stem.frames[node - 1];
+    const Vector3d offset = parent.axes * stem.goldPositions[node];  // R_{i-1} g_i
+    const Vector3d d = stem.positions[node] - stem.positions[node - 1] - offset;
+    rhs.segment<3>(3 * node) -= h * k * d;
+    rhs.segment<3>(3 * (node - 1)) += h * k * d;
+    // How d changes with the positions. The parent's frame turns with the tangent of the
+    // segment that ends at the parent (rebuildFrames' transport: by w = t x dt, the twist it
+    // carries from further up left out); dt = (I - t t^T)(dp_{i-1} - dp_{i-2}) / l, so that
+    // d(R g) = w x (R g) = -[R g]x [t]x (dp_{i-1} - dp_{i-2}) / l =: J (dp_{i-1} - dp_{i-2}).
+    // The anchor's frame is kinematic: node 1's turn stays with the anchor's motion.
+    Eigen::Matrix3d turn = Eigen::Matrix3d::Zero();
+    if (node >= 2) {
+      const double length = (stem.positions[node - 1] - stem.positions[node - 2]).norm();
+      if (length > 0) turn = -skew(offset) * skew(parent.axes.col(2)) / length;
+    }
+    // Rows of node i take k dd, rows of its parent -k dd (K = -df/dx); the damping b L acts on
+    // the relative velocity v_i - v_{i-1}.
+    const double stiff = h * lookahead * k, damp = h * b;
+    const Eigen::Matrix3d ofNode = (stiff + damp) * identity;
+    const Eigen::Matrix3d ofParent = -(stiff + damp) * identity - stiff * turn;
+    for (const auto& [row, sign] : {std::pair{node, 1.0}, std::pair{node - 1, -1.0}}) {
+      block(row, node) += sign * ofNode;
+      block(row, node - 1) += sign * ofParent;
+      if (node >= 2) block(row, node - 2) += sign * stiff * turn;
+    }
   }
-  // The anchor's velocity is known: its coupling with node 1 moves to the right-hand side.
-  rhs.row(0) += coupling * anchorVelocity.transpose();
-  const Eigen::MatrixX3d v = system.llt().solve(rhs);  // symmetric positive definite
+  const int free = 3 * (nodes - 1);
+  const Eigen::VectorXd known = rhs.tail(free) - system.bottomLeftCorner(free, 3) * anchorVelocity;
+  const Eigen::VectorXd v = system.bottomRightCorner(free, free).partialPivLu().solve(known);
   stem.velocities[0] = anchorVelocity;
-  for (int row = 0; row < n; ++row) stem.velocities[row + 1] = v.row(row).transpose();
+  for (int node = 1; node < nodes; ++node) stem.velocities[node] = v.segment<3>(3 * (node - 1));
 }
 
 int limitStrain(FeatherStem& stem, double h) {

@@ -113,8 +113,9 @@ TEST_F(SimulateCommand, TheBendingBodyCarriesItsCoatAndNothingIntersects) {
 // Without vane collisions the same frames have vanes passing through each other (so the test
 // above can fail), and no vane is a candidate.
 TEST_F(SimulateCommand, WithoutVaneCollisionsTheBendingCoatsVanesPassThrough) {
-  const Output out = simulate("coat-bending", "bending.l bending.v bending.a",
-                              "--frames 4 --no-frames --no-vane-collisions", folder_);
+  const Output out =
+      simulate("coat-bending", "bending.l bending.v bending.a",
+               "--frames 4 --no-frames --no-vane-collisions --count-vane-intersections", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("vanes not colliding: 0 vane candidates"), std::string::npos)
       << out.text;
@@ -124,6 +125,17 @@ TEST_F(SimulateCommand, WithoutVaneCollisionsTheBendingCoatsVanesPassThrough) {
   int met = 0;
   for (std::size_t r = 1; r < rows.size(); ++r) met += std::stoi(rows[r][19]);
   EXPECT_GT(met, 0);
+}
+
+// Vanes that do not collide are counted only when asked: the column stays empty.
+TEST_F(SimulateCommand, VanesNotCollidingAreCountedOnlyWhenAsked) {
+  const Output out = simulate("coat-bending", "bending.l bending.v bending.a",
+                              "--frames 2 --no-frames --no-vane-collisions", folder_);
+  ASSERT_EQ(out.status, 0) << out.text;
+  EXPECT_NE(out.text.find("vane intersections not counted"), std::string::npos) << out.text;
+  const auto rows = table(folder_);
+  ASSERT_EQ(rows.size(), 3u);
+  for (std::size_t r = 1; r < rows.size(); ++r) EXPECT_EQ(rows[r].size(), 19u);  // the last empty
 }
 
 TEST_F(SimulateCommand, WindMovesTheAwnsAndTheSameRunGivesTheSameFrames) {

@@ -39,12 +39,12 @@ class CoatMotion {
  public:
   CoatMotion(const Scene& first, const SimulationParameters& parameters);
 
-  // Simulates `seconds` in `steps` equal steps (more when a step would be longer than the stable
-  // one, FeatherCoatSimulation::stableTimeStep) while the body and the roots move linearly from
-  // where they are to where `next` has them (null: they stay). `next` must have a body of the
-  // same triangles and, when some roots are on no triangle, the first frame's feathers (as
-  // many), else FrameMismatch. A step that
-  // cannot be resolved throws StepFailure, the state left at the last step that could.
+  // Simulates `seconds` in `steps` equal steps (halved where a step is retried; the gold springs
+  // hold at any step, docs/dynamics.md) while the body and the roots move linearly from where
+  // they are to where `next` has them (null: they stay). `next` must have a body of the same
+  // triangles and, when some roots are on no triangle, the first frame's feathers (as many),
+  // else FrameMismatch. A step that cannot be resolved throws StepFailure, the state left at the
+  // last step that could.
   void advance(double seconds, int steps, const Scene* next = nullptr);
   // The same with the body and the roots moving to `target` (targetOf a later frame).
   void advance(double seconds, int steps, const CoatTarget& target);

@@ -5,10 +5,10 @@
 // drive on a clock moved by hand; this runs it in real time.
 //
 // Pacing: the runner simulates what the wall clock has run ahead of the simulation, in chunks of
-// at most kMaxChunkSeconds (each split into steps no longer than the stable one by
-// CoatMotion::advance), publishing a state after each chunk. It never runs ahead of the wall
-// clock; a machine that cannot keep up drops what lags more than kMaxLagSeconds rather than
-// spending ever longer catching up, and says so in the ratio of simulated to wall time.
+// at most kMaxChunkSeconds (each split into steps as `substeps` asks), publishing a state after
+// each chunk. It never runs ahead of the wall clock; a machine that cannot keep up drops what
+// lags more than kMaxLagSeconds rather than spending ever longer catching up, and says so in the
+// ratio of simulated to wall time.
 #pragma once
 
 #include <chrono>
@@ -54,10 +54,10 @@ class CoatRunner {
   static constexpr double kRatioWindowSeconds = 0.5;
 
   // Starts stepping `coat` at once, in steps no longer than a kMaxChunkSeconds frame split in
-  // `substeps` (the view file's `dynamics substeps:`) nor the stable step. `posing` gives the
-  // feather types the poses are built with (a Scene of the coat's types, as CoatMotion::pose takes
-  // it). When `target` is given, the first chunk, a full kMaxChunkSeconds long, moves the body and
-  // the roots to it (a new frame of the animation). The states' generations follow `after` (a
+  // `substeps` (the view file's `dynamics substeps:`). `posing` gives the feather types the poses
+  // are built with (a Scene of the coat's types, as CoatMotion::pose takes it). When `target` is
+  // given, the first chunk, a full kMaxChunkSeconds long, moves the body and the roots to it (a
+  // new frame of the animation). The states' generations follow `after` (a
   // runner started again after a pause carries on the count). Until stop() or destruction nothing
   // else may touch `coat`.
   CoatRunner(CoatMotion& coat, Scene posing, int substeps,

@@ -149,10 +149,6 @@ class FeatherCoatSimulation {
   const std::vector<StemFrame>& anchors() const { return anchors_; }
   const BodyMesh& body() const { return body_; }
   const SimulationCounters& counters() const { return counters_; }
-  // The longest step the gold springs stay stable at: sqrt(m / k) of the lightest node. The
-  // springs are implicit along their frames, but the frames are rebuilt once a step, so a turn
-  // of the stem is followed explicitly; a longer step lets a stiff stem fold up.
-  double stableTimeStep() const;
   const SimulationParameters& parameters() const { return parameters_; }
   // The separation of the impact zones: no accepted state has two stems, or a stem and the
   // body, nearer than this (a quarter of the minimum separation the impulses keep).

@@ -96,12 +96,18 @@ void rebuildFrames(FeatherStem& stem, const StemFrame& anchor);
 Eigen::Vector3d worldGoldPosition(const FeatherStem& stem, std::size_t node);
 
 // Sec. 3.3.1 (after Selle, Lentine & Fedkiw 2008): the velocities after `h` of the gold springs,
-// implicit in the velocity, plus `forces` (per node, explicit): solves
-//   (M + (h^2 k + h b) L) v' = M v + h (F_gold(x) + forces),
-// L the chain's Laplacian with the anchor's velocity `anchorVelocity` known. The spring of node i
-// pulls p_i towards p_{i-1} + R_{i-1} g_i (its gold position) and its parent the other way, so the
-// springs keep momentum. `velocities` is replaced; positions are unchanged.
-void advanceGoldSprings(FeatherStem& stem, double h, const std::vector<Eigen::Vector3d>& forces,
+// implicit in the velocity and in the turn of the frames, plus `forces` (per node, explicit):
+// solves, linearised at the current positions (the frames must be rebuilt from them),
+//   (M + h b L + h lookahead K) v' = M v + h (F_gold(x) + forces),
+// L the chain's Laplacian, K = -dF_gold/dx the springs' full stiffness: the spring of node i pulls
+// p_i towards p_{i-1} + R_{i-1} g_i (its gold position) and its parent the other way, and R_{i-1}
+// turns with the segment that ends at node i - 1, so that a node's motion moves its children's
+// gold positions (docs/dynamics.md, "Stems"). `lookahead` is how far the positions will move with
+// v' (h for an implicit Euler step). The anchor's velocity `anchorVelocity` is known. Every
+// spring's forces sum to zero, so the springs keep momentum. `velocities` is replaced; positions
+// are unchanged.
+void advanceGoldSprings(FeatherStem& stem, double h, double lookahead,
+                        const std::vector<Eigen::Vector3d>& forces,
                         const Eigen::Vector3d& anchorVelocity);
 
 // Strain limiting (Provot 1995; Bridson, Fedkiw & Anderson 2002), from the anchor to the tip:
