@@ -660,13 +660,12 @@ float displayLevel(float linear) {
 
 float pixelNoise(const glm::vec3& sum, const glm::dvec3& squares, std::uint32_t count) {
   if (count < 2) return 0;
-  const double n = count;
+  const glm::dvec3 variance = varianceOfMean(glm::dvec3(sum), squares, count);
   float noise = 0;
   for (int c = 0; c < 3; ++c) {
-    const double mean = sum[c] / n;
-    const double variance = std::max(0.0, (squares[c] - n * mean * mean) / (n - 1));
-    if (variance == 0) continue;  // every sample alike: the background
-    const double error = std::sqrt(variance / n);
+    if (variance[c] == 0) continue;  // every sample alike: the background
+    const double mean = sum[c] / static_cast<double>(count);
+    const double error = std::sqrt(variance[c]);
     const float levels = displayLevel(static_cast<float>(mean + error)) -
                          displayLevel(static_cast<float>(mean - error));
     noise = std::max(noise, levels / 2);
