@@ -82,6 +82,18 @@ void registerRenderCommand(CLI::App& app, Action& action) {
     if (options->traceDenoise && options->traceSamples < 2) {
       throw CLI::ValidationError("--denoise", "the denoiser needs each pixel's noise: --spp 2 or more");
     }
+    if (options->traceDenoise) {
+      // The filter keeps some 350 bytes a pixel besides the tracer's 52: 6 GB at this limit.
+      constexpr long long kMostDenoisedPixels = 4096LL * 4096LL;
+      const auto x = options->size.find('x');
+      const long long pixels =
+          std::stoll(options->size.substr(0, x)) * std::stoll(options->size.substr(x + 1));
+      if (pixels > kMostDenoisedPixels) {
+        throw CLI::ValidationError("--denoise", "a denoised picture has at most 4096x4096 pixels (" +
+                                                    std::to_string(kMostDenoisedPixels) +
+                                                    "); --size asks for " + std::to_string(pixels));
+      }
+    }
     if (exr && options->bits != 8) {
       throw CLI::ValidationError("--bits", "an OpenEXR file holds half floats; --bits is for PNGs");
     }

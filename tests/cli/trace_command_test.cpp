@@ -98,6 +98,11 @@ TEST(TraceCommand, DenoisesATracedPictureOnlyAndSaysHowLongItTook) {
                     refused.string()});
   EXPECT_EQ(run.exitCode, 2);
   EXPECT_NE(run.err.find("--spp 2 or more"), std::string::npos) << run.err;
+  // The filter's memory grows with the picture: a limit, before any tracing.
+  run = runHirsute({"render", model, view, "--trace", "--denoise", "--size", "8192x4097", "-o",
+                    refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("at most 4096x4096 pixels"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(refused));
 }
 
