@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 
 namespace hirsute::dynamics {
 namespace {
@@ -126,6 +127,7 @@ std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
 std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
     const std::vector<Box>& boxes, const BoxGroups& groups,
     const std::function<bool(int, int)>& wanted) {
+  treesHoldGrown_ = false;
   const auto moves = [&](int g) { return (groups.moving >> g) & 1; };
   // A group has a tree when it pairs with anything; still groups too, so that every pair can be
   // found from its smaller box number, which makes the pairs come out sorted.
@@ -193,49 +195,164 @@ std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
   return joined(chunks);
 }
 
-std::vector<std::pair<int, int>> BoxTree::coherentPairs(
-    const std::vector<Box>& boxes, const BoxGroups& groups, double slack, std::uint64_t version,
-    const std::function<bool(int, int)>& lasting, const std::function<bool(int, int)>& wanted,
-    const std::vector<Box>* vertices) {
-  bool inside = keptValid_ && version == keptVersion_ && groups.of == keptGroups_ &&
-                groups.pairsWith == keptPairsWith_ && groups.moving == keptMoving_ &&
-                grown_.size() == boxes.size();
-  const auto within = [](const Box& box, const Box& grown) {
-    return (box.min.array() >= grown.min.array()).all() &&
-           (box.max.array() <= grown.max.array()).all();
+namespace {
+
+bool within(const Box& box, const Box& grown) {
+  return (box.min.array() >= grown.min.array()).all() &&
+         (box.max.array() <= grown.max.array()).all();
+}
+
+Box grownBy(const Box& box, double slack) {
+  return {(box.min.array() - slack).matrix(), (box.max.array() + slack).matrix()};
+}
+
+}  // namespace
+
+void BoxTree::searchList(const std::vector<Box>& boxes, const BoxGroups& groups,
+                         const KeptList& list) {
+  grown_.resize(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) grown_[i] = grownBy(boxes[i], list.slack);
+  grownVertices_.clear();
+  if (list.vertices != nullptr)
+    for (const Box& vertex : *list.vertices) grownVertices_.push_back(grownBy(vertex, list.slack));
+  // Each vertex within the slack of where it is: the two sides' allowances are twice it.
+  const double strays = 2 * list.slack;
+  kept_ = overlappingPairs(grown_, groups, [&](int a, int b) {
+    return list.tested(a, b) && !(list.apart && list.apart(a, b, strays));
+  });
+  treesHoldGrown_ = true;
+  repairedBoxes_ = 0;
+  ++listSearches_;
+}
+
+bool BoxTree::repairList(const std::vector<Box>& boxes, const BoxGroups& groups,
+                         const KeptList& list) {
+  if (list.boxParts == nullptr || !treesHoldGrown_) return false;
+  const std::vector<int>& boxParts = *list.boxParts;
+  const std::vector<Box>* vertices = list.vertices;
+  const std::vector<int>* vertexParts = list.vertexParts;
+  if (boxParts.size() != boxes.size() ||
+      (vertices != nullptr && (vertexParts == nullptr || vertexParts->size() != vertices->size())))
+    return false;
+  int parts = 0;
+  for (int part : boxParts) parts = std::max(parts, part + 1);
+  if (vertexParts != nullptr)
+    for (int part : *vertexParts) parts = std::max(parts, part + 1);
+  // The parts a box or vertex of which left its grown box (a box with a NaN overlaps nothing,
+  // wherever it is).
+  std::vector<char> left(parts, 0);
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    if (holdsPoints(boxes[i]) && !within(boxes[i], grown_[i])) left[boxParts[i]] = 1;
+  if (vertices != nullptr)
+    for (std::size_t v = 0; v < vertices->size(); ++v)
+      if (!within((*vertices)[v], grownVertices_[v])) left[(*vertexParts)[v]] = 1;
+  std::vector<int> moved;
+  for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+    if (left[boxParts[i]]) moved.push_back(i);
+  // Most of the coat moving is searched faster whole; and pairs found by a repair may be kept
+  // that a search would leave out (the allowance of a part that stayed is larger), so after
+  // as many boxes searched again as there are, the list is made anew.
+  repairedBoxes_ += moved.size();
+  if (4 * moved.size() > boxes.size() || repairedBoxes_ > boxes.size()) return false;
+
+  // How far each part that stayed may still go, in every coordinate, from where its vertices
+  // are now: to the far side of their grown boxes.
+  std::vector<double> allowance(parts, list.slack);
+  if (vertices != nullptr)
+    for (std::size_t v = 0; v < vertices->size(); ++v) {
+      const int part = (*vertexParts)[v];
+      if (left[part]) continue;
+      const Box& now = (*vertices)[v];
+      const Box& grown = grownVertices_[v];
+      allowance[part] =
+          std::max({allowance[part], (grown.max - now.max).maxCoeff(), (now.min - grown.min).maxCoeff()});
+    }
+  for (int i : moved) grown_[i] = grownBy(boxes[i], list.slack);
+  if (vertices != nullptr)
+    for (std::size_t v = 0; v < vertices->size(); ++v)
+      if (left[(*vertexParts)[v]]) grownVertices_[v] = grownBy((*vertices)[v], list.slack);
+  std::erase_if(kept_, [&](const std::pair<int, int>& pair) {
+    return left[boxParts[pair.first]] || left[boxParts[pair.second]];
+  });
+  for (Tree& tree : trees_) refit(tree, grown_);
+
+  // Each moved box against every grown box of the groups it pairs with; a pair of two moved
+  // boxes from the smaller.
+  const auto moves = [&](int g) { return (groups.moving >> g) & 1; };
+  const auto search = [&](int i, std::vector<std::pair<int, int>>& out, std::vector<int>& stack) {
+    const Box& box = grown_[i];
+    const int g = groups.of[i];
+    if (!groups.pairsWith[g] || !holdsPoints(box)) return;
+    for (int h = 0; h < 8; ++h) {
+      if (!((groups.pairsWith[g] >> h) & 1) || (!moves(g) && !moves(h))) continue;
+      const Tree& tree = trees_[h];
+      if (tree.nodes.empty()) continue;
+      stack.assign(1, 0);
+      while (!stack.empty()) {
+        const Node& node = tree.nodes[stack.back()];
+        stack.pop_back();
+        if (!node.box.overlaps(box)) continue;
+        if (node.count == 0) {
+          stack.push_back(node.first);
+          stack.push_back(node.first + 1);
+          continue;
+        }
+        for (int k = node.first; k < node.first + node.count; ++k) {
+          const int j = tree.order[k];
+          const bool bothMoved = left[boxParts[j]];
+          if (j == i || (bothMoved && j < i) || !tree.leafBoxes[k].overlaps(box)) continue;
+          const int a = std::min(i, j), b = std::max(i, j);
+          const double strays = list.slack + (bothMoved ? list.slack : allowance[boxParts[j]]);
+          if (list.tested(a, b) && !(list.apart && list.apart(a, b, strays)))
+            out.emplace_back(a, b);
+        }
+      }
+    }
   };
+  constexpr std::size_t kGrain = 256;
+  std::vector<std::vector<std::pair<int, int>>> chunks((moved.size() + kGrain - 1) / kGrain);
+  forEach(pool_, moved.size(), kGrain, [&](std::size_t begin, std::size_t end) {
+    std::vector<int> stack;
+    for (std::size_t b = begin; b < end; b += kGrain) {
+      auto& out = chunks[b / kGrain];
+      for (std::size_t k = b; k < std::min(end, b + kGrain); ++k) search(moved[k], out, stack);
+    }
+  });
+  std::vector<std::pair<int, int>> found = joined(chunks);
+  std::sort(found.begin(), found.end());
+  const auto middle = static_cast<std::ptrdiff_t>(kept_.size());
+  kept_.insert(kept_.end(), found.begin(), found.end());
+  std::inplace_merge(kept_.begin(), kept_.begin() + middle, kept_.end());
+  ++listRepairs_;
+  return true;
+}
+
+std::vector<std::pair<int, int>> BoxTree::coherentPairs(
+    const std::vector<Box>& boxes, const BoxGroups& groups, const KeptList& list,
+    const std::function<bool(int, int)>& wanted) {
+  if (list.apart && list.vertices == nullptr)
+    throw std::invalid_argument("a kept list's plane test needs the vertices' boxes");
+  const bool sameList = keptValid_ && list.version == keptVersion_ && groups.of == keptGroups_ &&
+                        groups.pairsWith == keptPairsWith_ && groups.moving == keptMoving_ &&
+                        grown_.size() == boxes.size() &&
+                        (list.vertices == nullptr
+                             ? grownVertices_.empty()
+                             : list.vertices->size() == grownVertices_.size());
+  bool inside = sameList;
   // (A box with a NaN overlaps nothing, wherever it is.)
   for (std::size_t i = 0; inside && i < boxes.size(); ++i)
     inside = !holdsPoints(boxes[i]) || within(boxes[i], grown_[i]);
-  if (vertices != nullptr) {
-    inside = inside && vertices->size() == grownVertices_.size();
-    for (std::size_t v = 0; inside && v < vertices->size(); ++v)
-      inside = within((*vertices)[v], grownVertices_[v]);
-  } else {
-    inside = inside && grownVertices_.empty();
-  }
-  if (!inside) {
-    const auto grow = [slack](std::vector<Box>& grown, const std::vector<Box>& from) {
-      grown = from;
-      for (Box& box : grown) {
-        box.min.array() -= slack;
-        box.max.array() += slack;
-      }
-    };
-    grow(grown_, boxes);
-    if (vertices != nullptr)
-      grow(grownVertices_, *vertices);
-    else
-      grownVertices_.clear();
-    kept_ = overlappingPairs(grown_, groups, lasting);
+  for (std::size_t v = 0; inside && list.vertices != nullptr && v < list.vertices->size(); ++v)
+    inside = within((*list.vertices)[v], grownVertices_[v]);
+  if (inside) {
+    ++listFilters_;
+  } else if (!(sameList && repairList(boxes, groups, list))) {
+    searchList(boxes, groups, list);
     keptGroups_ = groups.of;
     keptPairsWith_ = groups.pairsWith;
     keptMoving_ = groups.moving;
-    keptVersion_ = version;
+    keptVersion_ = list.version;
     keptValid_ = true;
-    ++listSearches_;
-  } else {
-    ++listFilters_;
   }
   // The kept list is sorted; its chunks filtered one after the other stay so.
   constexpr std::size_t kGrain = 4096;

@@ -215,6 +215,22 @@ struct Primitives {
     return out;
   }
 
+  // The parts of the kept list (BoxTree::KeptList): each stem with its vane a part, the body
+  // one; of the primitives and of the vertices.
+  std::pair<std::vector<int>, std::vector<int>> parts() const {
+    const int body = static_cast<int>(stemOffset.size());
+    std::vector<int> ofPrimitive, ofVertex;
+    ofPrimitive.reserve(list.size());
+    for (const Primitive& p : list) ofPrimitive.push_back(p.stem >= 0 ? p.stem : body);
+    for (int s = 0; s < body; ++s) {
+      const int end = s + 1 < body ? stemOffset[s + 1] : bodyOffset;
+      ofVertex.insert(ofVertex.end(), end - stemOffset[s], s);
+    }
+    ofVertex.insert(ofVertex.end(), vaneOffset - bodyOffset, body);
+    for (const auto& c : corner) ofVertex.push_back(c[0]);
+    return {std::move(ofPrimitive), std::move(ofVertex)};
+  }
+
   // Whether the pair (a < b in list order) is tested: segments of different stems (but not two
   // first segments, whose roots the body moves) or of one stem that share no node; stem segments
   // against body edges and stem nodes against body triangles, except a stem's first segment,
@@ -543,9 +559,15 @@ std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyM
   for (char m : moving) groups.of.push_back(m ? 0 : 1);
   groups.pairsWith = {0b11, 0b01};
   groups.moving = 1;
-  const auto pairs =
-      slack > 0 ? tree.coherentPairs(boxes, groups, slack, 0, tested, [](int, int) { return true; })
-                : tree.overlappingPairs(boxes, groups, tested);
+  std::vector<int> parts;  // each stem a part, the body one
+  for (const Item& item : items)
+    parts.push_back(item.triangle < 0 ? item.stem : static_cast<int>(stems.size()));
+  BoxTree::KeptList list;
+  list.slack = slack;
+  list.tested = tested;
+  list.boxParts = &parts;
+  const auto pairs = slack > 0 ? tree.coherentPairs(boxes, groups, list, [](int, int) { return true; })
+                               : tree.overlappingPairs(boxes, groups, tested);
   const auto meet = [&](int a, int b) {
     const Item &p = items[a], &q = items[b];
     const Vector3d& p0 = stems[p.stem].positions[p.segment];
@@ -700,31 +722,36 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // holds, from the list the tree keeps (BoxTree::coherentPairs). The list holds the pairs tested
   // (Primitives::wanted, which changes only with the vanes' pairs left out:
   // vaneOverlapsVersion_) whose boxes grown by the slack overlap, less those that a plane keeps
-  // farther apart than the thickness and twice the slack (separatedOverStep) where the list is
-  // made. While every vertex stays within the slack of where it was then (in every coordinate;
-  // else the tree makes the list anew), such a pair's projections on that plane's normal come no
-  // nearer than the thickness: no search may find it, the repulsion (which acts within the
-  // thickness) nor the CCD (within the separation, at most the thickness). The layered vanes of a
-  // coat, whose boxes overlap all round, are left out of the list so, once per list instead of once
-  // a search.
-  const double slack = parameters_.candidateSlack;
-  CcdOptions listReach;
-  listReach.minimumSeparation =
-      std::max(parameters_.thickness, parameters_.minimumSeparation) + 2 * slack;
+  // farther apart than the thickness and what the two sides may still move (separatedOverStep)
+  // where the pair is listed. While every vertex stays within its grown box of then (in every
+  // coordinate; else its stem, or the body, is searched again), such a pair's projections on
+  // that plane's normal come no nearer than the thickness: no search may find it, the repulsion
+  // (which acts within the thickness) nor the CCD (within the separation, at most the
+  // thickness). The layered vanes of a coat, whose boxes overlap all round, are left out of the
+  // list so, once per list instead of once a search; and a stem that moves more than the slack
+  // has its own pairs found again, not the whole coat's.
+  const auto [primitiveParts, vertexParts] = primitives.parts();
+  const double reach = std::max(parameters_.thickness, parameters_.minimumSeparation);
   const auto candidatesOf = [&](const StepState& searched, double margin,
                                 const std::function<bool(int, int)>& wanted) {
     std::vector<Box> vertices(searched.start.size());
     for (std::size_t v = 0; v < vertices.size(); ++v)
       vertices[v] = {searched.start[v].cwiseMin(searched.end[v]),
                      searched.start[v].cwiseMax(searched.end[v])};
-    return stepTree_.coherentPairs(
-        primitives.boxes(searched, margin), groups, slack, vaneOverlapsVersion_,
-        [&](int a, int b) {
-          return primitives.wanted(a, b) &&
-                 !separatedOverStep(primitives.motion(a, b, searched),
-                                    isTriangle(primitives.list[b].kind), listReach);
-        },
-        wanted, &vertices);
+    BoxTree::KeptList list;
+    list.slack = parameters_.candidateSlack;
+    list.version = vaneOverlapsVersion_;
+    list.tested = [&](int a, int b) { return primitives.wanted(a, b); };
+    list.apart = [&](int a, int b, double strays) {
+      CcdOptions listReach;
+      listReach.minimumSeparation = reach + strays;
+      return separatedOverStep(primitives.motion(a, b, searched),
+                               isTriangle(primitives.list[b].kind), listReach);
+    };
+    list.vertices = &vertices;
+    list.boxParts = &primitiveParts;
+    list.vertexParts = &vertexParts;
+    return stepTree_.coherentPairs(primitives.boxes(searched, margin), groups, list, wanted);
   };
   // Where the vanes' corners would be at the end of the step: from the frames of the stems'
   // candidate positions.
@@ -1022,10 +1049,12 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // 6: the exact check of the final state.
   const BodyMesh bodyAtEnd{toState.body, body_.triangles};
   const std::size_t penetrations =
-      countPenetrations(stems_, bodyAtEnd, nearestAllowed(), checkTree_, slack);
+      countPenetrations(stems_, bodyAtEnd, nearestAllowed(), checkTree_,
+                        parameters_.candidateSlack);
   const std::size_t vanes = parameters_.vaneCollisions
                                 ? countVaneIntersections(stems_, nearestAllowed(), vaneTree_,
-                                                         &vaneOverlaps_, nullptr, slack)
+                                                         &vaneOverlaps_, nullptr,
+                                                         parameters_.candidateSlack)
                                 : 0;
   if (penetrations + vanes > 0) {
     counters_.penetrations += penetrations + vanes;

@@ -224,25 +224,36 @@ std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double
   groups.moving = 0b11;
   std::vector<std::pair<int, int>> pairs;
   if (slack > 0) {
-    // Every point within the slack of where it was when the list was made (in each coordinate;
-    // else the list is made anew) moves at most sqrt(3) slack along a unit normal: a pair one
-    // of whose planes keeps the other farther than the distance and twice that stays clear.
-    const double margin = minimumDistance + 3.5 * slack;
+    // A point that moves at most `stray` in each coordinate moves at most sqrt(3) stray along
+    // a unit normal: a pair one of whose planes keeps the other farther than the distance and
+    // that for both sides' strays stays clear.
+    constexpr double kAlongNormal = 1.75;
     std::vector<Box> vertices;
+    std::vector<int> boxParts, vertexParts;  // each feather a part
     vertices.reserve(3 * items.size());
-    for (const Item& item : items)
-      for (const Vector3d& x : item.points) vertices.push_back({x, x});
-    pairs = tree.coherentPairs(
-        boxes, groups, slack, 0,
-        [&](int a, int b) {
-          const Item &p = items[a], &q = items[b];
-          if (p.stem == q.stem) return false;
-          const auto& t = q.points;
-          return p.triangle ? !trianglesBeyond(p.points, t, margin)
-                            : !beyondPlane(std::array<Vector3d, 2>{p.points[0], p.points[1]}, t[0],
-                                           t[1], t[2], margin);
-        },
-        [&](int a, int b) { return !left(items[a], items[b]); }, &vertices);
+    for (const Item& item : items) {
+      boxParts.push_back(item.stem);
+      for (const Vector3d& x : item.points) {
+        vertices.push_back({x, x});
+        vertexParts.push_back(item.stem);
+      }
+    }
+    BoxTree::KeptList list;
+    list.slack = slack;
+    list.tested = [&](int a, int b) { return items[a].stem != items[b].stem; };
+    list.apart = [&](int a, int b, double strays) {
+      const Item &p = items[a], &q = items[b];
+      const auto& t = q.points;
+      const double margin = minimumDistance + kAlongNormal * strays;
+      return p.triangle ? trianglesBeyond(p.points, t, margin)
+                        : beyondPlane(std::array<Vector3d, 2>{p.points[0], p.points[1]}, t[0],
+                                      t[1], t[2], margin);
+    };
+    list.vertices = &vertices;
+    list.boxParts = &boxParts;
+    list.vertexParts = &vertexParts;
+    pairs = tree.coherentPairs(boxes, groups, list,
+                               [&](int a, int b) { return !left(items[a], items[b]); });
   } else {
     pairs = tree.overlappingPairs(boxes, groups, [&](int a, int b) {
       return items[a].stem != items[b].stem && !left(items[a], items[b]);

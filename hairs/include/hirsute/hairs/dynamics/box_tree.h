@@ -37,26 +37,49 @@ class BoxTree {
                                                     const std::vector<char>& moving,
                                                     const std::function<bool(int, int)>& wanted);
 
-  // The pairs overlappingPairs(boxes, groups, ...) finds for which both `lasting` and `wanted`
-  // hold, from a list kept from an earlier search (Verlet's neighbour lists, from molecular
-  // dynamics): that search took every box grown by `slack`, so while each box stays inside its
-  // grown box of then, every pair that overlaps now was found then, and the list need only be
-  // filtered. It is searched anew when a box has left its grown box, when the groups are not
-  // those of then, or when `version` changed (`lasting` may change only with `version`; `wanted`
-  // may differ from call to call). The same pairs as a search, for the cost of filtering a list
-  // of somewhat more: a simulation searches several times a step, its primitives moving little.
-  // Where `vertices` are given (the boxes of the primitives' vertices, over a step or still), the
-  // list is also made anew once one of them leaves its box of then grown by the slack, so that
-  // `lasting` may count on every vertex staying within the slack of where it was (a test that a
-  // plane keeps the pair apart, with twice the slack allowed for).
+  // What coherentPairs keeps its list of.
+  struct KeptList {
+    double slack = 0;
+    // Which pairs are tested at all; it may change only with `version`.
+    std::function<bool(int, int)> tested;
+    // Optional: whether the pair stays apart while each of its vertices stays within `strays`
+    // (the two sides' allowances summed, in every coordinate) of where it is over this search
+    // (a plane test). Needs `vertices`.
+    std::function<bool(int, int, double strays)> apart;
+    std::uint64_t version = 0;
+    // The boxes of the primitives' vertices (over a step, or still): the list also counts on
+    // each staying within its box of then grown by the slack.
+    const std::vector<Box>* vertices = nullptr;
+    // Optional: the part each box and each vertex belongs to (a stem with its vane; the body),
+    // numbers from 0, a box's vertices in its own part. Where given, a part that left its slack
+    // is searched again alone, against the grown boxes of the rest (the list repaired), instead
+    // of the whole list made anew.
+    const std::vector<int>* boxParts = nullptr;
+    const std::vector<int>* vertexParts = nullptr;
+  };
+
+  // The pairs overlappingPairs(boxes, groups, ...) finds for which `list.tested` and `wanted`
+  // hold, less some that `list.apart` keeps apart, from a list kept from an earlier search
+  // (Verlet's neighbour lists, from molecular dynamics): that search took every box grown by
+  // the slack, so while each box stays inside its grown box of then, every pair that overlaps
+  // now was found then, and the list need only be filtered. It is searched anew when a box has
+  // left its grown box, when the groups are not those of then, or when `version` changed
+  // (`wanted` may differ from call to call). The same pairs as a search, for the cost of
+  // filtering a list of somewhat more: a simulation searches several times a step, its
+  // primitives moving little. Where `vertices` are given, a vertex that leaves its grown box
+  // also has the list made anew, so that `apart` may count on every vertex staying within the
+  // slack of where it was: a pair it keeps apart with twice the slack allowed for is left out of
+  // the list. Where parts are given and few parts have left their slack, only their pairs are
+  // found anew: a pair of such a part with one that stayed is kept unless `apart` keeps it apart
+  // with the slack allowed for the one side and, for the other, how far its vertices may still
+  // go within their grown boxes (more than the slack: they were grown where it was).
   std::vector<std::pair<int, int>> coherentPairs(const std::vector<Box>& boxes,
-                                                 const BoxGroups& groups, double slack,
-                                                 std::uint64_t version,
-                                                 const std::function<bool(int, int)>& lasting,
-                                                 const std::function<bool(int, int)>& wanted,
-                                                 const std::vector<Box>* vertices = nullptr);
-  // How many times coherentPairs searched its list anew, and how many times it filtered it.
+                                                 const BoxGroups& groups, const KeptList& list,
+                                                 const std::function<bool(int, int)>& wanted);
+  // How many times coherentPairs searched its list anew, repaired it (some parts searched
+  // again) and filtered it as it was.
   std::uint64_t listSearches() const { return listSearches_; }
+  std::uint64_t listRepairs() const { return listRepairs_; }
   std::uint64_t listFilters() const { return listFilters_; }
 
   WorkerPool* pool() const { return pool_; }
@@ -79,6 +102,10 @@ class BoxTree {
   };
   void build(Tree& tree, const std::vector<Box>& boxes);
   static void refit(Tree& tree, const std::vector<Box>& boxes);
+  // The list made anew from the grown boxes, or repaired where parts left their slack; false
+  // where it cannot be repaired (then it must be made anew).
+  void searchList(const std::vector<Box>& boxes, const BoxGroups& groups, const KeptList& list);
+  bool repairList(const std::vector<Box>& boxes, const BoxGroups& groups, const KeptList& list);
 
   WorkerPool* pool_;
   std::array<Tree, 8> trees_;
@@ -96,7 +123,9 @@ class BoxTree {
   std::uint8_t keptMoving_ = 0;
   std::uint64_t keptVersion_ = 0;
   bool keptValid_ = false;
-  std::uint64_t listSearches_ = 0, listFilters_ = 0;
+  bool treesHoldGrown_ = false;  // the trees are those of grown_ (no other search since)
+  std::size_t repairedBoxes_ = 0;  // boxes searched again since the list was made anew
+  std::uint64_t listSearches_ = 0, listRepairs_ = 0, listFilters_ = 0;
 };
 
 }  // namespace hirsute::dynamics
