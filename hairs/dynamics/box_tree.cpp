@@ -30,7 +30,8 @@ Eigen::Vector3d centreOf(const Box& box) {
 }
 
 // The pairs of chunks filled on the threads, one chunk after the other.
-std::vector<std::pair<int, int>> joined(const std::vector<std::vector<std::pair<int, int>>>& chunks) {
+std::vector<std::pair<int, int>> joined(
+    const std::vector<std::vector<std::pair<int, int>>>& chunks) {
   std::size_t total = 0;
   for (const auto& chunk : chunks) total += chunk.size();
   std::vector<std::pair<int, int>> pairs;
@@ -264,8 +265,8 @@ bool BoxTree::repairList(const std::vector<Box>& boxes, const BoxGroups& groups,
       if (left[part]) continue;
       const Box& now = (*vertices)[v];
       const Box& grown = grownVertices_[v];
-      allowance[part] =
-          std::max({allowance[part], (grown.max - now.max).maxCoeff(), (now.min - grown.min).maxCoeff()});
+      allowance[part] = std::max(
+          {allowance[part], (grown.max - now.max).maxCoeff(), (now.min - grown.min).maxCoeff()});
     }
   for (int i : moved) grown_[i] = grownBy(boxes[i], list.slack);
   if (vertices != nullptr)
@@ -335,9 +336,8 @@ std::vector<std::pair<int, int>> BoxTree::coherentPairs(
   const bool sameList = keptValid_ && list.version == keptVersion_ && groups.of == keptGroups_ &&
                         groups.pairsWith == keptPairsWith_ && groups.moving == keptMoving_ &&
                         grown_.size() == boxes.size() &&
-                        (list.vertices == nullptr
-                             ? grownVertices_.empty()
-                             : list.vertices->size() == grownVertices_.size());
+                        (list.vertices == nullptr ? grownVertices_.empty()
+                                                  : list.vertices->size() == grownVertices_.size());
   bool inside = sameList;
   // (A box with a NaN overlaps nothing, wherever it is.)
   for (std::size_t i = 0; inside && i < boxes.size(); ++i)

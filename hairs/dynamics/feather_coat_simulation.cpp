@@ -566,8 +566,9 @@ std::size_t countPenetrations(const std::vector<FeatherStem>& stems, const BodyM
   list.slack = slack;
   list.tested = tested;
   list.boxParts = &parts;
-  const auto pairs = slack > 0 ? tree.coherentPairs(boxes, groups, list, [](int, int) { return true; })
-                               : tree.overlappingPairs(boxes, groups, tested);
+  const auto pairs = slack > 0
+                         ? tree.coherentPairs(boxes, groups, list, [](int, int) { return true; })
+                         : tree.overlappingPairs(boxes, groups, tested);
   const auto meet = [&](int a, int b) {
     const Item &p = items[a], &q = items[b];
     const Vector3d& p0 = stems[p.stem].positions[p.segment];
@@ -1048,14 +1049,13 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   }
   // 6: the exact check of the final state.
   const BodyMesh bodyAtEnd{toState.body, body_.triangles};
-  const std::size_t penetrations =
-      countPenetrations(stems_, bodyAtEnd, nearestAllowed(), checkTree_,
-                        parameters_.candidateSlack);
-  const std::size_t vanes = parameters_.vaneCollisions
-                                ? countVaneIntersections(stems_, nearestAllowed(), vaneTree_,
-                                                         &vaneOverlaps_, nullptr,
-                                                         parameters_.candidateSlack)
-                                : 0;
+  const std::size_t penetrations = countPenetrations(stems_, bodyAtEnd, nearestAllowed(),
+                                                     checkTree_, parameters_.candidateSlack);
+  const std::size_t vanes =
+      parameters_.vaneCollisions
+          ? countVaneIntersections(stems_, nearestAllowed(), vaneTree_, &vaneOverlaps_, nullptr,
+                                   parameters_.candidateSlack)
+          : 0;
   if (penetrations + vanes > 0) {
     counters_.penetrations += penetrations + vanes;
     counters_.vanePenetrations += vanes;

@@ -246,8 +246,8 @@ std::size_t countVaneIntersections(const std::vector<FeatherStem>& stems, double
       const auto& t = q.points;
       const double margin = minimumDistance + kAlongNormal * strays;
       return p.triangle ? trianglesBeyond(p.points, t, margin)
-                        : beyondPlane(std::array<Vector3d, 2>{p.points[0], p.points[1]}, t[0],
-                                      t[1], t[2], margin);
+                        : beyondPlane(std::array<Vector3d, 2>{p.points[0], p.points[1]}, t[0], t[1],
+                                      t[2], margin);
     };
     list.vertices = &vertices;
     list.boxParts = &boxParts;

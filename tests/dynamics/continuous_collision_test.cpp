@@ -74,6 +74,35 @@ TEST(VertexFaceCcd, ContactAtTheStartIsTimeZero) {
   EXPECT_EQ(r.timeOfImpact, 0.0);
 }
 
+// Primitives already within the separation where the step starts are a contact at 0 found
+// without a search (no box examined); just beyond it, the search runs and finds the later
+// contact.
+TEST(Ccd, ATouchAtTheStartIsFoundWithoutASearch) {
+  const CcdOptions options{.minimumSeparation = 0.01};
+  // A vertex 0.005 over the face, and 0.005 beyond the hypotenuse (diagonally, within 0.01 on
+  // each axis of its nearest point), moving away.
+  for (const Vector3d& at : {Vector3d(0.3, 0.3, 0.005), Vector3d(0.5036, 0.5036, 0.005)}) {
+    const CcdResult r = vertexFaceCcd(vertexOverUnitTriangle(at, at + Vector3d(0, 0, 1)), options);
+    ASSERT_TRUE(r.contact) << at.transpose();
+    EXPECT_EQ(r.timeOfImpact, 0.0);
+    EXPECT_EQ(r.checks, 0);
+  }
+  const CcdResult later =
+      vertexFaceCcd(vertexOverUnitTriangle({0.3, 0.3, 0.02}, {0.3, 0.3, -0.02}), options);
+  ASSERT_TRUE(later.contact);
+  EXPECT_GT(later.checks, 0);
+  EXPECT_GE(later.timeOfImpact, 0.25 - 1e-4);  // F changes by 0.04 over the step
+  EXPECT_LE(later.timeOfImpact, 0.25);
+  // Two parallel edges 0.008 apart, sliding along each other.
+  const CcdResult side =
+      edgeEdgeCcd(edges({0, 0, 0}, {1, 0, 0}, {0.2, 0.008, 0}, {1.2, 0.008, 0}, {0.1, 0, 0},
+                        {1.1, 0, 0}, {0.2, 0.008, 0}, {1.2, 0.008, 0}),
+                  options);
+  ASSERT_TRUE(side.contact);
+  EXPECT_EQ(side.timeOfImpact, 0.0);
+  EXPECT_EQ(side.checks, 0);
+}
+
 TEST(VertexFaceCcd, MotionlessTouchingAndMotionlessApart) {
   const CcdResult r = vertexFaceCcd(vertexOverUnitTriangle({0.5, 0, 0}, {0.5, 0, 0}));
   ASSERT_TRUE(r.contact);

@@ -123,7 +123,7 @@ class BoxTree {
   std::uint8_t keptMoving_ = 0;
   std::uint64_t keptVersion_ = 0;
   bool keptValid_ = false;
-  bool treesHoldGrown_ = false;  // the trees are those of grown_ (no other search since)
+  bool treesHoldGrown_ = false;    // the trees are those of grown_ (no other search since)
   std::size_t repairedBoxes_ = 0;  // boxes searched again since the list was made anew
   std::uint64_t listSearches_ = 0, listRepairs_ = 0, listFilters_ = 0;
 };
