@@ -115,6 +115,8 @@ dynamics::SimulationParameters parametersFor(const FeatherDynamicsSettings& view
   if (o.segments) p.segmentsPerFeather = *o.segments;
   if (o.vaneCollisions) p.vaneCollisions = true;
   if (o.noVaneCollisions) p.vaneCollisions = false;
+  // The vanes' count leaves out those that overlap where the coat is placed.
+  p.findVaneOverlaps = o.countVaneIntersections;
   return p;
 }
 
@@ -507,18 +509,23 @@ int runSimulate(SimulateOptions o) {
   }
   if (!motion) return kExitOk;
   const dynamics::SimulationCounters& c = motion->simulation().counters();
+  const dynamics::FeatherCoatSimulation& simulation = motion->simulation();
+  const std::string overlaps =
+      parameters.vaneCollisions || parameters.findVaneOverlaps
+          ? fmt::format(", {} pairs of segments whose vanes overlapped at the start left out ({} "
+                        "still at the end)",
+                        simulation.vaneOverlapsAtStart(), simulation.vaneOverlaps().size())
+          : std::string();
   std::cout << fmt::format(
       "{} frames of {} feathers ({} rooted on the body) in {:.2f} s, {:.3f} s of it simulating "
       "({:.1f} frames/s): {} steps, {} retried; {} candidates, {} contacts, {} impact zones; "
       "{} intersections found and undone, {} calamus crossings put into zones at the smallest "
-      "step, {} left; vanes {}: {} vane candidates, {} vane contacts, {} pairs of segments "
-      "whose vanes overlapped at the start left out ({} still at the end), {}\n",
-      frames, motion->simulation().stems().size(), motion->boundRoots(), seconds, simulating,
+      "step, {} left; vanes {}: {} vane candidates, {} vane contacts{}, {}\n",
+      frames, simulation.stems().size(), motion->boundRoots(), seconds, simulating,
       frames > 1 ? (frames - 1) / std::max(simulating, 1e-9) : 0.0, c.substeps, c.retries,
       c.candidates, c.contacts, c.impactZones, c.penetrations, c.calamiZoned,
       motion->penetrations(), parameters.vaneCollisions ? "colliding" : "not colliding",
-      c.vaneCandidates, c.vaneContacts, motion->simulation().vaneOverlapsAtStart(),
-      motion->simulation().vaneOverlaps().size(),
+      c.vaneCandidates, c.vaneContacts, overlaps,
       countVanes ? std::to_string(vaneIntersectionsLeft) + " vane intersections left"
                  : std::string("vane intersections not counted"));
   return kExitOk;

@@ -615,9 +615,11 @@ FeatherCoatSimulation::FeatherCoatSimulation(std::vector<FeatherStem> stems, Bod
       stem.vaneCorners = vaneCornersOf(stem);
   }
   // Vanes that already meet are left out of each other's collisions until they come apart.
-  vaneOverlaps_ = VaneOverlaps(stems_);
-  countVaneIntersections(stems_, nearestAllowed(), vaneTree_, nullptr, &vaneOverlaps_);
-  vaneOverlapsAtStart_ = vaneOverlaps_.size();
+  if (parameters_.vaneCollisions || parameters_.findVaneOverlaps) {
+    vaneOverlaps_ = VaneOverlaps(stems_);
+    countVaneIntersections(stems_, nearestAllowed(), vaneTree_, nullptr, &vaneOverlaps_);
+    vaneOverlapsAtStart_ = vaneOverlaps_.size();
+  }
 }
 
 FeatherCoatSimulation FeatherCoatSimulation::fromScene(const Scene& scene,

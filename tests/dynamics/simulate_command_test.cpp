@@ -120,6 +120,10 @@ TEST_F(SimulateCommand, WithoutVaneCollisionsTheBendingCoatsVanesPassThrough) {
   EXPECT_NE(out.text.find("vanes not colliding: 0 vane candidates"), std::string::npos)
       << out.text;
   EXPECT_NE(out.text.find("0 left;"), std::string::npos) << out.text;  // the stems still don't
+  // The vanes overlapping where the coat is placed are left out of the count.
+  EXPECT_NE(out.text.find("118 pairs of segments whose vanes overlapped at the start left out"),
+            std::string::npos)
+      << out.text;
   const auto rows = table(folder_);
   ASSERT_EQ(rows.size(), 5u);
   int met = 0;
@@ -127,12 +131,14 @@ TEST_F(SimulateCommand, WithoutVaneCollisionsTheBendingCoatsVanesPassThrough) {
   EXPECT_GT(met, 0);
 }
 
-// Vanes that do not collide are counted only when asked: the column stays empty.
+// Vanes that do not collide are counted only when asked: the column stays empty, and the vanes
+// overlapping where the coat is placed are not looked for.
 TEST_F(SimulateCommand, VanesNotCollidingAreCountedOnlyWhenAsked) {
   const Output out = simulate("coat-bending", "bending.l bending.v bending.a",
                               "--frames 2 --no-frames --no-vane-collisions", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("vane intersections not counted"), std::string::npos) << out.text;
+  EXPECT_EQ(out.text.find("overlapped at the start"), std::string::npos) << out.text;
   const auto rows = table(folder_);
   ASSERT_EQ(rows.size(), 3u);
   for (std::size_t r = 1; r < rows.size(); ++r) EXPECT_EQ(rows[r].size(), 19u);  // the last empty
