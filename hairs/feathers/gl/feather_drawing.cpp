@@ -14,9 +14,10 @@ using gl::linkProgram;
 using gl::makeBuffer;
 
 constexpr char kVersion[] = "#version 330 core\n";
-// Vertices streamed a draw (FeatherDrawing): a few draws a frame for a coat of 10 000 feathers,
-// 36 MB of barb vertices at the most.
-constexpr std::size_t kStreamVertices = std::size_t{1} << 20;
+// Vertices streamed a draw (FeatherDrawing), 9 MB of barb vertices at the most: the coat of
+// 10 000 feathers renders faster and in half the memory than with four times as many
+// (docs/feathers.md, "Dense coats").
+constexpr std::size_t kStreamVertices = std::size_t{1} << 18;
 
 // The shafts: lit on both sides by one light, a fifth of it ambient.
 constexpr char kShaftVertex[] = R"(
