@@ -118,6 +118,31 @@ void BoxTree::refit(Tree& tree, const std::vector<Box>& boxes) {
   }
 }
 
+template <class Visit>
+void BoxTree::forEachOverlapping(const Box& box, int group, const BoxGroups& groups, int above,
+                                 std::vector<int>& stack, const Visit& visit) const {
+  const auto moves = [&](int g) { return (groups.moving >> g) & 1; };
+  if (!groups.pairsWith[group] || !holdsPoints(box)) return;
+  for (int h = 0; h < 8; ++h) {
+    if (!((groups.pairsWith[group] >> h) & 1) || (!moves(group) && !moves(h))) continue;
+    const Tree& tree = trees_[h];
+    if (tree.nodes.empty()) continue;
+    stack.assign(1, 0);
+    while (!stack.empty()) {
+      const Node& node = tree.nodes[stack.back()];
+      stack.pop_back();
+      if (node.largest <= above || !node.box.overlaps(box)) continue;
+      if (node.count == 0) {
+        stack.push_back(node.first);
+        stack.push_back(node.first + 1);
+        continue;
+      }
+      for (int k = node.first; k < node.first + node.count; ++k)
+        if (tree.leafBoxes[k].overlaps(box)) visit(tree.order[k]);
+    }
+  }
+}
+
 std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
     const std::vector<Box>& boxes, const std::vector<char>& moving,
     const std::function<bool(int, int)>& wanted) {
@@ -129,7 +154,6 @@ std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
     const std::vector<Box>& boxes, const BoxGroups& groups,
     const std::function<bool(int, int)>& wanted) {
   treesHoldGrown_ = false;
-  const auto moves = [&](int g) { return (groups.moving >> g) & 1; };
   // A group has a tree when it pairs with anything; still groups too, so that every pair can be
   // found from its smaller box number, which makes the pairs come out sorted.
   const bool sameShape =
@@ -148,34 +172,13 @@ std::vector<std::pair<int, int>> BoxTree::overlappingPairs(
   }
   for (Tree& tree : trees_) refit(tree, boxes);
 
-  // Each box looks for the boxes of larger numbers it pairs with, in the trees of the groups
-  // its group pairs with (two still groups never). Its pairs are sorted, and the boxes' lists
-  // one after the other are the sorted list of all pairs.
+  // Each box looks for the boxes of larger numbers it pairs with. Its pairs are sorted, and the
+  // boxes' lists one after the other are the sorted list of all pairs.
   const auto search = [&](int i, std::vector<std::pair<int, int>>& out, std::vector<int>& stack) {
-    const Box& box = boxes[i];
-    const int g = groups.of[i];
-    if (!groups.pairsWith[g] || !holdsPoints(box)) return;
     const std::size_t start = out.size();
-    for (int h = 0; h < 8; ++h) {
-      if (!((groups.pairsWith[g] >> h) & 1) || (!moves(g) && !moves(h))) continue;
-      const Tree& tree = trees_[h];
-      if (tree.nodes.empty()) continue;
-      stack.assign(1, 0);
-      while (!stack.empty()) {
-        const Node& node = tree.nodes[stack.back()];
-        stack.pop_back();
-        if (node.largest <= i || !node.box.overlaps(box)) continue;
-        if (node.count == 0) {
-          stack.push_back(node.first);
-          stack.push_back(node.first + 1);
-          continue;
-        }
-        for (int k = node.first; k < node.first + node.count; ++k) {
-          const int j = tree.order[k];
-          if (j > i && tree.leafBoxes[k].overlaps(box) && wanted(i, j)) out.emplace_back(i, j);
-        }
-      }
-    }
+    forEachOverlapping(boxes[i], groups.of[i], groups, i, stack, [&](int j) {
+      if (j > i && wanted(i, j)) out.emplace_back(i, j);
+    });
     std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end());
   };
   const std::size_t count = boxes.size();
@@ -279,36 +282,14 @@ bool BoxTree::repairList(const std::vector<Box>& boxes, const BoxGroups& groups,
 
   // Each moved box against every grown box of the groups it pairs with; a pair of two moved
   // boxes from the smaller.
-  const auto moves = [&](int g) { return (groups.moving >> g) & 1; };
   const auto search = [&](int i, std::vector<std::pair<int, int>>& out, std::vector<int>& stack) {
-    const Box& box = grown_[i];
-    const int g = groups.of[i];
-    if (!groups.pairsWith[g] || !holdsPoints(box)) return;
-    for (int h = 0; h < 8; ++h) {
-      if (!((groups.pairsWith[g] >> h) & 1) || (!moves(g) && !moves(h))) continue;
-      const Tree& tree = trees_[h];
-      if (tree.nodes.empty()) continue;
-      stack.assign(1, 0);
-      while (!stack.empty()) {
-        const Node& node = tree.nodes[stack.back()];
-        stack.pop_back();
-        if (!node.box.overlaps(box)) continue;
-        if (node.count == 0) {
-          stack.push_back(node.first);
-          stack.push_back(node.first + 1);
-          continue;
-        }
-        for (int k = node.first; k < node.first + node.count; ++k) {
-          const int j = tree.order[k];
-          const bool bothMoved = left[boxParts[j]];
-          if (j == i || (bothMoved && j < i) || !tree.leafBoxes[k].overlaps(box)) continue;
-          const int a = std::min(i, j), b = std::max(i, j);
-          const double strays = list.slack + (bothMoved ? list.slack : allowance[boxParts[j]]);
-          if (list.tested(a, b) && !(list.apart && list.apart(a, b, strays)))
-            out.emplace_back(a, b);
-        }
-      }
-    }
+    forEachOverlapping(grown_[i], groups.of[i], groups, -1, stack, [&](int j) {
+      const bool bothMoved = left[boxParts[j]];
+      if (j == i || (bothMoved && j < i)) return;
+      const int a = std::min(i, j), b = std::max(i, j);
+      const double strays = list.slack + (bothMoved ? list.slack : allowance[boxParts[j]]);
+      if (list.tested(a, b) && !(list.apart && list.apart(a, b, strays))) out.emplace_back(a, b);
+    });
   };
   constexpr std::size_t kGrain = 256;
   std::vector<std::vector<std::pair<int, int>>> chunks((moved.size() + kGrain - 1) / kGrain);

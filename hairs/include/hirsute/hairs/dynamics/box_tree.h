@@ -100,6 +100,12 @@ class BoxTree {
     std::vector<Box> leafBoxes;  // their boxes in that order
     std::vector<Node> nodes;     // a node's children come after it
   };
+  // Calls visit(j) for each box j whose leaf box overlaps `box`, in the trees of the groups
+  // `group` pairs with (two still groups never), leaving out the subtrees whose boxes are all
+  // numbered `above` or less.
+  template <class Visit>
+  void forEachOverlapping(const Box& box, int group, const BoxGroups& groups, int above,
+                          std::vector<int>& stack, const Visit& visit) const;
   void build(Tree& tree, const std::vector<Box>& boxes);
   static void refit(Tree& tree, const std::vector<Box>& boxes);
   // The list made anew from the grown boxes, or repaired where parts left their slack; false
