@@ -733,7 +733,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // thickness). The layered vanes of a coat, whose boxes overlap all round, are left out of the
   // list so, once per list instead of once a search; and a stem that moves more than the slack
   // has its own pairs found again, not the whole coat's.
-  const auto [primitiveParts, vertexParts] = primitives.parts();
+  const auto parts = primitives.parts();  // of the primitives, of the vertices
   const double reach = std::max(parameters_.thickness, parameters_.minimumSeparation);
   const auto candidatesOf = [&](const StepState& searched, double margin,
                                 const std::function<bool(int, int)>& wanted) {
@@ -752,8 +752,8 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
                                isTriangle(primitives.list[b].kind), listReach);
     };
     list.vertices = &vertices;
-    list.boxParts = &primitiveParts;
-    list.vertexParts = &vertexParts;
+    list.boxParts = &parts.first;
+    list.vertexParts = &parts.second;
     return stepTree_.coherentPairs(primitives.boxes(searched, margin), groups, list, wanted);
   };
   // Where the vanes' corners would be at the end of the step: from the frames of the stems'
