@@ -89,6 +89,50 @@ struct StepState {
   double weight(int v) const { return owner[v] == v ? 1 / inverseMass[v] : 0.0; }
 };
 
+// The CCD's answers of a step's last search at one separation, and where the vertices' ends
+// were then (their starts do not change within a step). A pair of a later search none of whose
+// vertices has moved since, asked again, gets the same answer.
+struct KeptAnswers {
+  double separation = 0;
+  std::vector<std::pair<int, int>> pairs;  // asked, sorted as the searches give them
+  std::vector<std::pair<std::size_t, CcdResult>> contacts;  // by index into `pairs`, sorted
+  std::vector<Vector3d> ends;
+
+  static constexpr int kAsk = -2, kNoContact = -1;
+
+  // For each of `asked` (sorted), its kept answer where it was asked before and none of its
+  // vertices (`vertexSet`) has moved since: kNoContact, or its index in `contacts`; kAsk where
+  // it must be asked.
+  template <class VertexSet>
+  std::vector<int> earlierOf(const std::vector<std::pair<int, int>>& asked,
+                             const std::vector<Vector3d>& now, VertexSet vertexSet) const {
+    std::vector<int> out(asked.size(), kAsk);
+    if (ends.size() != now.size()) return out;
+    std::vector<char> moved(now.size());
+    for (std::size_t v = 0; v < now.size(); ++v) moved[v] = now[v] != ends[v];
+    std::size_t j = 0, c = 0;
+    for (std::size_t k = 0; k < asked.size(); ++k) {
+      while (j < pairs.size() && pairs[j] < asked[k]) ++j;
+      if (j == pairs.size()) break;
+      if (pairs[j] != asked[k]) continue;
+      const std::array<int, 4> v = vertexSet(asked[k].first, asked[k].second);
+      if (moved[v[0]] || moved[v[1]] || moved[v[2]] || moved[v[3]]) continue;
+      while (c < contacts.size() && contacts[c].first < j) ++c;
+      out[k] = c < contacts.size() && contacts[c].first == j ? static_cast<int>(c) : kNoContact;
+    }
+    return out;
+  }
+
+  void keep(const std::vector<std::pair<int, int>>& asked, const std::vector<CcdResult>& answers,
+            const std::vector<Vector3d>& now) {
+    pairs = asked;
+    contacts.clear();
+    for (std::size_t k = 0; k < answers.size(); ++k)
+      if (answers[k].contact) contacts.emplace_back(k, answers[k]);
+    ends = now;
+  }
+};
+
 // The collision primitives of the coat and the body over the global vertex numbering.
 struct Primitives {
   std::vector<Primitive> list;
@@ -334,12 +378,16 @@ struct Primitives {
            std::to_string(v - *s);
   }
 
-  MovingPrimitives motion(int a, int b, const StepState& state) const {
+  // The four vertices of a pair (a < b in list order): a node and a triangle, or two segments.
+  std::array<int, 4> vertexSet(int a, int b) const {
     const Primitive &p = list[a], &q = list[b];
-    const std::array<int, 4> v =
-        isTriangle(q.kind)
-            ? std::array<int, 4>{p.vertices[0], q.vertices[0], q.vertices[1], q.vertices[2]}
-            : std::array<int, 4>{p.vertices[0], p.vertices[1], q.vertices[0], q.vertices[1]};
+    return isTriangle(q.kind)
+               ? std::array<int, 4>{p.vertices[0], q.vertices[0], q.vertices[1], q.vertices[2]}
+               : std::array<int, 4>{p.vertices[0], p.vertices[1], q.vertices[0], q.vertices[1]};
+  }
+
+  MovingPrimitives motion(int a, int b, const StepState& state) const {
+    const std::array<int, 4> v = vertexSet(a, b);
     MovingPrimitives m;
     for (int k = 0; k < 4; ++k) {
       m.start[k] = state.start[v[k]];
@@ -842,11 +890,33 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   zoneCcd.minimumSeparation = nearestAllowed();
   // The CCD of each pair on the threads, into its own slot, so that the results keep the pairs'
   // order; pairs a plane keeps apart over the step are left out first (the CCD would find no
-  // contact).
+  // contact). A pair asked at the last search of the same separation in this step, none of whose
+  // vertices has moved since, has the answer it had then (the same question): the passes of
+  // impulses and the zones' rounds move the vertices of their contacts, and most pairs of a
+  // layered coat have none of them.
+  std::vector<KeptAnswers> kept;  // one per separation
   const auto ccdOf = [&](const std::vector<std::pair<int, int>>& pairs, const CcdOptions& options) {
+    auto answers = std::find_if(kept.begin(), kept.end(), [&](const KeptAnswers& k) {
+      return k.separation == options.minimumSeparation;
+    });
+    if (answers == kept.end()) {
+      kept.push_back({options.minimumSeparation, {}, {}, {}});
+      answers = kept.end() - 1;
+    }
+    const std::vector<int> earlier =
+        parameters_.keepAnswers
+            ? answers->earlierOf(pairs, state.end,
+                                 [&](int a, int b) { return primitives.vertexSet(a, b); })
+            : std::vector<int>(pairs.size(), KeptAnswers::kAsk);
+    counters_.keptAnswers += pairs.size() - static_cast<std::size_t>(std::count(
+                                                earlier.begin(), earlier.end(), KeptAnswers::kAsk));
     std::vector<CcdResult> results(pairs.size());
     forEach(pool_.get(), pairs.size(), 256, [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
+        if (earlier[k] != KeptAnswers::kAsk) {
+          if (earlier[k] != KeptAnswers::kNoContact) results[k] = answers->contacts[earlier[k]].second;
+          continue;
+        }
         const auto [a, b] = pairs[k];
         const MovingPrimitives m = primitives.motion(a, b, state);
         const bool vertexFace = isTriangle(primitives.list[b].kind);
@@ -854,6 +924,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
         results[k] = vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
       }
     });
+    answers->keep(pairs, results, state.end);
     return results;
   };
   auto findContacts = [&](const CcdOptions& options, bool calami) {

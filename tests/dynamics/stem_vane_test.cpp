@@ -120,16 +120,23 @@ TEST(StemVane, TheFinalCheckCountsVanesThatMeet) {
 // with its vane across y (0.4 either side, in the plane x = 0), B stands 1 away in y with its
 // vane across x (from x = -0.2 to 0.6) and is carried towards A along -y, its root moved 0.08 a
 // step for 10 steps and its nodes moving with it, so that B's vane would cut 0.2 into A's.
-FeatherCoatSimulation across(bool vanes, int threads = 0, double slack = 0.01) {
+// With `behind`, a third feather C like A stands 0.05 behind it (at y = -0.05), where B's push
+// brings A's vane against C's.
+FeatherCoatSimulation across(bool vanes, int threads = 0, double slack = 0.01, bool keep = true,
+                             bool behind = false) {
   SimulationParameters parameters;
+  parameters.keepAnswers = keep;
   parameters.gravity = Vector3d::Zero();
   parameters.vaneCollisions = vanes;
   parameters.threads = threads;
   parameters.candidateSlack = slack;
-  FeatherCoatSimulation sim(
-      {vanedStem({0, 0, 0}, Vector3d::UnitZ(), Vector3d::UnitX(), 4, 0.25, 0.4, parameters.stem),
-       vanedStem({0.2, 1, 0}, Vector3d::UnitZ(), Vector3d::UnitY(), 4, 0.25, 0.4, parameters.stem)},
-      {}, parameters);
+  std::vector<FeatherStem> stems{
+      vanedStem({0, 0, 0}, Vector3d::UnitZ(), Vector3d::UnitX(), 4, 0.25, 0.4, parameters.stem),
+      vanedStem({0.2, 1, 0}, Vector3d::UnitZ(), Vector3d::UnitY(), 4, 0.25, 0.4, parameters.stem)};
+  if (behind)
+    stems.push_back(vanedStem({0, -0.05, 0}, Vector3d::UnitZ(), Vector3d::UnitX(), 4, 0.25, 0.4,
+                              parameters.stem));
+  FeatherCoatSimulation sim(std::move(stems), {}, parameters);
   FeatherStem& b = sim.stem(1);
   for (std::size_t i = 1; i < b.nodeCount(); ++i) b.velocities[i] = Vector3d(0, -8, 0);
   return sim;
@@ -181,18 +188,29 @@ TEST(StemVane, VanesDrivenIntoEachOtherDoNotPassThroughWhenTheyCollide) {
   EXPECT_EQ(free.counters().vaneCandidates, 0u);
 }
 
-// The threads of the step's loops and the slack of the candidates' list change the work, never
-// the result: the same states bit for bit, the same contacts, impulses and zones.
-TEST(StemVane, TheThreadsAndTheCandidatesSlackChangeNothing) {
-  const auto run = [](int threads, double slack) {
-    FeatherCoatSimulation sim = across(true, threads, slack);
+// The threads of the step's loops, the slack of the candidates' list and the answers kept from
+// search to search change the work, never the result: the same states bit for bit, the same
+// contacts, impulses and zones.
+TEST(StemVane, TheThreadsTheCandidatesSlackAndKeptAnswersChangeNothing) {
+  const auto run = [](int threads, double slack, bool keep) {
+    FeatherCoatSimulation sim = across(true, threads, slack, keep, true);
     for (int step = 0; step < 20; ++step) carryB(sim, step);
     return sim;
   };
-  const FeatherCoatSimulation reference = run(1, 0.01);
+  const FeatherCoatSimulation reference = run(1, 0.01, true);
   ASSERT_GT(reference.counters().vaneContacts, 0u);
-  for (const auto& [threads, slack] : {std::pair{3, 0.001}, std::pair{2, 0.2}}) {
-    const FeatherCoatSimulation other = run(threads, slack);
+  EXPECT_GT(reference.counters().keptAnswers, 0u);
+  struct Variant {
+    int threads;
+    double slack;
+    bool keep;
+  };
+  for (const auto& [threads, slack, keep] :
+       {Variant{3, 0.001, true}, Variant{2, 0.2, true}, Variant{1, 0.01, false}}) {
+    const FeatherCoatSimulation other = run(threads, slack, keep);
+    if (!keep) {
+      EXPECT_EQ(other.counters().keptAnswers, 0u);
+    }
     for (std::size_t s = 0; s < reference.stems().size(); ++s) {
       const FeatherStem &a = reference.stems()[s], &b = other.stems()[s];
       for (std::size_t i = 0; i < a.nodeCount(); ++i) {

@@ -83,6 +83,10 @@ struct SimulationParameters {
   // (BoxTree::coherentPairs): more makes longer lists, made less often. The pairs found do not
   // depend on it.
   double candidateSlack = 0.01;
+  // Whether a search of the step takes the CCD's answer of a pair from the step's last search at
+  // the same separation where none of the pair's vertices has moved since (the same question):
+  // the same results bit for bit, with less work in a coat whose vanes lie in layers.
+  bool keepAnswers = true;
 };
 
 // What the simulation did, summed over all steps since it was built.
@@ -106,6 +110,7 @@ struct SimulationCounters {
   std::uint64_t vaneCandidates = 0;    // of the candidates, pairs with a vane's primitive
   std::uint64_t vaneContacts = 0;      // of the contacts, pairs with a vane's primitive
   std::uint64_t vanePenetrations = 0;  // of the penetrations, vanes' (stem_vane.h)
+  std::uint64_t keptAnswers = 0;  // candidates answered as at an earlier search of their step
 };
 
 // A step that could not be resolved even at the smallest time step: the state is left as it
