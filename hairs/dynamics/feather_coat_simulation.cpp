@@ -914,7 +914,8 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     forEach(pool_.get(), pairs.size(), 256, [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         if (earlier[k] != KeptAnswers::kAsk) {
-          if (earlier[k] != KeptAnswers::kNoContact) results[k] = answers->contacts[earlier[k]].second;
+          if (earlier[k] != KeptAnswers::kNoContact)
+            results[k] = answers->contacts[earlier[k]].second;
           continue;
         }
         const auto [a, b] = pairs[k];
