@@ -925,7 +925,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
         results[k] = vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
       }
     });
-    answers->keep(pairs, results, state.end);
+    if (parameters_.keepAnswers) answers->keep(pairs, results, state.end);
     return results;
   };
   auto findContacts = [&](const CcdOptions& options, bool calami) {
