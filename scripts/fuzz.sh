@@ -41,7 +41,7 @@ environment_fuzzer animation_file_fuzzer simulate_options_fuzzer"
 cd "$root"
 cmake --preset fuzz >/dev/null
 targets=(${FUZZ_TARGETS:-$all_targets})
-cmake --build --preset fuzz --target "${targets[@]}" -j "${JOBS:-1}"
+cmake --build --preset fuzz --target "${targets[@]}" -j "${JOBS:-$(nproc)}"
 
 seeds="$build/seeds"
 corpus_root="$build/corpus"
