@@ -125,7 +125,7 @@ int runDerive(const DeriveOptions& o) {
     return kExitOk;
   } catch (const DiagnosticError& e) {
     progress.clear();
-    std::cerr << e.diagnostic().text() << '\n';
+    std::cerr << diagnostics.report(e.diagnostic());
     return kExitBadInput;
   }
 }

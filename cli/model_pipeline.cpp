@@ -243,7 +243,7 @@ std::optional<BuiltScene> buildSceneOrSay(const ModelOptions& o, Diagnostics& di
     return buildScene(o, diagnostics);
   } catch (const DiagnosticError& e) {
     progress.clear();
-    std::cerr << e.diagnostic().text() << '\n';
+    std::cerr << diagnostics.report(e.diagnostic());
     return std::nullopt;
   }
 }

@@ -1,5 +1,7 @@
 #include "hirsute/core/diagnostic.h"
 
+#include "hirsute/core/source_excerpt.h"
+
 #include "hirsute/core/progress.h"
 
 namespace hirsute {
@@ -65,8 +67,22 @@ void Diagnostics::warn(const SourceLocation& where, const std::string& message) 
   warnings_.push_back(Diagnostic{Severity::Warning, where, message});
   if (echo_) {
     if (progress_) progress_->clear();
-    *echo_ << warnings_.back().text() << '\n';
+    *echo_ << report(warnings_.back());
   }
+}
+
+void Diagnostics::addSourceFolder(const ModelFolder& folder) {
+  for (const ModelFolder& known : sourceFolders_)
+    if (known.path() == folder.path()) return;
+  sourceFolders_.push_back(folder);
+}
+
+std::string Diagnostics::report(const Diagnostic& diagnostic) const {
+  for (const ModelFolder& folder : sourceFolders_) {
+    const std::string excerpt = sourceExcerpt(diagnostic.where, folder);
+    if (!excerpt.empty()) return diagnostic.text() + "\n" + excerpt;
+  }
+  return diagnostic.text() + "\n";
 }
 
 }  // namespace hirsute

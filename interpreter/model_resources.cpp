@@ -183,6 +183,7 @@ ModelResources loadModelResources(const std::optional<std::filesystem::path>& vi
   if (viewFile) {
     resources.folder = viewFile->parent_path();
     resources.viewFile = *viewFile;
+    diagnostics.addSourceFolder(ModelFolder(resources.folder));  // messages quote its lines
     // cpfg runs the view file through the C preprocessor too: #define, /* */ and // work.
     const std::string text = preprocessFile(*viewFile, PreprocessorOptions{}, diagnostics);
     resources.view = parseViewFile(text, *viewFile, diagnostics);

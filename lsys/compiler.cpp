@@ -239,8 +239,18 @@ std::optional<double> Compiler::foldConstant(const ast::Expr& e, const std::stri
     default:
       break;
   }
-  if (what)
-    fail(e.where, *what + " must be a constant expression (numbers, operators and math functions)");
+  if (what) {
+    // Name what is not constant: most often a name no #define gave a value (a misspelt one).
+    std::string cause;
+    if (e.kind == K::Variable)
+      cause = "'" + e.name + "' is no constant (a name here must be one the file #defines): ";
+    else if (e.kind == K::Element)
+      cause = "'" + e.name + "[…]' is an array element, known only while deriving: ";
+    else if (e.kind == K::Call)
+      cause = "'" + e.name + "(…)' is no math function of constant arguments: ";
+    fail(e.where,
+         cause + *what + " must be a constant expression (numbers, operators and math functions)");
+  }
   return std::nullopt;
 }
 

@@ -33,6 +33,10 @@ struct LexerContext {
   bool sawRightContext = false;
   int predecessorModules = 0;
   bool labelPending = false;  // after `Lsystem:`, until its label
+  // The line being read begins with a space: were it meant to continue the production above, it
+  // needed a tab (cpfg's continuation line); a syntax error on it says so.
+  bool lineIndentedBySpaces = false;
+  SourceLocation indentedAt;  // the last line that began so
 
   // "the '(' of module 'B' is not closed" for the innermost open bracket.
   std::string unclosedMessage() const {

@@ -12,6 +12,9 @@ Model loadModel(const std::filesystem::path& lsystemFile,
   model.lsystemFile = lsystemFile;
   model.viewFile = viewFile;
   model.folder = lsystemFile.parent_path().empty() ? std::filesystem::path(".") : lsystemFile.parent_path();
+  // Messages about the model's files quote the line they point at.
+  diagnostics.addSourceFolder(ModelFolder(model.folder));
+  if (viewFile) diagnostics.addSourceFolder(ModelFolder(viewFile->parent_path()));
   PreprocessorOptions options;
   options.maxOutputBytes = modelOptions.maxSourceBytes;
   if (viewFile) {

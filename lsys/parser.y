@@ -524,6 +524,10 @@ void hirsute::detail::Parser::report_syntax_error(const context& c) const {
     throw DiagnosticError(where, std::string(expects(SymbolKind::S_PLUS) ? "expected an operator or '-->'" : "expected '-->'") +
                                      ", found " + found);
   }
+  if (kind == SymbolKind::S_EOL && expects(SymbolKind::S_SYMBOL) && expects(SymbolKind::S_STAR)) {
+    throw DiagnosticError(where, "the successor is empty: write it on the line of '-->' (a line "
+                                 "that begins with a tab continues it), or '*' for none");
+  }
   if (expects(SymbolKind::S_SEMICOLON) && kind != SymbolKind::S_RPAREN && kind != SymbolKind::S_RBRACKET) {
     throw DiagnosticError(where, std::string(expects(SymbolKind::S_PLUS) ? "expected an operator or ';'" : "expected ';'") +
                                      " to end the statement, found " + found);

@@ -35,7 +35,20 @@ ast::File parseLsystemText(const std::string& text, const std::string& fileName)
   Scanner scanner(ctx);
   hirsute_lsys__scan_bytes(text.data(), static_cast<int>(text.size()), scanner.get());
   detail::Parser parser(scanner.get(), ctx);
-  parser.parse();
+  try {
+    parser.parse();
+  } catch (const DiagnosticError& e) {
+    // A line that begins with spaces and fails was most likely meant to continue the production
+    // above; cpfg continues a line only on one that begins with a tab.
+    const Diagnostic& d = e.diagnostic();
+    if (!ctx.lineIndentedBySpaces || d.where.line != ctx.indentedAt.line ||
+        d.where.fileName() != ctx.indentedAt.fileName())
+      throw;
+    throw DiagnosticError(d.where, d.message +
+                                       "; this line begins with spaces: a line that continues "
+                                       "the production above must begin with a tab (cpfg's "
+                                       "continuation line)");
+  }
   if (ctx.result.lsystems.empty()) {
     // Nothing but comments and blank lines: the file's start is where `Lsystem:` belongs.
     throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(fileName), 1, 1},

@@ -10,7 +10,7 @@ packages=(
   libglm-dev libosmesa6-dev libpng-dev libstb-dev povray zlib1g-dev pkg-config libembree-dev libopenexr-dev
   libassimp-dev libcgal-dev
   libglfw3-dev libimgui-dev xvfb xauth
-  time parallel rsync ccache
+  time parallel rsync ccache help2man man-db bash-completion
 )
 
 missing=()

@@ -603,3 +603,69 @@ TEST(BenchCcdBadInput, AMissingFileOrAFolderCannotBeRead) {
     EXPECT_NE(message->find("cannot read"), std::string::npos) << *message;
   }
 }
+
+namespace hirsute {
+namespace {
+
+fs::path excerptFixture(const std::string& name) {
+  return fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "cli" / "excerpts" / name;
+}
+
+// A message shows the line it points at and a caret under its column, as compilers do; a tab
+// before the column stays a tab, so that the caret lines up in a terminal.
+TEST(SourceExcerpt, AnErrorShowsItsLineAndACaretUnderTheColumn) {
+  const fs::path model = excerptFixture("arrow.l");
+  const RunResult run = runHirsute({"derive", model.string()});
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  const std::string expected = model.string() +
+                               ":5:6: error: expected '-->' (two dashes and '>'), found '->': a "
+                               "production is 'predecessor --> successor'\n"
+                               " 5 | A(n)\t-> I(LEN*0.6) A(n+1)\n"
+                               "   |     \t^\n";
+  EXPECT_EQ(run.err, expected);
+}
+
+// A `#line` directive may make a location name any file: only files beneath the model's folder
+// are quoted, so no line of /etc/passwd reaches the terminal.
+TEST(SourceExcerpt, NoLineOfAFileOutsideTheModelsFolderIsShown) {
+  const fs::path model = excerptFixture("line_elsewhere.l");
+  const RunResult run = runHirsute({"derive", model.string()});
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_EQ(run.err.rfind("/etc/passwd:", 0), 0u) << run.err;
+  EXPECT_EQ(run.err.find(" | "), std::string::npos) << run.err;
+}
+
+}  // namespace
+}  // namespace hirsute
+
+namespace hirsute {
+namespace {
+
+TEST(CommandLine, AnUnknownCommandIsNamedWithTheOneMostLikelyMeant) {
+  RunResult run = runHirsute({"rendr", "tree.l"});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_EQ(run.err,
+            "hirsute: error: unknown command 'rendr'; did you mean 'render'? (hirsute --help "
+            "lists the commands)\n");
+  run = runHirsute({"frobnicate"});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_EQ(run.err, "hirsute: error: unknown command 'frobnicate' (hirsute --help lists the commands)\n");
+}
+
+// The help reads as a person expects: the program's name (not the path it was started by), a
+// flag by its name, and what an option needs in its description.
+TEST(CommandLine, HelpShowsNoBuildPathNoFlagValueAndNoNeedsColumn) {
+  for (const std::string command : {"render", "export", "simulate", "render-frames", "derive"}) {
+    const RunResult run = runHirsute({command, "--help"});
+    EXPECT_EQ(run.exitCode, 0) << command;
+    EXPECT_NE(run.out.find("Usage: hirsute " + command + " "), std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("{false}"), std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("Needs:"), std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("TEXT:FILE"), std::string::npos) << run.out;
+  }
+  const RunResult exportHelp = runHirsute({"export", "--help"});
+  EXPECT_NE(exportHelp.out.find("(with --pov)"), std::string::npos) << exportHelp.out;
+}
+
+}  // namespace
+}  // namespace hirsute

@@ -5,6 +5,8 @@
 //                                        derivation length; exits 77 (skip) when DIR is absent
 //   hirsute_render_all models DIR        every .l under DIR's model folders (DIR/bench aside),
 //                                        with its folder's view and colour file, as a user runs it
+//   … --part K/N                         only the models K, K+N, K+2N, … of the set (1 ≤ K ≤ N),
+//                                        so that ctest runs the N parts side by side
 //
 // For each model, in a temporary folder of its own:
 //   hirsute render L V … -o gl.png --size 160x120
@@ -394,8 +396,16 @@ ModelResult drawModel(const ModelCase& model, const fs::path& folder, bool withP
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::size_t part = 1, parts = 1;
+  if (argc == 5 && std::string(argv[3]) == "--part") {
+    if (std::sscanf(argv[4], "%zu/%zu", &part, &parts) != 2 || part < 1 || part > parts) {
+      std::cerr << "render_all: --part takes K/N with 1 <= K <= N\n";
+      return 2;
+    }
+    argc = 3;
+  }
   if (argc != 3 || (std::string(argv[1]) != "conformance" && std::string(argv[1]) != "models")) {
-    std::cerr << "usage: hirsute_render_all conformance|models DIR\n";
+    std::cerr << "usage: hirsute_render_all conformance|models DIR [--part K/N]\n";
     return 2;
   }
   const std::string set = argv[1];
@@ -420,6 +430,11 @@ int main(int argc, char** argv) {
     std::cerr << "render_all: no models found under " << root.string() << '\n';
     return 1;
   }
+  if (parts > 1) {
+    std::vector<ModelCase> mine;
+    for (std::size_t i = part - 1; i < cases.size(); i += parts) mine.push_back(cases[i]);
+    cases = std::move(mine);
+  }
   const bool withPovray = povrayAvailable();
   if (!withPovray) {
     std::cout << "render_all: povray is not on the PATH; the POV-Ray half of each model is "
@@ -427,7 +442,8 @@ int main(int argc, char** argv) {
   }
 
   const fs::path work =
-      fs::temp_directory_path() / ("hirsute_render_all_" + set + "_" + std::to_string(getpid()));
+      fs::temp_directory_path() /
+      ("hirsute_render_all_" + set + "_" + std::to_string(part) + "_" + std::to_string(getpid()));
   fs::remove_all(work);
   std::printf("%-4s %-42s %9s %16s\n", "", "model", "render s", "export+povray s");
   int passed = 0, failed = 0;

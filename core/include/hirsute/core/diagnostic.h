@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/core/model_folder.h"
+
 namespace hirsute {
 
 class Progress;
@@ -64,10 +66,17 @@ class Diagnostics {
   void setEcho(std::ostream* echo) { echo_ = echo; }
   // The progress line on the same terminal, cleared before a warning is printed.
   void setProgress(Progress* progress) { progress_ = progress; }
+  // A folder whose files the messages quote: each printed diagnostic shows the line it points
+  // at with a caret (source_excerpt.h), when its file lies beneath one of these folders.
+  void addSourceFolder(const ModelFolder& folder);
+  // What a command prints for a diagnostic: its text, then the line it points at and a caret.
+  // Ends in a newline.
+  std::string report(const Diagnostic& diagnostic) const;
 
  private:
   std::ostream* echo_;
   Progress* progress_ = nullptr;
+  std::vector<ModelFolder> sourceFolders_;
   std::vector<Diagnostic> warnings_;
   std::size_t suppressed_ = 0;
 };
