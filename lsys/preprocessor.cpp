@@ -3,12 +3,13 @@
 #include "hirsute/core/child_confinement.h"
 #include "hirsute/core/model_folder.h"
 #include "hirsute/core/program_path.h"
+#include "hirsute/lsys/preprocessor_messages.h"
 
 #include <fcntl.h>
 #include <poll.h>
-#include <sys/syscall.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,11 +18,14 @@
 #include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <regex>
+#include <memory>
+#include <set>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 extern char** environ;
@@ -45,25 +49,27 @@ bool isDirectiveName(const std::string& word) {
   return false;
 }
 
-// Waits for the child `pid` to exit, at most `limit`: true with its status, or false after
-// killing and reaping it when the limit passed. The wait wakes as the child exits (a pidfd
-// polled with the time left), so a fast cpp costs no more than it runs; kernels without
-// pidfd_open fall back to polling every millisecond.
-bool waitForExit(pid_t pid, std::chrono::milliseconds limit, int& status) {
+// Waits for the child `pid`, the leader of a process group of its own, to exit, at most `limit`,
+// then ends every process left in its group (cpp's driver runs cc1, which a kill of the driver
+// alone would leave behind, blocked or running, with no parent) and reaps the child: true with
+// its status, or false when the limit passed. The group is ended before the leader is reaped, so
+// that its number cannot have been given to another process. The wait wakes as the child exits
+// (a pidfd polled with the time left); kernels without pidfd_open fall back to polling every
+// millisecond.
+bool waitForGroup(pid_t pid, std::chrono::milliseconds limit, int& status) {
   using Clock = std::chrono::steady_clock;
   const auto until = Clock::now() + limit;
   const int pidfd = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
+  bool exited = false;
   for (;;) {
-    const pid_t done = waitpid(pid, &status, WNOHANG);
-    if (done == pid || (done < 0 && errno != EINTR)) break;
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
-    if (left.count() <= 0) {
-      kill(pid, SIGKILL);
-      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-      }
-      if (pidfd >= 0) close(pidfd);
-      return false;
+    siginfo_t info{};
+    const int done = waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT);
+    if ((done == 0 && info.si_pid == pid) || (done < 0 && errno != EINTR)) {
+      exited = true;
+      break;
     }
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
+    if (left.count() <= 0) break;
     if (pidfd >= 0) {
       pollfd readable{pidfd, POLLIN, 0};
       (void)poll(&readable, 1, static_cast<int>(std::min<long long>(left.count() + 1, 1'000'000)));
@@ -72,7 +78,10 @@ bool waitForExit(pid_t pid, std::chrono::milliseconds limit, int& status) {
     }
   }
   if (pidfd >= 0) close(pidfd);
-  return true;
+  kill(-pid, SIGKILL);
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return exited;
 }
 
 // A temporary file removed when it goes out of scope.
@@ -113,82 +122,125 @@ class TemporaryFile {
   int fd_ = -1;
 };
 
-// Traditional-mode cpp reports a missing `#include` file one line late, at the word `include`.
-// Moves `where` to the file name on the directive's own line, as the user would look for it.
-// The file is read beneath the model's folder (a `#line` may name any file).
-void locateMissingInclude(SourceLocation& where, const std::string& header,
-                          const std::filesystem::path& folder) {
+// The name an `#include "NAME"` or `#include <NAME>` line names (also `#include_next` and
+// `#import`), and the 1-based column of its opening quote or bracket; false for other lines and
+// for a name a macro makes. Any line that reads as a directive counts, also one in a comment:
+// the check errs on the side of refusing.
+bool includedName(std::string_view line, std::string& name, bool& quoted, int& column) {
+  std::size_t at = 0;
+  const auto blanks = [&] {
+    while (at < line.size() && (line[at] == ' ' || line[at] == '\t')) ++at;
+  };
+  blanks();
+  if (at >= line.size() || line[at] != '#') return false;
+  ++at;
+  blanks();
+  const std::size_t word = at;
+  while (at < line.size() &&
+         (std::isalpha(static_cast<unsigned char>(line[at])) || line[at] == '_')) {
+    ++at;
+  }
+  const std::string_view directive = line.substr(word, at - word);
+  if (directive != "include" && directive != "include_next" && directive != "import") return false;
+  blanks();
+  if (at >= line.size() || (line[at] != '"' && line[at] != '<')) return false;
+  quoted = line[at] == '"';
+  const std::size_t close = line.find(quoted ? '"' : '>', at + 1);
+  if (close == std::string_view::npos) return false;
+  name = std::string(line.substr(at + 1, close - at - 1));
+  column = static_cast<int>(at) + 1;
+  return true;
+}
+
+// Whether ModelFolder's refusal says the file is a FIFO, socket or device (a folder, a link out
+// of the folder and a `..` are left to cpp and its confinement).
+bool isSpecialFile(const std::string& refusal) {
+  for (const char* kind : {"it is a FIFO", "it is a socket", "it is a character device",
+                           "it is a block device", "it is a special file"}) {
+    if (refusal.rfind(kind, 0) == 0) return true;
+  }
+  return false;
+}
+
+// cpp opens an `#include`d FIFO and waits for its writer, and a device for as long as the device
+// likes; Landlock cannot tell file types apart. Every name the model's files spell out in an
+// `#include` is resolved beneath the folder as cpp looks for it (beside the including file for
+// "NAME", then in the folder, its -I), and one that is no regular file is an error at its
+// directive before cpp runs. Included files are read beneath the folder and checked in turn, each
+// once, up to kMaxCheckedFiles files and 4 × maxBytes bytes; a name made by a macro, or one past
+// those, is left to the run's time limit and the end of cpp's whole process group.
+void refuseSpecialIncludes(const std::string& text, const std::string& fileName,
+                           const std::filesystem::path& folder, std::size_t maxBytes) {
+  constexpr std::size_t kMaxCheckedFiles = 4096;
+  struct Pending {
+    std::string text;
+    std::shared_ptr<const std::string> location;
+    std::filesystem::path beside;  // the including file's folder, relative to the model's
+  };
   const ModelFolder model(folder.empty() ? std::filesystem::path(".") : folder);
-  const std::filesystem::path file(where.fileName());
-  std::string source, failure;
-  const std::string relative =
-      file.is_absolute() == model.path().is_absolute()
-          ? file.lexically_relative(model.path()).string()
-          : std::string();
-  if (relative.empty() || !model.read(relative, source, failure, std::size_t{64} << 20)) return;
-  std::istringstream in(source);
-  std::string text;
-  for (int number = 1; std::getline(in, text) && number <= where.line; ++number) {
-    if (number < where.line - 1) continue;
-    std::size_t directive = text.find('#');
-    std::size_t include = text.find("include", directive == std::string::npos ? 0 : directive);
-    if (directive == std::string::npos || include == std::string::npos) continue;
-    std::size_t name = text.find(header, include);
-    // cpp names a file found through -I by its path there; the line has the name as written.
-    if (name == std::string::npos) {
-      const std::string written = std::filesystem::path(header).filename().string();
-      name = written.empty() ? std::string::npos : text.find(written, include);
-      if (name != std::string::npos) name = text.find_last_of("\"<", name);
-      if (name != std::string::npos) ++name;
+  std::vector<Pending> pending;
+  pending.push_back({text, std::make_shared<const std::string>(fileName), {}});
+  std::set<std::string> checked;
+  std::size_t bytesRead = 0;
+  const std::size_t maxBytesRead = maxBytes > SIZE_MAX / 4 ? SIZE_MAX : 4 * maxBytes;
+  while (!pending.empty()) {
+    const Pending current = std::move(pending.back());
+    pending.pop_back();
+    int number = 0;
+    for (std::size_t start = 0; start < current.text.size();) {
+      std::size_t end = current.text.find('\n', start);
+      if (end == std::string::npos) end = current.text.size();
+      const std::string_view line(current.text.data() + start, end - start);
+      start = end + 1;
+      ++number;
+      std::string name;
+      bool quoted = false;
+      int column = 0;
+      if (!includedName(line, name, quoted, column) || name.empty()) continue;
+      std::vector<std::string> places;
+      if (quoted && !current.beside.empty()) {
+        places.push_back((current.beside / name).lexically_normal().string());
+      }
+      places.push_back(name);
+      for (const std::string& place : places) {
+        const ConfinedFile opened = model.open(place, FileAccess::Read);
+        if (opened.refused && isSpecialFile(opened.failure)) {
+          throw DiagnosticError(SourceLocation{current.location, number, column},
+                                "cannot include '" +
+                                    shortenedMessage(name, kMaxPreprocessorMessageBytes) +
+                                    "': " + opened.failure);
+        }
+        if (opened.refused) break;  // cpp's confinement refuses it in its turn
+        if (!opened) continue;      // missing: cpp looks in the next place
+        if (checked.size() < kMaxCheckedFiles && bytesRead < maxBytesRead &&
+            checked.insert(place).second) {
+          std::string included, failure;
+          if (model.read(place, included, failure, maxBytes)) {
+            bytesRead += included.size();
+            pending.push_back({std::move(included),
+                               std::make_shared<const std::string>(model.pathOf(place).string()),
+                               std::filesystem::path(place).parent_path()});
+          }
+        }
+        break;
+      }
     }
-    if (name == std::string::npos || name == 0) continue;
-    where.line = number;
-    where.column = static_cast<int>(name);  // the opening quote or angle bracket, 1-based
-    return;
   }
 }
-
-// A line number or column as cpp printed it; absurd values (a `#line` beyond int) read as 0.
-int cppNumber(const std::string& digits) {
-  return digits.size() > 9 ? 0 : std::stoi(digits);
-}
-
-// Turns cpp's messages into diagnostics: the first error is thrown, warnings are passed on.
-void reportCppMessages(const std::string& messages, bool failed, const std::string& fallbackFile,
-                       const std::filesystem::path& folder, Diagnostics& diagnostics) {
-  static const std::regex kLine(R"(^(.*?):(\d+):(?:(\d+):)? *(fatal error|error|warning): (.*)$)");
+// Whether cpp's messages say that it ran out of memory (cc1: "out of memory allocating N bytes",
+// or "virtual memory exhausted"): in a line of its own, not in a message about the model's
+// text, which a model writes itself (`#error out of memory`).
+bool ranOutOfMemory(const std::string& messages) {
   std::istringstream lines(messages);
-  std::string line;
-  while (std::getline(lines, line)) {
-    std::smatch m;
-    if (!std::regex_match(line, m, kLine)) continue;
-    SourceLocation where{std::make_shared<const std::string>(m[1].str()), cppNumber(m[2].str()),
-                         m[3].matched ? cppNumber(m[3].str()) : 0};
-    const std::string message = m[5].str();
-    if (m[4].str() == "warning") {
-      diagnostics.warn(where, message);
-      continue;
+  PreprocessorMessage message;
+  for (std::string line; std::getline(lines, line);) {
+    if (parsePreprocessorMessage(line, message)) continue;
+    if (line.find("out of memory") != std::string::npos ||
+        line.find("memory exhausted") != std::string::npos) {
+      return true;
     }
-    static const std::string kMissing = ": No such file or directory";
-    if (message.size() > kMissing.size() &&
-        message.compare(message.size() - kMissing.size(), kMissing.size(), kMissing) == 0) {
-      locateMissingInclude(where, message.substr(0, message.size() - kMissing.size()), folder);
-    }
-    // The confinement's refusal (child_confinement.h) reads as a denied permission.
-    static const std::string kDenied = ": Permission denied";
-    if (message.size() > kDenied.size() &&
-        message.compare(message.size() - kDenied.size(), kDenied.size(), kDenied) == 0) {
-      locateMissingInclude(where, message.substr(0, message.size() - kDenied.size()), folder);
-      throw DiagnosticError(where, message +
-                                       " (an #include reads only files beneath the model's "
-                                       "folder; no link out of it is followed)");
-    }
-    throw DiagnosticError(where, message);
   }
-  if (failed) {
-    throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(fallbackFile), 0, 0},
-                          "the C preprocessor failed: " + messages);
-  }
+  return false;
 }
 
 }  // namespace
@@ -279,6 +331,9 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
                           "the file contains NUL bytes; it is not an L-system text file");
   }
 
+  std::filesystem::path folder = file.parent_path();
+  refuseSpecialIncludes(text, name, folder, options.maxOutputBytes);
+
   TemporaryFile input, output, errors;
   // A line marker first, so cpp names the user's file in its own markers and messages.
   std::string marked = "# 1 \"" + name + "\"\n" + prepareForTraditionalCpp(text);
@@ -287,7 +342,6 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
 
   std::vector<std::string> args = {options.program, "-traditional-cpp", "-undef", "-nostdinc",
                                    "-x", "c", "-fno-diagnostics-show-caret"};
-  std::filesystem::path folder = file.parent_path();
   args.push_back("-I" + (folder.empty() ? std::string(".") : folder.string()));
   for (const auto& [macro, value] : options.defines) args.push_back("-D" + macro + "=" + value);
   args.push_back("-");
@@ -313,15 +367,28 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
   const rlim_t wanted = static_cast<rlim_t>(options.maxOutputBytes) + 1;
   if (size.rlim_max == RLIM_INFINITY || size.rlim_max > wanted) size.rlim_max = wanted;
   if (size.rlim_cur == RLIM_INFINITY || size.rlim_cur > size.rlim_max) size.rlim_cur = size.rlim_max;
+  const std::size_t memoryLimit = preprocessorMemoryLimit(options.maxOutputBytes);
+  rlimit memory{};
+  getrlimit(RLIMIT_AS, &memory);
+  if (memory.rlim_max == RLIM_INFINITY || memory.rlim_max > memoryLimit) {
+    memory.rlim_max = memoryLimit;
+  }
+  if (memory.rlim_cur == RLIM_INFINITY || memory.rlim_cur > memory.rlim_max) {
+    memory.rlim_cur = memory.rlim_max;
+  }
   const pid_t pid = fork();
   if (pid < 0) {
     throw DiagnosticError(fileLocation, "cannot run the C preprocessor: " + std::string(std::strerror(errno)));
   }
   if (pid == 0) {
-    // The child: only system calls until exec.
+    // The child: only system calls until exec. It leads a process group of its own, which
+    // waitForGroup ends as a whole.
+    if (setpgid(0, 0) != 0) _exit(127);
     if (dup2(in.get(), 0) < 0 || dup2(output.fd(), 1) < 0 || dup2(errors.fd(), 2) < 0) _exit(127);
     // The text it writes is capped: past the limit cpp gets SIGXFSZ.
     if (setrlimit(RLIMIT_FSIZE, &size) != 0) _exit(127);
+    // Its memory too: a macro that doubles at every level grows cc1 without end.
+    if (setrlimit(RLIMIT_AS, &memory) != 0) _exit(127);
     signal(SIGXFSZ, SIG_DFL);  // an ignored signal would stay ignored across exec
     if (confinement.applyInChild() != 0) {
       static const char kMessage[] = "cannot confine the C preprocessor to the model's folder\n";
@@ -331,13 +398,15 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
     execve(executable.c_str(), argv.data(), environ);
     _exit(127);
   }
+  // Also in the parent, so that the group exists before any kill of it.
+  (void)setpgid(pid, pid);
   int status = 0;
-  const bool timedOut = !waitForExit(pid, std::chrono::seconds(options.timeoutSeconds), status);
+  const bool timedOut = !waitForGroup(pid, std::chrono::seconds(options.timeoutSeconds), status);
   if (timedOut) {
-    throw DiagnosticError(fileLocation, "the C preprocessor ran for more than " +
+    throw DiagnosticError(fileLocation, "the C preprocessor ran for more than its time limit of " +
                                             std::to_string(options.timeoutSeconds) +
-                                            " s (an #include of a FIFO or a device waits for "
-                                            "ever); it was stopped");
+                                            " s and was stopped (does an #include name a FIFO or "
+                                            "a device through a macro?)");
   }
   // cpp's driver reports its cc1's SIGXFSZ as a failure of its own: the file's size tells.
   struct stat written {};
@@ -350,9 +419,29 @@ std::string preprocessText(const std::string& text, const std::filesystem::path&
                                             " bytes (--max-source-bytes; are #include files "
                                             "included again and again?)");
   }
-  bool failed = !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  reportCppMessages(errors.read(), failed, name, folder, diagnostics);
+  const std::string messages = errors.read();
+  const bool failed = !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  if (failed && ranOutOfMemory(messages)) {
+    throw DiagnosticError(fileLocation, "the C preprocessor ran out of memory (its limit is " +
+                                            std::to_string(memoryLimit >> 20) +
+                                            " MiB, 64 times --max-source-bytes; does a macro "
+                                            "expand to ever longer text?)");
+  }
+  std::string failure;
+  if (WIFSIGNALED(status)) {
+    failure =
+        "killed by signal " + std::to_string(WTERMSIG(status)) + ", " + strsignal(WTERMSIG(status));
+  } else if (failed) {
+    failure = "exit status " + std::to_string(WEXITSTATUS(status));
+  }
+  reportPreprocessorMessages(messages, failure, name, folder, diagnostics);
   return output.read();
+}
+
+std::size_t preprocessorMemoryLimit(std::size_t maxOutputBytes) {
+  constexpr std::size_t kFloor = std::size_t{128} << 20;
+  const std::size_t scaled = maxOutputBytes > SIZE_MAX / 64 ? SIZE_MAX : 64 * maxOutputBytes;
+  return std::max(kFloor, scaled);
 }
 
 }  // namespace hirsute

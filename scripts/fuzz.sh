@@ -9,15 +9,16 @@
 #                            text, the built-in programs' specification files
 #   animation_file_fuzzer    an animation file (.a) and the frames it gives
 #   simulate_options_fuzzer  `hirsute simulate`'s argument vector, parsed and checked
+#   preprocessor_messages_fuzzer  the C preprocessor's messages, read into diagnostics
 #
 #   scripts/fuzz.sh [SECONDS] [libFuzzer flags…]
 #   FUZZ_TARGETS=interpret_fuzzer scripts/fuzz.sh 600              (one target)
 #   FUZZ_TARGETS=view_file_fuzzer READER_SECONDS=300 scripts/fuzz.sh
 #
-# SECONDS (default 60) is the time of each of the two .l targets. The five reader targets run
+# SECONDS (default 60) is the time of each of the two .l targets. The six reader targets run
 # READER_SECONDS each, by default a third of SECONDS (at least 1): their inputs are small and
 # their formats flat, so they cover in seconds what the .l targets take a minute for, and CI's
-# stage (`scripts/fuzz.sh 60`: 2 × 60 s + 5 × 20 s after the build) stays within ten minutes.
+# stage (`scripts/fuzz.sh 60`: 2 × 60 s + 6 × 20 s after the build) stays within ten minutes.
 #
 # Seeds are prepared in build/fuzz/seeds/TARGET: every `.l` under models/ and tests/ (and
 # ../shared/conformance when it is there), each as written and as the C preprocessor hands it to
@@ -36,7 +37,7 @@ shift $(( $# > 0 ? 1 : 0 ))
 reader_seconds=${READER_SECONDS:-$(( seconds / 3 > 0 ? seconds / 3 : 1 ))}
 build="$root/build/fuzz"
 all_targets="parse_derive_fuzzer interpret_fuzzer feather_file_fuzzer view_file_fuzzer \
-environment_fuzzer animation_file_fuzzer simulate_options_fuzzer"
+environment_fuzzer animation_file_fuzzer simulate_options_fuzzer preprocessor_messages_fuzzer"
 
 cd "$root"
 cmake --preset fuzz >/dev/null
@@ -52,10 +53,11 @@ for target in $all_targets; do mkdir -p "$seeds/$target"; done
 folders=("$root/models" "$root/tests")
 [ -d "$root/../shared/conformance" ] && folders+=("$root/../shared/conformance")
 seed_name() { printf '%s' "$1" | md5sum | cut -c1-16; }
-# What a parser sees in a real run: cpp's output with its line markers.
+# What a parser sees in a real run: cpp's output with its line markers. cpp runs with the limits
+# a real run has (tests/bad_input holds a macro that asks for 2^40 copies of itself).
 preprocessed() {
-  cpp -traditional-cpp -undef -nostdinc -x c -I "$(dirname "$1")" "$1" >"$2" 2>/dev/null ||
-    rm -f "$2"
+  (ulimit -v 1048576 && timeout 60 cpp -traditional-cpp -undef -nostdinc -x c \
+    -I "$(dirname "$1")" "$1") >"$2" 2>/dev/null || rm -f "$2"
 }
 
 count=0
@@ -119,6 +121,21 @@ vector colours @/bending.l -o out -m 2:@/feather-coat.map -M @/feather-coat.map 
 vector weather @/bending.l @/bending.v -o out --drop 2:6 --drop 3:1:0.1:0.5 --rain 24:0.05 \
   --dry 0.5 --dry-from 4 --fur-force 0 -1 0 --fur-drag 2 --drop-seed 9
 vector bad @/bending.l -o out --fps nan --frames 0 --gravity 1 2
+
+# preprocessor_messages_fuzzer: what cpp says about each .l and .v of tests/bad_input (read there
+# by the fuzzer), with a few messages written by hand.
+msg_seeds="$seeds/preprocessor_messages_fuzzer"
+while IFS= read -r -d '' file; do
+  (ulimit -v 1048576 && timeout 60 cpp -traditional-cpp -undef -nostdinc -x c \
+    -fno-diagnostics-show-caret -I "$(dirname "$file")" "$file") 2>"$msg_seeds/$(seed_name "$file")" \
+    >/dev/null || true
+done < <(find "$root/tests/bad_input" \( -name '*.l' -o -name '*.v' \) -type f -print0)
+find "$msg_seeds" -type f -empty -delete
+printf '%s\n' "$root/tests/bad_input/missing_include.l:3:2: fatal error: no_such_header.h: No such file or directory" \
+  "compilation terminated." >"$msg_seeds/missing"
+printf '%s\n' "In file included from m.l:2:" "m.h:1:9: warning: #warning soft" \
+  "m.h:4:2: error: #error hard" "cc1: out of memory allocating 8 bytes after a total of 8 bytes" \
+  >"$msg_seeds/mixed"
 
 echo "fuzz: $count .l seed files; running ${targets[*]}" \
   "(.l targets $seconds s each, the readers $reader_seconds s each)" >&2

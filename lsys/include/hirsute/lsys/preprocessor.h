@@ -26,14 +26,22 @@ struct PreprocessorOptions {
   // The preprocessor program; `cpp` on the PATH by default.
   std::string program = "cpp";
   // Limits of one run: the preprocessed text (an #include of itself twice per level doubles it
-  // at every level; the parsed program takes about a hundred bytes a byte of it), and the
-  // wall-clock time (an #include of a FIFO waits for its writer).
+  // at every level; the parsed program takes about a hundred bytes a byte of it), which sets the
+  // memory too (preprocessorMemoryLimit), and the wall-clock time (an #include of a FIFO that a
+  // macro names waits for its writer).
   std::size_t maxOutputBytes = kDefaultMaxSourceBytes;
   int timeoutSeconds = 60;
 };
 
+// The C preprocessor's memory (its address space, RLIMIT_AS): 64 times the preprocessed text's
+// limit, at least 128 MiB; 1 GiB by default. A macro that doubles at every level needs it all
+// before cpp writes a byte.
+std::size_t preprocessorMemoryLimit(std::size_t maxOutputBytes);
+
 // The preprocessed text with line markers, ready for a lexer that understands them.
-// Throws DiagnosticError with the location of the problem in the user's file.
+// Throws DiagnosticError with the location of the problem in the user's file. An `#include` of a
+// FIFO, socket or device (beneath the model's folder) is refused at its directive before cpp
+// runs; cpp runs in a process group of its own, ended as a whole when it is done or stopped.
 std::string preprocessFile(const std::filesystem::path& file, const PreprocessorOptions& options,
                            Diagnostics& diagnostics);
 // The same for `text` standing in for the file's contents (the viewer's `#define` panel and
