@@ -1,7 +1,9 @@
 // hirsute: the command-line entry point.
 #include <iostream>
+#include <sstream>
 
 #include "command.h"
+#include "hirsute/core/diagnostic.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Hirsute: an L-system plant modelling environment that reads cpfg models"};
@@ -19,7 +21,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
+    // CLI11's messages quote the arguments (`File does not exist: NAME`): their control bytes
+    // are shown escaped, as in every other message, never passed to the terminal.
+    std::ostringstream message;
+    const int code = app.exit(e, std::cout, message);
+    if (!message.str().empty()) {
+      std::cerr << "hirsute: error: " << hirsute::printableText(message.str()) << std::flush;
+    }
     return code == 0 ? 0 : hirsute::cli::kExitBadInput;
   }
   try {
