@@ -1,14 +1,17 @@
 // `hirsute feather-scan SCAN -o TYPE.fea`: a feather type read from a flatbed scan of a feather
 // (hairs/feathers/feather_scan.h; docs/feathers.md, "Feather types from scans").
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "command.h"
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/core/input_file.h"
 #include "hirsute/core/output_target.h"
 #include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/feather_scan.h"
@@ -19,6 +22,10 @@ namespace hirsute::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The largest scan file read: 16 Mpixel of 16-bit RGBA, the widest pixels an image format here
+// stores, with room for its header.
+constexpr std::size_t kMaxScanFileBytes = std::size_t{160} << 20;
 
 struct FeatherScanCommandOptions {
   std::string scan;
@@ -31,6 +38,28 @@ struct FeatherScanCommandOptions {
   int keyBarbs = 3;
   int textureSize = 512;
 };
+
+// The scan's bytes are read whole (a regular file only: a FIFO or a device is refused at once)
+// and its header's size is checked before its pixels are decoded: a picture over the scanner's
+// limit costs no more than reading its file.
+Texture readScan(const std::string& scan) {
+  const SourceLocation where{std::make_shared<const std::string>(scan), 0, 0};
+  std::string text;
+  std::string failure;
+  if (!readInputFile(scan, text, failure, kMaxScanFileBytes))
+    throw DiagnosticError(where, "cannot read the scan: " + failure);
+  const std::vector<std::uint8_t> bytes(text.begin(), text.end());
+  text = std::string();
+  if (const std::optional<ImageExtent> extent = imageExtentOf(bytes)) {
+    if (static_cast<long long>(extent->width) * extent->height > kMaxScanPixels) {
+      throw DiagnosticError(
+          where, fmt::format("the scan has {} × {} pixels, more than {} Mpixel (the limit); scale "
+                             "it down",
+                             extent->width, extent->height, kMaxScanPixels >> 20));
+    }
+  }
+  return decodeTexture(bytes, scan);
+}
 
 int runFeatherScan(const FeatherScanCommandOptions& o) {
   FeatherScanOptions options;
@@ -59,13 +88,13 @@ int runFeatherScan(const FeatherScanCommandOptions& o) {
   Texture image;
   FeatherScan found;
   try {
-    image = loadTexture(o.scan);
+    image = readScan(o.scan);
     found = scanFeather(image, options);
   } catch (const DiagnosticError& e) {
     std::cerr << e.diagnostic().text() << '\n';
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
-    std::cerr << o.scan << ": error: " << e.what() << '\n';
+    std::cerr << printableText(o.scan + ": error: " + e.what()) << '\n';
     return kExitBadInput;
   }
   const std::string text = featherFileText(found, fs::path(o.scan).filename().string(), textureName);
@@ -79,18 +108,22 @@ int runFeatherScan(const FeatherScanCommandOptions& o) {
               << e.diagnostic().text() << '\n';
     return kExitBadInput;
   }
+  // The .fea and its texture are renamed into place together: a run that fails leaves both
+  // files as they were.
   try {
+    OutputGroup outputs;
     if (!textureName.empty()) {
       const Texture vane = vaneTextureOf(image, found, o.textureSize);
       RgbaImage png(vane.width, vane.height);
       png.rgba = vane.rgba;
-      writePng(o.texture, png);
+      writePng(o.texture, png, &outputs);
     }
-    OutputTarget file(o.output);
+    OutputTarget file(o.output, &outputs);
     std::fputs(text.c_str(), file.stream());
     file.commit();
+    outputs.commit();
   } catch (const std::runtime_error& e) {
-    std::cerr << e.what() << '\n';
+    std::cerr << printableText(std::string("hirsute: error: ") + e.what()) << '\n';
     return kExitIoError;
   }
   for (const std::string& note : found.notes) std::cerr << o.scan << ": warning: " << note << '\n';

@@ -1,6 +1,7 @@
 // hirsute: the command-line entry point.
 #include <algorithm>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -41,7 +42,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
+    // CLI11's messages quote the arguments (`File does not exist: NAME`): their control bytes
+    // are shown escaped, as in every other message, never passed to the terminal.
+    std::ostringstream message;
+    const int code = app.exit(e, std::cout, message);
+    if (!message.str().empty()) {
+      std::cerr << "hirsute: error: " << hirsute::printableText(message.str()) << std::flush;
+    }
     return code == 0 ? 0 : hirsute::cli::kExitBadInput;
   }
   try {

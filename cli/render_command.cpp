@@ -1,5 +1,6 @@
 // `hirsute render`: the model drawn headless (OSMesa) into a PNG, framed as cpfg frames it.
 #include <cctype>
+#include <cstdint>
 #include <iostream>
 #include <memory>
 #include <regex>
@@ -40,29 +41,33 @@ void registerRenderCommand(CLI::App& app, Action& action) {
   render->add_flag("--trace", options->trace,
                    "Render by the path tracer (Monte-Carlo, hairs, translucency, sky light) "
                    "instead of GL");
-  render->add_option("--spp", options->traceSamples,
-                     "With --trace: samples a pixel, at most (default 64)")
-      ->check(CLI::Range(1, 1 << 20));
+  render
+      ->add_option("--spp", options->traceSamples,
+                   "With --trace: samples a pixel, at most (default 64)")
+      ->check(integerRange(1, 1 << 20));
   render
       ->add_option("--noise", options->traceNoise,
                    "With --trace: adaptive sampling; a tile of 8x8 pixels stops taking samples "
                    "once its noisiest pixel's estimated error is under LEVELS display levels "
                    "(default 4; 0-255, 0: every pixel takes --spp)")
       ->type_name("LEVELS")
-      ->check(CLI::Range(0.0, 255.0));
+      ->check(finiteRange(0, 255));
   render
       ->add_option("--spp-image", options->sampleCountImage,
                    "With --trace: also write each pixel's sample count to this PNG "
                    "(grey, white for --spp)")
       ->type_name("FILE");
-  render->add_option("--time", options->traceSeconds,
-                     "With --trace: stop the passes before this many seconds (default: none)")
-      ->check(CLI::Range(0.0, 1e7));
+  render
+      ->add_option("--time", options->traceSeconds,
+                   "With --trace: stop the passes before this many seconds (default: none)")
+      ->check(finiteRange(0, 1e7));
   render->add_flag("--denoise", options->traceDenoise,
                    "With --trace: filter the finished picture by each pixel's noise and what its "
                    "camera rays met first (needs --spp 2 or more)");
-  render->add_option("--seed", options->traceSeed,
-                     "With --trace: the seed of the samples (default 1; one seed, one picture)");
+  render
+      ->add_option("--seed", options->traceSeed,
+                   "With --trace: the seed of the samples (default 1; one seed, one picture)")
+      ->check(integerRange(0, UINT64_MAX));
   render
       ->add_option("--bits", options->bits,
                    "With --trace: 8 (sRGB, default) or 16 bits a channel (linear light) in the PNG")

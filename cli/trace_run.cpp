@@ -1,29 +1,60 @@
 // `hirsute render --trace`: the model's still by the path tracer (docs/trace.md), framed as the
 // GL render frames it, so that a preview and a still of one view line up.
 #include <cmath>
+#include <cstddef>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "command.h"
 #include "drawing_commands.h"
+#include "hirsute/core/diagnostic.h"
+#include "hirsute/core/output_target.h"
 #include "hirsute/viewer/trace/exr_image.h"
 #include "hirsute/viewer/trace/path_tracer.h"
 #include "hirsute/viewer/trace/scene_geometry.h"
 #include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute::cli {
+namespace {
+
+// What the tracer keeps a pixel while it traces (radiance, sums, squares, counts: 52 bytes) and
+// what writing it takes (the 8-bit picture and its RGB copy, or the 16-bit one).
+constexpr std::size_t kTracedBytesPerPixel = 64;
+// What the denoiser keeps a pixel besides (denoise.h: the features and their variances).
+constexpr std::size_t kDenoisedBytesPerPixel = 350;
+
+}  // namespace
 
 int runTrace(const RenderOptions& o) {
   using Clock = std::chrono::steady_clock;
   Progress progress = Progress::onTerminal(stderr);
   ModelOptions model = o.model;
   model.terminalProgress = &progress;
+  // The picture's own buffers are reserved before the model is built, so that a picture too
+  // large for the machine is named as such, not blamed on the model.
+  const glm::ivec2 size = imageSize(o.size);
+  const std::size_t pixels = static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y);
+  const std::size_t bytesPerPixel =
+      kTracedBytesPerPixel + (o.traceDenoise ? kDenoisedBytesPerPixel : 0);
+  const std::size_t imageBytes = pixels * bytesPerPixel;
+  {
+    // Called, not a new-expression, and kept in a volatile: the allocation cannot be elided.
+    void* volatile reserved = ::operator new(imageBytes, std::nothrow);
+    if (reserved == nullptr) {
+      std::cerr << fmt::format(
+          "hirsute: error: out of memory for the traced picture's buffers: {}x{} pixels take "
+          "{:.1f} GB ({} bytes a pixel), more than this machine holds; lower --size\n",
+          size.x, size.y, imageBytes / 1e9, bytesPerPixel);
+      return kExitBadInput;
+    }
+    ::operator delete(reserved);
+  }
   Diagnostics diagnostics(&std::cerr);
   std::optional<BuiltScene> built = buildSceneOrSay(model, diagnostics, progress);
   if (!built) return kExitBadInput;
-  const glm::ivec2 size = imageSize(o.size);
   const Scene& scene = built->scene;
   const ViewSettings& view = built->resources.view;
   const Bounds bounds = scene.bounds();
@@ -60,7 +91,17 @@ int runTrace(const RenderOptions& o) {
           traced.triangleCount(), traced.curveSegments(), traced.bufferBytes() / 1e6,
           std::chrono::duration<double>(Clock::now() - started).count());
     }
-    image = trace::traceImage(traced, camera, lights, options);
+    try {
+      image = trace::traceImage(traced, camera, lights, options);
+    } catch (const std::bad_alloc&) {
+      progress.clear();
+      std::cerr << fmt::format(
+          "hirsute: error: out of memory while tracing the {}x{} picture: its buffers ({:.1f} "
+          "GB) and the ray tracer's scene ({:.1f} GB) take more than this machine holds; lower "
+          "--size\n",
+          size.x, size.y, imageBytes / 1e9, traced.bufferBytes() / 1e9);
+      return kExitBadInput;
+    }
   } catch (const GeometryLimitError& e) {
     progress.clear();
     std::cerr << model.lsystemFile << ": error: " << e.what() << '\n';
@@ -77,19 +118,23 @@ int runTrace(const RenderOptions& o) {
         image.meanSamples(), image.passes, image.width, image.height, image.seconds,
         o.traceDenoise ? fmt::format(" (denoised in {:.3f} s)", image.denoiseSeconds) : "");
   }
+  // The picture and its sample counts are renamed into place together: a run that fails
+  // leaves both files as they were.
   try {
+    OutputGroup outputs;
     if (hasExrExtension(o.output)) {
-      trace::writeExr(o.output, image.width, image.height, image.radiance);
+      trace::writeExr(o.output, image.width, image.height, image.radiance, &outputs);
     } else if (o.bits == 16) {
-      writeLinearPng16(o.output, image.width, image.height, image.radiance);
+      writeLinearPng16(o.output, image.width, image.height, image.radiance, &outputs);
     } else {
-      writePng(o.output, trace::displayImage(image));
+      writePng(o.output, trace::displayImage(image), &outputs);
     }
     if (!o.sampleCountImage.empty()) {
-      writePng(o.sampleCountImage, trace::sampleCountImage(image, o.traceSamples));
+      writePng(o.sampleCountImage, trace::sampleCountImage(image, o.traceSamples), &outputs);
     }
+    outputs.commit();
   } catch (const std::runtime_error& e) {
-    std::cerr << "hirsute: error: " << e.what() << '\n';
+    std::cerr << printableText(std::string("hirsute: error: ") + e.what()) << '\n';
     return kExitIoError;
   }
   return kExitOk;

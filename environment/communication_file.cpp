@@ -1,10 +1,12 @@
 #include "hirsute/environment/communication_file.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 
 #include "hirsute/core/characters.h"
 #include "hirsute/environment/keyword_file.h"
+#include "hirsute/lsys/printf_format.h"
 
 namespace hirsute {
 namespace {
@@ -28,10 +30,26 @@ int checkFormat(const KeywordLine& line, const std::string& format, int values,
     const std::size_t start = i;
     std::size_t j = i + 1;
     while (j < format.size() && isOneOf(format[j], "-+ #0'")) ++j;
-    while (j < format.size() && std::isdigit(static_cast<unsigned char>(format[j]))) ++j;
+    // The field width and the precision: each at most kMaxPrintfField characters, as in a
+    // block's printf (a width of 2·10⁹ would ask printf for gigabytes a query).
+    const auto field = [&](const char* what) {
+      const std::size_t digits = j;
+      long long value = 0;
+      while (j < format.size() && std::isdigit(static_cast<unsigned char>(format[j]))) {
+        value = std::min<long long>(value * 10 + (format[j] - '0'), 1LL << 40);
+        ++j;
+      }
+      if (value > kMaxPrintfField) {
+        throw DiagnosticError(line.at(base + static_cast<int>(digits)),
+                              "the format asks for a " + std::string(what) + " of " +
+                                  std::string(format, digits, j - digits) +
+                                  " characters; the limit is " + std::to_string(kMaxPrintfField));
+      }
+    };
+    field("field width");
     if (j < format.size() && format[j] == '.') {
       ++j;
-      while (j < format.size() && std::isdigit(static_cast<unsigned char>(format[j]))) ++j;
+      field("precision");
     }
     if (j < format.size() && format[j] == 'l') ++j;
     if (j >= format.size() || !isOneOf(format[j], "fFeEgGaA")) {

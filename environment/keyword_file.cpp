@@ -2,11 +2,10 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "hirsute/core/characters.h"
+#include "hirsute/core/input_file.h"
 
 namespace hirsute {
 
@@ -54,16 +53,13 @@ std::vector<KeywordLine> keywordLines(std::string_view text, const std::filesyst
 
 std::vector<KeywordLine> readKeywordLines(const std::filesystem::path& file,
                                           std::size_t maxLength) {
-  std::ifstream in(file, std::ios::binary);
-  const auto cannotRead = [&file] {
-    return DiagnosticError(SourceLocation{std::make_shared<const std::string>(file.string()), 0, 0},
-                           "cannot read the file");
-  };
-  if (!in) throw cannotRead();
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw cannotRead();
-  return keywordLines(text.str(), file, maxLength);
+  std::string text;
+  std::string failure;
+  if (!readInputFile(file, text, failure, kMaxKeywordFileBytes)) {
+    throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(file.string()), 0, 0},
+                          "cannot read the file: " + failure);
+  }
+  return keywordLines(text, file, maxLength);
 }
 
 float keywordNumber(const KeywordLine& line, const KeywordToken& token) {

@@ -101,6 +101,17 @@ constexpr std::array<FurParameter, 3> kShading{{{&FurAttributes::specular, "Ks",
                                                 {&FurAttributes::shadow, "Kshadow", 1, kHuge}}};
 constexpr std::array<FurParameter, 1> kClump{{{&FurAttributes::clumpShape, "w", 0, 1}}};
 
+// What is wrong with `v` as @Ut's texture number, or nothing. Whether the view file declares
+// that texture is known only when the turtle reads the module; a negative number or one that is
+// no number never names one.
+std::optional<std::string> textureProblem(float v) {
+  if (!std::isfinite(v) || std::fabs(v) >= 2e9f)
+    return "texture " + shown(v) + " is not a texture's number";
+  if (truncated(v) < 0)
+    return "texture " + shown(v) + " must be at least 0 (0: the surface's colour)";
+  return std::nullopt;
+}
+
 // @Ut(i): the view file's i-th `texture:` (0: the surface's colour).
 FurRow colourTexture(char letter) {
   FurRow row;
@@ -109,6 +120,10 @@ FurRow colourTexture(char letter) {
   row.custom = [](FurAttributes& record, const OrganModuleCall& call, const std::string& name) {
     if (call.count == 0) {
       call.warnOnce(name + " count", name + " needs (i), a texture of the view file or 0");
+      return false;
+    }
+    if (const auto problem = textureProblem(call.parameters[0])) {
+      call.warnOnce(name + " range", name + ": " + *problem + "; module ignored");
       return false;
     }
     const int index = truncated(call.parameters[0]);
@@ -121,6 +136,14 @@ FurRow colourTexture(char letter) {
     }
     record.texture = index;
     return true;
+  };
+  // A constant out of range is an error at it, as for the other @U modules.
+  row.checkConstants = [](std::span<const std::optional<float>> parameters,
+                          const std::string& name) -> std::optional<ParameterProblem> {
+    if (parameters.empty() || !parameters[0]) return std::nullopt;
+    if (const auto problem = textureProblem(*parameters[0]))
+      return ParameterProblem{0, name + ": " + *problem};
+    return std::nullopt;
   };
   return row;
 }

@@ -134,6 +134,22 @@ Texture decodeSgi(const std::vector<std::uint8_t>& bytes, const std::filesystem:
 
 }  // namespace
 
+std::optional<ImageExtent> imageExtentOf(const std::vector<std::uint8_t>& bytes) {
+  if (isSgiImage(bytes)) {
+    const unsigned dimension = bigEndian16(bytes, 4);
+    return ImageExtent{static_cast<int>(bigEndian16(bytes, 6)),
+                       dimension == 1 ? 1 : static_cast<int>(bigEndian16(bytes, 8))};
+  }
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) return std::nullopt;
+  ImageExtent extent;
+  int channels = 0;
+  if (!stbi_info_from_memory(bytes.data(), static_cast<int>(bytes.size()), &extent.width,
+                             &extent.height, &channels)) {
+    return std::nullopt;
+  }
+  return extent;
+}
+
 Texture decodeTexture(const std::vector<std::uint8_t>& bytes, const std::filesystem::path& file) {
   if (isSgiImage(bytes)) return decodeSgi(bytes, file);
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {

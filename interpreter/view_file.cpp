@@ -12,6 +12,7 @@
 // when broken, because what it declares would otherwise be dropped or half-defined without the
 // user noticing.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -285,6 +286,29 @@ glm::vec3 boundedColour(const ViewLine& c, const std::vector<Token>& tokens, std
   const std::vector<double> v = subcommandNumbers(c, tokens, i, 3, "r,g,b");
   for (std::size_t k = 0; k < 3; ++k) boundedValue(c, tokens[first + k], v[k], 0, high);
   return asVector(v);
+}
+
+// `trace sky:` and `trace up:`: three numbers separated by commas, into `out`; where each
+// number starts. Unlike cpfg's settings, which keep their value with a warning, a tracer's line
+// that cannot be read is an error at the value (docs/trace.md), as `trace light:` is.
+std::array<SourceLocation, 3> traceTriple(ViewLine& c, const std::string& form, glm::vec3& out) {
+  const auto expected = [&c, &form] {
+    const std::string_view found = c.args.peekWord();
+    return "expected " + form + " after " + inQuotes(c.label()) + ", found " +
+           (found.empty() ? std::string("nothing") : inQuotes(found));
+  };
+  std::array<SourceLocation, 3> where;
+  glm::vec3 read;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const SourceLocation at = c.args.here();
+    if (k > 0 && !c.args.literal(",")) c.fail(at, expected());
+    where[k] = c.args.here();
+    const std::optional<double> value = c.args.number();
+    if (!value) c.fail(where[k], expected());
+    read[static_cast<int>(k)] = static_cast<float>(*value);
+  }
+  out = read;
+  return where;
 }
 
 void traceLight(ViewLine& c) {
@@ -849,21 +873,22 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
         {"trace light:", &traceLight},
         {"trace sky:",
          [](ViewLine& c) {
-           if (const auto v = c.settingTriple()) {
-             if (glm::all(glm::greaterThanEqual(*v, glm::vec3(0.0f))) &&
-                 glm::all(glm::lessThanEqual(*v, glm::vec3(1e4f)))) {
-               c.view.trace.sky = *v;
-             } else {
-               c.warn(c.line().at(0), "the sky's colour must be from 0 to 10000 a channel; the "
-                                      "line is ignored");
-             }
+           const std::array<SourceLocation, 3> at = traceTriple(c, "r,g,b", c.view.trace.sky);
+           for (int k = 0; k < 3; ++k) {
+             if (!(c.view.trace.sky[k] >= 0 && c.view.trace.sky[k] <= 1e4f))
+               c.fail(at[k], "the sky's radiance must be from 0 to 10000 a channel, found " +
+                                 fmt::format("{:g}", c.view.trace.sky[k]));
            }
          }},
         {"trace up:",
          [](ViewLine& c) {
-           if (const auto v = c.settingTriple()) {
-             if (glm::length(*v) > 0 && glm::length(*v) < 1e30f) c.view.trace.up = *v;
+           const std::array<SourceLocation, 3> at = traceTriple(c, "x,y,z", c.view.trace.up);
+           for (int k = 0; k < 3; ++k) {
+             if (!(std::fabs(c.view.trace.up[k]) <= 1e6f))
+               c.fail(at[k], "a coordinate of 'trace up:' must be from -1e+06 to 1e+06, found " +
+                                 fmt::format("{:g}", c.view.trace.up[k]));
            }
+           if (!(glm::length(c.view.trace.up) > 0)) c.fail(at[0], "the up direction is zero");
          }},
         {"translucency:", &translucency},
         {"hair shading:", &hairShading},

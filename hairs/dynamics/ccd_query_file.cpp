@@ -3,13 +3,17 @@
 #include "hirsute/hairs/dynamics/ccd_query_file.h"
 
 #include <gmpxx.h>
+#include <unistd.h>
 
+#include <array>
+#include <cerrno>
 #include <cmath>
-#include <fstream>
+#include <cstring>
 #include <memory>
 #include <string_view>
 
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/core/input_file.h"
 
 namespace hirsute::dynamics {
 namespace {
@@ -112,6 +116,53 @@ class Reader {
   std::shared_ptr<const std::string> file_;
 };
 
+// The lines of a file read through its descriptor, each at most a given length: a line that
+// runs on is refused when it passes the length, not after it was read whole.
+class LineSource {
+ public:
+  enum class Result { Line, End, TooLong, Failed };
+
+  explicit LineSource(int fd) : fd_(fd) {}
+
+  // The next line without its '\n'; TooLong once it holds more than `maxLength` characters.
+  Result next(std::string& line, std::size_t maxLength) {
+    line.clear();
+    for (;;) {
+      if (at_ == filled_) {
+        if (ended_) return line.empty() ? Result::End : Result::Line;
+        const ssize_t n = ::read(fd_, buffer_.data(), buffer_.size());
+        if (n < 0) {
+          if (errno == EINTR) continue;
+          failure_ = std::strerror(errno);
+          return Result::Failed;
+        }
+        at_ = 0;
+        filled_ = static_cast<std::size_t>(n);
+        ended_ = n == 0;
+        continue;
+      }
+      const char* begin = buffer_.data() + at_;
+      const char* newline = static_cast<const char*>(std::memchr(begin, '\n', filled_ - at_));
+      const std::size_t take = newline ? static_cast<std::size_t>(newline - begin) : filled_ - at_;
+      if (line.size() + take > maxLength) return Result::TooLong;
+      line.append(begin, take);
+      at_ += take;
+      if (newline) {
+        ++at_;
+        return Result::Line;
+      }
+    }
+  }
+  const std::string& failure() const { return failure_; }
+
+ private:
+  int fd_;
+  std::array<char, 1 << 16> buffer_{};
+  std::size_t at_ = 0, filled_ = 0;
+  bool ended_ = false;
+  std::string failure_;
+};
+
 }  // namespace
 
 CcdQueryFile readCcdQueryFile(const std::filesystem::path& path) {
@@ -128,18 +179,28 @@ CcdQueryFile readCcdQueryFile(const std::filesystem::path& path) {
                           "edge-edge or vertex-face, this one is in \"" +
                               folder + "\"");
   }
-  std::error_code code;
-  if (std::filesystem::is_directory(path, code)) {
-    throw DiagnosticError(SourceLocation{reader.file(), 0, 0}, "cannot read: it is a folder");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DiagnosticError(SourceLocation{reader.file(), 0, 0}, "cannot read the file");
+  // A regular file only: a FIFO would wait for a writer, and a device such as /dev/zero never
+  // ends.
+  std::string failure;
+  const FileDescriptor fd = openInputFile(path, failure);
+  if (!fd) throw DiagnosticError(SourceLocation{reader.file(), 0, 0}, "cannot read: " + failure);
+  LineSource lines(fd.get());
 
   std::string text;
   int line = 0, row = 0;
   CcdQuery query;
-  while (std::getline(in, text)) {
+  for (;;) {
+    const LineSource::Result got = lines.next(text, kMaxCcdQueryLineLength + 1);
+    if (got == LineSource::Result::End) break;
+    if (got == LineSource::Result::Failed) {
+      throw DiagnosticError(SourceLocation{reader.file(), 0, 0},
+                            "cannot read the file: " + lines.failure());
+    }
     ++line;
+    if (got == LineSource::Result::TooLong) {
+      reader.fail(line, 1,
+                  "a line longer than " + std::to_string(kMaxCcdQueryLineLength) + " characters");
+    }
     if (!text.empty() && text.back() == '\r') text.pop_back();
     if (text.size() > kMaxCcdQueryLineLength) {
       reader.fail(line, 1,
@@ -167,7 +228,6 @@ CcdQueryFile readCcdQueryFile(const std::filesystem::path& path) {
       row = 0;
     }
   }
-  if (in.bad()) throw DiagnosticError(SourceLocation{reader.file(), 0, 0}, "cannot read the file");
   if (row != 0) {
     reader.fail(query.line, 1,
                 "the file ends inside the query that starts here: it has " + std::to_string(row) +

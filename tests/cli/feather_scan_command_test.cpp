@@ -1,8 +1,12 @@
 // `hirsute feather-scan` from the command line: a feather drawn by `hirsute render` comes back as
 // a commented .fea (with the scan's vane as a texture) that draws again; what is no scan of a
-// feather, and a texture outside the type's folder, end the run with exit code 2 and no file.
+// feather, and a texture outside the type's folder, end the run with exit code 2 and no file. A
+// FIFO or an oversized picture is refused before it is read or decoded, a failed run leaves
+// every earlier output as it was, and a name's control bytes never reach the terminal.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,6 +20,8 @@ namespace fs = std::filesystem;
 using namespace hirsute::testing;
 
 const fs::path kTypes = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "feather-types";
+const fs::path kHawkScan =
+    fs::path(HIRSUTE_SOURCE_DIR) / "models" / "feather-scan" / "hawk-scan.png";
 
 // A model in `folder` that draws feather type `fea` (a file there) flat, front up, on the
 // colour map's plain background: models/feather-scan's, with its own feather.
@@ -99,6 +105,82 @@ TEST(FeatherScanCommand, WhatIsNoScanOfAFeatherIsBadInput) {
   run = runHirsute({"feather-scan", (folder.path() / "blank.ppm").string(), "-o", type.string(),
                     "--dpi", "nan"});
   EXPECT_EQ(run.exitCode, 2) << run.err;
+}
+
+// A PNG's signature and header chunk alone: an 8-bit RGB picture of width × height whose pixels
+// never come (stb_image checks no CRC).
+std::string pngHeaderOnly(std::uint32_t width, std::uint32_t height) {
+  const auto bigEndian = [](std::uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  return std::string("\x89PNG\r\n\x1a\n", 8) + bigEndian(13) + "IHDR" + bigEndian(width) +
+         bigEndian(height) + std::string("\x08\x02\x00\x00\x00", 5) + bigEndian(0) + bigEndian(0) +
+         "IEND" + bigEndian(0);
+}
+
+TEST(FeatherScanCommand, AFifoIsRefusedAtOnce) {
+  TemporaryFolder folder;
+  const fs::path fifo = folder.path() / "scan.png";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const RunResult run =
+      runHirsute({"feather-scan", fifo.string(), "-o", (folder.path() / "type.fea").string()});
+  ASSERT_FALSE(run.killed) << "feather-scan waited on the FIFO";
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_NE(run.err.find(fifo.string() + ": error: cannot read the scan: it is a FIFO, not a "
+                                         "regular file"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(folder.path() / "type.fea"));
+}
+
+// The size is read from the picture's header: a scan over the limit is refused before its
+// pixels are decoded (this one has none to decode).
+TEST(FeatherScanCommand, AScanOverTheLimitIsRefusedByItsHeader) {
+  TemporaryFolder folder;
+  const fs::path scan = folder.path() / "large.png";
+  std::ofstream(scan, std::ios::binary) << pngHeaderOnly(8192, 8192);
+  const RunResult run =
+      runHirsute({"feather-scan", scan.string(), "-o", (folder.path() / "type.fea").string()});
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_NE(run.err.find(scan.string() + ": error: the scan has 8192 × 8192 pixels, more than 16 "
+                                         "Mpixel (the limit)"),
+            std::string::npos)
+      << run.err;
+}
+
+TEST(FeatherScanCommand, AFailedRunLeavesTheTextureAsItWas) {
+  TemporaryFolder folder;
+  const fs::path texture = folder.path() / "keep.png";
+  std::ofstream(texture) << "the texture of an earlier run\n";
+  // The type cannot be written (a folder has its name): the run fails after the scan was read.
+  const fs::path type = folder.path() / "type.fea";
+  fs::create_directory(type);
+  const RunResult run =
+      runHirsute({"feather-scan", kHawkScan.string(), "-o", type.string(), "--length", "12.5",
+                  "--texture", texture.string(), "--texture-size", "16"});
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("hirsute: error: " + type.string() + ": cannot write"), std::string::npos)
+      << run.err;
+  EXPECT_EQ(readText(texture), "the texture of an earlier run\n");
+  EXPECT_EQ(folder.entries(), (std::vector<std::string>{"keep.png", "type.fea"}));
+}
+
+// CLI11's own messages quote the arguments: their escape bytes are shown, not sent.
+TEST(FeatherScanCommand, AMissingScansNameIsShownEscaped) {
+  TemporaryFolder folder;
+  const std::string name = (folder.path() /
+                            "\x1b]0;title\x07\x9b"
+                            "31mscan.png")
+                               .string();
+  const RunResult run =
+      runHirsute({"feather-scan", name, "-o", (folder.path() / "type.fea").string()});
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_NE(run.err.find("hirsute: error: "), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("\\x1b]0;title\\x07\\x9b31mscan.png"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find('\x1b'), std::string::npos);
+  EXPECT_EQ(run.err.find('\x07'), std::string::npos);
+  EXPECT_EQ(run.err.find('\x9b'), std::string::npos);
 }
 
 }  // namespace

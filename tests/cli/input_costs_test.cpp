@@ -2,6 +2,7 @@
 // fast. Each case is a reproduction of an input that once took minutes or gigabytes, run end to
 // end through the program; a run past kKillAfter counts as the hang it used to be.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -258,6 +259,51 @@ TEST_F(InputCosts, ABlockOfFiftyThousandAssignmentsRuns) {
   char text[64];
   std::snprintf(text, sizeof text, "sum %.1f", expected);
   EXPECT_NE((run.out + run.err).find(text), std::string::npos) << run.out.substr(0, 200);
+}
+
+// The turtle's values go to an environmental program through the .e file's printf formats: a
+// field of 2·10⁹ characters once asked for gigabytes a query.
+TEST_F(InputCosts, AnEnvironmentFormatsFieldHasALimit) {
+  const fs::path model = kModels / "tip-collision";
+  fs::copy_file(model / "density.spec", folder_.path() / "density.spec");
+  struct Case {
+    const char* format;
+    int column;  // of the number
+    const char* what;
+  };
+  for (const Case& c : {Case{"%2000000000f %f %f", 19, "field width"},
+                        Case{"%f %.2000000000f %f", 23, "precision"}}) {
+    const fs::path e = write("wide.e", std::string("executable: honda81 density.spec\n"
+                                                   "turtle position: ") +
+                                           c.format + "\n");
+    const RunResult run = runHirsute({"derive", (model / "tip-collision.l").string(),
+                                      (model / "tip-collision.v").string(), "-e", e.string()});
+    expectError(run, "wide.e:2:" + std::to_string(c.column) + ": error:",
+                std::string("the format asks for a ") + c.what +
+                    " of 2000000000 characters; the limit is 1000");
+  }
+}
+
+// A FIFO would wait for its writer and a device never ends: the environment file and a CCD
+// query file are refused before they are read, whatever link leads to them.
+TEST_F(InputCosts, AnEnvironmentFileOrAQueryFileThatIsADeviceIsRefused) {
+  const fs::path model = kModels / "tip-collision";
+  RunResult run = runHirsute({"derive", (model / "tip-collision.l").string(),
+                              (model / "tip-collision.v").string(), "-e", "/dev/zero"});
+  expectError(run, "/dev/zero: error:",
+              "cannot read the file: it is a character device, not a regular file");
+
+  fs::create_directory(folder_.path() / "edge-edge");
+  const fs::path queries = folder_.path() / "edge-edge" / "queries.csv";
+  fs::create_symlink("/dev/zero", queries);
+  run = runHirsute({"bench", "ccd", queries.string()});
+  expectError(run, queries.string() + ": error:",
+              "cannot read: it is a character device, not a regular file");
+
+  const fs::path fifo = folder_.path() / "edge-edge" / "fifo.csv";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  run = runHirsute({"bench", "ccd", fifo.string()});
+  expectError(run, fifo.string() + ": error:", "cannot read: it is a FIFO, not a regular file");
 }
 
 }  // namespace

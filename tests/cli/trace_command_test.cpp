@@ -1,12 +1,18 @@
 // `hirsute render --trace` and `export --trace-lights` from the command line, on a shipped model:
 // the outputs for compositing are what their names say, the GL render refuses them, and the
 // POV-Ray export takes the tracer's lights; --denoise filters a traced picture and nothing else.
+// Options that are no numbers of their kind are refused, a failed run keeps the outputs it
+// would have replaced, and a picture larger than memory is named as the cause.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "hirsute/viewer/view/png_image.h"
 #include "support/run_hirsute.h"
@@ -118,6 +124,97 @@ TEST(TraceCommand, ExportTakesTheTracersLights) {
   EXPECT_NE(text.find("radiosity{"), std::string::npos);
   EXPECT_NE(text.find("no_image"), std::string::npos);
   EXPECT_NE(text.find("diffuse .5,.5"), std::string::npos);  // translucency: 5 0.5
+}
+
+TEST(TraceCommand, OptionsThatAreNoNumbersOfTheirKindAreRefused) {
+  TemporaryFolder folder;
+  const std::string model = (kCrocus / "wild-crocus.l").string();
+  const std::string view = (kCrocus / "closeup.v").string();
+  const fs::path png = folder.path() / "still.png";
+  struct Case {
+    std::vector<std::string> option;
+    std::string message;
+  };
+  const Case cases[] = {
+      {{"--noise", "nan"}, "'nan' is not a finite number from 0 to 255"},
+      {{"--time", "nan"}, "'nan' is not a finite number from 0 to 1e+07"},
+      {{"--seed", "-1"}, "'-1' is not an integer from 0 to 18446744073709551615"},
+      {{"--seed", "18446744073709551616"},
+       "'18446744073709551616' is not an integer from 0 to 18446744073709551615"},
+      {{"--spp", "1e3"}, "'1e3' is not an integer"},
+      {{"--spp", "0"}, "'0' is not an integer from 1 to 1048576"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> arguments{"render", model, view, "--trace",
+                                       "--size", "8x6", "-o", png.string()};
+    arguments.insert(arguments.end(), c.option.begin(), c.option.end());
+    const RunResult run = runHirsute(arguments);
+    EXPECT_EQ(run.exitCode, 2) << c.option[0] << " " << c.option[1] << ": " << run.err;
+    EXPECT_NE(run.err.find(c.message), std::string::npos) << run.err;
+    EXPECT_FALSE(fs::exists(png)) << c.option[0] << " " << c.option[1];
+  }
+  // The largest seed is one.
+  const RunResult run = runHirsute({"render", model, view, "--trace", "--size", "8x6", "--spp", "1",
+                                    "--seed", "18446744073709551615", "-o", png.string()});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+}
+
+TEST(TraceCommand, AFailedRunLeavesThePictureAsItWas) {
+  TemporaryFolder folder;
+  const fs::path png = folder.path() / "keep.png";
+  std::ofstream(png) << "the picture of an earlier run\n";
+  const RunResult run =
+      runHirsute({"render", (kCrocus / "wild-crocus.l").string(), (kCrocus / "closeup.v").string(),
+                  "--trace", "--spp", "1", "--size", "8x6", "--spp-image",
+                  (folder.path() / "nowhere" / "counts.png").string(), "-o", png.string()});
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("counts.png: cannot create the output file"), std::string::npos)
+      << run.err;
+  EXPECT_EQ(bytesOf(png), "the picture of an earlier run\n");
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"keep.png"});
+}
+
+// `hirsute ARGUMENTS…` with its address space limited to `bytes`: a machine that holds less
+// than the run asks for. Its standard error is returned.
+std::string runWithMemoryLimit(const std::vector<std::string>& arguments, rlim_t bytes,
+                               int& exitCode) {
+  TemporaryFolder capture;
+  const fs::path err = capture.path() / "stderr";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const rlimit limit{bytes, bytes};
+    setrlimit(RLIMIT_AS, &limit);
+    if (!freopen(err.c_str(), "w", stderr) || !freopen("/dev/null", "w", stdout)) _exit(126);
+    std::vector<std::string> all{HIRSUTE_BINARY};
+    all.insert(all.end(), arguments.begin(), arguments.end());
+    std::vector<char*> argv;
+    for (std::string& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(HIRSUTE_BINARY, argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return bytesOf(err);
+}
+
+TEST(TraceCommand, APictureLargerThanMemoryIsNamedBeforeTheModelIsBuilt) {
+  TemporaryFolder folder;
+  const fs::path png = folder.path() / "large.png";
+  int exitCode = 0;
+  // 16384x16384 pixels take some 17 GB of buffers; the run may have 4 GB.
+  const std::string err = runWithMemoryLimit(
+      {"render", (kCrocus / "wild-crocus.l").string(), (kCrocus / "closeup.v").string(), "--trace",
+       "--spp", "1", "--size", "16384x16384", "-o", png.string()},
+      rlim_t{4} << 30, exitCode);
+  EXPECT_EQ(exitCode, 2) << err;
+  EXPECT_NE(err.find("hirsute: error: out of memory for the traced picture's buffers: "
+                     "16384x16384 pixels take 17.2 GB"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(err.find("the model made more"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(png));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "hirsute/environment/exchange_text.h"
+#include "hirsute/environment/keyword_file.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
@@ -117,6 +118,25 @@ TEST_F(EnvironmentTest, UnsafeFormatsAndUnsupportedExchangesAreErrors) {
   EXPECT_NE(errorOf("strings only: on\n").find("not supported"), std::string::npos);
   EXPECT_NE(errorOf("following module: perhaps\n").find("'yes' or 'no'"), std::string::npos);
   EXPECT_EQ(errorOf("interpreted modules: F(2) Fish\n").substr(0, 5), "1:27:");
+}
+
+TEST_F(EnvironmentTest, FormatFieldsHaveALimit) {
+  // printf would write each query's 2·10⁹ characters; 1000 is the limit of a block's printf.
+  EXPECT_EQ(errorOf("turtle position: %2000000000f %f %f\n"),
+            "1:19: the format asks for a field width of 2000000000 characters; the limit is 1000");
+  EXPECT_EQ(errorOf("executable: x\nturtle line width: %-.99999999999999999999f\n"),
+            "2:23: the format asks for a precision of 99999999999999999999 characters; the limit "
+            "is 1000");
+  const CommunicationFile e = read("turtle position: %1000.1000f %f %f\n");
+  EXPECT_EQ(e.turtle[kPosition].conversions, 3);
+}
+
+TEST_F(EnvironmentTest, AnEnvironmentFileLargerThanTheLimitIsRefused) {
+  const std::string line = "# " + std::string(78, '-') + "\n";
+  std::string text;
+  while (text.size() <= kMaxKeywordFileBytes) text += line;
+  EXPECT_NE(errorOf(text).find("cannot read the file: it is larger than 1048576 bytes"),
+            std::string::npos);
 }
 
 // ---- the text ------------------------------------------------------------------------------

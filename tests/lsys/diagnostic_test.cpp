@@ -22,6 +22,19 @@ TEST(DiagnosticText, ControlBytesAreShownNotPassedOn) {
   for (char c : text) EXPECT_FALSE(c == '\x1b' || c == '\x07' || c == '\x7f');
 }
 
+// A byte from 80 to 9F outside a UTF-8 character is a C1 control to an 8-bit terminal (9B CSI,
+// 9D OSC); the same byte inside one (ś is C5 9B, × is C3 97) is text.
+TEST(DiagnosticText, RawC1BytesAreShownAndUtf8CharactersStay) {
+  EXPECT_EQ(printableText("found '\x9b"
+                          "31mred\x9d"
+                          "0;t\x07'"),
+            "found '\\x9b31mred\\x9d0;t\\x07'");
+  EXPECT_EQ(printableText("\xc5\x9b \xc3\x97 \xe2\x80\x94"), "\xc5\x9b \xc3\x97 \xe2\x80\x94");
+  // A lead byte without its continuation, and an overlong form of CSI (C0 9B, E0 82 9B).
+  EXPECT_EQ(printableText("\xc5 \x9b|\xc0\x9b|\xe0\x82\x9b"),
+            "\xc5 \\x9b|\xc0\\x9b|\xe0\\x82\\x9b");
+}
+
 TEST(DiagnosticText, PrintableTextAndUtf8StayAsTheyAre) {
   const Diagnostic d{Severity::Error,
                      SourceLocation{std::make_shared<const std::string>("m.l"), 1, 2},

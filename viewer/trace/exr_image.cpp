@@ -45,9 +45,9 @@ half toHalf(float v) {
 }  // namespace
 
 void writeExr(const std::filesystem::path& path, int width, int height,
-              const std::vector<glm::vec3>& pixels) {
-  const std::size_t count = static_cast<std::size_t>(std::max(width, 0)) *
-                            static_cast<std::size_t>(std::max(height, 0));
+              const std::vector<glm::vec3>& pixels, OutputGroup* group) {
+  const std::size_t count =
+      static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0));
   if (count == 0 || pixels.size() != count) {
     throw std::runtime_error(path.string() + ": cannot write: the image is empty");
   }
@@ -65,7 +65,7 @@ void writeExr(const std::filesystem::path& path, int width, int height,
   } catch (const std::exception& e) {
     throw std::runtime_error(path.string() + ": cannot write: " + e.what());
   }
-  OutputTarget target(path);
+  OutputTarget target(path, group);
   const std::vector<char>& bytes = memory.bytes();
   if (std::fwrite(bytes.data(), 1, bytes.size(), target.stream()) != bytes.size()) {
     throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));

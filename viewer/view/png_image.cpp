@@ -38,14 +38,14 @@ std::runtime_error writeError(const std::filesystem::path& path, const std::stri
 
 }  // namespace
 
-void writePng(const std::filesystem::path& path, const RgbaImage& image) {
+void writePng(const std::filesystem::path& path, const RgbaImage& image, OutputGroup* group) {
   if (image.width <= 0 || image.height <= 0) throw writeError(path, "the image is empty");
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) * image.height * 3);
   for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i) {
     std::memcpy(&rgb[i * 3], &image.rgba[i * 4], 3);
   }
 
-  OutputTarget file(path);
+  OutputTarget file(path, group);
   PngStruct png;
   png->width = static_cast<png_uint_32>(image.width);
   png->height = static_cast<png_uint_32>(image.height);
@@ -58,9 +58,9 @@ void writePng(const std::filesystem::path& path, const RgbaImage& image) {
 }
 
 void writeLinearPng16(const std::filesystem::path& path, int width, int height,
-                      const std::vector<glm::vec3>& pixels) {
-  const std::size_t count = static_cast<std::size_t>(std::max(width, 0)) *
-                            static_cast<std::size_t>(std::max(height, 0));
+                      const std::vector<glm::vec3>& pixels, OutputGroup* group) {
+  const std::size_t count =
+      static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0));
   if (count == 0 || pixels.size() != count) throw writeError(path, "the image is empty");
   std::vector<png_uint_16> rgb(count * 3);
   for (std::size_t i = 0; i < count; ++i) {
@@ -72,7 +72,7 @@ void writeLinearPng16(const std::filesystem::path& path, int width, int height,
           static_cast<png_uint_16>(std::lround(clamped * 65535.0f));
     }
   }
-  OutputTarget file(path);
+  OutputTarget file(path, group);
   PngStruct png;
   png->width = static_cast<png_uint_32>(width);
   png->height = static_cast<png_uint_32>(height);

@@ -32,8 +32,13 @@ struct KeywordLine {
   std::vector<KeywordToken> tokens(const char* separators) const;
 };
 
-// Reads every line of `file`; a line longer than `maxLength` characters, or a file that cannot
-// be read, is an error.
+// The largest environment file read (a .e or a program's specification file): real ones hold a
+// few hundred bytes.
+inline constexpr std::size_t kMaxKeywordFileBytes = std::size_t{1} << 20;
+
+// Reads every line of `file`; a line longer than `maxLength` characters, a file that cannot be
+// read or is no regular file (a FIFO or a device such as /dev/zero is refused at once), and one
+// larger than kMaxKeywordFileBytes are errors.
 std::vector<KeywordLine> readKeywordLines(const std::filesystem::path& file, std::size_t maxLength);
 // The same for text already read; `file` names it in diagnostics.
 std::vector<KeywordLine> keywordLines(std::string_view text, const std::filesystem::path& file,

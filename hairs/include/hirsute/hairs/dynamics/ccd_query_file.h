@@ -37,7 +37,8 @@ struct CcdQueryFile {
 inline constexpr std::size_t kMaxCcdQueryLineLength = 4096;
 inline constexpr std::size_t kMaxCcdQueryDigits = 400;
 
-// Throws DiagnosticError (`file:line:col: error: …`) for an unreadable file, a folder that names
+// Throws DiagnosticError (`file:line:col: error: …`) for an unreadable file or one that is no
+// regular file (a FIFO or a device, refused before it is read), a folder that names
 // no query kind, a row that is not 7 comma-separated integers, a zero denominator, a ground truth
 // that is not 0 or 1 or differs between a query's rows, a coordinate beyond the range of double,
 // and a row count that is not a multiple of 8.

@@ -8,6 +8,8 @@
 
 namespace hirsute {
 
+class OutputGroup;
+
 // 8-bit RGBA pixels, row 0 at the top.
 struct RgbaImage {
   int width = 0, height = 0;
@@ -22,14 +24,16 @@ struct RgbaImage {
 };
 
 // Writes an RGB PNG (the alpha channel is dropped: renders are opaque). The file appears only
-// when complete: it is written under a temporary name beside `path` and renamed over it.
-// Throws std::runtime_error ("path: cannot write …") on failure, leaving no file behind.
-void writePng(const std::filesystem::path& path, const RgbaImage& image);
+// when complete: it is written under a temporary name beside `path` and renamed over it (with
+// the other outputs of `group` when given, output_target.h). Throws std::runtime_error ("path:
+// cannot write …") on failure, leaving no file behind.
+void writePng(const std::filesystem::path& path, const RgbaImage& image,
+              OutputGroup* group = nullptr);
 
 // Writes linear RGB (`pixels`: width × height, row 0 at the top, 1 = white) as a 16-bit PNG of
 // linear light (gAMA 1.0), for compositing; values are clamped to [0, 1]. Written like writePng.
 void writeLinearPng16(const std::filesystem::path& path, int width, int height,
-                      const std::vector<glm::vec3>& pixels);
+                      const std::vector<glm::vec3>& pixels, OutputGroup* group = nullptr);
 
 // Reads any PNG as 8-bit RGBA. Throws std::runtime_error on failure.
 RgbaImage readPng(const std::filesystem::path& path);

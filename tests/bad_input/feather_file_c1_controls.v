@@ -1,0 +1,1 @@
+feather: feather_file_c1_controls.fea

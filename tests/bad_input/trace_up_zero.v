@@ -1,0 +1,2 @@
+/* no direction at all */
+trace up: 0,0,0
