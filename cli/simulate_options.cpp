@@ -84,6 +84,12 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
       ->check(finiteRange(0.0, 1e6));
   command.add_option("--drop-seed", options.dropSeed, "The seed of the random droplets (default 1)");
   command.add_flag("--obj", options.obj, "Write a Wavefront OBJ of every frame too");
+  command
+      .add_option("--max-output-bytes", options.maxOutputBytes,
+                  "Bytes the frames' files may take, all frames together; a run that would write "
+                  "more is an error, found from the first frame before it is written (default "
+                  "17179869184: 16 GiB)")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 50));
   command.add_flag("--no-frames", options.noFrames,
                    "Write no scenes, only simulation.csv (to measure the simulation alone)");
   CLI::Option* vanes =
