@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "command.h"
+#include "hirsute/core/output_target.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/organ_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
@@ -83,11 +85,28 @@ int runExport(ExportOptions o) {
                  "install povray)\n";
     return kExitIoError;
   }
-  std::filesystem::path image = std::filesystem::path(o.pov).replace_extension(".png");
-  PovrayRun run = runPovray(o.pov, image, o.width, o.height, true);
+  // The image's name is the program's own, beside the scene's: POV-Ray writes a temporary file
+  // made in that folder without following a link, renamed over the name when it is done
+  // (output_folder.h).
+  std::optional<OutputTarget> image;
+  try {
+    const std::filesystem::path pov(o.pov);
+    image.emplace(OutputFolder(pov.parent_path()),
+                  std::filesystem::path(pov.filename()).replace_extension(".png").string());
+  } catch (const std::runtime_error& e) {
+    std::cerr << e.what() << '\n';
+    return kExitIoError;
+  }
+  PovrayRun run = runPovray(o.pov, image->writtenPath(), o.width, o.height, true);
   std::cerr << run.messages;
   if (run.exitStatus != 0) {
     std::cerr << o.pov << ": error: povray failed (exit status " << run.exitStatus << ")\n";
+    return kExitIoError;
+  }
+  try {
+    image->commit();
+  } catch (const std::runtime_error& e) {
+    std::cerr << e.what() << '\n';
     return kExitIoError;
   }
   return kExitOk;

@@ -321,6 +321,16 @@ int runSimulate(SimulateOptions o) {
               << (ec ? ": " + ec.message() : std::string()) << '\n';
     return kExitIoError;
   }
+  // The folder is the user's (a link to it is followed); every name in it is the program's own,
+  // created there without following a link (output_folder.h).
+  std::optional<OutputFolder> outputs;
+  try {
+    outputs.emplace(o.output);
+  } catch (const std::runtime_error& e) {
+    progress.clear();
+    std::cerr << e.what() << '\n';
+    return kExitIoError;
+  }
 
   PovOptions pov;
   pov.view = first.resources.view;
@@ -378,12 +388,12 @@ int runSimulate(SimulateOptions o) {
   const auto writeTables = [&]() -> int {
     try {
       if (motion) {
-        OutputTarget csv(fs::path(o.output) / "simulation.csv");
+        OutputTarget csv(*outputs, "simulation.csv");
         std::fputs(table.c_str(), csv.stream());
         csv.commit();
       }
       if (fur) {
-        OutputTarget csv(fs::path(o.output) / "fur.csv");
+        OutputTarget csv(*outputs, "fur.csv");
         std::fputs(furTable.c_str(), csv.stream());
         csv.commit();
       }
@@ -401,6 +411,7 @@ int runSimulate(SimulateOptions o) {
   const bool countVanes = parameters.vaneCollisions || o.countVaneIntersections;
   std::size_t vaneIntersectionsLeft = 0;  // over every frame's state
   double simulating = 0;  // seconds in the steps, apart from deriving and writing
+  std::uint64_t written = 0;  // bytes of the frames' files
   Scene drawn = first.scene;
   try {
     if (fur) fur->start(drawn);
@@ -449,7 +460,6 @@ int runSimulate(SimulateOptions o) {
       }
     }
     if (body) drawn = std::move(moved);
-    const fs::path folder(o.output);
     if (!o.noFrames) {
       try {
         if (motion) motion->pose(drawn);
@@ -457,12 +467,37 @@ int runSimulate(SimulateOptions o) {
         OutputGroup files;
         PovOptions framePov = pov;
         framePov.group = &files;
-        writePov(drawn, framePov, folder / frameName(frame, frames, ".pov"));
+        framePov.folder = &*outputs;
+        writePov(drawn, framePov, outputs->pathOf(frameName(frame, frames, ".pov")));
         if (o.obj) {
           ObjOptions frameObj;
           frameObj.group = &files;
-          writeObj(drawn, folder / frameName(frame, frames, ".obj"), frameObj);
+          frameObj.folder = &*outputs;
+          writeObj(drawn, outputs->pathOf(frameName(frame, frames, ".obj")), frameObj);
         }
+        // What the frames write, against --max-output-bytes: all of them estimated from the
+        // first before it lands, so that a run that would fill the disc writes nothing; then
+        // each frame, as a body that grows makes them larger.
+        const std::uint64_t frameBytes = files.bytes();
+        if (frame == 1 &&
+            static_cast<double>(frameBytes) * frames > static_cast<double>(o.maxOutputBytes)) {
+          return badInput(
+              progress,
+              fmt::format("hirsute: error: {} frames of {} bytes each (the first frame's files) "
+                          "would write about {:.0f} bytes, more than --max-output-bytes {}; "
+                          "write fewer frames or raise the limit",
+                          frames, frameBytes, static_cast<double>(frameBytes) * frames,
+                          o.maxOutputBytes));
+        }
+        if (written + frameBytes > o.maxOutputBytes) {
+          if (const int failed = writeTables(); failed != 0) return failed;
+          return badInput(progress,
+                          fmt::format("hirsute: error: frame {}'s files would take what the run "
+                                      "writes past --max-output-bytes {}; the frames before it "
+                                      "and their rows of the tables are written",
+                                      frame, o.maxOutputBytes));
+        }
+        written += frameBytes;
         files.commit();
       } catch (const std::invalid_argument& e) {
         return badInput(progress, o.model.lsystemFile + ": error: cannot export: " + e.what());

@@ -4,7 +4,6 @@
 #include <cstdlib>
 #include <exception>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "command.h"
@@ -85,6 +84,12 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
       ->check(finiteRange(0.0, 1e6));
   command.add_option("--drop-seed", options.dropSeed, "The seed of the random droplets (default 1)");
   command.add_flag("--obj", options.obj, "Write a Wavefront OBJ of every frame too");
+  command
+      .add_option("--max-output-bytes", options.maxOutputBytes,
+                  "Bytes the frames' files may take, all frames together; a run that would write "
+                  "more is an error, found from the first frame before it is written (default "
+                  "17179869184: 16 GiB)")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 50));
   command.add_flag("--no-frames", options.noFrames,
                    "Write no scenes, only simulation.csv (to measure the simulation alone)");
   CLI::Option* vanes =
@@ -140,15 +145,33 @@ std::optional<DropletFall> dropletFall(const std::string& text, bool rain) {
   return fall;
 }
 
+namespace {
+
+bool isIdentifierCharacter(char c, bool first) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_' ||
+         (!first && c >= '0' && c <= '9');
+}
+
+}  // namespace
+
 std::optional<AnimatedDefine> animatedDefine(const std::string& text,
                                              const std::filesystem::path& lsystem) {
-  static const std::regex kForm(R"(^([A-Za-z_][A-Za-z0-9_]*)=([^:]+):(.+)$)");
-  std::smatch m;
-  if (!std::regex_match(text, m, kForm)) return std::nullopt;
+  // NAME=FROM:TO, read character by character (a regular expression's recursion overflows the
+  // stack on a value of some ten thousand characters): NAME an identifier, FROM up to the first
+  // colon, TO the rest, on one line.
+  const std::size_t equals = text.find('=');
+  if (equals == std::string::npos || equals == 0) return std::nullopt;
+  for (std::size_t i = 0; i < equals; ++i)
+    if (!isIdentifierCharacter(text[i], i == 0)) return std::nullopt;
+  const std::size_t colon = text.find(':', equals + 1);
+  if (colon == std::string::npos || colon == equals + 1 || colon + 1 == text.size())
+    return std::nullopt;
+  if (text.find_first_of("\n\r", colon + 1) != std::string::npos) return std::nullopt;
   AnimatedDefine d;
-  d.name = m[1];
+  d.name = text.substr(0, equals);
   try {
-    const std::string from = m[2], to = m[3];
+    const std::string from = text.substr(equals + 1, colon - equals - 1);
+    const std::string to = text.substr(colon + 1);
     std::size_t used = 0;
     d.from = std::stod(from, &used);
     if (used != from.size()) return std::nullopt;

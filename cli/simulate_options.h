@@ -14,6 +14,9 @@
 
 namespace hirsute::cli {
 
+// What the frames of a run may write by default: 16 GiB.
+inline constexpr std::uint64_t kDefaultMaxOutputBytes = std::uint64_t{16} << 30;
+
 struct SimulateOptions {
   ModelOptions model;
   std::string animation;
@@ -28,6 +31,8 @@ struct SimulateOptions {
   // counted anyway when they collide: the check that none is left).
   bool countVaneIntersections = false;
   int width = 800, height = 600;
+  // The bytes the frames' files may take, all together (--max-output-bytes).
+  std::uint64_t maxOutputBytes = kDefaultMaxOutputBytes;
   // Overrides of the view file's `dynamics …:` lines.
   std::vector<double> gravity, wind;
   std::optional<double> gusts, gustScale, gustPeriod, drag;

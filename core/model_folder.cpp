@@ -210,6 +210,16 @@ ConfinedFile ModelFolder::open(const std::string& name, FileAccess access) const
     result.refused = true;
     return result;
   }
+  // A hard link is the same file under a second name, which may be anywhere on the file system
+  // (a downloaded model's folder may carry one, made where the user's files are): written
+  // through, it would change that file. Only a file whose one name is this one is written.
+  if (access != FileAccess::Read && st.st_nlink > 1) {
+    result.failure = "it has " + std::to_string(st.st_nlink) +
+                     " names (hard links), and one may be outside the model's folder; a file "
+                     "is written only where its one name is in the folder";
+    result.refused = true;
+    return result;
+  }
   const int status = fcntl(file.get(), F_GETFL);
   if (status >= 0) fcntl(file.get(), F_SETFL, status & ~O_NONBLOCK);
   if (truncates(access) && ftruncate(file.get(), 0) != 0) {

@@ -121,6 +121,9 @@ vector colours @/bending.l -o out -m 2:@/feather-coat.map -M @/feather-coat.map 
 vector weather @/bending.l @/bending.v -o out --drop 2:6 --drop 3:1:0.1:0.5 --rain 24:0.05 \
   --dry 0.5 --dry-from 4 --fur-force 0 -1 0 --fur-drag 2 --drop-seed 9
 vector bad @/bending.l -o out --fps nan --frames 0 --gravity 1 2
+# A value of thousands of digits (within -max_len below), read without a pattern's recursion.
+vector long-animate @/bending.l @/bending.v -o out --no-frames \
+  --animate "BEND=$(head -c 8000 /dev/zero | tr '\0' 9):9"
 
 # preprocessor_messages_fuzzer: what cpp says about each .l and .v of tests/bad_input (read there
 # by the fuzzer), with a few messages written by hand.

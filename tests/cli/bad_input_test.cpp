@@ -669,3 +669,23 @@ TEST(CommandLine, HelpShowsNoBuildPathNoFlagValueAndNoNeedsColumn) {
 
 }  // namespace
 }  // namespace hirsute
+// ---- hirsute simulate: option values ----
+
+// A value of tens of thousands of characters once overflowed the stack of the pattern that read
+// it.
+TEST(SimulateBadInput, AVeryLongAnimateValueIsAnErrorNotACrash) {
+  const fs::path coat = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "coat-bending";
+  TemporaryFolder folder;
+  for (const std::string& value :
+       {"BEND=" + std::string(40000, '9') + ":9", "BEND=0:" + std::string(40000, '1'),
+        std::string(40000, 'B') + "=0:9"}) {
+    const RunResult run = runHirsute(
+        {"simulate", (coat / "bending.l").string(), (coat / "bending.v").string(), "-o",
+         (folder.path() / "frames").string(), "--animate", value, "--frames", "1", "--no-frames"});
+    ASSERT_FALSE(run.killed);
+    ASSERT_TRUE(run.exited) << "signal " << run.signal;
+    EXPECT_EQ(run.exitCode, 2) << run.err.substr(0, 200);
+    EXPECT_EQ(run.err.rfind("hirsute: error: --animate takes NAME=FROM:TO", 0), 0u)
+        << run.err.substr(0, 200);
+  }
+}

@@ -307,3 +307,38 @@ TEST_F(InputCosts, AnEnvironmentFileOrAQueryFileThatIsADeviceIsRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+// `simulate` writes a scene a frame: frames × the scene's size once filled a disc at gigabytes
+// a minute. The first frame's files, before they land, tell what the run would write.
+TEST_F(InputCosts, TheFramesOfASimulationHaveAByteLimit) {
+  const fs::path coat = kModels / "coat-bending";
+  const fs::path frames = folder_.path() / "frames";
+  const auto simulate = [&](std::vector<std::string> more) {
+    std::vector<std::string> arguments{"simulate", (coat / "bending.l").string(),
+                                       (coat / "bending.v").string(), "-o", frames.string()};
+    // Fitted for a small picture: 380 kB a frame.
+    arguments.insert(arguments.end(), {"--width", "32", "--height", "24"});
+    arguments.insert(arguments.end(), more.begin(), more.end());
+    return runHirsute(arguments);
+  };
+  const auto frameFiles = [&] {
+    std::size_t count = 0;
+    for (const auto& entry : fs::directory_iterator(frames))
+      count += entry.path().filename().string().rfind("frame-", 0) == 0;
+    return count;
+  };
+  expectError(simulate({"--frames", "1000000"}), "hirsute: error: 1000000 frames of ",
+              "more than --max-output-bytes 17179869184; write fewer frames or raise the limit");
+  EXPECT_EQ(frameFiles(), 0u);
+  expectError(simulate({"--frames", "3", "--max-output-bytes", "1000"}),
+              "hirsute: error: 3 frames of ", "more than --max-output-bytes 1000");
+  EXPECT_EQ(frameFiles(), 0u);
+  // Within the limit the frames are written.
+  const RunResult run = simulate({"--frames", "2", "--max-output-bytes", "100000000"});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(frameFiles(), 2u);
+}
+
+}  // namespace

@@ -3,6 +3,7 @@
 // a model may carry one), run end to end through the program.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -53,6 +54,26 @@ TEST_F(UntrustedModel, FopenDoesNotWriteThroughALinkToAFileOutside) {
         << run.err;
   }
   EXPECT_EQ(profile(), "# the user's own file\n");
+}
+
+// A hard link is the outside file under a name in the folder: no link to follow, the same file.
+TEST_F(UntrustedModel, FopenDoesNotWriteThroughAHardLinkToAFileOutside) {
+  ASSERT_EQ(link((outside_ / "profile").c_str(), (model_ / "link.txt").c_str()), 0);
+  for (const char* mode : {"w", "a", "r+", "w+", "a+"}) {
+    const fs::path file = modelRunning(std::string("f = fopen(\"link.txt\", \"") + mode +
+                                       "\"); fprintf(f, \"echo pwned\\n\");");
+    const RunResult run = runHirsute({"derive", file.string()});
+    EXPECT_EQ(run.exitCode, 2) << mode << ": " << run.err;
+    EXPECT_NE(run.err.find("model.l:3:"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("error: fopen: cannot open 'link.txt': it has 2 names (hard links)"),
+              std::string::npos)
+        << run.err;
+  }
+  EXPECT_EQ(profile(), "# the user's own file\n");
+  // Reading it is no harm.
+  const fs::path file = modelRunning("f = fopen(\"link.txt\", \"r\"); fclose(f);");
+  const RunResult run = runHirsute({"derive", file.string()});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
 }
 
 TEST_F(UntrustedModel, FopenDoesNotEnterALinkedFolderOutside) {

@@ -86,6 +86,22 @@ TEST_P(ModelFolderTest, ALinkToAFileOutsideIsNotWrittenThrough) {
   EXPECT_TRUE(fs::is_symlink(model_ / "link.txt"));
 }
 
+TEST_P(ModelFolderTest, AHardLinkIsReadButNeverWritten) {
+  ASSERT_EQ(link((outside_ / "target.txt").c_str(), (model_ / "hard.txt").c_str()), 0);
+  for (FileAccess access : {FileAccess::Write, FileAccess::WriteRead, FileAccess::Append,
+                            FileAccess::AppendRead, FileAccess::ReadWrite}) {
+    ConfinedFile file;
+    const std::string failure = writeThrough("hard.txt", access, "pwned", &file);
+    EXPECT_FALSE(file);
+    EXPECT_TRUE(file.refused);
+    EXPECT_NE(failure.find("it has 2 names (hard links)"), std::string::npos) << failure;
+  }
+  EXPECT_EQ(testing::readText(outside_ / "target.txt"), "outside\n");
+  std::string text, failure;
+  ASSERT_TRUE(folder().read("hard.txt", text, failure)) << failure;
+  EXPECT_EQ(text, "outside\n");
+}
+
 TEST_P(ModelFolderTest, ARelativeLinkOutIsRefusedToo) {
   fs::create_symlink("../outside/target.txt", model_ / "up.txt");
   ConfinedFile file = folder().open("up.txt", FileAccess::Append);

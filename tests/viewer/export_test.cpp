@@ -221,6 +221,52 @@ TEST_F(ExportTest, ObjTexturedMeshHasTexcoordsAndItsImage) {
   EXPECT_EQ(image.pixel(1, 0), glm::u8vec4(0, 255, 0, 255));
 }
 
+// The files a writer names beside its target (the .mtl, the texture images) are its own: a link
+// planted at such a name is replaced, never written through (output_folder.h).
+TEST_F(ExportTest, SideFilesReplaceLinksPlantedAtTheirNames) {
+  Scene scene = paletteScene();
+  scene.textures.push_back({"bark.png", 2, 1, {255, 0, 0, 255, 0, 255, 0, 255}});
+  TriangleMesh& mesh = scene.meshFor(1, 0);
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  mesh.texcoords = {{0, 0}, {1, 0}, {0, 1}};
+  mesh.indices = {0, 1, 2};
+  fs::create_directories(file("outside"));
+  std::ofstream(file("outside/profile"), std::ios::binary) << "the user's own file\n";
+  for (const char* name : {"plant.mtl", "plant_texture1.png", "scene_texture1.png"})
+    fs::create_symlink(file("outside/profile"), file(name));
+  writeObj(scene, file("plant.obj"));
+  writePov(scene, PovOptions{}, file("scene.pov"));
+  EXPECT_EQ(readText(file("outside/profile")), "the user's own file\n");
+  for (const char* name : {"plant.mtl", "plant_texture1.png", "scene_texture1.png"})
+    EXPECT_FALSE(fs::is_symlink(file(name))) << name;
+  EXPECT_NE(readText(file("plant.mtl")).find("map_Kd plant_texture1.png\n"), std::string::npos);
+  EXPECT_EQ(readPng(file("plant_texture1.png")).width, 2);
+  EXPECT_EQ(readPng(file("scene_texture1.png")).width, 2);
+}
+
+// A scene written under a name the program made (simulate's frames) is created in its folder as
+// its side files are.
+TEST_F(ExportTest, AFrameInAnOutputFolderReplacesALinkAtItsName) {
+  Scene scene = paletteScene();
+  addQuad(scene, 1, {0, 0}, 1);
+  fs::create_directories(file("outside"));
+  std::ofstream(file("outside/profile"), std::ios::binary) << "the user's own file\n";
+  fs::create_symlink(file("outside/profile"), file("frame-0001.pov"));
+  fs::create_symlink(file("outside/profile"), file("frame-0001.obj"));
+  const OutputFolder folder(folder_);
+  PovOptions pov;
+  pov.folder = &folder;
+  writePov(scene, pov, file("frame-0001.pov"));
+  ObjOptions obj;
+  obj.folder = &folder;
+  writeObj(scene, file("frame-0001.obj"), obj);
+  EXPECT_EQ(readText(file("outside/profile")), "the user's own file\n");
+  EXPECT_EQ(readText(file("frame-0001.pov")).rfind("// Hirsute", 0), 0u);
+  EXPECT_EQ(readText(file("frame-0001.obj")).rfind("# Hirsute", 0), 0u);
+  EXPECT_FALSE(fs::is_symlink(file("frame-0001.pov")));
+}
+
 TEST_F(ExportTest, PovSceneHasCameraLightsMaterialsAndPrimitives) {
   Scene scene = mixedScene();
   PovExportStats stats = writePov(scene, PovOptions{}, file("plant.pov"));

@@ -79,6 +79,9 @@ std::size_t formatFixed(double value, NumberFormat format, char* out) {
 ExportFile::ExportFile(std::filesystem::path target, OutputGroup* group)
     : file_(std::move(target), group), buffer_(kBufferSize) {}
 
+ExportFile::ExportFile(const OutputFolder& folder, const std::string& name, OutputGroup* group)
+    : file_(folder, name, group), buffer_(kBufferSize) {}
+
 void ExportFile::put(std::string_view text) {
   if (text.size() > buffer_.size() - used_) {
     flush();

@@ -60,10 +60,13 @@ void unitSphere(int slices, int stacks, std::vector<glm::vec3>& points,
 }  // namespace
 
 ObjWriter::ObjWriter(std::filesystem::path target, ObjOptions options)
-    : target_(std::move(target)), options_(options), out_(target_, options_.group) {
-  mtlTarget_ = target_;
-  mtlTarget_.replace_extension(".mtl");
-  if (mtlTarget_ == target_)
+    : target_(std::move(target)),
+      mtlName_(std::filesystem::path(target_.filename()).replace_extension(".mtl").string()),
+      options_(options),
+      out_(options_.folder
+               ? ExportFile(*options_.folder, target_.filename().string(), options_.group)
+               : ExportFile(target_, options_.group)) {
+  if (mtlName_ == target_.filename())
     throw std::invalid_argument(target_.string() + ": the OBJ file cannot end in .mtl");
   unitSphere(options_.sphereSlices, options_.sphereStacks, spherePoints_, sphereTriangles_);
 }
@@ -82,7 +85,7 @@ void ObjWriter::beginScene(const Scene& scene, std::span<const OrganWriter* cons
   // names none, and they are not written (no side file beside /dev/null).
   if (!out_.writesInPlace()) {
     out_.put("mtllib ");
-    out_.put(mtlTarget_.filename().string());
+    out_.put(mtlName_);
     out_.put('\n');
   }
 }
@@ -112,8 +115,14 @@ void ObjWriter::useMaterial(int material, int texture) {
 // device or FIFO has no folder beside it).
 void ObjWriter::writeTextureOnce(int texture) {
   if (texture < 0 || out_.writesInPlace() || !texturesWritten_.insert(texture).second) return;
-  writeTexturePng(scene_->textures.at(static_cast<std::size_t>(texture)),
-                  target_.parent_path() / textureFileName(target_, texture), options_.group);
+  writeTexturePng(scene_->textures.at(static_cast<std::size_t>(texture)), sideFolder(),
+                  textureFileName(target_, texture), options_.group);
+}
+
+const OutputFolder& ObjWriter::sideFolder() {
+  if (options_.folder) return *options_.folder;
+  if (!sideFolder_) sideFolder_.emplace(target_.parent_path());
+  return *sideFolder_;
 }
 
 void ObjWriter::useOrganMaterial(const std::string& name, const glm::vec3& diffuse,
@@ -332,7 +341,7 @@ void ObjWriter::label(const Label& label) {
 }
 
 void ObjWriter::writeMaterialLibrary() {
-  ExportFile mtl(mtlTarget_, options_.group);
+  ExportFile mtl(sideFolder(), mtlName_, options_.group);
   NumberFormat colour{4, true};
   auto rgb = [&mtl, colour](const char* key, const glm::vec3& c) {
     mtl.put(key);

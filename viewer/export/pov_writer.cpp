@@ -78,9 +78,19 @@ std::string commentText(const std::string& text) {
 }  // namespace
 
 PovWriter::PovWriter(std::filesystem::path target, PovOptions options)
-    : target_(std::move(target)), options_(std::move(options)), out_(target_, options_.group) {}
+    : target_(std::move(target)),
+      options_(std::move(options)),
+      out_(options_.folder
+               ? ExportFile(*options_.folder, target_.filename().string(), options_.group)
+               : ExportFile(target_, options_.group)) {}
 
 PovWriter::~PovWriter() = default;
+
+const OutputFolder& PovWriter::sideFolder() {
+  if (options_.folder) return *options_.folder;
+  if (!sideFolder_) sideFolder_.emplace(target_.parent_path());
+  return *sideFolder_;
+}
 
 void PovWriter::vector(const glm::vec3& v, NumberFormat format) {
   out_.put('<');
@@ -411,8 +421,8 @@ void PovWriter::writeMaterial(std::string_view name, int index, const Material& 
     std::string file = textureFileName(target_, texture);
     if (std::find(texturesWritten_.begin(), texturesWritten_.end(), texture) ==
         texturesWritten_.end()) {
-      writeTexturePng(scene_->textures.at(static_cast<std::size_t>(texture)),
-                      target_.parent_path() / file, options_.group);
+      writeTexturePng(scene_->textures.at(static_cast<std::size_t>(texture)), sideFolder(), file,
+                      options_.group);
       texturesWritten_.push_back(texture);
     }
     out_.put("uv_mapping pigment{image_map{png \"");

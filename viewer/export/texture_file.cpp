@@ -23,7 +23,7 @@ std::string textureFileName(const std::filesystem::path& target, int index) {
   return target.stem().string() + "_texture" + std::to_string(index + 1) + ".png";
 }
 
-void writeTexturePng(const Texture& texture, const std::filesystem::path& file,
+void writeTexturePng(const Texture& texture, const OutputFolder& folder, const std::string& name,
                      OutputGroup* group) {
   std::size_t size =
       static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 4;
@@ -33,9 +33,11 @@ void writeTexturePng(const Texture& texture, const std::filesystem::path& file,
   int length = 0;
   unsigned char* png = stbi_write_png_to_mem(texture.rgba.data(), texture.width * 4, texture.width,
                                              texture.height, 4, &length);
-  if (!png) throw std::runtime_error(file.string() + ": cannot encode the texture as PNG");
+  if (!png) {
+    throw std::runtime_error(folder.pathOf(name).string() + ": cannot encode the texture as PNG");
+  }
   std::unique_ptr<unsigned char, void (*)(void*)> owned(png, std::free);
-  ExportFile out(file, group);
+  ExportFile out(folder, name, group);
   out.putBytes(png, static_cast<std::size_t>(length));
   out.commit();
 }

@@ -38,14 +38,16 @@ std::runtime_error writeError(const std::filesystem::path& path, const std::stri
 
 }  // namespace
 
-void writePng(const std::filesystem::path& path, const RgbaImage& image, OutputGroup* group) {
-  if (image.width <= 0 || image.height <= 0) throw writeError(path, "the image is empty");
+namespace {
+
+// The image into `file`, not empty; committed.
+void writePngTo(OutputTarget& file, const RgbaImage& image) {
+  const std::filesystem::path& path = file.target();
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) * image.height * 3);
   for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i) {
     std::memcpy(&rgb[i * 3], &image.rgba[i * 4], 3);
   }
 
-  OutputTarget file(path, group);
   PngStruct png;
   png->width = static_cast<png_uint_32>(image.width);
   png->height = static_cast<png_uint_32>(image.height);
@@ -55,6 +57,21 @@ void writePng(const std::filesystem::path& path, const RgbaImage& image, OutputG
     throw writeError(path, png->message);
   }
   file.commit();
+}
+
+}  // namespace
+
+void writePng(const std::filesystem::path& path, const RgbaImage& image, OutputGroup* group) {
+  if (image.width <= 0 || image.height <= 0) throw writeError(path, "the image is empty");
+  OutputTarget file(path, group);
+  writePngTo(file, image);
+}
+
+void writePng(const OutputFolder& folder, const std::string& name, const RgbaImage& image) {
+  if (image.width <= 0 || image.height <= 0)
+    throw writeError(folder.pathOf(name), "the image is empty");
+  OutputTarget file(folder, name);
+  writePngTo(file, image);
 }
 
 void writeLinearPng16(const std::filesystem::path& path, int width, int height,

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <span>
@@ -61,6 +62,13 @@ class Viewer final : public LiveModelView {
   void measure(int frames) override;
 
  private:
+  // The frame drawn (with the panel when withUi) and read back, handed to `write`, which writes
+  // `file`; false, with the message printed, when it fails.
+  bool capture(const std::filesystem::path& file, bool withUi,
+               const std::function<void(const RgbaImage&)>& write);
+  // The key S's screenshot, "MODEL-N.png" in the current folder (which may be the model's own):
+  // a name the viewer makes up, so it is created there without following a link planted at it.
+  void screenshotHere(const std::string& name);
   bool open();
   void shutdown();
   void installCallbacks();
@@ -228,6 +236,15 @@ void Viewer::frame() {
 }
 
 bool Viewer::screenshot(const std::filesystem::path& file, bool withUi) {
+  return capture(file, withUi, [&](const RgbaImage& image) { writePng(file, image); });
+}
+
+void Viewer::screenshotHere(const std::string& name) {
+  capture(name, false, [&](const RgbaImage& image) { writePng(OutputFolder("."), name, image); });
+}
+
+bool Viewer::capture(const std::filesystem::path& file, bool withUi,
+                     const std::function<void(const RgbaImage&)>& write) {
   // ImGui sizes a window that has just appeared over its first frames.
   for (int i = 0; withUi && i < 2; ++i) frame();
   drawScene(false);
@@ -237,7 +254,7 @@ bool Viewer::screenshot(const std::filesystem::path& file, bool withUi) {
   glfwSwapBuffers(window_);
   live_->ignoreWrite(file);
   try {
-    writePng(file, image);
+    write(image);
   } catch (const std::exception& e) {
     std::cerr << "hirsute: error: " << e.what() << '\n';
     return false;
@@ -310,7 +327,7 @@ void Viewer::onKey(int key, int mods) {
       live_->animating() ? live_->stopAnimation() : live_->runAnimation(); break;
     case GLFW_KEY_R: live_->resetView(); break;
     case GLFW_KEY_W: shown.wireframe = !shown.wireframe; break;
-    case GLFW_KEY_S: ++screenshots_; screenshot(screenshotFile, false); break;
+    case GLFW_KEY_S: ++screenshots_; screenshotHere(screenshotFile); break;
     case GLFW_KEY_C: shown.panel = !shown.panel; break;
     case GLFW_KEY_F1: shown.help = !shown.help; break;
     case GLFW_KEY_SLASH: if (mods & GLFW_MOD_SHIFT) shown.help = !shown.help; break;

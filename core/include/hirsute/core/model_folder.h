@@ -9,6 +9,8 @@
 // Linux resolves the name itself (openat2 with RESOLVE_BENEATH). Where the kernel or a seccomp
 // filter refuses openat2, each component is opened with O_NOFOLLOW and no link is followed.
 // Only regular files are opened: a FIFO or a device is refused at once, never waited on.
+// A file with more than one name (a hard link, which may lead anywhere on the same file system)
+// is opened for reading only: writing it would change the file under its other names.
 #pragma once
 
 #include <filesystem>

@@ -8,13 +8,22 @@
 // and written in place; /dev/stdout, /dev/stderr and /dev/fd/N write to the process's own
 // descriptor, as the shell set it up. A symbolic link to a regular file replaces the file it
 // points to and keeps the link.
+//
+// That is the rule for a name the user typed. A name Hirsute derives itself (a frame of
+// `simulate -o DIR`, the .mtl beside an OBJ) is written in an OutputFolder (output_folder.h):
+// created beneath the folder without following any link, renamed over whatever entry has the
+// name; a FIFO, device or folder at such a name is refused.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "hirsute/core/output_folder.h"
 
 namespace hirsute {
 
@@ -33,11 +42,16 @@ class OutputGroup {
   // write: REASON" on the first that fails.
   void commit();
 
+  // The bytes of the files written and not yet renamed (their temporary files), for a limit on
+  // what a run writes.
+  std::uint64_t bytes() const;
+
  private:
   friend class OutputTarget;
   struct Pending {
-    std::string temporary;
-    std::filesystem::path destination, target;
+    std::shared_ptr<const FileDescriptor> folder;  // the names' folder; none: the current one
+    std::string temporary, destination;
+    std::filesystem::path target;
   };
   std::vector<Pending> pending_;
 };
@@ -47,6 +61,12 @@ class OutputTarget {
   // Opens the target for writing; throws std::runtime_error naming the path and the reason.
   // In a group, commit() leaves the renaming to the group.
   explicit OutputTarget(std::filesystem::path target, OutputGroup* group = nullptr);
+  // Opens `name`, a name Hirsute derives (a plain file name), in `folder` (output_folder.h): a
+  // temporary file is created in the folder without following links and renamed over `name` on
+  // commit(), replacing a symbolic or hard link there instead of writing what it leads to. A
+  // folder, FIFO, device or socket at `name` is refused: throws std::runtime_error
+  // "FOLDER/NAME: REASON".
+  OutputTarget(const OutputFolder& folder, const std::string& name, OutputGroup* group = nullptr);
   // Unless commit() succeeded: removes the temporary file (the target is left as it was).
   ~OutputTarget();
   OutputTarget(const OutputTarget&) = delete;
@@ -62,6 +82,10 @@ class OutputTarget {
   void commit();
 
   const std::filesystem::path& target() const { return target_; }
+  // The file being written, by its path: the temporary file, or the target written in place; for
+  // a program that writes the output by name (POV-Ray's +O). A temporary file in an
+  // OutputFolder keeps the name's extension last (".plant.tmp-XXXXXX.png").
+  std::filesystem::path writtenPath() const;
   // True when the target is a device, FIFO or descriptor written directly.
   bool writesInPlace() const { return temporary_.empty(); }
 
@@ -71,6 +95,8 @@ class OutputTarget {
   std::filesystem::path target_;
   std::filesystem::path destination_;  // what the temporary file is renamed to
   std::string temporary_;
+  // In an OutputFolder: its descriptor, which temporary_ and destination_ are relative to.
+  std::shared_ptr<const FileDescriptor> folder_;
   int fd_ = -1;
   std::FILE* stream_ = nullptr;
   OutputGroup* group_ = nullptr;

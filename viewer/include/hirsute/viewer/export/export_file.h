@@ -37,6 +37,9 @@ class ExportFile {
   // Opens `target` (hirsute/core/output_target.h), in `group` when given; throws
   // std::runtime_error naming the path.
   explicit ExportFile(std::filesystem::path target, OutputGroup* group = nullptr);
+  // Opens `name`, a file name Hirsute derives, in `folder`: created there without following a
+  // link, a FIFO or device at the name refused (output_folder.h).
+  ExportFile(const OutputFolder& folder, const std::string& name, OutputGroup* group = nullptr);
   ExportFile(const ExportFile&) = delete;
   ExportFile& operator=(const ExportFile&) = delete;
 

@@ -28,6 +28,11 @@ struct ObjOptions {
   int discSegments = 16;
   // The outputs this scene is committed with (output_target.h); none: on its own.
   OutputGroup* group = nullptr;
+  // The folder the scene is written into under a name Hirsute made itself (the frames of
+  // `simulate -o DIR`): the scene is `target`'s file name in it, created there as the side files
+  // are (output_folder.h). None: `target` is the name the user typed (output_target.h), and the
+  // side files go into the folder it is in.
+  const OutputFolder* folder = nullptr;
 };
 
 struct ObjExportStats {
@@ -95,10 +100,14 @@ class ObjWriter : public ScenePrinter {
   void putVertexPosition(const glm::vec3& p);  // `v x y z`, without the line's end
   void writeMaterialLibrary();
   void writeTextureOnce(int texture);
+  // The folder of the side files (the .mtl, texture images), opened when the first is written.
+  const OutputFolder& sideFolder();
 
-  std::filesystem::path target_, mtlTarget_;
+  std::filesystem::path target_;
+  std::string mtlName_;  // the material library's file name, beside the OBJ
   ObjOptions options_;
   ExportFile out_;
+  std::optional<OutputFolder> sideFolder_;
   const Scene* scene_ = nullptr;
   NumberFormat position_{6, true};
   NumberFormat normal_{4, true};

@@ -36,6 +36,11 @@ struct PovOptions {
   std::optional<Bounds> fitBounds;
   // The outputs this scene is committed with (output_target.h); none: on its own.
   OutputGroup* group = nullptr;
+  // The folder the scene is written into under a name Hirsute made itself (the frames of
+  // `simulate -o DIR`): the scene is `target`'s file name in it, created there as the side files
+  // are (output_folder.h). None: `target` is the name the user typed (output_target.h), and the
+  // side files go into the folder it is in.
+  const OutputFolder* folder = nullptr;
   // The path tracer's light set-up instead of the view's GL lights (docs/export.md, "The
   // tracer's lights"): its spherical light as an area light, its sky as an emitting dome seen
   // by radiosity, and the view file's `translucency:` as backside diffuse.
@@ -129,9 +134,13 @@ class PovWriter : public ScenePrinter {
   void writePrimitive(const Primitive& primitive, const std::string* texture);
   void vector(const glm::vec3& v, NumberFormat format);
 
+  // The folder of the side files (texture images), opened when the first is written.
+  const OutputFolder& sideFolder();
+
   std::filesystem::path target_;
   PovOptions options_;
   ExportFile out_;
+  std::optional<OutputFolder> sideFolder_;
   const Scene* scene_ = nullptr;
   Camera camera_;
   float worldPerPixel_ = 0;

@@ -14,10 +14,11 @@ namespace hirsute {
 // "plant.pov" → "plant_texture1.png" for index 0.
 std::string textureFileName(const std::filesystem::path& target, int index);
 
-// Writes `texture`'s pixels (RGBA, row 0 at the top) as a PNG at `file`, atomically (with the
-// outputs of `group` when given). Throws std::runtime_error when it cannot,
-// std::invalid_argument when the texture has no pixels.
-void writeTexturePng(const Texture& texture, const std::filesystem::path& file,
+// Writes `texture`'s pixels (RGBA, row 0 at the top) as a PNG named `name` in `folder`, created
+// there without following a link (output_folder.h), atomically (with the outputs of `group` when
+// given). Throws std::runtime_error when it cannot, std::invalid_argument when the texture has
+// no pixels.
+void writeTexturePng(const Texture& texture, const OutputFolder& folder, const std::string& name,
                      OutputGroup* group = nullptr);
 
 }  // namespace hirsute

@@ -4,7 +4,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <string>
 #include <vector>
+
+#include "hirsute/core/output_folder.h"
 
 namespace hirsute {
 
@@ -29,6 +32,9 @@ struct RgbaImage {
 // cannot write …") on failure, leaving no file behind.
 void writePng(const std::filesystem::path& path, const RgbaImage& image,
               OutputGroup* group = nullptr);
+// The same under `name`, a name the program makes up (a screenshot's), in `folder`: created there
+// without following a link planted at the name (hirsute/core/output_folder.h).
+void writePng(const OutputFolder& folder, const std::string& name, const RgbaImage& image);
 
 // Writes linear RGB (`pixels`: width × height, row 0 at the top, 1 = white) as a 16-bit PNG of
 // linear light (gAMA 1.0), for compositing; values are clamped to [0, 1]. Written like writePng.
