@@ -254,39 +254,69 @@ bool namesThisMachine(const std::string& sshLogin) {
 // and includes a file of its own) or a string naming a path ('/' in it). A host of --sshlogin runs
 // POV-Ray where this machine cannot confine it, so such a scene does not travel.
 std::optional<std::string> fileAccessIn(const fs::path& scene) {
-  std::ifstream in(scene, std::ios::binary);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  bool inString = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (inString) {
-      if (c == '\\' && i + 1 < text.size()) {
-        ++i;
-      } else if (c == '"') {
-        inString = false;
-      } else if (c == '/') {
-        return std::string("a path in a string");
-      }
-      continue;
-    }
+  // Read as it streams (a scene of hairs may be hundreds of megabytes), past comments.
+  enum class State { Code, Slash, String, Escape, LineComment, BlockComment, BlockStar, Directive };
+  State state = State::Code;
+  std::string word;
+  const auto code = [&](char c) {
     if (c == '"') {
-      inString = true;
-    } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
-      i = std::min(text.find('\n', i), text.size());  // a comment to the end of the line
-    } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
-      i = std::min(text.find("*/", i + 2), text.size()) + 1;
+      state = State::String;
+    } else if (c == '/') {
+      state = State::Slash;
     } else if (c == '#') {
-      std::size_t word = i + 1;
-      while (word < text.size() && (text[word] == ' ' || text[word] == '\t')) ++word;
-      for (const char* directive : {"fopen", "read", "write", "include"}) {
-        if (text.compare(word, std::strlen(directive), directive) == 0) {
-          std::string found = "#";
-          found += directive;
-          return found;
+      state = State::Directive;
+      word.clear();
+    } else {
+      state = State::Code;
+    }
+  };
+  std::ifstream in(scene, std::ios::binary);
+  for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
+    const char c = *it;
+    switch (state) {
+      case State::Code:
+        code(c);
+        break;
+      case State::Slash:
+        if (c == '/')
+          state = State::LineComment;
+        else if (c == '*')
+          state = State::BlockComment;
+        else
+          code(c);
+        break;
+      case State::String:
+        if (c == '/') return std::string("a path in a string");
+        if (c == '\\') state = State::Escape;
+        if (c == '"') state = State::Code;
+        break;
+      case State::Escape:
+        state = State::String;
+        break;
+      case State::LineComment:
+        if (c == '\n') state = State::Code;
+        break;
+      case State::BlockComment:
+        if (c == '*') state = State::BlockStar;
+        break;
+      case State::BlockStar:
+        state = c == '/' ? State::Code : c == '*' ? State::BlockStar : State::BlockComment;
+        break;
+      case State::Directive:
+        if ((c == ' ' || c == '\t') && word.empty()) break;
+        if (std::isalpha(static_cast<unsigned char>(c)) && word.size() < 16) {
+          word += c;
+          break;
         }
-      }
+        for (const char* directive : {"fopen", "read", "write", "include"})
+          if (word == directive) return "#" + word;
+        code(c);
+        break;
     }
   }
+  if (state == State::Directive)
+    for (const char* directive : {"fopen", "read", "write", "include"})
+      if (word == directive) return "#" + word;
   return std::nullopt;
 }
 
@@ -452,8 +482,10 @@ class EscapedLines {
       pending_.erase(0, end + 1);
     }
   }
-  ~EscapedLines() {
+  // The last line, when it had no newline.
+  void finish() {
     if (!pending_.empty()) std::cerr << printableText(pending_) << '\n';
+    pending_.clear();
   }
 
  private:
@@ -552,8 +584,9 @@ int runRenderFrames(const RenderFramesOptions& o) {
         for (const std::string& texture : frame->textures) std::cout << ' ' << texture;
       std::cout << '\n';
     }
-    std::cout << fmt::format("{} frame{}: {} to render, {} already done\n", frames.size(),
-                             frames.size() == 1 ? "" : "s", toRender.size(), alreadyDone);
+    std::cout << fmt::format("{} frame{}: {} to render, {} already done{}\n", frames.size(),
+                             frames.size() == 1 ? "" : "s", toRender.size(), alreadyDone,
+                             refused > 0 ? fmt::format(", {} refused", refused) : std::string());
     return kExitOk;
   }
 
@@ -603,6 +636,7 @@ int runRenderFrames(const RenderFramesOptions& o) {
   request.onOutput = [&lines](std::string_view text) { lines.add(text); };
   const auto start = std::chrono::steady_clock::now();
   const ChildResult run = runChild(request);
+  lines.finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!run.started) {

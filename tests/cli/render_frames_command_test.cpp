@@ -391,6 +391,8 @@ TEST(RenderFramesCommand, OverSshAScenesThatAsksForFilesDoesNotTravel) {
       << run.err;
   EXPECT_NE(run.out.find("\nframe-0001.pov\n"), std::string::npos) << run.out;
   EXPECT_EQ(run.out.find("\nframe-0002.pov\n"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("3 frames: 1 to render, 0 already done, 2 refused"), std::string::npos)
+      << run.out;
 }
 
 // The processes descended from `root`, by id, with their command names.
