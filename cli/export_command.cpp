@@ -2,6 +2,7 @@
 // its material library and/or its organs as CSV tables (docs/export.md), and, with --render, the
 // POV-Ray scene rendered by the installed povray.
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "command.h"
+#include "hirsute/core/diagnostic.h"
 #include "hirsute/core/output_target.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/organ_writer.h"
@@ -30,6 +32,7 @@ struct ExportOptions {
   bool render = false;
   bool traceLights = false;  // the path tracer's lights (PovOptions::traceLights)
   int width = 800, height = 600;
+  int renderTimeout = 3600;  // seconds POV-Ray may run for --render
 };
 
 int runExport(ExportOptions o) {
@@ -85,28 +88,23 @@ int runExport(ExportOptions o) {
                  "install povray)\n";
     return kExitIoError;
   }
-  // The image's name is the program's own, beside the scene's: POV-Ray writes a temporary file
-  // made in that folder without following a link, renamed over the name when it is done
-  // (output_folder.h).
-  std::optional<OutputTarget> image;
-  try {
-    const std::filesystem::path pov(o.pov);
-    image.emplace(OutputFolder(pov.parent_path()),
-                  std::filesystem::path(pov.filename()).replace_extension(".png").string());
-  } catch (const std::runtime_error& e) {
-    std::cerr << e.what() << '\n';
+  std::filesystem::path image = std::filesystem::path(o.pov).replace_extension(".png");
+  PovrayRun run =
+      runPovray(o.pov, image, o.width, o.height, true, std::chrono::seconds(o.renderTimeout));
+  // POV-Ray's messages quote the scene: its control bytes are shown escaped.
+  std::cerr << printableText(run.messages);
+  if (run.interruptedBy != 0) {
+    std::cerr << "hirsute: stopped by signal " << run.interruptedBy << "; POV-Ray was ended\n";
+    return 128 + run.interruptedBy;
+  }
+  if (run.timedOut) {
+    std::cerr << printableText(o.pov) << ": error: POV-Ray ran for more than " << o.renderTimeout
+              << " s (--render-timeout) and was stopped; no image was written\n";
     return kExitIoError;
   }
-  PovrayRun run = runPovray(o.pov, image->writtenPath(), o.width, o.height, true);
-  std::cerr << run.messages;
   if (run.exitStatus != 0) {
-    std::cerr << o.pov << ": error: povray failed (exit status " << run.exitStatus << ")\n";
-    return kExitIoError;
-  }
-  try {
-    image->commit();
-  } catch (const std::runtime_error& e) {
-    std::cerr << e.what() << '\n';
+    std::cerr << printableText(o.pov) << ": error: povray failed (exit status " << run.exitStatus
+              << ")\n";
     return kExitIoError;
   }
   return kExitOk;
@@ -147,6 +145,11 @@ void registerExportCommand(CLI::App& app, Action& action) {
       "--render", options->render,
       "Render the POV-Ray scene with the installed povray, to the .pov's name with .png");
   render->needs(command->get_option("--pov"));
+  command
+      ->add_option("--render-timeout", options->renderTimeout,
+                   "Seconds POV-Ray may run for --render before it is stopped (default 3600)")
+      ->check(CLI::Range(1, 7 * 24 * 3600))
+      ->needs(render);
   command
       ->add_option("--width", options->width,
                    "Image width in pixels: the camera's aspect, the size of pixel-wide lines, "

@@ -2,11 +2,16 @@
 // images beside them by POV-Ray, run by GNU parallel on this machine's cores or over ssh on
 // others. Frames already rendered are kept, and no image appears before it is whole
 // (docs/dynamics.md, "Rendering the frames").
+//
+// The scenes are untrusted (POV-Ray's language reads and writes files), so parallel and POV-Ray
+// write only into a work folder of their own that this command makes inside DIR, confined to it
+// (child_confinement.h); finished images and the job log are then renamed into DIR, which
+// replaces a link planted there instead of writing through it. A scene's name reaches POV-Ray's
+// option parser only when it is made of letters, digits, '.', '_' and '-'.
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
+#include <stdlib.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,14 +28,18 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include "command.h"
+#include "hirsute/core/child_confinement.h"
+#include "hirsute/core/child_process.h"
+#include "hirsute/core/diagnostic.h"
+#include "hirsute/core/model_folder.h"
 #include "hirsute/core/program_path.h"
-
-extern char** environ;
 
 namespace hirsute::cli {
 namespace {
@@ -43,6 +52,7 @@ struct RenderFramesOptions {
   std::optional<int> height;
   std::optional<int> jobs;
   std::vector<std::string> sshLogins;
+  int frameTimeout = 3600;
   bool antialias = false;
   bool force = false;
   bool dryRun = false;
@@ -50,34 +60,44 @@ struct RenderFramesOptions {
 
 constexpr int kDefaultWidth = 800;  // simulate's own default size
 constexpr int kDefaultHeight = 600;
+constexpr int kMaxSide = 16384;  // as every command that makes pictures
 constexpr const char* kJobLog = "render-frames.log";
+constexpr const char* kWorkPrefix = ".render-frames-";
+// POV-Ray's exit status under `timeout` when a frame passed --frame-timeout (coreutils'
+// timeout: 124 after SIGTERM, 128 + 9 when SIGKILL followed a second later).
+constexpr int kTimedOut = 124;
+constexpr int kKilledAfterTimeOut = 137;
 
 // What each job runs, in /bin/sh whatever the user's shell: $1 the scene, $2 its name without
-// .pov, $3 and $4 the size, $5 the antialiasing option. POV-Ray writes a hidden name (it adds
-// .png itself), renamed over the image only when it rendered; otherwise the hidden file goes and
-// POV-Ray's last lines (its error, past its banner) are printed. The names are in double quotes
-// for POV-Ray's option parser too, which splits at spaces. No single quote, no `!`, no braces:
-// the script travels inside single quotes through GNU parallel and a remote login shell.
+// .pov, $3 and $4 the size, $5 the antialiasing option, $6 the work folder, $7 the time limit.
+// It marks the frame started, then POV-Ray, under `timeout` (which ends POV-Ray's whole process
+// group), renders a hidden name in the work folder (it adds .png itself), renamed there only
+// when it rendered; otherwise the hidden file goes and POV-Ray's last lines (its error, past its
+// banner) are printed. Every name is made of letters, digits and `._-`, so that none is split or
+// read as an option by POV-Ray's option parser. No single quote, no `!`, no braces: the script
+// travels inside single quotes through GNU parallel and a remote login shell.
 constexpr const char* kJobScript =
-    R"sh(o=$(povray "+I\"$1\"" "+O\".$2.part\"" "+W$3" "+H$4" "$5" -D +FN 2>&1); s=$?; )sh"
-    R"sh(if [ $s -eq 0 ] && [ -s ".$2.part.png" ] && )sh"
-    R"sh(mv -f ".$2.part.png" "$2.png"; then exit 0; fi; rm -f ".$2.part.png"; )sh"
-    R"sh(printf "%s\n" "$o" | tail -n 6 >&2; [ $s -eq 0 ] && s=1; exit $s)sh";
+    R"sh(mkdir -p "$6" && : > "$6/$2.started" || exit 1; )sh"
+    R"sh(o=$(timeout -k 1 "$7" povray "+I$1" "+O$6/.$2.part.png" "+W$3" "+H$4" "$5" -D +FN 2>&1); )sh"
+    R"sh(s=$?; if [ $s -eq 0 ] && [ -s "$6/.$2.part.png" ] && )sh"
+    R"sh(mv -f "$6/.$2.part.png" "$6/$2.png"; then exit 0; fi; rm -f "$6/.$2.part.png"; )sh"
+    R"sh(if [ $s -ne 124 ] && [ $s -ne 137 ]; then printf "%s\n" "$o" | tail -n 6 >&2; fi; )sh"
+    R"sh([ $s -eq 0 ] && s=1; exit $s)sh";
 
-// The hidden name the job script renders frame `stem` into.
-std::string partialImageName(const std::string& stem) {
-  std::string name = ".";
-  name += stem;
-  name += ".part.png";
-  return name;
+// Whether `name` can be handed to POV-Ray and parallel as it is: letters, digits, '.', '_' and
+// '-' only (POV-Ray's option parser splits at spaces and reads quotes and +/- as options).
+bool plainName(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+           c == '_' || c == '-';
+  });
 }
 
 // One scene to render; names are file names in the folder.
 struct Frame {
-  std::string scene;                       // frame-0007.pov
-  std::string stem;                        // frame-0007
-  std::vector<std::string> textures;       // frame-0007_texture1.png, … written beside it
-  std::optional<struct stat> imageBefore;  // frame-0007.png before the run
+  std::string scene;                  // frame-0007.pov
+  std::string stem;                   // frame-0007
+  std::vector<std::string> textures;  // frame-0007_texture1.png, … written beside it
 };
 
 // The status of `file` itself (a link is not followed) when it is a regular file.
@@ -90,11 +110,6 @@ std::optional<struct stat> regularFileStatus(const fs::path& file) {
 bool modifiedAfter(const struct stat& a, const struct stat& b) {
   return a.st_mtim.tv_sec != b.st_mtim.tv_sec ? a.st_mtim.tv_sec > b.st_mtim.tv_sec
                                               : a.st_mtim.tv_nsec > b.st_mtim.tv_nsec;
-}
-
-bool sameFile(const struct stat& a, const struct stat& b) {
-  return a.st_dev == b.st_dev && a.st_ino == b.st_ino && a.st_size == b.st_size &&
-         a.st_mtim.tv_sec == b.st_mtim.tv_sec && a.st_mtim.tv_nsec == b.st_mtim.tv_nsec;
 }
 
 // Whether `image` is a whole PNG: it starts with the PNG signature and ends with the IEND chunk
@@ -145,23 +160,31 @@ std::optional<std::string> textureOwner(const std::string& name) {
   return name.substr(0, at);
 }
 
-// The folder's scenes, frame-*.pov, in order, with their textures. Only regular files count:
-// a link is left out with a warning, so that nothing outside the folder is read or written.
+// The folder's scenes, frame-*.pov, in order, with their textures. Only regular files with plain
+// names count: a link or a name POV-Ray would misread is left out with a warning, so that
+// nothing outside the folder is read and no name becomes an option.
 std::vector<Frame> framesIn(const fs::path& folder) {
   std::vector<Frame> frames;
   std::map<std::string, std::vector<std::string>> textures;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     const std::string name = entry.path().filename().string();
     if (const auto owner = textureOwner(name)) {
-      if (regularFileStatus(entry.path())) textures[*owner].push_back(name);
+      if (regularFileStatus(entry.path()) && plainName(name)) textures[*owner].push_back(name);
       continue;
     }
     if (!startsWith(name, "frame-") || !endsWith(name, ".pov") || name.size() <= 10) continue;
     if (!regularFileStatus(entry.path())) {
-      std::cerr << (folder / name).string() << ": warning: not a regular file; left out\n";
+      std::cerr << printableText((folder / name).string())
+                << ": warning: not a regular file; left out\n";
       continue;
     }
-    frames.push_back({name, name.substr(0, name.size() - 4), {}, std::nullopt});
+    if (!plainName(name)) {
+      std::cerr << printableText((folder / name).string())
+                << ": warning: a scene's name may hold only letters, digits, '.', '_' and '-' "
+                   "(POV-Ray would read the others as options); left out\n";
+      continue;
+    }
+    frames.push_back({name, name.substr(0, name.size() - 4), {}});
   }
   std::sort(frames.begin(), frames.end(),
             [](const Frame& a, const Frame& b) { return a.scene < b.scene; });
@@ -176,7 +199,7 @@ std::vector<Frame> framesIn(const fs::path& folder) {
 
 // The image size a scene was written for, from the render line at its top that the POV-Ray
 // writer puts there ("// Render: povray +Iframe-0001.pov +Oframe-0001.png +W800 +H600 …"); the
-// camera's aspect ratio is fitted to it.
+// camera's aspect ratio is fitted to it. A size past the limits counts as none.
 std::optional<std::pair<int, int>> sizeWrittenFor(const fs::path& scene) {
   std::ifstream in(scene);
   std::string line;
@@ -185,9 +208,9 @@ std::optional<std::pair<int, int>> sizeWrittenFor(const fs::path& scene) {
     const std::size_t w = line.find(" +W");
     const std::size_t h = line.find(" +H");
     if (w == std::string::npos || h == std::string::npos) return std::nullopt;
-    const int width = std::atoi(line.c_str() + w + 3);
-    const int height = std::atoi(line.c_str() + h + 3);
-    if (width < 1 || height < 1) return std::nullopt;
+    const long width = std::strtol(line.c_str() + w + 3, nullptr, 10);
+    const long height = std::strtol(line.c_str() + h + 3, nullptr, 10);
+    if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide) return std::nullopt;
     return std::pair{width, height};
   }
   return std::nullopt;
@@ -226,15 +249,124 @@ bool namesThisMachine(const std::string& sshLogin) {
   return false;
 }
 
+// The file access a scene asks of POV-Ray, when it asks for one: `#fopen`, `#read`, `#write`,
+// `#include` (also of the include files POV-Ray ships, since strings.inc's Parse_String writes
+// and includes a file of its own) or a string naming a path ('/' in it). A host of --sshlogin runs
+// POV-Ray where this machine cannot confine it, so such a scene does not travel.
+std::optional<std::string> fileAccessIn(const fs::path& scene) {
+  // Read as it streams (a scene of hairs may be hundreds of megabytes), past comments.
+  enum class State { Code, Slash, String, Escape, LineComment, BlockComment, BlockStar, Directive };
+  State state = State::Code;
+  std::string word;
+  const auto code = [&](char c) {
+    if (c == '"') {
+      state = State::String;
+    } else if (c == '/') {
+      state = State::Slash;
+    } else if (c == '#') {
+      state = State::Directive;
+      word.clear();
+    } else {
+      state = State::Code;
+    }
+  };
+  std::ifstream in(scene, std::ios::binary);
+  for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
+    const char c = *it;
+    switch (state) {
+      case State::Code:
+        code(c);
+        break;
+      case State::Slash:
+        if (c == '/')
+          state = State::LineComment;
+        else if (c == '*')
+          state = State::BlockComment;
+        else
+          code(c);
+        break;
+      case State::String:
+        if (c == '/') return std::string("a path in a string");
+        if (c == '\\') state = State::Escape;
+        if (c == '"') state = State::Code;
+        break;
+      case State::Escape:
+        state = State::String;
+        break;
+      case State::LineComment:
+        if (c == '\n') state = State::Code;
+        break;
+      case State::BlockComment:
+        if (c == '*') state = State::BlockStar;
+        break;
+      case State::BlockStar:
+        state = c == '/' ? State::Code : c == '*' ? State::BlockStar : State::BlockComment;
+        break;
+      case State::Directive:
+        if ((c == ' ' || c == '\t') && word.empty()) break;
+        if (std::isalpha(static_cast<unsigned char>(c)) && word.size() < 16) {
+          word += c;
+          break;
+        }
+        for (const char* directive : {"fopen", "read", "write", "include"})
+          if (word == directive) return "#" + word;
+        code(c);
+        break;
+    }
+  }
+  if (state == State::Directive)
+    for (const char* directive : {"fopen", "read", "write", "include"})
+      if (word == directive) return "#" + word;
+  return std::nullopt;
+}
+
+// A folder of this run's own inside DIR (.render-frames-XXXXXX, mode 0700) where parallel and
+// POV-Ray write; removed with everything in it when the run ends.
+class WorkFolder {
+ public:
+  explicit WorkFolder(const fs::path& folder) {
+    std::string name = (folder / kWorkPrefix).string() + "XXXXXX";
+    if (!mkdtemp(name.data())) {
+      failure_ = std::strerror(errno);
+      return;
+    }
+    path_ = name;
+    fd_ = FileDescriptor(::open(name.c_str(), O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+    if (!fd_) failure_ = std::strerror(errno);
+  }
+  ~WorkFolder() {
+    std::error_code ignored;
+    if (!path_.empty()) fs::remove_all(path_, ignored);  // links in it are removed, not followed
+  }
+  WorkFolder(const WorkFolder&) = delete;
+  WorkFolder& operator=(const WorkFolder&) = delete;
+
+  explicit operator bool() const { return static_cast<bool>(fd_); }
+  const std::string& failure() const { return failure_; }
+  const fs::path& path() const { return path_; }
+  std::string name() const { return path_.filename().string(); }
+  int fd() const { return fd_.get(); }
+
+ private:
+  fs::path path_;
+  FileDescriptor fd_;
+  std::string failure_;
+};
+
 // GNU parallel's arguments (after the program) for the frames: their scene names come on its
 // standard input, NUL-separated, each followed by its textures separated by `/` (which no file
-// name holds) when they travel to other hosts.
+// name holds) when they travel to other hosts. `work` is the work folder's name in DIR.
 std::vector<std::string> parallelArguments(const RenderFramesOptions& o, int width, int height,
-                                           std::size_t texturesPerFrame) {
-  std::vector<std::string> args = {"--joblog", kJobLog, "--null", "--tagstring", "{1}"};
+                                           std::size_t texturesPerFrame, const std::string& work) {
+  std::vector<std::string> args = {"--joblog", work + "/" + kJobLog, "--null", "--tagstring",
+                                   "{1}"};
   if (o.jobs) {
     args.push_back("--jobs");
     args.push_back(std::to_string(*o.jobs));
+  } else if (o.sshLogins.empty()) {
+    // Parallel counts the cores in /proc, which it may not read here (it runs confined).
+    args.push_back("--jobs");
+    args.push_back(std::to_string(std::max(1u, std::thread::hardware_concurrency())));
   }
   if (!o.sshLogins.empty()) {
     for (const std::string& login : o.sshLogins) {
@@ -242,8 +374,8 @@ std::vector<std::string> parallelArguments(const RenderFramesOptions& o, int wid
       args.push_back(login);
     }
     // Each job in a folder of its own on its host (~/.parallel/tmp/…), removed afterwards: the
-    // scene and its textures go out, the image comes back (rsync writes it under a temporary
-    // name and renames it).
+    // scene and its textures go out, the image comes back into the work folder (rsync writes it
+    // under a temporary name and renames it).
     args.insert(args.end(), {"--workdir", "...", "--transferfile", "{1}"});
     if (texturesPerFrame > 0) args.insert(args.end(), {"--colsep", "/"});
     for (std::size_t i = 0; i < texturesPerFrame; ++i) {
@@ -253,7 +385,7 @@ std::vector<std::string> parallelArguments(const RenderFramesOptions& o, int wid
       column += "}";
       args.push_back(column);
     }
-    args.insert(args.end(), {"--return", "{1.}.png", "--cleanup"});
+    args.insert(args.end(), {"--return", work + "/{1.}.png", "--cleanup"});
   }
   // One word: parallel hands it to the shell with {1} and {1.} replaced, quoted.
   std::string command = "sh -c '";
@@ -262,7 +394,10 @@ std::vector<std::string> parallelArguments(const RenderFramesOptions& o, int wid
   command += std::to_string(width);
   command += ' ';
   command += std::to_string(height);
-  command += o.antialias ? " +A0.3" : " -A";
+  command += o.antialias ? " +A0.3 " : " -A ";
+  command += work;
+  command += ' ';
+  command += std::to_string(o.frameTimeout);
   args.push_back(command);
   return args;
 }
@@ -283,89 +418,99 @@ std::string parallelInput(const std::vector<Frame*>& frames, std::size_t texture
   return input;
 }
 
-struct ParallelRun {
-  int exitStatus = -1;  // -1: could not start
+// A job's line of parallel's job log: "Seq Host Starttime JobRuntime Send Receive Exitval
+// Signal Command", tab-separated; Seq counts the frames from 1 in the order they were given.
+struct JobRecord {
+  int exitStatus = 0;
   int signal = 0;
-  std::string failure;  // why it could not start
 };
 
-// Runs parallel in `folder` with `input` on its standard input (an unlinked temporary file, so
-// that nothing is left in the folder and no pipe can fill). While it runs, this process ignores
-// the terminal's interrupt and quit keys, as system(3) does: parallel and its jobs get them and
-// stop, and the summary still comes.
-ParallelRun runParallel(const std::string& program, const std::vector<std::string>& arguments,
-                        const fs::path& folder, const std::string& input) {
-  ParallelRun run;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> list(std::tmpfile(), std::fclose);
-  if (!list || std::fwrite(input.data(), 1, input.size(), list.get()) != input.size() ||
-      std::fflush(list.get()) != 0 || std::fseek(list.get(), 0, SEEK_SET) != 0) {
-    run.failure =
-        std::string("cannot write the list of frames to a temporary file: ") + std::strerror(errno);
-    return run;
+std::map<std::size_t, JobRecord> readJobLog(int workFd) {
+  std::map<std::size_t, JobRecord> jobs;
+  FileDescriptor log(::openat(workFd, kJobLog, O_RDONLY | O_NOFOLLOW | O_CLOEXEC));
+  if (!log) return jobs;
+  std::string text;
+  char buffer[65536];
+  for (ssize_t n; (n = ::read(log.get(), buffer, sizeof buffer)) > 0;)
+    text.append(buffer, static_cast<std::size_t>(n));
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> fields;
+    std::istringstream columns(line);
+    for (std::string field; fields.size() < 8 && std::getline(columns, field, '\t');)
+      fields.push_back(field);
+    if (fields.size() < 8 || fields[0].empty() ||
+        !std::isdigit(static_cast<unsigned char>(fields[0][0])))
+      continue;
+    jobs[std::strtoul(fields[0].c_str(), nullptr, 10)] = {std::atoi(fields[6].c_str()),
+                                                          std::atoi(fields[7].c_str())};
   }
-  std::vector<std::string> argv = {program};
-  argv.insert(argv.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argPointers;
-  for (std::string& a : argv) argPointers.push_back(a.data());
-  argPointers.push_back(nullptr);
-  // Its jobs' shell is /bin/sh, not the user's (which may be csh or fish).
-  std::vector<std::string> environment;
-  for (char** e = environ; *e; ++e)
-    if (!startsWith(*e, "PARALLEL_SHELL=")) environment.emplace_back(*e);
-  environment.emplace_back("PARALLEL_SHELL=/bin/sh");
-  std::vector<char*> envPointers;
-  for (std::string& e : environment) envPointers.push_back(e.data());
-  envPointers.push_back(nullptr);
-
-  using SignalAction = struct sigaction;
-  SignalAction ignore{}, oldInterrupt{}, oldQuit{};
-  ignore.sa_handler = SIG_IGN;
-  sigemptyset(&ignore.sa_mask);
-  sigaction(SIGINT, &ignore, &oldInterrupt);
-  sigaction(SIGQUIT, &ignore, &oldQuit);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
-  posix_spawn_file_actions_adddup2(&actions, fileno(list.get()), STDIN_FILENO);
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  sigset_t defaults;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
-  sigaddset(&defaults, SIGQUIT);
-  sigaddset(&defaults, SIGPIPE);
-  posix_spawnattr_setsigdefault(&attributes, &defaults);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, program.c_str(), &actions, &attributes, argPointers.data(),
-                                  envPointers.data());
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attributes);
-  if (spawned == 0) {
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    run.exitStatus = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    run.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-  } else {
-    run.failure = std::string("cannot run ") + program + ": " + std::strerror(spawned);
-  }
-  sigaction(SIGINT, &oldInterrupt, nullptr);
-  sigaction(SIGQUIT, &oldQuit, nullptr);
-  return run;
+  return jobs;
 }
 
+// Renames `name` from the work folder into DIR. A link in DIR is replaced, never followed;
+// a folder, FIFO or device there is left as it is (false, with the reason).
+bool moveIntoFolder(int workFd, int folderFd, const std::string& name, std::string& failure) {
+  struct stat there {};
+  if (fstatat(folderFd, name.c_str(), &there, AT_SYMLINK_NOFOLLOW) == 0 &&
+      !S_ISREG(there.st_mode) && !S_ISLNK(there.st_mode)) {
+    failure = "is no regular file; it is left as it is";
+    return false;
+  }
+  if (renameat(workFd, name.c_str(), folderFd, name.c_str()) != 0) {
+    failure = std::string("cannot write: ") + std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+
+// Whether the work folder holds `name` as a regular file (a link is none).
+bool workHolds(int workFd, const std::string& name) {
+  struct stat st {};
+  return fstatat(workFd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode);
+}
+
+// Prints what parallel and its jobs say, line by line, with their control bytes escaped: a
+// scene's text (in POV-Ray's error) must not reach the terminal raw.
+class EscapedLines {
+ public:
+  void add(std::string_view text) {
+    pending_.append(text);
+    for (std::size_t end; (end = pending_.find('\n')) != std::string::npos;) {
+      std::cerr << printableText(pending_.substr(0, end)) << '\n';
+      pending_.erase(0, end + 1);
+    }
+  }
+  // The last line, when it had no newline.
+  void finish() {
+    if (!pending_.empty()) std::cerr << printableText(pending_) << '\n';
+    pending_.clear();
+  }
+
+ private:
+  std::string pending_;
+};
+
 int runRenderFrames(const RenderFramesOptions& o) {
-  const fs::path folder = o.folder;
+  // DIR is the user's choice, link or not; everything beneath it is reached without links.
+  std::error_code error;
+  const fs::path folder = fs::canonical(o.folder, error);
+  FileDescriptor folderFd(::open(o.folder.c_str(), O_DIRECTORY | O_CLOEXEC));
+  if (error || !folderFd) {
+    std::cerr << "hirsute: error: " << printableText(o.folder)
+              << ": cannot open: " << (error ? error.message() : std::strerror(errno)) << '\n';
+    return kExitBadInput;
+  }
   std::vector<Frame> frames = framesIn(folder);
   if (frames.empty()) {
-    std::cerr << "hirsute: error: " << o.folder
+    std::cerr << "hirsute: error: " << printableText(o.folder)
               << " holds no frame-*.pov scenes (hirsute simulate writes them)\n";
     return kExitBadInput;
   }
   for (const std::string& login : o.sshLogins) {
     if (namesThisMachine(login)) {
-      std::cerr << "hirsute: error: --sshlogin " << login
+      std::cerr << "hirsute: error: --sshlogin " << printableText(login)
                 << ": ':' (this machine) cannot be one of the hosts, since each host renders in "
                    "a folder of its own that this machine's jobs would not see; name it as "
                    "localhost, or leave --sshlogin out to render here\n";
@@ -374,20 +519,33 @@ int runRenderFrames(const RenderFramesOptions& o) {
   }
 
   std::vector<Frame*> toRender;
+  std::size_t refused = 0;
   for (Frame& frame : frames) {
     if (!o.force && rendered(folder, frame)) continue;
-    frame.imageBefore = regularFileStatus(folder / (frame.stem + ".png"));
+    if (!o.sshLogins.empty()) {
+      if (const auto access = fileAccessIn(folder / frame.scene)) {
+        std::cerr << (folder / frame.scene).string() << ": error: the scene uses " << *access
+                  << ", and the hosts of --sshlogin run POV-Ray unconfined; render it here\n";
+        ++refused;
+        continue;
+      }
+    }
     toRender.push_back(&frame);
   }
-  const std::size_t alreadyDone = frames.size() - toRender.size();
-  const auto summary = [&](std::size_t renderedNow, std::size_t failed, double seconds) {
-    std::cout << fmt::format("{} frame{}: {} rendered, {} already done, {} failed in {:.1f} s\n",
-                             frames.size(), frames.size() == 1 ? "" : "s", renderedNow, alreadyDone,
-                             failed, seconds);
+  const std::size_t alreadyDone = frames.size() - toRender.size() - refused;
+  struct Counts {
+    std::size_t rendered = 0, failed = 0, stopped = 0, notStarted = 0;
+  };
+  const auto summary = [&](const Counts& c, double seconds) {
+    std::cout << fmt::format(
+        "{} frame{}: {} rendered, {} already done, {} failed{}, {} not started in {:.1f} s\n",
+        frames.size(), frames.size() == 1 ? "" : "s", c.rendered, alreadyDone, c.failed,
+        c.stopped > 0 ? fmt::format(", {} stopped while rendering", c.stopped) : std::string(),
+        c.notStarted, seconds);
   };
   if (toRender.empty()) {
-    summary(0, 0, 0);
-    return kExitOk;
+    summary({0, refused, 0, 0}, 0);
+    return refused == 0 ? kExitOk : kExitIoError;
   }
 
   const std::string parallel = findOnPath("parallel");
@@ -396,7 +554,8 @@ int runRenderFrames(const RenderFramesOptions& o) {
                  "scripts/install-deps.sh installs it)\n";
     return kExitBadInput;
   }
-  if (o.sshLogins.empty() && findOnPath("povray").empty()) {
+  const std::string povray = findOnPath("povray");
+  if (o.sshLogins.empty() && povray.empty()) {
     std::cerr << "hirsute: error: povray is not on the PATH (Debian's package povray; "
                  "scripts/install-deps.sh installs it)\n";
     return kExitBadInput;
@@ -408,14 +567,15 @@ int runRenderFrames(const RenderFramesOptions& o) {
   if (!o.sshLogins.empty())
     for (const Frame* frame : toRender)
       texturesPerFrame = std::max(texturesPerFrame, frame->textures.size());
-  const std::vector<std::string> arguments = parallelArguments(o, width, height, texturesPerFrame);
 
   if (o.dryRun) {
-    std::cout << "in " << shellQuoted(o.folder)
+    const std::vector<std::string> arguments =
+        parallelArguments(o, width, height, texturesPerFrame, std::string(kWorkPrefix) + "XXXXXX");
+    std::cout << "in " << shellQuoted(printableText(folder.string()))
               << (texturesPerFrame > 0 ? ", with each frame's scene and textures ('/'-separated)"
                                        : ", with each frame's scene")
               << " NUL-terminated on its standard input:\n"
-              << shellQuoted(parallel);
+              << shellQuoted(printableText(parallel));
     for (const std::string& a : arguments) std::cout << ' ' << shellQuoted(a);
     std::cout << '\n';
     for (const Frame* frame : toRender) {
@@ -424,52 +584,121 @@ int runRenderFrames(const RenderFramesOptions& o) {
         for (const std::string& texture : frame->textures) std::cout << ' ' << texture;
       std::cout << '\n';
     }
-    std::cout << fmt::format("{} frame{}: {} to render, {} already done\n", frames.size(),
-                             frames.size() == 1 ? "" : "s", toRender.size(), alreadyDone);
+    std::cout << fmt::format("{} frame{}: {} to render, {} already done{}\n", frames.size(),
+                             frames.size() == 1 ? "" : "s", toRender.size(), alreadyDone,
+                             refused > 0 ? fmt::format(", {} refused", refused) : std::string());
     return kExitOk;
   }
 
-  // A run that was interrupted may have left its hidden partial images; they go first.
-  std::error_code ignored;
-  for (const Frame* frame : toRender) fs::remove(folder / partialImageName(frame->stem), ignored);
-  const auto start = std::chrono::steady_clock::now();
-  const ParallelRun run =
-      runParallel(parallel, arguments, folder, parallelInput(toRender, texturesPerFrame));
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (run.exitStatus < 0 && run.signal == 0) {
-    std::cerr << "hirsute: error: " << run.failure << '\n';
+  const WorkFolder work(folder);
+  if (!work) {
+    std::cerr << "hirsute: error: " << printableText(folder.string())
+              << ": cannot make a work folder in it: " << work.failure() << '\n';
+    return kExitIoError;
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> list(std::tmpfile(), std::fclose);
+  const std::string input = parallelInput(toRender, texturesPerFrame);
+  if (!list || std::fwrite(input.data(), 1, input.size(), list.get()) != input.size() ||
+      std::fflush(list.get()) != 0 || std::fseek(list.get(), 0, SEEK_SET) != 0) {
+    std::cerr << "hirsute: error: cannot write the list of frames to a temporary file: "
+              << std::strerror(errno) << '\n';
     return kExitIoError;
   }
 
-  std::size_t renderedNow = 0;
-  std::vector<const Frame*> failed;
+  // Here, parallel and all it starts read beneath DIR and POV-Ray's own folders and write in the
+  // work folder only. Remote hosts run the jobs out of reach; ssh and rsync here need the
+  // user's keys and settings, so parallel runs unconfined then (the scenes that travel ask
+  // for no file, fileAccessIn).
+  ConfinementRules rules;
+  rules.read = {folder, "/usr/share/povray-3.7", "/etc/povray"};
+  rules.write = {work.path()};
+  rules.run = {fs::canonical(parallel, error)};
+  if (!povray.empty()) rules.run.push_back(fs::canonical(povray, error));
+  rules.devices = {"/dev/null", "/dev/urandom"};
+  const ChildConfinement confinement(rules);
+  if (o.sshLogins.empty() && !confinement.available())
+    std::cerr << "hirsute: warning: this kernel has no Landlock; POV-Ray runs unconfined\n";
+
+  ChildRequest request;
+  request.program = fs::absolute(parallel).string();
+  request.arguments = {"parallel"};
+  const std::vector<std::string> arguments =
+      parallelArguments(o, width, height, texturesPerFrame, work.name());
+  request.arguments.insert(request.arguments.end(), arguments.begin(), arguments.end());
+  // Its jobs' shell is /bin/sh, not the user's (which may be csh or fish); its temporary files
+  // go in the work folder.
+  request.environment =
+      environmentWith({"PARALLEL_SHELL=/bin/sh", "TMPDIR=" + work.path().string()});
+  request.folder = folder;
+  request.input = fileno(list.get());
+  if (o.sshLogins.empty()) request.confinement = &confinement;
+  EscapedLines lines;
+  request.onOutput = [&lines](std::string_view text) { lines.add(text); };
+  const auto start = std::chrono::steady_clock::now();
+  const ChildResult run = runChild(request);
+  lines.finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!run.started) {
+    std::cerr << "hirsute: error: " << printableText(run.failure) << '\n';
+    return kExitIoError;
+  }
+
+  // Whole images go into DIR; what the jobs left half-done goes with the work folder.
+  const std::map<std::size_t, JobRecord> jobs = readJobLog(work.fd());
+  Counts counts;
+  counts.failed = refused;
+  std::size_t seq = 0;
   for (const Frame* frame : toRender) {
-    fs::remove(folder / partialImageName(frame->stem), ignored);  // left by a job that was killed
-    const auto image = regularFileStatus(folder / (frame->stem + ".png"));
-    const bool fresh = image && (!frame->imageBefore || !sameFile(*image, *frame->imageBefore));
-    if (fresh && rendered(folder, *frame)) {
-      ++renderedNow;
+    ++seq;
+    const std::string image = frame->stem + ".png";
+    const fs::path scene = folder / frame->scene;
+    std::string failure;
+    if (workHolds(work.fd(), image) && wholePng(work.path() / image)) {
+      if (moveIntoFolder(work.fd(), folderFd.get(), image, failure)) {
+        ++counts.rendered;
+      } else {
+        std::cerr << (folder / image).string() << ": error: " << failure << '\n';
+        ++counts.failed;
+      }
+      continue;
+    }
+    const auto job = jobs.find(seq);
+    if (job != jobs.end()) {
+      ++counts.failed;
+      const int status = job->second.exitStatus;
+      if (status == kTimedOut || status == kKilledAfterTimeOut) {
+        std::cerr << scene.string() << ": error: not rendered: POV-Ray ran for more than "
+                  << o.frameTimeout << " s (--frame-timeout) and was stopped\n";
+      } else {
+        std::cerr << scene.string() << ": error: not rendered\n";
+      }
+    } else if (workHolds(work.fd(), frame->stem + ".started")) {
+      ++counts.stopped;
     } else {
-      failed.push_back(frame);
+      ++counts.notStarted;
     }
   }
-  // Parallel stopped (interrupted, or an error of its own): the frames it never started are no
-  // failures worth a line each.
-  const bool stopped = run.signal != 0 || run.exitStatus == 255;
-  if (run.signal != 0) {
-    std::cerr << "hirsute: error: parallel was stopped by signal " << run.signal << '\n';
-  } else if (run.exitStatus == 255) {
-    std::cerr << "hirsute: error: parallel stopped before the end (exit status 255)\n";
-  } else {
-    for (const Frame* frame : failed)
-      std::cerr << (folder / frame->scene).string() << ": error: not rendered\n";
+  std::string failure;
+  const bool logKept =
+      workHolds(work.fd(), kJobLog) && moveIntoFolder(work.fd(), folderFd.get(), kJobLog, failure);
+  if (!failure.empty())
+    std::cerr << (folder / kJobLog).string() << ": warning: the job log " << failure << '\n';
+  if (run.interruptedBy != 0) {
+    std::cerr << "hirsute: stopped by signal " << run.interruptedBy
+              << "; parallel and POV-Ray were ended, and a second run renders what is missing\n";
+  } else if (run.exitStatus == 255 || run.signal != 0) {
+    std::cerr << "hirsute: error: parallel stopped before the end ("
+              << (run.signal != 0 ? "signal " + std::to_string(run.signal)
+                                  : std::string("exit status 255"))
+              << ")\n";
   }
-  if (!failed.empty())
+  if (counts.failed > refused && logKept)
     std::cerr << "hirsute: the jobs and their exit codes are in " << (folder / kJobLog).string()
               << '\n';
-  summary(renderedNow, failed.size(), seconds);
-  return failed.empty() && !stopped ? kExitOk : kExitIoError;
+  summary(counts, seconds);
+  if (run.interruptedBy != 0) return 128 + run.interruptedBy;
+  return counts.failed + counts.stopped + counts.notStarted == 0 ? kExitOk : kExitIoError;
 }
 
 }  // namespace
@@ -487,20 +716,25 @@ void registerRenderFramesCommand(CLI::App& app, Action& action) {
   command
       ->add_option("--width", o->width,
                    "The image's width (default: the size the scenes were written for, else 800)")
-      ->check(CLI::Range(1, 65536));
+      ->check(CLI::Range(1, kMaxSide));
   command
       ->add_option("--height", o->height,
                    "The image's height (default: the size the scenes were written for, else 600)")
-      ->check(CLI::Range(1, 65536));
+      ->check(CLI::Range(1, kMaxSide));
   command
       ->add_option("-j,--jobs", o->jobs,
-                   "Frames rendered at once on each machine (default: parallel's, one a core)")
+                   "Frames rendered at once on each machine (default: one a core)")
       ->check(CLI::Range(1, 100000));
   command
       ->add_option("-S,--sshlogin", o->sshLogins,
                    "A host to render on over ssh, as GNU parallel's --sshlogin takes it "
                    "([N/][user@]host, or several separated by commas); repeatable")
       ->allow_extra_args(false);
+  command
+      ->add_option("--frame-timeout", o->frameTimeout,
+                   "Seconds a frame may render before POV-Ray is stopped and the frame fails "
+                   "(default 3600)")
+      ->check(CLI::Range(1, 7 * 24 * 3600));
   command->add_flag("--antialias", o->antialias, "Anti-alias (POV-Ray's +A0.3)");
   command->add_flag("--force", o->force, "Render every frame, also those already rendered");
   command->add_flag(

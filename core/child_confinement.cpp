@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <linux/landlock.h>
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
@@ -32,10 +33,24 @@ std::uint64_t handledAccess(long abi) {
   return access;
 }
 
-// Allows `access` beneath `path`; a path that does not exist is left out.
+// The accesses Landlock takes on a file that is not a folder (others make a rule invalid).
+std::uint64_t fileAccess(std::uint64_t access) {
+  std::uint64_t file =
+      LANDLOCK_ACCESS_FS_EXECUTE | LANDLOCK_ACCESS_FS_WRITE_FILE | LANDLOCK_ACCESS_FS_READ_FILE;
+#ifdef LANDLOCK_ACCESS_FS_TRUNCATE
+  file |= LANDLOCK_ACCESS_FS_TRUNCATE;
+#endif
+  return access & file;
+}
+
+// Allows `access` beneath `path` (or on it, when it is a file); a path that does not exist is
+// left out.
 bool allowBeneath(int ruleset, const char* path, std::uint64_t access) {
   FileDescriptor where(::open(path, O_PATH | O_CLOEXEC));
   if (!where) return true;
+  struct stat status {};
+  if (fstat(where.get(), &status) != 0) return false;
+  if (!S_ISDIR(status.st_mode)) access = fileAccess(access);
   landlock_path_beneath_attr rule{};
   rule.allowed_access = access;
   rule.parent_fd = where.get();
@@ -47,7 +62,11 @@ constexpr bool kHaveLandlock = false;
 
 }  // namespace
 
-ChildConfinement::ChildConfinement(const std::filesystem::path& folder) {
+ChildConfinement::ChildConfinement(const std::filesystem::path& folder)
+    : ChildConfinement(
+          ConfinementRules{{folder.empty() ? std::filesystem::path(".") : folder}, {}, {}, {}}) {}
+
+ChildConfinement::ChildConfinement(const ConfinementRules& rules) {
   if constexpr (!kHaveLandlock) return;
 #if defined(SYS_landlock_create_ruleset) && defined(LANDLOCK_ACCESS_FS_READ_FILE)
   const long abi =
@@ -60,8 +79,21 @@ ChildConfinement::ChildConfinement(const std::filesystem::path& folder) {
   if (!ruleset) return;
   const std::uint64_t read = LANDLOCK_ACCESS_FS_READ_FILE | LANDLOCK_ACCESS_FS_READ_DIR;
   const std::uint64_t run = read | LANDLOCK_ACCESS_FS_EXECUTE;
-  const std::string model = folder.empty() ? std::string(".") : folder.string();
-  bool made = allowBeneath(ruleset.get(), model.c_str(), read);
+  // Everything a folder of one's own needs but running programs from it and making devices.
+  const std::uint64_t write =
+      attributes.handled_access_fs &
+      ~(LANDLOCK_ACCESS_FS_EXECUTE | LANDLOCK_ACCESS_FS_MAKE_CHAR | LANDLOCK_ACCESS_FS_MAKE_BLOCK);
+  const std::uint64_t device = fileAccess(attributes.handled_access_fs) &
+                               ~static_cast<std::uint64_t>(LANDLOCK_ACCESS_FS_EXECUTE);
+  bool made = true;
+  for (const std::filesystem::path& path : rules.read)
+    made = made && allowBeneath(ruleset.get(), path.c_str(), read);
+  for (const std::filesystem::path& path : rules.write)
+    made = made && allowBeneath(ruleset.get(), path.c_str(), write);
+  for (const std::filesystem::path& path : rules.run)
+    made = made && allowBeneath(ruleset.get(), path.c_str(), run);
+  for (const std::filesystem::path& path : rules.devices)
+    made = made && allowBeneath(ruleset.get(), path.c_str(), device);
   for (const char* system : {"/usr", "/lib", "/lib64", "/lib32", "/bin", "/sbin"})
     made = made && allowBeneath(ruleset.get(), system, run);
   made = made && allowBeneath(ruleset.get(), "/etc/ld.so.cache", LANDLOCK_ACCESS_FS_READ_FILE);

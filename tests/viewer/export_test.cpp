@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -609,8 +610,8 @@ TEST_F(ExportTest, PovrayWithTheTracersLightsPassesLightThroughTranslucentColour
     EXPECT_EQ(countOccurrences(pov, "radiosity{"), 1u);
     EXPECT_EQ(countOccurrences(pov, "diffuse .5,.5"), 1u) << pov;
     EXPECT_EQ(countOccurrences(pov, "no_image"), sky > 0 ? 1u : 0u);
-    const RgbaImage image = renderClean(file(std::string(name) + ".pov"),
-                                        file(std::string(name) + ".png"), true);
+    const RgbaImage image =
+        renderClean(file(std::string(name) + ".pov"), file(std::string(name) + ".png"), true);
     if (image.width == 0) return std::pair{glm::ivec3(-1), glm::ivec3(-1)};
     return std::pair{pixelAt(image, writer.camera(), {-1.2f, 0.3f, 0}),
                      pixelAt(image, writer.camera(), {1.2f, 0.3f, 0})};
@@ -652,6 +653,62 @@ TEST_F(ExportTest, PovrayLightsAMaterialSceneWithoutLightLinesFromTheEye) {
   if (image.width == 0) return;
   glm::ivec3 lit = pixelAt(image, writer.camera(), {0, 0, 0});
   EXPECT_GT(lit.r, 180) << "diffuse 0.8 under the light from the eye";
+}
+
+// ---- POV-Ray runs confined ----
+
+const fs::path kHostileScenes =
+    fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "cli" / "render_frames";
+
+TEST_F(ExportTest, PovrayRunPassesNoNameAsAnOption) {
+  SKIP_WITHOUT_POVRAY();
+  const fs::path scene = file("x\" +GAinjected.log +I\"x.pov");
+  fs::copy_file(kHostileScenes / "sphere.pov", scene);
+  std::ofstream(file("x.pov")) << "#version 3.7;\n#error \"the other scene was rendered\"\n";
+  const PovrayRun run = runPovray(scene, file("image.png"), 32, 24, false);
+  EXPECT_EQ(run.exitStatus, 0) << run.messages;
+  EXPECT_FALSE(fs::exists(file("injected.log")));
+  const RgbaImage image = readPng(file("image.png"));
+  EXPECT_EQ(image.width, 32);
+  EXPECT_EQ(image.height, 24);
+  for (const auto& entry : fs::directory_iterator(file("")))
+    EXPECT_NE(entry.path().filename().string().front(), '.') << "the work folder is removed";
+}
+
+TEST_F(ExportTest, PovrayRunReadsAndWritesNothingOutsideTheScenesFolder) {
+  SKIP_WITHOUT_POVRAY();
+  fs::create_directory(file("scene"));
+  fs::copy_file(kHostileScenes / "fopen_outside.pov", file("scene/writes.pov"));
+  PovrayRun run = runPovray(file("scene/writes.pov"), file("scene/writes.png"), 32, 24, false);
+  EXPECT_NE(run.exitStatus, 0) << run.messages;
+  EXPECT_FALSE(fs::exists(file("written-outside.txt")));
+  EXPECT_FALSE(fs::exists(file("scene/writes.png"))) << "no image from a failed run";
+
+  fs::copy_file(kHostileScenes / "include_passwd.pov", file("scene/reads.pov"));
+  run = runPovray(file("scene/reads.pov"), file("scene/reads.png"), 32, 24, false);
+  EXPECT_NE(run.exitStatus, 0) << run.messages;
+  EXPECT_EQ(run.messages.find("root:"), std::string::npos) << run.messages;
+
+  fs::copy_file(kHostileScenes / "include_outside.pov", file("scene/link.pov"));
+  fs::copy_file(kHostileScenes / "secret.inc", file("secret.inc"));
+  fs::create_symlink(file("secret.inc"), file("scene/secret.inc"));
+  run = runPovray(file("scene/link.pov"), file("scene/link.png"), 32, 24, false);
+  EXPECT_NE(run.exitStatus, 0) << run.messages;
+  EXPECT_FALSE(fs::exists(file("scene/link.png")));
+}
+
+TEST_F(ExportTest, PovrayRunStopsAtItsTimeLimit) {
+  SKIP_WITHOUT_POVRAY();
+  fs::copy_file(kHostileScenes / "endless.pov", file("endless.pov"));
+  const auto start = std::chrono::steady_clock::now();
+  const PovrayRun run =
+      runPovray(file("endless.pov"), file("endless.png"), 32, 24, false, std::chrono::seconds(1));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_TRUE(run.timedOut);
+  EXPECT_NE(run.exitStatus, 0);
+  EXPECT_LT(seconds, 5.0);
+  EXPECT_FALSE(fs::exists(file("endless.png")));
 }
 
 // ---- `hirsute export` ----

@@ -1,16 +1,22 @@
 #include "hirsute/viewer/export/povray_runner.h"
 
-#include <spawn.h>
-#include <sys/wait.h>
+#include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
-extern char** environ;
+#include "hirsute/core/child_confinement.h"
+#include "hirsute/core/child_process.h"
+#include "hirsute/core/output_folder.h"
+#include "hirsute/core/output_target.h"
+#include "hirsute/core/program_path.h"
 
 namespace hirsute {
 namespace {
@@ -51,85 +57,106 @@ double statisticSeconds(const std::string& output, const std::string& what) {
 }  // namespace
 
 bool povrayAvailable() {
-  const char* path = std::getenv("PATH");
-  if (!path) return false;
-  std::string folders(path);
-  std::size_t start = 0;
-  while (start <= folders.size()) {
-    std::size_t end = folders.find(':', start);
-    if (end == std::string::npos) end = folders.size();
-    std::filesystem::path folder =
-        end > start ? folders.substr(start, end - start) : std::string(1, '.');
-    if (access((folder / "povray").c_str(), X_OK) == 0) return true;
-    start = end + 1;
-  }
-  return false;
+  return !findOnPath("povray").empty();
 }
 
 PovrayRun runPovray(const std::filesystem::path& scene, const std::filesystem::path& image,
-                    int width, int height, bool antialias) {
+                    int width, int height, bool antialias, std::chrono::seconds timeLimit) {
   PovrayRun run;
-  std::filesystem::path absoluteScene = std::filesystem::absolute(scene);
-  std::filesystem::path absoluteImage = std::filesystem::absolute(image);
-  // (Appending rather than "+I" + name: GCC 12 warns falsely about the latter, -Wrestrict.)
-  auto option = [](const char* flag, const std::string& value) {
-    std::string text(flag);
-    text += value;
-    return text;
-  };
-  std::vector<std::string> arguments = {"povray",
-                                        option("+I", absoluteScene.filename().string()),
-                                        option("+O", absoluteImage.string()),
-                                        option("+W", std::to_string(width)),
-                                        option("+H", std::to_string(height)),
-                                        "-D",    // no display window
-                                        "+FN"};  // PNG
-  if (antialias) arguments.push_back("+A0.3");
-  std::vector<char*> argv;
-  for (std::string& a : arguments) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  int pipeFds[2];
-  if (pipe(pipeFds) != 0) {
+  const std::string povray = findOnPath("povray");
+  if (povray.empty()) {
+    run.messages = "cannot start povray: it is not on the PATH\n";
+    return run;
+  }
+  std::error_code error;
+  const std::filesystem::path absoluteScene = std::filesystem::absolute(scene, error);
+  const std::filesystem::path folder = absoluteScene.parent_path();
+  // The work folder, in the scene's folder: a link to the scene under a fixed name, and
+  // whatever POV-Ray writes of its own; removed with all in it.
+  std::string work = (folder / ".hirsute-povray-XXXXXX").string();
+  if (!mkdtemp(work.data())) {
+    run.messages = "cannot start povray: cannot make a work folder in " + folder.string() + ": " +
+                   std::strerror(errno) + '\n';
+    return run;
+  }
+  struct RemovedAtEnd {
+    std::filesystem::path path;
+    ~RemovedAtEnd() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  } removed{work};
+  const std::string workName = std::filesystem::path(work).filename().string();
+  const std::string target = "../" + absoluteScene.filename().string();
+  if (symlink(target.c_str(), (std::filesystem::path(work) / "scene.pov").c_str()) != 0) {
     run.messages = std::string("cannot start povray: ") + std::strerror(errno) + '\n';
     return run;
   }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addchdir_np(&actions, absoluteScene.parent_path().c_str());
-  posix_spawn_file_actions_adddup2(&actions, pipeFds[1], STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, pipeFds[1], STDERR_FILENO);
-  posix_spawn_file_actions_addclose(&actions, pipeFds[0]);
-  posix_spawn_file_actions_addclose(&actions, pipeFds[1]);
-  pid_t pid = 0;
-  int spawned = posix_spawnp(&pid, "povray", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  close(pipeFds[1]);
-  if (spawned != 0) {
-    close(pipeFds[0]);
-    run.messages = std::string("cannot start povray: ") + std::strerror(spawned) + '\n';
+  std::optional<OutputTarget> output;
+  try {
+    // The image's name is derived from the scene's: made in its folder without following a
+    // link planted at the name (output_folder.h).
+    output.emplace(OutputFolder(image.parent_path()), image.filename().string());
+  } catch (const std::runtime_error& e) {
+    run.messages = std::string(e.what()) + '\n';
     return run;
   }
-  std::string output;
-  char buffer[65536];
-  for (;;) {
-    ssize_t n = read(pipeFds[0], buffer, sizeof buffer);
-    if (n > 0) {
-      output.append(buffer, static_cast<std::size_t>(n));
-    } else if (n == 0 || errno != EINTR) {
-      break;
+
+  ConfinementRules rules;
+  rules.read = {folder, "/usr/share/povray-3.7", "/etc/povray"};
+  rules.write = {work};
+  rules.run = {std::filesystem::canonical(povray, error)};
+  rules.devices = {"/dev/null", "/dev/urandom"};
+  const ChildConfinement confinement(rules);
+
+  ChildRequest request;
+  request.program = std::filesystem::absolute(povray).string();
+  // Every option is ours: the scene's own name never reaches POV-Ray's option parser.
+  request.arguments = {"povray",
+                       "+I" + workName + "/scene.pov",
+                       "+O-",  // the image on the standard output
+                       "+W" + std::to_string(width),
+                       "+H" + std::to_string(height),
+                       "-D",    // no display window
+                       "+FN"};  // PNG
+  if (antialias) request.arguments.push_back("+A0.3");
+  request.environment = environmentWith({"TMPDIR=" + work});
+  request.folder = folder;
+  request.output = output->descriptor();
+  request.confinement = &confinement;
+  request.timeLimit = timeLimit;
+  std::string text;
+  constexpr std::size_t kMaxOutput = 4 << 20;  // a scene's #debug may say much more
+  request.onOutput = [&text](std::string_view part) {
+    if (text.size() < kMaxOutput) text.append(part.substr(0, kMaxOutput - text.size()));
+  };
+  const ChildResult child = runChild(request);
+  if (!child.started) {
+    run.messages = "cannot start povray: " + child.failure + '\n';
+    return run;
+  }
+  run.timedOut = child.timedOut;
+  run.interruptedBy = child.interruptedBy;
+  run.exitStatus = child.signal != 0 ? 128 + child.signal : child.exitStatus;
+  run.messages = problemsIn(text);
+  if (run.exitStatus != 0 && run.messages.empty()) run.messages = text;  // failed before parsing
+  run.parseSeconds = statisticSeconds(text, "Parse Time:");
+  run.boundingSeconds = statisticSeconds(text, "Bounding Time:");
+  run.traceSeconds = statisticSeconds(text, "Trace Time:");
+  if (run.exitStatus == 0) {
+    struct stat written {};
+    if (fstat(output->descriptor(), &written) != 0 || written.st_size == 0) {
+      run.exitStatus = 1;
+      run.messages += "povray wrote no image\n";
+      return run;
+    }
+    try {
+      output->commit();
+    } catch (const std::runtime_error& e) {
+      run.exitStatus = 1;
+      run.messages += std::string(e.what()) + '\n';
     }
   }
-  close(pipeFds[0]);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  run.exitStatus = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  run.messages = problemsIn(output);
-  if (run.exitStatus != 0 && run.messages.empty()) run.messages = output;  // failed before parsing
-  run.parseSeconds = statisticSeconds(output, "Parse Time:");
-  run.boundingSeconds = statisticSeconds(output, "Bounding Time:");
-  run.traceSeconds = statisticSeconds(output, "Trace Time:");
   return run;
 }
 

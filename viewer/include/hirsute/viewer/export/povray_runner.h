@@ -1,7 +1,15 @@
 // Runs the installed POV-Ray on an exported scene, without a display, and reports what it said:
 // `hirsute export --render`, the export tests and the export benchmark use it.
+//
+// A scene is untrusted code (POV-Ray's language reads and writes files), so POV-Ray runs
+// confined (child_confinement.h): it reads beneath the scene's folder and POV-Ray's own folders
+// and writes only a private work folder; the image comes on its standard output into a
+// temporary file renamed over the image when POV-Ray succeeded. The scene reaches POV-Ray's
+// option parser under a fixed name (a link in the work folder), never its own, and POV-Ray and
+// all it starts end when the time limit passes.
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <string>
 
@@ -17,6 +25,8 @@ struct PovrayRun {
   double parseSeconds = -1;
   double boundingSeconds = -1;
   double traceSeconds = -1;
+  bool timedOut = false;  // stopped at the time limit
+  int interruptedBy = 0;  // stopped because this process received SIGINT, SIGTERM or SIGHUP
 
   bool clean() const { return exitStatus == 0 && messages.empty(); }
 };
@@ -24,9 +34,11 @@ struct PovrayRun {
 // Whether an executable `povray` is on the PATH.
 bool povrayAvailable();
 
-// Renders `scene` to the PNG `image` at width × height, anti-aliased when asked. POV-Ray runs in
-// the scene's folder, so that the texture images written beside it are found.
+// Renders `scene` to the PNG `image` at width × height, anti-aliased when asked, in at most
+// `timeLimit`. POV-Ray runs in the scene's folder, so that the texture images written beside it
+// are found. The image is written only when POV-Ray succeeded.
 PovrayRun runPovray(const std::filesystem::path& scene, const std::filesystem::path& image,
-                    int width, int height, bool antialias);
+                    int width, int height, bool antialias,
+                    std::chrono::seconds timeLimit = std::chrono::seconds(3600));
 
 }  // namespace hirsute
