@@ -69,6 +69,10 @@ double signedArea(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c)
 // spherical cap of 30° laid flat conformally).
 constexpr double kChartCone = 30.0 * 3.14159265358979323846 / 180.0;
 
+// The most triangles a chart holds: the conformal map's sparse solve grows faster than its
+// size, so that a fine mesh is cut into more charts of bounded cost.
+constexpr std::size_t kMaxChartTriangles = 4096;
+
 class ChartBuilder {
  public:
   ChartBuilder(const std::vector<glm::dvec3>& positions, const std::vector<std::uint32_t>& indices,
@@ -136,7 +140,7 @@ class ChartBuilder {
     while (!pending.empty()) {
       std::vector<std::uint32_t> faces = std::move(pending.back());
       pending.pop_back();
-      if (!flatten(faces, cornerUv)) {
+      if (faces.size() > kMaxChartTriangles || !flatten(faces, cornerUv)) {
         auto [first, second] = split(faces);
         pending.push_back(std::move(first));
         pending.push_back(std::move(second));
