@@ -542,6 +542,7 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
                                                           glm::dvec2(1e-300));
     data.uv.clear();
     for (const glm::dvec3& p : data.positions) data.uv.emplace_back((glm::dvec2(p) - low) / span);
+    parameteriseCharts(data.positions, data.indices, welded, data.atlasUv, data.atlasChart);
   }
   return data;
 }

@@ -112,6 +112,15 @@ std::size_t appendMesh(Scene& scene, const Surface& surface, const SurfacePlacem
       record.flow.assign(data.positions.size(), flow);
     }
     for (const glm::vec3& colour : data.colours) record.blend.push_back(colour.r);
+    if (!data.atlasUv.empty()) {
+      // Corner by corner as the triangles were written (a mirroring placement swaps two).
+      record.atlasChart = data.atlasChart;
+      for (std::size_t t = 0; t + 2 < data.atlasUv.size(); t += 3) {
+        record.atlasUv.push_back(data.atlasUv[t]);
+        record.atlasUv.push_back(data.atlasUv[t + (mirrored ? 2 : 1)]);
+        record.atlasUv.push_back(data.atlasUv[t + (mirrored ? 1 : 2)]);
+      }
+    }
     scene.organSurfaces.push_back(std::move(record));
   }
   return data.triangles();

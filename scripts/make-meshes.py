@@ -15,7 +15,10 @@ Each mesh is made here from formulas, so that the models carry no file of unknow
   mesh-bird/nod.NNNN.obj  the same bird, coarser, nodding over 12 frames: a mesh sequence of
                        the same vertices and triangles in every frame, for `hirsute simulate`;
   tests/fixtures/interpreter/bending-strip.gltf  a strip skinned to two bones, the upper one
-                       turning 90 degrees about x over a second: an animated file.
+                       turning 90 degrees about x over a second: an animated file;
+  tests/fixtures/hairs/torus.ply, bumpy-sphere.ply  closed meshes of positions and triangles
+                       only (no texture coordinates): a torus of radii 3 and 1, and a sphere of
+                       radius 2 with bumps, for the fur's atlas of charts.
 
 Run from the repository root: python3 scripts/make-meshes.py
 """
@@ -286,6 +289,60 @@ def skinned_strip():
     }
     return json.dumps(gltf, indent=1)
 
+def torus(ring=48, sides=20, big=3.0, small=1.0):
+    """A closed torus about z: positions and counter-clockwise triangles, outward."""
+    points, triangles = [], []
+    for i in range(ring):
+        a = 2.0 * math.pi * i / ring
+        for j in range(sides):
+            b = 2.0 * math.pi * j / sides
+            r = big + small * math.cos(b)
+            points.append((r * math.cos(a), r * math.sin(a), small * math.sin(b)))
+    for i in range(ring):
+        for j in range(sides):
+            p = i * sides + j
+            q = ((i + 1) % ring) * sides + j
+            p1 = i * sides + (j + 1) % sides
+            q1 = ((i + 1) % ring) * sides + (j + 1) % sides
+            triangles += [(p, q, q1), (p, q1, p1)]
+    return points, triangles
+
+
+def bumpy_sphere(level=4, radius=2.0, bump=0.12):
+    """An icosahedron subdivided `level` times onto a sphere whose radius rises and falls in
+    bumps: positions and counter-clockwise triangles, outward."""
+    t = (1.0 + math.sqrt(5.0)) / 2.0
+    points = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+              (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    points = [tuple(c / math.sqrt(sum(x * x for x in p)) for c in p) for p in points]
+    triangles = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9),
+                 (5, 11, 4), (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2),
+                 (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10),
+                 (8, 6, 7), (9, 8, 1)]
+    for _ in range(level):
+        middle = {}
+
+        def half(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in middle:
+                m = [(x + y) / 2.0 for x, y in zip(points[a], points[b])]
+                n = math.sqrt(sum(x * x for x in m))
+                points.append(tuple(x / n for x in m))
+                middle[key] = len(points) - 1
+            return middle[key]
+
+        finer = []
+        for a, b, c in triangles:
+            ab, bc, ca = half(a, b), half(b, c), half(c, a)
+            finer += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        triangles = finer
+    bumpy = []
+    for x, y, z in points:
+        r = radius * (1.0 + bump * math.sin(5.0 * x) * math.sin(4.0 * y + 1.0) * math.cos(3.0 * z))
+        bumpy.append((r * x, r * y, r * z))
+    return bumpy, triangles
+
+
 def main():
     points, triangles = leaf()
     write_ply(os.path.join(ROOT, "models/mesh-leaf/leaf.ply"), points, triangles,
@@ -306,6 +363,9 @@ def main():
                   "frame %d of the nodding bird, made by scripts/make-meshes.py" % k)
     with open(os.path.join(ROOT, "tests/fixtures/interpreter/bending-strip.gltf"), "w") as out:
         out.write(skinned_strip() + "\n")
+    for name, (points, faces) in (("torus", torus()), ("bumpy-sphere", bumpy_sphere())):
+        write_ply(os.path.join(ROOT, "tests/fixtures/hairs/%s.ply" % name), points, faces,
+                  "%s made by scripts/make-meshes.py" % name)
     print("leaf.ply: %d triangles; body.obj: %d triangles; bird.obj: %d triangles"
           % (len(triangles), len(faces), len(bird[3])))
     return 0

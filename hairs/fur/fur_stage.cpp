@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <unordered_map>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -225,9 +226,8 @@ void finishSurface(SurfaceBuilder& b, const FurAttributes& fur, const FurSetting
 // A `~` patch or a polygon with fur on (OrganSurface): (u, v) from its plane coordinates (the
 // placement engine's PatchUnfolding: lengths the surface's own on average), both divided by the
 // larger extent so that droplets stay round, the fur texture tiled over them in world units.
-void addOrganSurface(Scene& scene, const OrganSurface& organ, int record,
-                     const FurSettings& settings, int textureIndex) {
-  const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(organ.mesh)];
+void addFlatSurface(Scene& scene, const OrganSurface& organ, const TriangleMesh& mesh, int record,
+                    const FurSettings& settings, int textureIndex) {
   const PatchUnfolding unfolding(organ, mesh);
   const FurAttributes& fur = scene.organ<FurPart>().attributes[static_cast<std::size_t>(record)];
   FurSurface s;
@@ -286,6 +286,43 @@ void addOrganSurface(Scene& scene, const OrganSurface& organ, int record,
   s.texcoordsPerUv = glm::vec2(extent / tile);
   for (const glm::vec2& uv : s.uv) s.texcoords.push_back(uv * s.texcoordsPerUv);
   completeSurface(std::move(s), fur, settings, tile, textureIndex, scene);
+}
+
+// A `~` patch, a polygon or a mesh with fur on. A mesh without texture coordinates that is no
+// disc grows its fur through its atlas of charts (OrganSurface::atlasUv): its vertices are
+// copied once for each chart they belong to, each copy with its chart's (u, v), so that the
+// fur's surface lies flat chart by chart as a file's atlas does.
+void addOrganSurface(Scene& scene, const OrganSurface& organ, int record,
+                     const FurSettings& settings, int textureIndex) {
+  const TriangleMesh& mesh = scene.meshes[static_cast<std::size_t>(organ.mesh)];
+  const std::size_t triangles = organ.indexCount / 3;
+  if (organ.kind != OrganSurfaceKind::Mesh || organ.atlasUv.size() != 3 * triangles ||
+      organ.atlasChart.size() != triangles) {
+    addFlatSurface(scene, organ, mesh, record, settings, textureIndex);
+    return;
+  }
+  TriangleMesh charts;
+  charts.material = mesh.material;
+  OrganSurface cut;
+  cut.kind = organ.kind;
+  cut.organs = organ.organs;
+  std::unordered_map<std::uint64_t, std::uint32_t> copyOf;  // (chart, vertex) → its copy
+  for (std::size_t t = 0; t < triangles; ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t vertex = mesh.indices[organ.firstIndex + 3 * t + k];
+      const std::uint64_t key = static_cast<std::uint64_t>(organ.atlasChart[t]) << 32 | vertex;
+      const auto [at, added] =
+          copyOf.emplace(key, static_cast<std::uint32_t>(charts.positions.size()));
+      if (added) {
+        charts.positions.push_back(mesh.positions[vertex]);
+        charts.normals.push_back(mesh.normals[vertex]);
+        cut.uv.push_back(organ.atlasUv[3 * t + k]);
+      }
+      charts.indices.push_back(at->second);
+    }
+  }
+  cut.indexCount = static_cast<std::uint32_t>(charts.indices.size());
+  addFlatSurface(scene, cut, charts, record, settings, textureIndex);
 }
 
 }  // namespace

@@ -23,7 +23,8 @@ inline constexpr std::size_t kDefaultMaxMeshTriangles = 2'000'000;
 enum class MeshUvSource : std::uint8_t {
   File,       // the file's texture coordinates
   Conformal,  // none in the file; the mesh is a disc: CGAL's least-squares conformal map
-  Planar,     // none in the file, and no disc: its x and y over their bounds
+  Planar,     // none in the file, and no disc: its x and y over their bounds (and, for the fur,
+              // an atlas of conformal charts: SurfaceMeshData::atlasUv)
 };
 
 // A mesh file's triangles in its own coordinates, ready to be placed by the turtle.
@@ -34,6 +35,11 @@ struct SurfaceMeshData {
   std::vector<glm::vec3> colours;        // the file's vertex colours, or empty
   std::vector<std::uint32_t> indices;    // three per triangle, counter-clockwise about the normal
   bool fileUvs = false;                  // uv come from the file
+  // A Planar mesh's atlas (parameteriseCharts): (u, v) per corner of `indices` in charts that
+  // cover it without overlapping, and each triangle's chart. The fur grows through it, where x
+  // and y would fold the top onto the bottom. Empty for the other sources.
+  std::vector<glm::vec2> atlasUv;
+  std::vector<std::uint32_t> atlasChart;
   MeshUvSource uvSource = MeshUvSource::File;
   glm::dvec3 boundsMin{0.0}, boundsMax{0.0};
   // A mesh sequence's frames after the first (`body.####.obj`): the positions and normals of

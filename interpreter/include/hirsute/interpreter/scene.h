@@ -150,6 +150,11 @@ struct OrganSurface {
   // blends a coat's key feathers (empty: the file has none).
   std::vector<glm::vec3> flow;
   std::vector<float> blend;
+  // A mesh's without texture coordinates that is no disc (SurfaceMeshData::atlasUv): (u, v) per
+  // corner of its triangles, in the order of its indices, in an atlas of charts, and each
+  // triangle's chart; the fur grows through it. Empty otherwise.
+  std::vector<glm::vec2> atlasUv;
+  std::vector<std::uint32_t> atlasChart;
 };
 
 struct Texture {
