@@ -10,6 +10,7 @@
 #include "cpfg_numbers.h"
 #include "cylinder_mesh.h"
 #include "hirsute/core/characters.h"
+#include "hirsute/core/memory_budget.h"
 #include "hirsute/interpreter/generalized_cylinder.h"
 #include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/lsys/derivation.h"
@@ -29,6 +30,9 @@ constexpr double kMinimumWidth = 1e-7;
 // @Gc and @Ge without a parameter, and F/f/. adding control points: 4 strips (cpfg's code; the
 // manual says 1).
 constexpr int kDefaultStrips = 4;
+// What a vertex of a surface takes in the Scene and the outputs built from it: position, normal
+// and texture coordinate (32 bytes), two triangles' indices (24), and the vectors' slack.
+constexpr double kBytesPerVertex = 120;
 // cpfg draws no segment shorter than this (squared length): cpfg-TexturedSurfaces draws its
 // F(0.00456) and leaves out F(0.00113) and F(0.00016), the fractal ferns leave out every F(0).
 constexpr double kMinimumSegmentLengthSquared = 1e-5;
@@ -762,6 +766,22 @@ void Turtle::drawSurface(char id, const float* p, std::size_t count) {
           "(lower its precision, or raise the limit with --max-vertices)",
           surface.id, surface.patches.size(), std::max(1, surface.sPrecision),
           std::max(1, surface.tPrecision), maxVertices_));
+    }
+    // Within the vertex limit, the geometry may still need more memory than this process may
+    // take (a machine, or a ulimit, smaller than the limit assumes): say so before building.
+    const double bytes = static_cast<double>(scene_->vertexCount() + vertices) * kBytesPerVertex;
+    const std::size_t budget = memoryBudgetBytes();
+    if (bytes > 0.8 * static_cast<double>(budget)) {
+      const std::string what =
+          surface.mesh ? fmt::format("a mesh of {} vertices", vertices)
+                       : fmt::format("{} patches at precision {} × {}", surface.patches.size(),
+                                     std::max(1, surface.sPrecision), std::max(1, surface.tPrecision));
+      throw GeometryLimitError(fmt::format(
+          "surface ~{} ({}) would grow the geometry to {} vertices, some {} of memory, more than "
+          "this process may take ({}){}",
+          surface.id, what, scene_->vertexCount() + vertices, memorySizeText(bytes),
+          memorySizeText(static_cast<double>(budget)),
+          surface.mesh ? "" : "; lower its precision"));
     }
     ++counts_.surfaces;
     counts_.surfaceTriangles +=

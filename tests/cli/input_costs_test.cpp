@@ -106,6 +106,38 @@ TEST_F(InputCosts, ASurfaceIsCountedAgainstTheVertexLimitBeforeItIsBuilt) {
   EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
 }
 
+// Within the vertex limit, a surface at a high precision may still need more memory than the
+// machine (here a 2 GB address space) holds: the message names the surface and its precision,
+// before the geometry is built, instead of "out of memory" after seconds.
+TEST_F(InputCosts, ASurfaceThatNeedsMoreMemoryThanTheMachineHoldsIsNamed) {
+  std::string surface;
+  std::ifstream in(kModels / "herb" / "leaf.s");
+  for (std::string line; std::getline(in, line);) {
+    surface += line + "\n";
+    if (surface.find('\n') == surface.size() - 1) surface += "PRECISION S: 1000 T: 1000\n";
+  }
+  write("leaf.s", surface);
+  const fs::path view = write("model.v", "surface: l leaf.s 1\n");
+  std::string axiom;
+  for (int i = 0; i < 40; ++i) axiom += "~l(1)";
+  const fs::path model =
+      write("model.l", "Lsystem: 1\nderivation length: 0\nAxiom: " + axiom + "\nendlsystem\n");
+  const RunResult run =
+      runHirsute({"export", model.string(), view.string(), "--pov",
+                  (folder_.path() / "out.pov").string()},
+                 std::size_t{2} << 30);
+  EXPECT_FALSE(run.killed) << "the run did not end";
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_NE(run.err.find("surface ~l (1 patches at precision 1000 × 1000) would grow the geometry "
+                         "to "),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("more than this process may take (2.1 GB); lower its precision"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
+}
+
 TEST_F(InputCosts, RandomDropletsHaveALimit) {
   const fs::path square = kModels / "fur-square";
   const RunResult run =

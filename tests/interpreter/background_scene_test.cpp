@@ -8,10 +8,6 @@
 
 #include "hirsute/interpreter/model_resources.h"
 
-#ifndef HIRSUTE_SOURCE_DIR
-#define HIRSUTE_SOURCE_DIR "/work/main"
-#endif
-
 namespace hirsute {
 namespace {
 

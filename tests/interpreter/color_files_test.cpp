@@ -10,17 +10,13 @@
 #include "hirsute/core/diagnostic.h"
 #include "support/diagnostic_of.h"
 
-#ifndef HIRSUTE_SOURCE_DIR
-#define HIRSUTE_SOURCE_DIR "/work/main"
-#endif
-
 namespace hirsute {
 namespace {
 
 const std::filesystem::path kFixtures =
     std::filesystem::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "interpreter";
 const std::filesystem::path kConformance =
-    std::filesystem::path(HIRSUTE_SOURCE_DIR "/../shared/conformance");
+    std::filesystem::path(HIRSUTE_SOURCE_DIR) / ".." / "shared" / "conformance";
 
 void expectColor(const glm::vec3& actual, float r, float g, float b) {
   EXPECT_NEAR(actual.r, r, 1e-6f);

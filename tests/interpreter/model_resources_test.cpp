@@ -13,17 +13,13 @@
 #include "hirsute/core/diagnostic.h"
 #include "support/diagnostic_of.h"
 
-#ifndef HIRSUTE_SOURCE_DIR
-#define HIRSUTE_SOURCE_DIR "/work/main"
-#endif
-
 namespace hirsute {
 namespace {
 
 const std::filesystem::path kFixtures =
     std::filesystem::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "interpreter";
 const std::filesystem::path kConformance =
-    std::filesystem::path(HIRSUTE_SOURCE_DIR "/../shared/conformance");
+    std::filesystem::path(HIRSUTE_SOURCE_DIR) / ".." / "shared" / "conformance";
 
 std::array<int, 4> pixel(const Texture& texture, int x, int y) {
   const std::size_t at = 4 * (static_cast<std::size_t>(y) * texture.width + x);

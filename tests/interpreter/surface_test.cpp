@@ -10,17 +10,13 @@
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/core/diagnostic.h"
 
-#ifndef HIRSUTE_SOURCE_DIR
-#define HIRSUTE_SOURCE_DIR "/work/main"
-#endif
-
 namespace hirsute {
 namespace {
 
 const std::filesystem::path kFixtures =
     std::filesystem::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "interpreter";
 const std::filesystem::path kConformance =
-    std::filesystem::path(HIRSUTE_SOURCE_DIR "/../shared/conformance");
+    std::filesystem::path(HIRSUTE_SOURCE_DIR) / ".." / "shared" / "conformance";
 
 Diagnostic errorLoading(const std::string& name) {
   try {

@@ -16,17 +16,13 @@
 #include "hirsute/interpreter/view_settings.h"
 #include "support/diagnostic_of.h"
 
-#ifndef HIRSUTE_SOURCE_DIR
-#define HIRSUTE_SOURCE_DIR "/work/main"
-#endif
-
 namespace hirsute {
 namespace {
 
 const std::filesystem::path kFixtures =
     std::filesystem::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "interpreter";
 const std::filesystem::path kConformance =
-    std::filesystem::path(HIRSUTE_SOURCE_DIR "/../shared/conformance");
+    std::filesystem::path(HIRSUTE_SOURCE_DIR) / ".." / "shared" / "conformance";
 
 std::string readText(const std::filesystem::path& file) {
   std::ifstream in(file);

@@ -16,17 +16,13 @@
 #include "hirsute/core/diagnostic.h"
 #include "support/diagnostic_of.h"
 
-#ifndef HIRSUTE_SOURCE_DIR
-#define HIRSUTE_SOURCE_DIR "/work/main"
-#endif
-
 namespace hirsute {
 namespace {
 
 const std::filesystem::path kFixtures =
     std::filesystem::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "functions";
 const std::filesystem::path kConformance =
-    std::filesystem::path(HIRSUTE_SOURCE_DIR "/../shared/conformance");
+    std::filesystem::path(HIRSUTE_SOURCE_DIR) / ".." / "shared" / "conformance";
 
 std::string readText(const std::filesystem::path& file) {
   std::ifstream in(file);

@@ -70,8 +70,11 @@ class TemporaryFolder {
   fs::path path_;
 };
 
-// Runs `hirsute ARGS…` with its output in files; kills it after kKillAfter.
-inline RunResult runHirsute(const std::vector<std::string>& arguments) {
+// Runs `hirsute ARGS…` with its output in files; kills it after kKillAfter. With
+// `addressSpaceBytes`, the run may take no more memory than that (util-linux's prlimit --as): a
+// machine smaller than the run asks for.
+inline RunResult runHirsute(const std::vector<std::string>& arguments,
+                            std::size_t addressSpaceBytes = 0) {
   TemporaryFolder capture;
   const std::string outPath = (capture.path() / "stdout").string();
   const std::string errPath = (capture.path() / "stderr").string();
@@ -83,6 +86,11 @@ inline RunResult runHirsute(const std::vector<std::string>& arguments) {
   posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
                                    0644);
   std::vector<std::string> argv = {HIRSUTE_BINARY};
+  std::string program = HIRSUTE_BINARY;
+  if (addressSpaceBytes > 0) {
+    program = "/usr/bin/prlimit";
+    argv = {program, "--as=" + std::to_string(addressSpaceBytes), "--", HIRSUTE_BINARY};
+  }
   argv.insert(argv.end(), arguments.begin(), arguments.end());
   std::vector<char*> pointers;
   for (std::string& a : argv) pointers.push_back(a.data());
@@ -91,9 +99,9 @@ inline RunResult runHirsute(const std::vector<std::string>& arguments) {
   RunResult result;
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  int spawned = posix_spawn(&pid, HIRSUTE_BINARY, &actions, nullptr, pointers.data(), environ);
+  int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, pointers.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) throw std::runtime_error(std::string("cannot run ") + HIRSUTE_BINARY);
+  if (spawned != 0) throw std::runtime_error("cannot run " + program);
   int status = 0;
   for (;;) {
     pid_t done = waitpid(pid, &status, WNOHANG);
