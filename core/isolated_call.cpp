@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -74,8 +75,12 @@ bool writeAll(int fd, const char* data, std::size_t size) {
 // The child's side: limits, confinement, the work, its bytes (length first) down the pipe.
 [[noreturn]] void runChild(const std::function<std::string()>& work,
                            const IsolatedCallLimits& limits, const ChildConfinement* confinement,
-                           std::size_t addressSpace, int out) {
+                           std::size_t addressSpace, int out, pid_t parent) {
   setpgid(0, 0);
+  // The child never outlives the program: it is killed when the parent ends (Ctrl-C reaches
+  // only the parent's process group).
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (getppid() != parent) _exit(kNotWrittenExit);
   for (int signal : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGXCPU, SIGPIPE}) {
     ::signal(signal, SIG_DFL);
   }
@@ -114,18 +119,15 @@ void killGroup(pid_t pid) {
   kill(pid, SIGKILL);
 }
 
-// Reaps `pid`, waiting at most until `until` before killing its group; false when it was killed.
-bool reap(pid_t pid, Clock::time_point until, int& status) {
+// Waits until `pid` has ended, at most until `until`, leaving it a zombie (its process group
+// cannot be taken by another while it is one); false when the time passed first.
+bool waitForEnd(pid_t pid, Clock::time_point until) {
   for (;;) {
-    const pid_t done = waitpid(pid, &status, WNOHANG);
-    if (done == pid) return true;
+    siginfo_t info{};
+    const int done = waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT);
+    if (done == 0 && info.si_pid == pid) return true;
     if (done < 0 && errno != EINTR) return true;
-    if (Clock::now() >= until) {
-      killGroup(pid);
-      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-      }
-      return false;
-    }
+    if (Clock::now() >= until) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
 }
@@ -164,9 +166,10 @@ IsolatedCallResult callIsolated(const std::function<std::string()>& work,
   const FileDescriptor readEnd(fds[0]);
   FileDescriptor writeEnd(fds[1]);
   const auto until = Clock::now() + limits.time;
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw std::system_error(errno, std::generic_category(), "fork");
-  if (pid == 0) runChild(work, limits, confinement.get(), addressSpace, writeEnd.get());
+  if (pid == 0) runChild(work, limits, confinement.get(), addressSpace, writeEnd.get(), parent);
   setpgid(pid, pid);  // as the child does, so that the group exists whichever runs first
   writeEnd = FileDescriptor();
 
@@ -199,15 +202,13 @@ IsolatedCallResult callIsolated(const std::function<std::string()>& work,
     }
     received.append(buffer, static_cast<std::size_t>(n));
   }
+  if (!timedOut && !tooMuch && !waitForEnd(pid, until)) timedOut = true;
+  // Anything the child left in its group ends with it (the child itself, past a limit); the
+  // group is still the child's, whose zombie holds its number until it is reaped.
+  killGroup(pid);
   int status = 0;
-  if (timedOut || tooMuch) {
-    killGroup(pid);
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-  } else if (!reap(pid, until, status)) {
-    timedOut = true;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  killGroup(pid);  // anything the child left in its group ends with it
 
   if (timedOut || (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU)) {
     result.end = IsolatedCallResult::End::TimedOut;
