@@ -13,18 +13,24 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
+#include <new>
 #include <numeric>
 #include <set>
 #include <string_view>
+#include <system_error>
 #include <tuple>
 #include <unistd.h>
 #include <utility>
 
+#include "hirsute/core/isolated_call.h"
 #include "hirsute/core/model_folder.h"
+#include "mesh_file_checks.h"
 #include "mesh_parameterisation.h"
 
 namespace hirsute {
@@ -81,9 +87,12 @@ class MemoryStream : public Assimp::IOStream {
 // name, a link out) or is no regular file is not opened, and is remembered for a warning.
 class ConfinedFiles : public Assimp::IOSystem {
  public:
-  explicit ConfinedFiles(fs::path folder)
+  // `name` (beneath the folder) is served from `bytes`, read once and checked before Assimp.
+  ConfinedFiles(fs::path folder, std::string name, const std::string& bytes)
       : folder_(folder.empty() ? fs::path(".") : std::move(folder)),
-        root_(folder_.lexically_normal()) {}
+        root_(folder_.lexically_normal()),
+        readName_(std::move(name)),
+        readBytes_(bytes) {}
 
   bool Exists(const char* file) const override {
     const std::string name = relativeName(file);
@@ -100,6 +109,7 @@ class ConfinedFiles : public Assimp::IOSystem {
       refused_.insert(fmt::format("'{}': it leaves the model's folder", file));
       return nullptr;
     }
+    if (name == readName_) return new MemoryStream(readBytes_);
     std::string bytes, failure;
     if (!ModelFolder(folder_).read(name, bytes, failure)) {
       if (ModelFolder(folder_).refusal(name).empty()) return nullptr;  // missing: Assimp says so
@@ -125,57 +135,10 @@ class ConfinedFiles : public Assimp::IOSystem {
   }
 
   fs::path folder_, root_;
+  std::string readName_;
+  const std::string& readBytes_;
   std::set<std::string> refused_;
 };
-
-// An OBJ's coordinates are text: a non-finite or unreadable one is reported at its line and
-// column before Assimp (which would read it as a number of its own) sees it. Returns the OBJ's
-// triangles (its faces, triangulated).
-std::size_t checkObjCoordinates(const std::string& text, const fs::path& file) {
-  std::size_t triangles = 0;
-  int line = 1;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    const std::string_view row(text.data() + start, end - start);
-    if (row.size() > 2 && row[0] == 'f' && (row[1] == ' ' || row[1] == '\t')) {
-      // A face of n corners is n − 2 triangles.
-      std::size_t corners = 0;
-      for (std::size_t i = 1; i < row.size();) {
-        while (i < row.size() && (row[i] == ' ' || row[i] == '\t' || row[i] == '\r')) ++i;
-        if (i >= row.size()) break;
-        ++corners;
-        while (i < row.size() && row[i] != ' ' && row[i] != '\t' && row[i] != '\r') ++i;
-      }
-      if (corners > 2) triangles += corners - 2;
-    }
-    const bool coordinates = row.size() > 2 && row[0] == 'v' &&
-                             (row[1] == ' ' || row[1] == '\t' ||
-                              ((row[1] == 't' || row[1] == 'n') && (row[2] == ' ' || row[2] == '\t')));
-    if (coordinates) {
-      std::size_t i = row[1] == ' ' || row[1] == '\t' ? 1 : 2;
-      while (i < row.size()) {
-        while (i < row.size() && (row[i] == ' ' || row[i] == '\t' || row[i] == '\r')) ++i;
-        if (i >= row.size()) break;
-        std::size_t j = i;
-        while (j < row.size() && row[j] != ' ' && row[j] != '\t' && row[j] != '\r') ++j;
-        const std::string word(row.substr(i, j - i));
-        char* stop = nullptr;
-        const double value = std::strtod(word.c_str(), &stop);
-        if (stop != word.c_str() + word.size() || !std::isfinite(value)) {
-          throw DiagnosticError(at(file, line, static_cast<int>(i) + 1),
-                                fmt::format("'{}' is not a finite coordinate", word));
-        }
-        i = j;
-      }
-    }
-    ++line;
-    start = end + 1;
-  }
-  return triangles;
-}
-
 
 // Frames a second at which an animated file's motion is sampled (docs/meshes.md).
 constexpr double kAnimationRate = 24;
@@ -186,13 +149,19 @@ struct Instance {
   const aiMesh* mesh = nullptr;
 };
 
-void collectInstances(const aiScene& scene, const aiNode* node, std::vector<Instance>& out) {
-  if (node == nullptr) return;
-  for (unsigned i = 0; i < node->mNumMeshes; ++i) {
-    const aiMesh* mesh = scene.mMeshes[node->mMeshes[i]];
-    if ((mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) != 0) out.push_back({node, mesh});
+// Every node's meshes, depth first, without recursion (a hierarchy may be deep).
+void collectInstances(const aiScene& scene, const aiNode* root, std::vector<Instance>& out) {
+  std::vector<const aiNode*> pending{root};
+  while (!pending.empty()) {
+    const aiNode* node = pending.back();
+    pending.pop_back();
+    if (node == nullptr) continue;
+    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+      const aiMesh* mesh = scene.mMeshes[node->mMeshes[i]];
+      if ((mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) != 0) out.push_back({node, mesh});
+    }
+    for (unsigned i = node->mNumChildren; i > 0; --i) pending.push_back(node->mChildren[i - 1]);
   }
-  for (unsigned i = 0; i < node->mNumChildren; ++i) collectInstances(scene, node->mChildren[i], out);
 }
 
 // The value of keys at `ticks`: held before the first and after the last, linear between.
@@ -308,46 +277,51 @@ void posedVertices(const aiScene& scene, const aiAnimation* animation, double ti
   }
 }
 
-}  // namespace
-
-bool isMeshFile(const fs::path& file) {
-  const std::string extension = lowerExtension(file);
-  if (extension.empty() || extension == ".s") return false;
-  static const Assimp::Importer importer;
-  return importer.IsExtensionSupported(extension);
-}
-
-SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
-                             std::size_t maxTriangles, Diagnostics& diagnostics) {
-  if (lowerExtension(file) == ".obj") {
-    std::string text, failure;
-    const fs::path root = folder.empty() ? fs::path(".") : folder;
-    if (!ModelFolder(root).read(file.lexically_normal().lexically_relative(root.lexically_normal()).string(),
-                                text, failure)) {
-      throw DiagnosticError(at(file), "cannot read the mesh: " + failure);
-    }
-    // Counted before Assimp reads it all: a mesh past the limit costs no more than its text.
-    if (const std::size_t triangles = checkObjCoordinates(text, file); triangles > maxTriangles) {
-      throw DiagnosticError(at(file), fmt::format("the mesh has {} triangles, more than the limit "
-                                                  "of {} (raise it with --max-mesh-triangles)",
-                                                  triangles, maxTriangles));
-    }
+// The whole reading of one mesh file, in this process: its bytes checked (mesh_file_checks.h),
+// Assimp, and the checks and completions of the mesh it gives.
+SurfaceMeshData readMeshFile(const fs::path& file, const fs::path& folder, std::size_t maxTriangles,
+                             Diagnostics& diagnostics) {
+  const fs::path root = folder.empty() ? fs::path(".") : folder;
+  const std::string name =
+      file.lexically_normal().lexically_relative(root.lexically_normal()).string();
+  std::string bytes, failure;
+  if (!ModelFolder(root).read(name, bytes, failure)) {
+    throw DiagnosticError(at(file), "cannot read the mesh: " + failure);
   }
+  checkMeshFileBytes(bytes, file, maxTriangles);
 
   Assimp::Importer importer;
-  auto* files = new ConfinedFiles(folder);
+  auto* files = new ConfinedFiles(folder, name, bytes);
   importer.SetIOHandler(files);  // the importer owns it
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      file.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                         aiProcess_GenSmoothNormals | aiProcess_LimitBoneWeights |
-                         aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+  // Read and validated first, the rest of the steps after the positions are checked: joining
+  // identical vertices would take a non-finite one for another and leave a degenerate triangle.
+  const aiScene* scene = importer.ReadFile(file.string(), aiProcess_ValidateDataStructure);
   for (const std::string& refused : files->refused()) {
     diagnostics.warn(at(file), "the mesh names " + refused + "; not read");
   }
-  if (scene == nullptr) {
-    throw DiagnosticError(at(file), fmt::format("cannot read the mesh: {}", importer.GetErrorString()));
+  const auto failed = [&] {
+    const std::string why = importer.GetErrorString();
+    // Assimp turns running out of memory into its error text.
+    if (why.find("bad_alloc") != std::string::npos) throw std::bad_alloc();
+    throw DiagnosticError(at(file), fmt::format("cannot read the mesh: {}", why));
+  };
+  if (scene == nullptr) failed();
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene->mMeshes[m];
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiVector3D& p = mesh.mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        throw DiagnosticError(at(file), fmt::format("vertex {} of the file's mesh {} has a "
+                                                    "non-finite coordinate",
+                                                    v + 1, m + 1));
+      }
+    }
   }
+  scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                       aiProcess_GenSmoothNormals | aiProcess_LimitBoneWeights |
+                                       aiProcess_SortByPType);
+  if (scene == nullptr) failed();
 
   // Every mesh where a node places it (a mesh two nodes name is there twice).
   std::vector<Instance> instances;
@@ -367,6 +341,7 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
 
   SurfaceMeshData data;
   data.fileUvs = allUvs && faces > 0;
+  std::size_t clamped = 0;
   for (const Instance& instance : instances) {
     const aiMesh& mesh = *instance.mesh;
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
@@ -375,10 +350,23 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
         data.uv.emplace_back(std::isfinite(t.x) ? t.x : 0.0f, std::isfinite(t.y) ? t.y : 0.0f);
       }
       if (colours) {
+        // A vertex colour's red blends the key feathers (docs/meshes.md): it is a fraction, and a
+        // value just outside [0, 1] (a float file's rounding) is clamped, with a warning.
         const aiColor4D& c = mesh.mColors[0][v];
-        data.colours.emplace_back(c.r, c.g, c.b);
+        const glm::vec3 rgb(c.r, c.g, c.b);
+        if (!std::isfinite(rgb.r) || !std::isfinite(rgb.g) || !std::isfinite(rgb.b)) {
+          throw DiagnosticError(
+              at(file), fmt::format("vertex {} has a non-finite colour", data.colours.size() + 1));
+        }
+        const glm::vec3 inside = glm::clamp(rgb, 0.0f, 1.0f);
+        clamped += inside != rgb;
+        data.colours.push_back(inside);
       }
     }
+  }
+  if (clamped > 0) {
+    diagnostics.warn(at(file), fmt::format("{} vertex colour{} outside [0, 1] clamped to it",
+                                           clamped, clamped == 1 ? "" : "s"));
   }
   std::uint32_t base = 0;
   for (const Instance& instance : instances) {
@@ -547,8 +535,257 @@ SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
   return data;
 }
 
+// --- The child's answer ----------------------------------------------------------------------
+// loadMeshFile reads a mesh in a child process (isolated_call.h), which sends back the mesh (or
+// its error) and its warnings in this form: 64-bit counts and the vectors' bytes as they lie in
+// memory (parent and child are one program). The parent reads it as it would read a file: a
+// child that a malformed mesh took over may send anything.
+
+constexpr std::uint64_t kAnswerMesh = 1, kAnswerError = 2;
+
+class AnswerWriter {
+ public:
+  void number(std::uint64_t value) { bytes(&value, sizeof value); }
+  void text(const std::string& value) {
+    number(value.size());
+    bytes(value.data(), value.size());
+  }
+  template <class T>
+  void values(const std::vector<T>& vector) {
+    number(vector.size());
+    bytes(vector.data(), vector.size() * sizeof(T));
+  }
+  void diagnostic(const Diagnostic& d) {
+    text(d.where.fileName());
+    number(static_cast<std::uint64_t>(std::max(0, d.where.line)));
+    number(static_cast<std::uint64_t>(std::max(0, d.where.column)));
+    text(d.message);
+  }
+  std::string take() { return std::move(out_); }
+
+ private:
+  void bytes(const void* data, std::size_t size) {
+    out_.append(static_cast<const char*>(data), size);
+  }
+  std::string out_;
+};
+
+class AnswerReader {
+ public:
+  explicit AnswerReader(const std::string& in) : in_(in) {}
+
+  bool number(std::uint64_t& value) { return bytes(&value, sizeof value); }
+  bool text(std::string& value) {
+    std::uint64_t size = 0;
+    if (!number(size) || size > left() || size > (1u << 20)) return false;
+    value.assign(in_.data() + at_, size);
+    at_ += size;
+    return true;
+  }
+  template <class T>
+  bool values(std::vector<T>& vector) {
+    std::uint64_t count = 0;
+    if (!number(count) || count > left() / sizeof(T)) return false;
+    vector.resize(count);
+    return bytes(vector.data(), count * sizeof(T));
+  }
+  bool diagnostic(Diagnostic& d) {
+    std::string file;
+    std::uint64_t line = 0, column = 0;
+    if (!text(file) || !number(line) || !number(column) || !text(d.message)) return false;
+    if (line > 1u << 30 || column > 1u << 30) return false;
+    d.where = SourceLocation{std::make_shared<const std::string>(file), static_cast<int>(line),
+                             static_cast<int>(column)};
+    return true;
+  }
+  bool atEnd() const { return at_ == in_.size(); }
+
+ private:
+  std::size_t left() const { return in_.size() - at_; }
+  bool bytes(void* data, std::size_t size) {
+    if (size > left()) return false;
+    if (size > 0) std::memcpy(data, in_.data() + at_, size);
+    at_ += size;
+    return true;
+  }
+  const std::string& in_;
+  std::size_t at_ = 0;
+};
+
+std::string meshAnswer(const SurfaceMeshData& data, const std::vector<Diagnostic>& warnings) {
+  AnswerWriter out;
+  out.number(kAnswerMesh);
+  out.number(warnings.size());
+  for (const Diagnostic& warning : warnings) out.diagnostic(warning);
+  out.values(data.positions);
+  out.values(data.normals);
+  out.values(data.uv);
+  out.values(data.colours);
+  out.values(data.indices);
+  out.number(data.fileUvs ? 1 : 0);
+  out.number(static_cast<std::uint64_t>(data.uvSource));
+  out.values(std::vector<glm::dvec3>{data.boundsMin, data.boundsMax});
+  out.number(data.laterPositions.size());
+  for (std::size_t k = 0; k < data.laterPositions.size(); ++k) {
+    out.values(data.laterPositions[k]);
+    out.values(data.laterNormals[k]);
+  }
+  return out.take();
+}
+
+std::string errorAnswer(const Diagnostic& error, const std::vector<Diagnostic>& warnings) {
+  AnswerWriter out;
+  out.number(kAnswerError);
+  out.number(warnings.size());
+  for (const Diagnostic& warning : warnings) out.diagnostic(warning);
+  out.diagnostic(error);
+  return out.take();
+}
+
+// The child's answer: the mesh, after its warnings are passed on, or its error thrown. False
+// when the answer is not one the child's code could have sent.
+bool readAnswer(const std::string& answer, SurfaceMeshData& data, Diagnostics& diagnostics) {
+  AnswerReader in(answer);
+  std::uint64_t kind = 0, count = 0;
+  if (!in.number(kind) || !in.number(count) || count > answer.size()) return false;
+  std::vector<Diagnostic> warnings(count);
+  for (Diagnostic& warning : warnings) {
+    if (!in.diagnostic(warning)) return false;
+  }
+  if (kind == kAnswerError) {
+    Diagnostic error;
+    if (!in.diagnostic(error) || !in.atEnd()) return false;
+    for (const Diagnostic& warning : warnings) diagnostics.warn(warning.where, warning.message);
+    throw DiagnosticError(error.where, error.message);
+  }
+  std::uint64_t fileUvs = 0, uvSource = 0, frames = 0;
+  std::vector<glm::dvec3> bounds;
+  if (kind != kAnswerMesh || !in.values(data.positions) || !in.values(data.normals) ||
+      !in.values(data.uv) || !in.values(data.colours) || !in.values(data.indices) ||
+      !in.number(fileUvs) || !in.number(uvSource) || !in.values(bounds) || !in.number(frames) ||
+      fileUvs > 1 || uvSource > static_cast<std::uint64_t>(MeshUvSource::Planar) ||
+      bounds.size() != 2 || frames > answer.size()) {
+    return false;
+  }
+  data.fileUvs = fileUvs == 1;
+  data.uvSource = static_cast<MeshUvSource>(uvSource);
+  data.boundsMin = bounds[0];
+  data.boundsMax = bounds[1];
+  const std::size_t vertices = data.positions.size();
+  data.laterPositions.resize(frames);
+  data.laterNormals.resize(frames);
+  for (std::size_t k = 0; k < frames; ++k) {
+    if (!in.values(data.laterPositions[k]) || !in.values(data.laterNormals[k]) ||
+        data.laterPositions[k].size() != vertices || data.laterNormals[k].size() != vertices) {
+      return false;
+    }
+  }
+  // What the rest of the program relies on: one of each per vertex, indices naming vertices.
+  if (!in.atEnd() || data.normals.size() != vertices || data.uv.size() != vertices ||
+      (!data.colours.empty() && data.colours.size() != vertices) || data.indices.size() % 3 != 0 ||
+      std::any_of(data.indices.begin(), data.indices.end(),
+                  [&](std::uint32_t i) { return i >= vertices; })) {
+    return false;
+  }
+  for (const Diagnostic& warning : warnings) diagnostics.warn(warning.where, warning.message);
+  return true;
+}
+
+// What the child may spend on one file (docs/meshes.md, "Bad meshes"): a base, and more for
+// each triangle the limit allows and each byte of the file.
+constexpr std::size_t kReaderBaseBytes = std::size_t(1) << 30;
+constexpr std::size_t kReaderBytesPerTriangle = 1024;
+constexpr std::size_t kReaderBytesPerFileByte = 4;
+constexpr double kReaderBaseSeconds = 15;
+constexpr double kReaderSecondsPerMillionTriangles = 5;
+constexpr double kReaderSecondsPerMegabyte = 1;
+
+std::size_t saturated(std::size_t a, std::size_t b, std::size_t factor) {
+  if (factor != 0 && b > (std::numeric_limits<std::size_t>::max() - a) / factor) {
+    return std::numeric_limits<std::size_t>::max() / 2;
+  }
+  return a + b * factor;
+}
+
+SurfaceMeshData readMeshFileInChild(const fs::path& file, const fs::path& folder,
+                                    std::size_t maxTriangles, Diagnostics& diagnostics) {
+  std::error_code error;
+  const std::uintmax_t fileBytes = fs::file_size(file, error);
+  const std::size_t bytes = error ? 0 : static_cast<std::size_t>(fileBytes);
+  IsolatedCallLimits limits;
+  limits.memoryBytes = saturated(saturated(kReaderBaseBytes, maxTriangles, kReaderBytesPerTriangle),
+                                 bytes, kReaderBytesPerFileByte);
+  const double seconds =
+      kReaderBaseSeconds +
+      kReaderSecondsPerMillionTriangles * static_cast<double>(maxTriangles) / 1e6 +
+      kReaderSecondsPerMegabyte * static_cast<double>(bytes) / 1e6;
+  limits.time =
+      std::chrono::milliseconds(static_cast<long long>(std::min(seconds, 86400.0) * 1000));
+  limits.readableFolder = folder.empty() ? fs::path(".") : folder;
+  limits.maxOutputBytes = limits.memoryBytes;
+
+  IsolatedCallResult result;
+  try {
+    result = callIsolated(
+        [&]() -> std::string {
+          Diagnostics local;
+          try {
+            const SurfaceMeshData data = readMeshFile(file, folder, maxTriangles, local);
+            return meshAnswer(data, local.warnings());
+          } catch (const DiagnosticError& e) {
+            return errorAnswer(e.diagnostic(), local.warnings());
+          }
+        },
+        limits);
+  } catch (const std::system_error& e) {
+    throw DiagnosticError(at(file), fmt::format("cannot start the mesh reader: {}", e.what()));
+  }
+  using End = IsolatedCallResult::End;
+  switch (result.end) {
+    case End::Finished: {
+      SurfaceMeshData data;
+      if (readAnswer(result.output, data, diagnostics)) return data;
+      throw DiagnosticError(at(file), "the mesh reader sent back a broken answer");
+    }
+    case End::TimedOut:
+      throw DiagnosticError(
+          at(file), fmt::format("reading the mesh took more than {:.0f} s, the limit for this file "
+                                "(Assimp is stuck on it: the file is malformed); it was stopped",
+                                seconds));
+    case End::OutOfMemory:
+      throw DiagnosticError(
+          at(file), fmt::format("reading the mesh needed more than {} MB of memory, the limit for "
+                                "this file (it grows with --max-mesh-triangles)",
+                                limits.memoryBytes >> 20));
+    case End::Crashed:
+      throw DiagnosticError(at(file), fmt::format("the mesh reader (Assimp) crashed on this file "
+                                                  "with {}: the file is malformed",
+                                                  signalDescription(result.signal)));
+    case End::Failed:
+      break;
+  }
+  throw DiagnosticError(at(file), "the mesh reader failed: " + result.why);
+}
+
+}  // namespace
+
+bool isMeshFile(const fs::path& file) {
+  const std::string extension = lowerExtension(file);
+  if (extension.empty() || extension == ".s") return false;
+  static const Assimp::Importer importer;
+  return importer.IsExtensionSupported(extension);
+}
+
+SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder, std::size_t maxTriangles,
+                             Diagnostics& diagnostics, MeshReading reading) {
+  if (reading == MeshReading::InProcess)
+    return readMeshFile(file, folder, maxTriangles, diagnostics);
+  return readMeshFileInChild(file, folder, maxTriangles, diagnostics);
+}
+
 SurfaceMeshData loadMeshSequence(const fs::path& pattern, const fs::path& folder,
-                                 std::size_t maxTriangles, Diagnostics& diagnostics) {
+                                 std::size_t maxTriangles, Diagnostics& diagnostics,
+                                 MeshReading reading) {
   const std::string name = pattern.filename().string();
   const std::size_t hashes = name.find('#');
   std::size_t width = 0;
@@ -585,7 +822,8 @@ SurfaceMeshData loadMeshSequence(const fs::path& pattern, const fs::path& folder
     if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
     return parent / (prefix + digits + suffix);
   };
-  SurfaceMeshData data = loadMeshFile(frameFile(numbers.front()), folder, maxTriangles, diagnostics);
+  SurfaceMeshData data =
+      loadMeshFile(frameFile(numbers.front()), folder, maxTriangles, diagnostics, reading);
   for (std::size_t k = 1; k < numbers.size(); ++k) {
     if (numbers[k] != numbers[k - 1] + 1) {
       throw DiagnosticError(at(frameFile(numbers[k - 1] + 1)),
@@ -602,7 +840,8 @@ SurfaceMeshData loadMeshSequence(const fs::path& pattern, const fs::path& folder
     }
     // A later frame's own warnings repeat the first's: they are not reported again.
     Diagnostics quiet;
-    SurfaceMeshData frame = loadMeshFile(frameFile(numbers[k]), folder, maxTriangles, quiet);
+    SurfaceMeshData frame =
+        loadMeshFile(frameFile(numbers[k]), folder, maxTriangles, quiet, reading);
     if (frame.positions.size() != data.positions.size()) {
       throw DiagnosticError(at(frameFile(numbers[k])),
                             fmt::format("this frame of the mesh sequence has {} vertices, the "

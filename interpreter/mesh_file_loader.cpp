@@ -44,14 +44,15 @@ bool isMeshFile(const fs::path& file) {
   return meshModule(file).isMeshFile(file);
 }
 
-SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder,
-                             std::size_t maxTriangles, Diagnostics& diagnostics) {
-  return meshModule(file).loadMeshFile(file, folder, maxTriangles, diagnostics);
+SurfaceMeshData loadMeshFile(const fs::path& file, const fs::path& folder, std::size_t maxTriangles,
+                             Diagnostics& diagnostics, MeshReading reading) {
+  return meshModule(file).loadMeshFile(file, folder, maxTriangles, diagnostics, reading);
 }
 
 SurfaceMeshData loadMeshSequence(const fs::path& pattern, const fs::path& folder,
-                                 std::size_t maxTriangles, Diagnostics& diagnostics) {
-  return meshModule(pattern).loadMeshSequence(pattern, folder, maxTriangles, diagnostics);
+                                 std::size_t maxTriangles, Diagnostics& diagnostics,
+                                 MeshReading reading) {
+  return meshModule(pattern).loadMeshSequence(pattern, folder, maxTriangles, diagnostics, reading);
 }
 
 }  // namespace hirsute

@@ -110,31 +110,45 @@ void loadSurfaces(ModelResources& resources, std::size_t maxMeshTriangles,
   for (const SurfaceDeclaration& declaration : resources.view.surfaces) {
     const std::string name = writtenName(declaration.file, resources.folder);
     const std::string id(1, declaration.id);
-    const bool sequence = isMeshSequence(declaration.file) && isMeshFile(declaration.file);
+    const bool mesh = isMeshFile(declaration.file);
+    const bool sequence = mesh && isMeshSequence(declaration.file);
     if (!sequence && !fileExists(declaration.file)) {
+      // A mesh is a model's own body (docs/meshes.md): without it the model is broken.
+      if (mesh) {
+        throw DiagnosticError(declaration.where, "cannot open mesh file '" + name +
+                                                     "' (looked for " + declaration.file + ")");
+      }
       // cpfg goes on without it (cpfg-Sedge names a bract.s it does not have); ~X draws nothing.
       diagnostics.warn(declaration.where, "cannot open surface file " + name + " (looked for " +
                                               declaration.file + "); ~" + id + " draws nothing");
       continue;
     }
     Surface surface;
-    const bool mesh = isMeshFile(declaration.file);
+    // A mesh's own errors and warnings name the mesh file (its line where it has lines): the
+    // view file's line is where the user looks first, so it is named too.
+    Diagnostics meshWarnings;
     try {
       if (sequence) {
         surface.file = declaration.file;
         surface.mesh = std::make_shared<const SurfaceMeshData>(
-            loadMeshSequence(declaration.file, resources.folder, maxMeshTriangles, diagnostics));
+            loadMeshSequence(declaration.file, resources.folder, maxMeshTriangles, meshWarnings));
       } else if (mesh) {
         surface.file = declaration.file;
         surface.mesh = std::make_shared<const SurfaceMeshData>(
-            loadMeshFile(declaration.file, resources.folder, maxMeshTriangles, diagnostics));
+            loadMeshFile(declaration.file, resources.folder, maxMeshTriangles, meshWarnings));
       } else {
         surface = loadSurface(declaration.file);
       }
     } catch (const DiagnosticError& error) {
-      // A mesh's own errors name the mesh file (its line where it has lines): the view file's
-      // line is where the user looks first, so it is named too.
+      for (const Diagnostic& warning : meshWarnings.warnings()) {
+        diagnostics.warn(declaration.where, "surface file '" + name + "': " + warning.where.text() +
+                                                ": " + warning.message);
+      }
       rethrowAtViewLine(declaration.where, "surface", name, error);
+    }
+    for (const Diagnostic& warning : meshWarnings.warnings()) {
+      diagnostics.warn(declaration.where, "surface file '" + name + "': " + warning.where.text() +
+                                              ": " + warning.message);
     }
 
     surface.id = declaration.id;

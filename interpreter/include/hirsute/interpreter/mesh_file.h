@@ -65,19 +65,29 @@ struct SurfaceMeshData {
 // and as many a normal: about 1 GB).
 inline constexpr std::size_t kMaxSequenceVertices = 20'000'000;
 
+// Where a mesh file is read. Assimp trusts its files, and a malformed one can crash it, make it
+// loop or take all memory: the program reads each mesh in a child process with a memory and a
+// time limit (isolated_call.h), whose crash becomes an error naming the file. The same reading
+// in this process is for the fuzzer (fuzz/mesh_file_fuzzer.cpp), which looks for the crashes.
+// Both give the same mesh and the same diagnostics.
+enum class MeshReading : std::uint8_t { ChildProcess, InProcess };
+
 // Whether a file is read as a mesh rather than as a cpfg `.s` surface: its extension is one
 // Assimp imports and is not `.s`.
 bool isMeshFile(const std::filesystem::path& file);
 
 // Reads a mesh beneath `folder` (model_folder.h): the file and every file it names (an OBJ's
-// .mtl, a glTF's buffers) are opened through the folder, never outside it. Node transforms are
-// applied, polygons triangulated, identical vertices joined; degenerate triangles are dropped and
-// edges shared by more than two triangles reported, each as one warning. Throws DiagnosticError
-// naming the file (and line and column where the format has lines, as an OBJ's non-finite
-// coordinate) for an unreadable or empty mesh, a non-finite vertex, or more than
-// `maxTriangles` triangles.
+// .mtl, a glTF's buffers) are opened through the folder, never outside it. Its bytes are checked
+// first (mesh_file_checks.h). Node transforms are applied, polygons triangulated, identical
+// vertices joined; degenerate triangles are dropped, edges shared by more than two triangles
+// reported and vertex colours outside [0, 1] clamped, each as one warning. Throws
+// DiagnosticError naming the file (and line and column where the format has lines, as an OBJ's
+// non-finite coordinate) for an unreadable, malformed or empty mesh, a non-finite vertex or
+// colour, more than `maxTriangles` triangles, or a reader that crashed, ran out of time or
+// memory.
 SurfaceMeshData loadMeshFile(const std::filesystem::path& file, const std::filesystem::path& folder,
-                             std::size_t maxTriangles, Diagnostics& diagnostics);
+                             std::size_t maxTriangles, Diagnostics& diagnostics,
+                             MeshReading reading = MeshReading::ChildProcess);
 
 // Whether a name is a mesh sequence's: a run of '#' in its file name stands for the frame number
 // (`body.####.obj`: body.0001.obj, body.0002.obj, …).
@@ -92,7 +102,8 @@ inline bool isMeshSequence(const std::filesystem::path& file) {
 // broken or of other vertices, for no frame at all, and past kMaxSequenceVertices.
 SurfaceMeshData loadMeshSequence(const std::filesystem::path& pattern,
                                  const std::filesystem::path& folder, std::size_t maxTriangles,
-                                 Diagnostics& diagnostics);
+                                 Diagnostics& diagnostics,
+                                 MeshReading reading = MeshReading::ChildProcess);
 
 // The mesh module (libhirsute-meshes.so, with Assimp and CGAL; loadable_module.h) defines the
 // three functions above; the program's own definitions load it on first use and call these.
@@ -101,10 +112,10 @@ struct MeshFileFunctions {
   bool (*isMeshFile)(const std::filesystem::path& file);
   SurfaceMeshData (*loadMeshFile)(const std::filesystem::path& file,
                                   const std::filesystem::path& folder, std::size_t maxTriangles,
-                                  Diagnostics& diagnostics);
+                                  Diagnostics& diagnostics, MeshReading reading);
   SurfaceMeshData (*loadMeshSequence)(const std::filesystem::path& pattern,
-                                      const std::filesystem::path& folder,
-                                      std::size_t maxTriangles, Diagnostics& diagnostics);
+                                      const std::filesystem::path& folder, std::size_t maxTriangles,
+                                      Diagnostics& diagnostics, MeshReading reading);
 };
 
 }  // namespace hirsute

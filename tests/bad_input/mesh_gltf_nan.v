@@ -1,0 +1,1 @@
+surface: B mesh_gltf_nan.gltf 1

@@ -1,0 +1,1 @@
+surface: B mesh_missing.obj 1
