@@ -174,7 +174,7 @@ void checkApplies(const ast::Production& p, const ProducedCounts& produced, cons
     if (counts.empty()) {
       diagnostics.warn(m.where,
                        std::string(rules) + " `" + predecessor + "` can never apply: no axiom or " +
-                           "successor makes a " + quoted(m.symbol) + " module",
+                           "successor makes the module " + quoted(m.symbol),
                        std::string(kUnusedProductionWarning));
       return false;
     }

@@ -106,6 +106,23 @@ TEST(ModelWarnings, WerrorEndsTheRunWithExitCode2) {
   }
 }
 
+// The commands that draw take the same options: once each, silenced, or fatal with no file.
+TEST(ModelWarnings, ExportTakesTheSameOptions) {
+  TemporaryFolder folder;
+  const std::string model = (kFixtures / "unbalanced_brackets.l").string();
+  const fs::path pov = folder.path() / "plant.pov";
+  RunResult run = runHirsute({"export", model, "--pov", pov.string()});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(occurrences(run.err, "[-Wunbalanced-brackets]"), 1u) << run.err;
+  run = runHirsute({"export", "-W", "no-unbalanced-brackets", model, "--pov", pov.string()});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(run.err, "");
+  fs::remove(pov);
+  run = runHirsute({"export", "--Werror", model, "--pov", pov.string()});
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  EXPECT_FALSE(fs::exists(pov));
+}
+
 TEST(ModelWarnings, UnknownWarningNameIsRefused) {
   const RunResult run =
       runHirsute({"check", "-W", "no-such-thing", (kFixtures / "parameter_count.l").string()});
