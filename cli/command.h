@@ -31,6 +31,7 @@ inline std::string outOfMemoryMessage() {
          "(--max-modules, --max-vertices, --max-hairs, --max-feathers)";
 }
 
+void registerCheckCommand(CLI::App& app, Action& action);
 void registerDeriveCommand(CLI::App& app, Action& action);
 void registerRenderCommand(CLI::App& app, Action& action);
 void registerExportCommand(CLI::App& app, Action& action);

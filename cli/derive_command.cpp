@@ -35,6 +35,8 @@ struct DeriveOptions {
   std::uint64_t maxFileBytes = EvaluationLimits{}.maxWrittenBytes;
   std::size_t maxSourceBytes = kDefaultMaxSourceBytes;
   int threads = 0;
+  std::vector<std::string> warningFlags;
+  bool werror = false;
 };
 
 int runDerive(const DeriveOptions& o) {
@@ -44,9 +46,13 @@ int runDerive(const DeriveOptions& o) {
   try {
     std::optional<std::filesystem::path> view;
     if (!o.viewFile.empty()) view = o.viewFile;
+    applyWarningOptions(o.warningFlags, o.werror, diagnostics);
     hirsute::ModelOptions loading;
     loading.maxSourceBytes = o.maxSourceBytes;
+    const ModuleMeanings meanings = turtleModuleMeanings();
+    loading.checks = &meanings;
     Model model = loadModel(o.lsystemFile, view, diagnostics, loading);
+    stopOnWarnings(diagnostics, o.lsystemFile);
     EvaluationLimits limits;
     limits.maxLoopIterations = o.maxLoopIterations;
     limits.maxWrittenBytes = o.maxFileBytes;
@@ -114,6 +120,8 @@ int runDerive(const DeriveOptions& o) {
                 << ": error: cannot write: " << std::strerror(errno) << '\n';
       return kExitIoError;
     }
+    // A warning of the derivation's, with --Werror, leaves no file.
+    stopOnWarnings(diagnostics, o.lsystemFile);
     if (file) {
       try {
         file->commit();
@@ -163,6 +171,7 @@ void registerDeriveCommand(CLI::App& app, Action& action) {
   addMaxFileBytesOption(*derive, options->maxFileBytes);
   addMaxSourceBytesOption(*derive, options->maxSourceBytes);
   addThreadsOption(*derive, options->threads);
+  addWarningOptions(*derive, options->warningFlags, options->werror);
   derive->callback([options, &action] { action = [options] { return runDerive(*options); }; });
 }
 

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "hirsute 0.1.0");
   hirsute::cli::Action action;
+  hirsute::cli::registerCheckCommand(app, action);
   hirsute::cli::registerDeriveCommand(app, action);
   hirsute::cli::registerRenderCommand(app, action);
   hirsute::cli::registerExportCommand(app, action);

@@ -63,6 +63,32 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   const std::span<const OrganStage* const> stages = organStages();
   for (std::size_t k = 0; k < stages.size(); ++k) stages[k]->addOptions(command, o.organs[k]);
   command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");
+  addWarningOptions(command, o.warningFlags, o.werror);
+}
+
+void addWarningOptions(CLI::App& command, std::vector<std::string>& flags, bool& werror) {
+  std::vector<std::string> silenced;
+  std::string names;
+  for (std::string_view name : kModelWarnings) {
+    silenced.push_back("no-" + std::string(name));
+    names += (names.empty() ? "" : ", ") + std::string(name);
+  }
+  command.add_option("-W", flags, "-W no-NAME silences the warning NAME (" + names + ")")
+      ->check(CLI::IsMember(silenced))
+      ->type_name("no-NAME");
+  command.add_flag("--Werror", werror, "Make warnings errors: the run ends with exit code 2");
+}
+
+void applyWarningOptions(const std::vector<std::string>& flags, bool werror,
+                         Diagnostics& diagnostics) {
+  for (const std::string& flag : flags) diagnostics.silence(flag.substr(3));  // "no-NAME"
+  diagnostics.setWerror(werror);
+}
+
+void stopOnWarnings(const Diagnostics& diagnostics, const std::string& file) {
+  if (!diagnostics.failed()) return;
+  throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(file), 0, 0},
+                        "warnings are errors (--Werror)");
 }
 
 void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external, int& timeout) {
@@ -130,6 +156,7 @@ ColorFiles colorFilesFor(const ModelOptions& o, Diagnostics& diagnostics) {
 }
 
 ModelResources loadResources(const ModelOptions& o, Diagnostics& diagnostics) {
+  applyWarningOptions(o.warningFlags, o.werror, diagnostics);
   std::optional<std::filesystem::path> view;
   if (!o.viewFile.empty()) view = o.viewFile;
   return loadModelResources(view, colorFilesFor(o, diagnostics), diagnostics,
@@ -139,12 +166,16 @@ ModelResources loadResources(const ModelOptions& o, Diagnostics& diagnostics) {
 Model loadLsystem(const ModelOptions& o, Diagnostics& diagnostics) {
   std::optional<std::filesystem::path> view;
   if (!o.viewFile.empty()) view = o.viewFile;
+  applyWarningOptions(o.warningFlags, o.werror, diagnostics);
   hirsute::ModelOptions loading;
   loading.lsystemText = o.lsystemText;
   loading.maxSourceBytes = o.maxSourceBytes;
+  const ModuleMeanings meanings = turtleModuleMeanings();
+  loading.checks = &meanings;
   Model model = loadModel(o.lsystemFile, view, diagnostics, loading);
   // `@Ul(-1)` is an error at its place in the file, not a warning after the derivation.
   checkConstantOrganModules(model.program);
+  stopOnWarnings(diagnostics, o.lsystemFile);
   return model;
 }
 
@@ -153,6 +184,7 @@ BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   built.resources = loadResources(o, diagnostics);
   built.model = loadLsystem(o, diagnostics);
   built.scene = growScene(o, built.model, built.resources, diagnostics);
+  stopOnWarnings(diagnostics, o.lsystemFile);
   return built;
 }
 

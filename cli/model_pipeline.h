@@ -41,6 +41,8 @@ struct ModelOptions {
   std::uint64_t placementSeed = 0;       // --hair-seed; 0: the view file's `hair texture:` seed
   OrganOptionsSet organs;                // each organ's own options (organ_stage.h)
   bool verbose = false;                  // -v: counts and times on stderr
+  std::vector<std::string> warningFlags;  // -W no-NAME: the named warnings silenced
+  bool werror = false;                    // --Werror: warnings end the run with exit code 2
   // Called as the build goes on (`hirsute view` shows it while building off its render thread):
   // the stage (1 deriving, 2 interpreting, 3 + k the stage of organStages()[k]) and, while
   // deriving, the steps done of the steps to do.
@@ -57,6 +59,13 @@ struct ModelOptions {
 void addModelOptions(CLI::App& command, ModelOptions& options);
 // Adds -e, --external-environment and --environment-timeout (derive has them too).
 void addEnvironmentOptions(CLI::App& command, std::string& file, bool& external, int& timeout);
+// Adds -W no-NAME (silences the named warning; NAME one of kModelWarnings) and --Werror.
+void addWarningOptions(CLI::App& command, std::vector<std::string>& flags, bool& werror);
+// Gives `diagnostics` the warnings silenced and --Werror.
+void applyWarningOptions(const std::vector<std::string>& flags, bool werror,
+                         Diagnostics& diagnostics);
+// With --Werror, throws DiagnosticError (at `file`) once `diagnostics` has had a warning.
+void stopOnWarnings(const Diagnostics& diagnostics, const std::string& file);
 // Adds --threads, the derivation's threads (derive has it too).
 void addThreadsOption(CLI::App& command, int& threads);
 // Adds --max-file-bytes, what the blocks may write through fprintf (derive has it too).
@@ -79,7 +88,8 @@ std::optional<BuiltScene> buildSceneOrSay(const ModelOptions& options, Diagnosti
                                           Progress& progress);
 // The view file's resources (colours, contours, surfaces, functions, the organs' files, …).
 ModelResources loadResources(const ModelOptions& options, Diagnostics& diagnostics);
-// The .l through the preprocessor, compiled; constant organ parameters checked.
+// The .l through the preprocessor, parsed and checked for likely mistakes (model_checks.h),
+// compiled; constant organ parameters checked.
 Model loadLsystem(const ModelOptions& options, Diagnostics& diagnostics);
 // Derives `model` (to options.stopAfter steps when set), interprets it and runs the organs'
 // stages (organ_stage.h) that are switched on and have something to do: a model loaded once grows the Scene of each of its animation's frames.

@@ -1,8 +1,9 @@
 #include "hirsute/core/diagnostic.h"
 
-#include "hirsute/core/source_excerpt.h"
+#include <algorithm>
 
 #include "hirsute/core/progress.h"
+#include "hirsute/core/source_excerpt.h"
 
 namespace hirsute {
 
@@ -83,17 +84,25 @@ std::string SourceLocation::text() const {
 }
 
 std::string Diagnostic::text() const {
+  std::string name;
+  if (!warningName.empty())
+    name = (severity == Severity::Error ? " [-Werror,-W" : " [-W") + warningName + "]";
   return printableText(where.text() + (severity == Severity::Error ? ": error: " : ": warning: ") +
-                   message);
+                       message + name);
 }
 
 DiagnosticError::DiagnosticError(Diagnostic diagnostic)
     : std::runtime_error(diagnostic.text()), diagnostic_(std::move(diagnostic)) {}
 
 DiagnosticError::DiagnosticError(const SourceLocation& where, const std::string& message)
-    : DiagnosticError(Diagnostic{Severity::Error, where, message}) {}
+    : DiagnosticError(Diagnostic{Severity::Error, where, message, {}}) {}
 
-void Diagnostics::warn(const SourceLocation& where, const std::string& message) {
+void Diagnostics::warn(const SourceLocation& where, const std::string& message,
+                       const std::string& warningName) {
+  if (!warningName.empty() &&
+      std::find(silenced_.begin(), silenced_.end(), warningName) != silenced_.end()) {
+    return;
+  }
   for (const Diagnostic& seen : warnings_) {
     if (seen.message == message && seen.where.line == where.line &&
         seen.where.column == where.column && seen.where.fileName() == where.fileName()) {
@@ -104,7 +113,8 @@ void Diagnostics::warn(const SourceLocation& where, const std::string& message) 
     ++suppressed_;
     return;
   }
-  warnings_.push_back(Diagnostic{Severity::Warning, where, message});
+  warnings_.push_back(
+      Diagnostic{werror_ ? Severity::Error : Severity::Warning, where, message, warningName});
   if (echo_) {
     if (progress_) progress_->clear();
     *echo_ << report(warnings_.back());

@@ -2,8 +2,10 @@
 #include "hirsute/interpreter/turtle.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -51,6 +53,62 @@ double parameterOr(const float* parameters, std::size_t count, std::size_t i, do
 int stepColor(int color, int increment) {
   const int base = color >= 0 ? color / 256 * 256 : 0;
   return base + (((color - base + increment) % 256) + 256) % 256;
+}
+
+// The modules the turtle interprets on its own: the cases of Turtle::dispatch's switch, which
+// reads this table first (a symbol left out of it means nothing to the turtle).
+constexpr std::string_view kTurtleSymbols = "FfGg+-&^/\\|[]?$.{}#!;,%_~@";
+
+// The `@` modules of Turtle::atModule, which reads this table first: `@` and `first` alone (with
+// or without parameters) when `alone`, or `first` without parameters and then one of `seconds`
+// ("*": any symbol). The organs' modules (`@H…`) are their tables' (organ_modules.h).
+struct AtModuleFamily {
+  char first;
+  bool alone;
+  std::string_view seconds;
+};
+constexpr AtModuleFamily kAtModules[] = {
+    {'O', true, ""},     {'o', true, ""}, {'c', true, ""},       {'b', false, "oc"},
+    {'v', true, ""},     {'R', true, ""}, {'M', true, ""},       {'G', false, "scetr"},
+    {'#', true, ""},     {'!', true, ""}, {'T', true, "xfpsid"}, {'D', true, "id"},
+    {';', true, ""},     {',', true, ""}, {'L', true, ""},       {'S', true, ""},
+    {'P', true, "SCD"},  {'I', true, ""}, {'J', true, ""},       {'m', true, "*"},
+    {'Z', true, ""},     {'Y', true, ""},  // ilsa's: nothing to draw
+};
+
+const AtModuleFamily* atModuleFamily(char first) {
+  for (const AtModuleFamily& family : kAtModules) {
+    if (family.first == first) return &family;
+  }
+  return nullptr;
+}
+
+// `@` `first` without parameters waits for a second letter.
+bool isAtFamily(char first) {
+  const AtModuleFamily* family = atModuleFamily(first);
+  return (family != nullptr && !family->seconds.empty()) || organModuleTableIndex(first) >= 0;
+}
+
+bool isAtModule(char first, char second) {
+  if (const int organ = organModuleTableIndex(first); organ >= 0) {
+    return second != 0 && organModuleTables()[static_cast<std::size_t>(organ)]->knows(second);
+  }
+  const AtModuleFamily* family = atModuleFamily(first);
+  if (family == nullptr) return false;
+  if (second == 0) return family->alone;
+  return family->seconds == "*" || family->seconds.find(second) != std::string_view::npos;
+}
+
+// kTurtleSymbols by symbol: dispatch reads it for every module.
+constexpr std::array<bool, 128> kTurtleSymbolTable = [] {
+  std::array<bool, 128> table{};
+  for (char c : kTurtleSymbols) table[static_cast<unsigned char>(c)] = true;
+  return table;
+}();
+
+bool isTurtleSymbol(char symbol) {
+  const auto index = static_cast<unsigned char>(symbol);
+  return index < kTurtleSymbolTable.size() && kTurtleSymbolTable[index];
 }
 
 int largestPowerOfTwoAtMost(int n) {
@@ -152,7 +210,7 @@ void Turtle::dispatch(char symbol, const float* p, std::size_t count) {
     // belong to the last one (`@Gc(4)` is `@`, `G`, `c(4)`).
     const std::string prefix = prefix_;
     if (prefix == "@") {
-      if (count == 0 && (isOneOf(symbol, "PTGmDb") || organModuleTableIndex(symbol) >= 0)) {
+      if (count == 0 && isAtFamily(symbol)) {
         prefix_ = {'@', symbol};
         return;
       }
@@ -174,6 +232,7 @@ void Turtle::dispatch(char symbol, const float* p, std::size_t count) {
     return;
   }
 
+  if (!isTurtleSymbol(symbol)) return;  // every other module means nothing to the turtle
   const ViewSettings& view = resources_.view;
   const double angle = radians(parameterOr(p, count, 0, view.angleIncrement));
   const double step = parameterOr(p, count, 0, 1) * state_.scale;
@@ -333,6 +392,8 @@ void Turtle::atModule(char first, char second, const float* p, std::size_t count
     organModule(organ, second, p, count);
     return;
   }
+  // @Z and @Y (ilsa) and unknown @ modules: nothing (`hirsute check` warns of the unknown ones).
+  if (!isAtModule(first, second)) return;
   const ViewSettings& view = resources_.view;
   switch (first) {
     case 'O':
@@ -485,9 +546,12 @@ void Turtle::atModule(char first, char second, const float* p, std::size_t count
                std::string("@") + first + ": cpfg's rayshade-only module is ignored");
       break;
     default:
-      // @Z and @Y (ilsa) and unknown @ modules: nothing.
       break;
   }
+}
+
+ModuleMeanings turtleModuleMeanings() {
+  return ModuleMeanings{isTurtleSymbol, isAtFamily, isAtModule};
 }
 
 void Turtle::query(char which, const float* parameters, std::size_t count) {

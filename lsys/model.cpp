@@ -27,6 +27,7 @@ Model loadModel(const std::filesystem::path& lsystemFile,
                          ? preprocessText(*modelOptions.lsystemText, lsystemFile, options, diagnostics)
                          : preprocessFile(lsystemFile, options, diagnostics);
   ast::File file = parseLsystemText(text, lsystemFile.string());
+  if (modelOptions.checks) checkModel(file, *modelOptions.checks, diagnostics);
   model.program = compileProgram(file, diagnostics);
   return model;
 }

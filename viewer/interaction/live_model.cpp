@@ -321,7 +321,7 @@ bool LiveModel::organsMoving() const {
 // ---- script ----
 
 void LiveModel::scriptFailure(const ViewCommand& command, const std::string& message) {
-  std::cerr << Diagnostic{Severity::Error, command.where, message}.text() << '\n';
+  std::cerr << Diagnostic{Severity::Error, command.where, message, {}}.text() << '\n';
   scriptFailed_ = true;
   closed_ = true;
 }

@@ -36,8 +36,11 @@ struct Diagnostic {
   Severity severity = Severity::Error;
   SourceLocation where;
   std::string message;
+  // The name of a warning that `-W no-NAME` silences; empty for the others.
+  std::string warningName;
 
-  // "file:line:col: error: message"
+  // "file:line:col: error: message", and " [-WNAME]" after a named warning (" [-Werror,-WNAME]"
+  // when --Werror made it an error), as clang writes them.
   std::string text() const;
 };
 
@@ -54,13 +57,20 @@ class DiagnosticError : public std::runtime_error {
 
 // Collects warnings; prints each as it arrives when given a stream. A warning repeated at the same
 // location is printed once, and after kMaxPrinted distinct warnings the rest are only counted.
+// A named warning that was silenced is dropped; with werror set, every warning is kept as an
+// error, and the command ends with exit code 2 once the stage that gave it is done (failed()).
 class Diagnostics {
  public:
   static constexpr std::size_t kMaxPrinted = 50;
 
   explicit Diagnostics(std::ostream* echo = nullptr) : echo_(echo) {}
 
-  void warn(const SourceLocation& where, const std::string& message);
+  void warn(const SourceLocation& where, const std::string& message,
+            const std::string& warningName = {});
+  void silence(const std::string& warningName) { silenced_.push_back(warningName); }
+  void setWerror(bool werror) { werror_ = werror; }
+  // Some warning was made an error by werror.
+  bool failed() const { return werror_ && (!warnings_.empty() || suppressed_ > 0); }
   const std::vector<Diagnostic>& warnings() const { return warnings_; }
   std::size_t suppressed() const { return suppressed_; }
   void setEcho(std::ostream* echo) { echo_ = echo; }
@@ -79,6 +89,8 @@ class Diagnostics {
   std::vector<ModelFolder> sourceFolders_;
   std::vector<Diagnostic> warnings_;
   std::size_t suppressed_ = 0;
+  std::vector<std::string> silenced_;
+  bool werror_ = false;
 };
 
 }  // namespace hirsute

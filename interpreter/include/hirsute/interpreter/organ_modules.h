@@ -67,6 +67,8 @@ class OrganModuleTable {
   virtual char organ() const = 0;
   // Interprets `@` organ() `letter` (letter 0: the organ's letter alone, with parameters).
   virtual void interpret(char letter, OrganModuleCall& call) const = 0;
+  // `@` organ() `letter` is one of the organ's modules.
+  virtual bool knows(char letter) const = 0;
   // Checks `@` organ() `letter` as the .l file writes it, before the derivation: `parameters`
   // has a value for each parameter that is a constant expression and none for those the
   // derivation computes. The first known value out of its range, if any; a module the table
@@ -173,6 +175,7 @@ class AttributeModuleTable : public OrganModuleTable {
 
   char organ() const override { return organ_; }
   const std::vector<Row>& rows() const { return rows_; }
+  bool knows(char letter) const override { return find(letter) != nullptr; }
 
   std::optional<ParameterProblem> checkConstants(
       char letter, std::span<const std::optional<float>> parameters) const override {

@@ -17,6 +17,7 @@
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/turtle_state.h"
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/lsys/model_checks.h"
 #include "hirsute/lsys/module_sink.h"
 #include "hirsute/core/progress.h"
 
@@ -155,6 +156,10 @@ class Turtle : public ModuleSink {
 void interpret(Derivation& derivation, const ModelResources& resources, Scene& scene,
                Diagnostics& diagnostics, std::size_t maxVertices = kDefaultMaxVertices,
                Progress* progress = nullptr);
+
+// What the turtle makes of modules, for the checks of a model before it is derived
+// (lsys/model_checks.h): the symbols it interprets and the `@` modules it knows.
+ModuleMeanings turtleModuleMeanings();
 
 // Installs the query pass: before each rewriting, the turtle walks the string and fills the
 // parameters of ?P ?H ?L ?U with its position, heading, left and up vectors.

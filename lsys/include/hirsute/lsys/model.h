@@ -9,6 +9,7 @@
 
 #include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/function_curve.h"
+#include "hirsute/lsys/model_checks.h"
 #include "hirsute/lsys/preprocessor.h"
 #include "hirsute/lsys/program.h"
 
@@ -31,6 +32,9 @@ struct ModelOptions {
   std::optional<std::string> lsystemText;
   // The preprocessed text of the view file and of the `.l` each (--max-source-bytes).
   std::size_t maxSourceBytes = kDefaultMaxSourceBytes;
+  // When given, the parsed file is checked for likely mistakes (model_checks.h) with what the
+  // interpreter makes of modules.
+  const ModuleMeanings* checks = nullptr;
 };
 
 Model loadModel(const std::filesystem::path& lsystemFile,
