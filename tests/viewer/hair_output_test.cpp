@@ -676,6 +676,29 @@ TEST_F(HairExportTest, FeatherBarbColoursAreWrittenInLinearLight) {
   EXPECT_EQ(display, 0) << "barbs written in display values";
 }
 
+// A template hair's closed outline between { and } is filled (tests/fixtures/hairs/filled.l, a
+// square on a stalk): the OBJ export gives every hair its outline's polyline and the square's
+// faces, three triangles a hair.
+TEST_F(HairExportTest, AFilledTemplateGivesEachHairItsFaces) {
+  const std::string fixtures = std::string(HIRSUTE_SOURCE_DIR) + "/tests/fixtures/hairs/";
+  ASSERT_EQ(runHirsute("export '" + fixtures + "filled_hairs.l' '" + fixtures +
+                           "filled_template.v' --obj '" + file("hairs.obj").string() + "'",
+                       file("log")),
+            0)
+      << readText(file("log"));
+  std::istringstream lines(readText(file("hairs.obj")));
+  bool hairs = false;
+  int faces = 0, polylines = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("o ", 0) == 0) hairs = line == "o hairs";
+    if (!hairs) continue;
+    if (line.rfind("f ", 0) == 0) ++faces;
+    if (line.rfind("l ", 0) == 0) ++polylines;
+  }
+  EXPECT_GT(polylines, 100);
+  EXPECT_EQ(faces, 3 * polylines);
+}
+
 // The OBJ export's barbs take a material of their type's colour and texture: the hawk's and the
 // budgie's vanes (models/feather-types) a map_Kd of their image, written beside the OBJ, and
 // their faces and polylines texture coordinates that exist; untextured types a plain Kd.
