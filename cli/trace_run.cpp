@@ -81,6 +81,12 @@ int runTrace(const RenderOptions& o) {
     const Clock::time_point started = Clock::now();
     progress.begin("building the ray tracer's scene", Progress::Unit::None);
     trace::TraceScene traced(view.trace, o.model.threads);
+    // With a colour map, the colours GL shades along the palette (trace_scene.h).
+    const RenderMode mode = view.renderMode;
+    if (!built->resources.materialMode &&
+        (mode == RenderMode::Flat || mode == RenderMode::Shaded || mode == RenderMode::Shadows)) {
+      traced.setLitPaletteOffset(view.diffuseReflection);
+    }
     trace::addSceneGeometry(scene, camera, traced);
     traced.commit();
     progress.clear();

@@ -50,6 +50,20 @@ std::size_t Scene::vertexCount() const {
   return n;
 }
 
+void Scene::markThin(const TriangleMesh& mesh, std::uint32_t firstIndex) {
+  const int index = static_cast<int>(&mesh - meshes.data());
+  const auto end = static_cast<std::uint32_t>(mesh.indices.size());
+  if (index < 0 || static_cast<std::size_t>(index) >= meshes.size() || end <= firstIndex) return;
+  if (!thinSurfaces.empty()) {
+    IndexRange& last = thinSurfaces.back();
+    if (last.mesh == index && last.firstIndex + last.indexCount == firstIndex) {
+      last.indexCount = end - last.firstIndex;
+      return;
+    }
+  }
+  thinSurfaces.push_back(IndexRange{index, firstIndex, end - firstIndex});
+}
+
 void Scene::clear() {
   meshes.clear();
   lines.clear();
@@ -58,6 +72,7 @@ void Scene::clear() {
   labels.clear();
   cylinderSegments.clear();
   organSurfaces.clear();
+  thinSurfaces.clear();
   organs_.clear();
   meshIndex_.clear();
 }

@@ -206,6 +206,7 @@ std::size_t appendSurface(Scene& scene, const Surface& surface, const SurfacePla
         triangles += 2;
       }
     }
+    scene.markThin(mesh, firstIndex);
     if (organsSet) {
       record.kind = OrganSurfaceKind::BicubicPatch;
       record.mesh = static_cast<int>(&mesh - scene.meshes.data());

@@ -762,6 +762,7 @@ void Turtle::closePolygon() {
     mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[1], base + t[2]});
   }
   counts_.polygonTriangles += triangulation.triangles.size();
+  scene_->markThin(mesh, firstIndex);
   if (!state_.organs.none()) {
     OrganSurface record;
     record.kind = OrganSurfaceKind::Polygon;

@@ -1,6 +1,7 @@
 // Template hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.2): each `hair:` file is an
 // independent L-system, derived and interpreted by the plant's turtle; the hair is the polyline
-// of the turtle's positions, kept once in the hair's own frame.
+// of the turtle's positions, and the triangles of the polygons it fills, kept once in the hair's
+// own frame.
 #include "hirsute/hairs/plant/hair_templates.h"
 
 #include <algorithm>
@@ -63,9 +64,18 @@ HairTemplate hairTemplateFromScene(const Scene& scene, const std::string& file,
     }
     hair.polylines.back().push_back(to);
   }
+  // A closed outline the template wraps in `{ }` is filled, as cpfg fills a polygon: the
+  // interpreter has triangulated it into the scene's meshes.
+  for (const TriangleMesh& mesh : scene.meshes) {
+    for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+      for (std::size_t k = 0; k < 3; ++k)
+        hair.triangles.push_back(local(mesh.positions.at(mesh.indices[i + k])));
+    }
+  }
   for (const auto& polyline : hair.polylines) {
     for (const glm::vec3& p : polyline) hair.extent = std::max(hair.extent, glm::length(p));
   }
+  for (const glm::vec3& p : hair.triangles) hair.extent = std::max(hair.extent, glm::length(p));
   return hair;
 }
 

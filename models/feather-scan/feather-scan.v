@@ -1,4 +1,6 @@
-/* A flatbed scanner's view of a feather: from its front, parallel, on a plain background. */
+/* A flatbed scanner's view of a feather lying front up on the glass: from below, parallel, on a
+   plain background. The scanner sees the feather's back: the turtle's up vector (the front)
+   points away from the viewer, the left vane is on the picture's left. */
 projection: parallel
 viewpoint: 0,0,1
 view reference point: 0,0,0

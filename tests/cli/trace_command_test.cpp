@@ -217,4 +217,52 @@ TEST(TraceCommand, APictureLargerThanMemoryIsNamedBeforeTheModelIsBuilt) {
   EXPECT_FALSE(fs::exists(png));
 }
 
+const fs::path kFlatLeaf =
+    fs::path(HIRSUTE_SOURCE_DIR) / "tests" / "fixtures" / "cli" / "flat-leaf";
+
+// The picture's centre pixel of `view` of the flat leaf (tests/fixtures/cli/flat-leaf), 32x24,
+// by GL or (`traced`) by the tracer at a few samples a pixel.
+glm::u8vec4 leafCentre(const TemporaryFolder& folder, const std::string& view, bool traced) {
+  const fs::path png = folder.path() / (view + (traced ? ".traced.png" : ".gl.png"));
+  std::vector<std::string> arguments = {"render",
+                                        (kFlatLeaf / "leaf.l").string(),
+                                        (kFlatLeaf / view).string(),
+                                        "--size",
+                                        "32x24",
+                                        "-o",
+                                        png.string()};
+  if (traced) arguments.insert(arguments.end(), {"--trace", "--spp", "4"});
+  const RunResult run = runHirsute(arguments);
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  const hirsute::RgbaImage image = hirsute::readPng(png);
+  if (image.width != 32 || image.height != 24) {
+    ADD_FAILURE() << "no 32x24 picture of " << view;
+    return glm::u8vec4(0);
+  }
+  return image.pixel(16, 12);
+}
+
+// With a colour map, GL shades a surface along the palette, colour c showing entry c + 10
+// (`diffuse reflection: 10`) where the light falls square on it; the tracer's light does the
+// shading, and the leaf takes the colour GL shows in full light: lit from the viewer's side by
+// a light that makes a white surface white (front.v), the traced leaf is GL's leaf within a few
+// levels.
+TEST(TraceCommand, ATracedLeafHasGlsColour) {
+  TemporaryFolder folder;
+  const glm::u8vec4 gl = leafCentre(folder, "front.v", false);
+  const glm::u8vec4 traced = leafCentre(folder, "front.v", true);
+  EXPECT_EQ(gl, glm::u8vec4(180, 220, 110, 255)) << "entry 30 of leaf.map";
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(traced[c], gl[c], 6) << "channel " << c;
+}
+
+// A leaf is thin: lit from behind, without a `translucency:` line and without sky, it passes
+// light towards the viewer (a share of its colour), where an opaque one would be black.
+TEST(TraceCommand, ABacklitLeafPassesLightByDefault) {
+  TemporaryFolder folder;
+  const glm::u8vec4 traced = leafCentre(folder, "backlit.v", true);
+  EXPECT_GT(traced.g, 40);
+  EXPECT_GT(traced.g, traced.r);  // its own green
+  EXPECT_GT(traced.g, traced.b);
+}
+
 }  // namespace

@@ -108,6 +108,77 @@ TEST(HairTemplates, TemplateThatDrawsNothingIsAnErrorNamingItsFile) {
   }
 }
 
+// The area of a template's filled triangles, and of the plane polygon a closed polyline
+// outlines (half the length of its vector area, the sum of p_i × p_i+1).
+float filledArea(const HairTemplate& hair) {
+  float area = 0;
+  for (std::size_t i = 0; i + 2 < hair.triangles.size(); i += 3) {
+    const glm::vec3& a = hair.triangles[i];
+    area += 0.5f * glm::length(glm::cross(hair.triangles[i + 1] - a, hair.triangles[i + 2] - a));
+  }
+  return area;
+}
+
+float outlinedArea(const std::vector<glm::vec3>& polygon) {
+  glm::vec3 twice(0.0f);
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+    twice += glm::cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+  return 0.5f * glm::length(twice);
+}
+
+// A closed outline between { and } is filled, as cpfg fills a polygon: the template keeps its
+// triangles beside the outline's polyline, in the same frame.
+TEST(HairTemplates, PolygonOfATemplateIsFilled) {
+  const std::vector<HairTemplate> templates = templatesOf("filled_template.v");
+  ASSERT_EQ(templates.size(), 1u);
+  const HairTemplate& filled = templates[0];
+  ASSERT_EQ(filled.polylines.size(), 1u);
+  expectPolyline(filled.polylines[0], {{0, 0, 0},
+                                       {0.5f, 0, 0},
+                                       {0.5f, 0.5f, 0},
+                                       {1.5f, 0.5f, 0},
+                                       {1.5f, -0.5f, 0},
+                                       {0.5f, -0.5f, 0},
+                                       {0.5f, 0, 0}});
+  ASSERT_GE(filled.triangles.size(), 6u);
+  EXPECT_EQ(filled.triangles.size() % 3, 0u);
+  for (const glm::vec3& p : filled.triangles) {
+    EXPECT_NEAR(p.z, 0, kTolerance);
+    EXPECT_GE(p.x, 0.5f - kTolerance);
+    EXPECT_LE(p.x, 1.5f + kTolerance);
+  }
+  EXPECT_NEAR(filledArea(filled), 1, 1e-4f);
+  EXPECT_NEAR(filled.extent, glm::length(glm::vec2(1.5f, 0.5f)), kTolerance);
+  // A template of lines alone has no triangles.
+  for (const HairTemplate& lines : templatesOf("templates.v")) EXPECT_TRUE(lines.triangles.empty());
+}
+
+// The fern croziers' scales (models/fern-croziers, scale.l and broad.l) are filled blades, not
+// rings: their triangles cover the area their outline (the polyline after the stalk) encloses.
+TEST(HairTemplates, FernCrozierScalesAreFilledBlades) {
+  Diagnostics diagnostics;
+  const fs::path crozier = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "fern-croziers";
+  const ModelResources resources = loadModelResources(crozier / "fern-croziers.v", {}, diagnostics);
+  const std::vector<HairTemplate> templates = loadHairTemplates(resources, diagnostics);
+  ASSERT_EQ(templates.size(), 3u);
+  for (std::size_t t = 0; t < 2; ++t) {
+    const HairTemplate& scale = templates[t];
+    SCOPED_TRACE(scale.file);
+    ASSERT_EQ(scale.polylines.size(), 1u);
+    const std::vector<glm::vec3>& outline = scale.polylines[0];
+    ASSERT_GT(outline.size(), 4u);
+    // The stalk is the first segment; the blade's outline runs from its end back to it.
+    const std::vector<glm::vec3> blade(outline.begin() + 1, outline.end() - 1);
+    // Closed within 0.002 of the blade's length 1: the template gives its lengths to 0.001.
+    EXPECT_NEAR(glm::distance(outline.back(), outline[1]), 0, 2e-3f) << "the outline is closed";
+    ASSERT_FALSE(scale.triangles.empty());
+    const float area = outlinedArea(blade);
+    EXPECT_GT(area, 0.05f);
+    EXPECT_NEAR(filledArea(scale), area, 1e-3f * area + 1e-5f);
+  }
+  EXPECT_TRUE(templates[2].triangles.empty()) << "hairlike.l is a hair";
+}
+
 TEST(HairTemplates, ViewWithoutHairLinesHasNoTemplates) {
   EXPECT_TRUE(templatesOf("cylinder.v").empty());
 }

@@ -77,4 +77,47 @@ TEST(HairForms, TheTracerTracesHairsSeenSmallInTheirCoarserForms) {
   EXPECT_EQ(tracedSegments(0.01f, 0.1f), 10u);  // a hundredth of the length: one
 }
 
+// A filled template (a scale: its outline and the polygon inside, HairTemplate::triangles) is
+// traced as its outline's curves and its triangles, placed with each hair, as a thin surface of
+// the template's colour: it passes light (docs/trace.md), where an outline alone is a ring.
+TEST(HairForms, AFilledTemplateIsTracedAsASurfaceInsideItsOutline) {
+  Scene scene;
+  scene.materials.resize(2);
+  scene.materials[1].diffuse = glm::vec3(0.5f, 0.4f, 0.2f);
+  HairPart& part = scene.organ<HairPart>();
+  HairTemplate scale;
+  scale.polylines = {{{0, 0, 0}, {1, 0.5f, 0}, {2, 0, 0}, {1, -0.5f, 0}, {0, 0, 0}}};
+  scale.triangles = {{0, 0, 0}, {1, -0.5f, 0}, {2, 0, 0}, {0, 0, 0}, {2, 0, 0}, {1, 0.5f, 0}};
+  scale.material = 1;
+  scale.extent = 2;
+  part.templates.push_back(scale);
+  for (int i = 0; i < 3; ++i) {
+    Hair hair;
+    hair.root = glm::vec3(static_cast<float>(i), 0, 0);
+    hair.length = 0.5f;
+    hair.radius = 0.01f;
+    part.hairs.push_back(hair);
+  }
+  Camera camera;
+  camera.viewport = {100, 100};
+  camera.halfHeight = camera.halfWidth = 5;
+  trace::TraceScene traced(TraceSettings{});
+  plantHairTracer().addTo(scene, camera, traced);
+  EXPECT_EQ(traced.curveSegments(), 3u * 4);
+  ASSERT_EQ(traced.triangleCount(), 3u * 2);
+  // The triangles' material: the template's colour, reflected and, as a thin sheet, passed on.
+  traced.commit();
+  bool found = false;
+  for (unsigned g = 0; g < 2; ++g) {
+    const trace::TraceShape& shape = traced.shape(g);
+    if (shape.curve) continue;
+    found = true;
+    const trace::TraceMaterial& m = traced.material(shape.material);
+    EXPECT_FALSE(m.hair);
+    EXPECT_NEAR(m.surface.reflectance.r, trace::linearColour(glm::vec3(0.5f)).r, 1e-5f);
+    EXPECT_GT(m.surface.transmittance.g, 0.0f);
+  }
+  EXPECT_TRUE(found);
+}
+
 }  // namespace

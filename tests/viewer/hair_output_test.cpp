@@ -582,6 +582,123 @@ TEST_F(HairExportTest, FeatherTexturesReachPovRay) {
   EXPECT_LE(barbColours("feather-interpolation", "feather-interpolation"), 8u);
 }
 
+// The mean colour of the pixels of `image` that differ from its corner (the background) by
+// more than 30 levels in all, and how many there are.
+struct Foreground {
+  glm::dvec3 mean{0.0};
+  int pixels = 0;
+};
+
+Foreground foregroundOf(const RgbaImage& image) {
+  Foreground f;
+  const glm::ivec3 background(glm::u8vec3(image.pixel(0, 0)));
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const glm::ivec3 p(glm::u8vec3(image.pixel(x, y)));
+      const glm::ivec3 d = glm::abs(p - background);
+      if (d.x + d.y + d.z <= 30) continue;
+      f.mean += glm::dvec3(p);
+      ++f.pixels;
+    }
+  }
+  if (f.pixels > 0) f.mean /= f.pixels;
+  return f;
+}
+
+// Fur strands through POV-Ray show the preview's colours: the strands' shades (display colours,
+// emitted) are written in linear light for the scene's `assumed_gamma 1`, as every surface colour
+// is, so the fur of models/fur-square has GL's mean colour within 10 levels (ribbons a strand
+// wide stand for the shells, and the square shows between them a little differently: 153/119/80
+// for GL's 161/125/83; written as display values, POV-Ray showed it washed out, 201/179/148).
+TEST_F(HairExportTest, FurThroughPovRayHasThePreviewsColour) {
+  SKIP_WITHOUT_POVRAY();
+  const std::string base = std::string(HIRSUTE_SOURCE_DIR) + "/models/fur-square/square";
+  const std::string model = "'" + base + ".l' '" + base + ".v'";
+  ASSERT_EQ(runHirsute("render " + model + " --size 64x48 -o '" + file("gl.png").string() + "'",
+                       file("log")),
+            0)
+      << readText(file("log"));
+  ASSERT_EQ(runHirsute("export " + model + " --pov '" + file("fur.pov").string() +
+                           "' --width 64 --height 48 --render",
+                       file("log")),
+            0)
+      << readText(file("log"));
+  const Foreground gl = foregroundOf(readPng(file("gl.png")));
+  const Foreground pov = foregroundOf(readPng(file("fur.png")));
+  ASSERT_GT(gl.pixels, 500);
+  EXPECT_NEAR(pov.pixels, gl.pixels, 0.1 * gl.pixels);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(pov.mean[c], gl.mean[c], 10.0)
+        << "channel " << c << ": POV-Ray " << pov.mean.x << "/" << pov.mean.y << "/" << pov.mean.z
+        << ", GL " << gl.mean.x << "/" << gl.mean.y << "/" << gl.mean.z;
+  }
+}
+
+// The numbers of every `rgbt<r,g,b,t>` in `text` after `from`, without the transparency.
+std::vector<glm::dvec3> rgbtColours(const std::string& text, std::size_t from) {
+  std::vector<glm::dvec3> colours;
+  for (std::size_t at = text.find("rgbt<", from); at != std::string::npos;
+       at = text.find("rgbt<", at + 1)) {
+    std::istringstream numbers(text.substr(at + 5, text.find('>', at) - at - 5));
+    glm::dvec3 c;
+    char comma = 0;
+    numbers >> c.x >> comma >> c.y >> comma >> c.z;
+    colours.push_back(c);
+  }
+  return colours;
+}
+
+// A feather's barbs are lit by POV-Ray from its type's colour as a surface of that colour is:
+// decoded from sRGB to linear light. The base feather's colour 0.42 0.29 0.17
+// (models/feather-parameters, every barb of angles.l) is written as 0.147 0.0685 0.0242, not
+// as the display values.
+TEST_F(HairExportTest, FeatherBarbColoursAreWrittenInLinearLight) {
+  const std::string base = std::string(HIRSUTE_SOURCE_DIR) + "/models/feather-parameters/";
+  ASSERT_EQ(runHirsute("export '" + base + "angles.l' '" + base + "angles.v' --pov '" +
+                           file("angles.pov").string() + "' --width 160 --height 120",
+                       file("log")),
+            0)
+      << readText(file("log"));
+  const std::string text = readText(file("angles.pov"));
+  const std::size_t feathers = text.find("// feather barbs");
+  ASSERT_NE(feathers, std::string::npos);
+  auto linear = [](double display) {
+    const double level = std::round(display * 255) / 255;  // the shades' quantization
+    return level <= 0.04045 ? level / 12.92 : std::pow((level + 0.055) / 1.055, 2.4);
+  };
+  const glm::dvec3 expected(linear(0.42), linear(0.29), linear(0.17));
+  int barbs = 0, display = 0;
+  for (const glm::dvec3& c : rgbtColours(text, feathers)) {
+    if (glm::length(c - expected) < 2e-4) ++barbs;
+    if (glm::length(c - glm::dvec3(0.42, 0.29, 0.17)) < 3e-3) ++display;
+  }
+  EXPECT_GT(barbs, 0) << "no barb of the type's colour in linear light";
+  EXPECT_EQ(display, 0) << "barbs written in display values";
+}
+
+// A template hair's closed outline between { and } is filled (tests/fixtures/hairs/filled.l, a
+// square on a stalk): the OBJ export gives every hair its outline's polyline and the square's
+// faces, three triangles a hair.
+TEST_F(HairExportTest, AFilledTemplateGivesEachHairItsFaces) {
+  const std::string fixtures = std::string(HIRSUTE_SOURCE_DIR) + "/tests/fixtures/hairs/";
+  ASSERT_EQ(runHirsute("export '" + fixtures + "filled_hairs.l' '" + fixtures +
+                           "filled_template.v' --obj '" + file("hairs.obj").string() + "'",
+                       file("log")),
+            0)
+      << readText(file("log"));
+  std::istringstream lines(readText(file("hairs.obj")));
+  bool hairs = false;
+  int faces = 0, polylines = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("o ", 0) == 0) hairs = line == "o hairs";
+    if (!hairs) continue;
+    if (line.rfind("f ", 0) == 0) ++faces;
+    if (line.rfind("l ", 0) == 0) ++polylines;
+  }
+  EXPECT_GT(polylines, 100);
+  EXPECT_EQ(faces, 3 * polylines);
+}
+
 // The OBJ export's barbs take a material of their type's colour and texture: the hawk's and the
 // budgie's vanes (models/feather-types) a map_Kd of their image, written beside the OBJ, and
 // their faces and polylines texture coordinates that exist; untextured types a plain Kd.

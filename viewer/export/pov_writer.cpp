@@ -687,12 +687,17 @@ void PovWriter::writeShadedMesh(std::string_view comment, const std::vector<glm:
   out_.put("}\ntexture_list{");
   out_.putInteger(n);
   for (const auto& [shade, index] : textureOf) {
+    // A shade is a display colour, as GL shows it (the fur's Kajiya-Kay colour, a barb's type
+    // colour): decoded to linear light like every other colour of the scene (srgbToLinear).
+    // Four decimals, as for materials: a step of one display level near black is 0.0003.
+    const glm::vec3 linear = srgbToLinear(glm::vec3(shade.r, shade.g, shade.b) / 255.0f);
+    const NumberFormat format{4, false};
     out_.put(",\ntexture{pigment{rgbt<");
-    number(shade.r / 255.0, colour_);
+    number(linear.r, format);
     out_.put(',');
-    number(shade.g / 255.0, colour_);
+    number(linear.g, format);
     out_.put(',');
-    number(shade.b / 255.0, colour_);
+    number(linear.b, format);
     out_.put(',');
     number(1.0 - static_cast<double>(shade.a) / kShadeAlphaLevels, colour_);
     out_.put(">}finish{");

@@ -111,31 +111,69 @@ std::vector<SurfacePoint> surfaceCoordinates(const Scene& scene, int m, float& a
   return points;
 }
 
+// Which triangles of each mesh are thin surfaces (Scene::thinSurfaces, and open generalized
+// cylinders): one flag a triangle, or none for a mesh without any.
+std::vector<std::vector<bool>> thinTriangles(const Scene& scene) {
+  std::vector<std::vector<bool>> thin(scene.meshes.size());
+  auto mark = [&](int m, std::uint32_t firstIndex, std::uint32_t indexCount) {
+    if (m < 0 || static_cast<std::size_t>(m) >= scene.meshes.size()) return;
+    const std::size_t triangles = scene.meshes[static_cast<std::size_t>(m)].triangleCount();
+    std::vector<bool>& flags = thin[static_cast<std::size_t>(m)];
+    if (flags.empty()) flags.assign(triangles, false);
+    const std::size_t end =
+        std::min<std::size_t>((firstIndex + std::size_t{indexCount}) / 3, triangles);
+    for (std::size_t t = firstIndex / 3; t < end; ++t) flags[t] = true;
+  };
+  for (const IndexRange& r : scene.thinSurfaces) mark(r.mesh, r.firstIndex, r.indexCount);
+  for (const CylinderSegment& segment : scene.cylinderSegments) {
+    if (!segment.closed) mark(segment.mesh, segment.firstIndex, segment.indexCount);
+  }
+  return thin;
+}
+
 }  // namespace
 
 void addSceneGeometry(const Scene& scene, const Camera& camera, TraceScene& out) {
   const float pixelWorld = camera.pixelSize();
+  const std::vector<std::vector<bool>> thin = thinTriangles(scene);
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const TriangleMesh& mesh = scene.meshes[m];
     const bool normals = mesh.normals.size() == mesh.positions.size();
     std::vector<SurfacePoint> surface;
-    int material = out.surfaceMaterial(scene, mesh.material);
-    if (out.veinsOf(mesh.material) && mesh.triangleCount() > 0) {
-      float aspect = 0;
-      surface = surfaceCoordinates(scene, static_cast<int>(m), aspect);
-      material = out.veinedMaterial(scene, mesh.material, aspect);
-    }
+    float aspect = 0;
+    const bool veined = out.veinsOf(mesh.material) && mesh.triangleCount() > 0;
+    if (veined) surface = surfaceCoordinates(scene, static_cast<int>(m), aspect);
     const int texture = mesh.texcoords.size() == mesh.positions.size()
                             ? out.addTexture(scene, mesh.texture)
                             : -1;
-    const TriangleBuffers b = out.addTriangles(mesh.positions.size(), mesh.triangleCount(),
-                                               material, normals, false, !surface.empty(), texture);
-    if (!b.positions) continue;
-    std::copy(mesh.positions.begin(), mesh.positions.end(), b.positions);
-    if (normals) std::copy(mesh.normals.begin(), mesh.normals.end(), b.normals);
-    std::copy_n(mesh.indices.begin(), 3 * mesh.triangleCount(), b.indices);
-    if (b.surface) std::copy(surface.begin(), surface.end(), b.surface);
-    if (b.texcoords) std::copy(mesh.texcoords.begin(), mesh.texcoords.end(), b.texcoords);
+    // A mesh's solid triangles and its thin ones (leaves: they pass light) go in as two shapes
+    // of their own materials, each with the mesh's vertices.
+    const std::vector<bool>& flags = thin[m];
+    const std::size_t thinCount =
+        static_cast<std::size_t>(std::count(flags.begin(), flags.end(), true));
+    for (const bool sheet : {false, true}) {
+      const std::size_t count = sheet ? thinCount : mesh.triangleCount() - thinCount;
+      if (count == 0) continue;
+      const int material = veined ? out.veinedMaterial(scene, mesh.material, aspect, sheet)
+                                  : out.surfaceMaterial(scene, mesh.material, sheet);
+      const TriangleBuffers b = out.addTriangles(mesh.positions.size(), count, material, normals,
+                                                 false, !surface.empty(), texture);
+      if (!b.positions) continue;
+      std::copy(mesh.positions.begin(), mesh.positions.end(), b.positions);
+      if (normals) std::copy(mesh.normals.begin(), mesh.normals.end(), b.normals);
+      if (count == mesh.triangleCount()) {
+        std::copy_n(mesh.indices.begin(), 3 * count, b.indices);
+      } else {
+        std::size_t k = 0;
+        for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+          if (flags[t] != sheet) continue;
+          std::copy_n(mesh.indices.begin() + static_cast<std::ptrdiff_t>(3 * t), 3,
+                      b.indices + 3 * k++);
+        }
+      }
+      if (b.surface) std::copy(surface.begin(), surface.end(), b.surface);
+      if (b.texcoords) std::copy(mesh.texcoords.begin(), mesh.texcoords.end(), b.texcoords);
+    }
   }
   // Lines as tubes: polygon-style widths are world units, pixel-style ones pixels.
   const float unit = scene.lineStyle == LineStyle::Polygon ? 1.0f : pixelWorld;
@@ -148,8 +186,10 @@ void addSceneGeometry(const Scene& scene, const Camera& camera, TraceScene& out)
   for (std::size_t m = 0; m < byMaterial.size(); ++m) {
     const auto& lines = byMaterial[m];
     if (lines.empty()) continue;
-    const CurveBuffers b = out.addCurves(CurveShape::Round, 2 * lines.size(), lines.size(),
-                                         out.surfaceMaterial(scene, static_cast<int>(m)), false);
+    // GL draws lines unlit, in their colour itself.
+    const CurveBuffers b =
+        out.addCurves(CurveShape::Round, 2 * lines.size(), lines.size(),
+                      out.surfaceMaterial(scene, static_cast<int>(m), false, false), false);
     for (std::size_t i = 0; i < lines.size(); ++i) {
       b.vertices[2 * i] = glm::vec4(lines[i]->from, 0.5f * unit * lines[i]->widthFrom);
       b.vertices[2 * i + 1] = glm::vec4(lines[i]->to, 0.5f * unit * lines[i]->widthTo);

@@ -52,7 +52,7 @@ TraceScene::TraceScene(const TraceSettings& look, int threads) : look_(look) {
   for (const auto& [colour, share] : look_.translucent) {
     if (colour < 0) continue;
     const auto slot = static_cast<std::size_t>(colour);
-    if (slot >= through_.size()) through_.resize(slot + 1, 0.0f);
+    if (slot >= through_.size()) through_.resize(slot + 1, -1.0f);  // -1: no line
     through_[slot] = std::clamp(share, 0.0f, 1.0f);
   }
   const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
@@ -74,20 +74,36 @@ int TraceScene::addMaterial(const TraceMaterial& material) {
   return static_cast<int>(materials_.size()) - 1;
 }
 
-int TraceScene::surfaceMaterial(const Scene& scene, int index) {
+int TraceScene::shownIndex(const Scene& scene, int index, bool lit) const {
+  if (!lit || litPaletteOffset_ == 0 || scene.materials.empty()) return index;
+  const int last = static_cast<int>(scene.materials.size()) - 1;
+  const int bank = std::clamp(index, 0, last) / 256 * 256;
+  return std::clamp(index + litPaletteOffset_, bank, std::min(bank + 255, last));
+}
+
+int TraceScene::surfaceMaterial(const Scene& scene, int index, bool thin, bool lit) {
   const auto slot = static_cast<std::size_t>(std::max(0, index));
-  if (slot >= surfaceOf_.size()) surfaceOf_.resize(slot + 1, -1);
-  if (surfaceOf_[slot] >= 0) return surfaceOf_[slot];
-  const Material& m = sceneMaterial(scene, index);
-  const float through = slot < through_.size() ? through_[slot] : 0.0f;
+  const std::size_t key = 4 * slot + (thin ? 2 : 0) + (lit ? 1 : 0);
+  if (key >= surfaceOf_.size()) surfaceOf_.resize(key + 4, -1);
+  if (surfaceOf_[key] >= 0) return surfaceOf_[key];
+  const Material& m = sceneMaterial(scene, shownIndex(scene, index, lit));
+  const bool named = slot < through_.size() && through_[slot] >= 0;
   TraceMaterial t;
   const glm::vec3 colour = linearColour(m.diffuse);
-  t.surface.reflectance = colour * (1 - through);
-  t.surface.transmittance = colour * through;
+  if (named) {
+    const float through = through_[slot];
+    t.surface.reflectance = colour * (1 - through);
+    t.surface.transmittance = colour * through;
+  } else {
+    t.surface.reflectance = colour;
+    // A leaf reflects about as much as it passes: kLeafTranslucency of its colour, within what
+    // it does not reflect.
+    if (thin) t.surface.transmittance = glm::min(colour * kLeafTranslucency, 1.0f - colour);
+  }
   t.surface.specular = linearColour(m.specular);
   t.surface.exponent = m.shininess;
   t.opacity = 1 - std::clamp(m.transparency, 0.0f, 1.0f);
-  return surfaceOf_[slot] = addMaterial(t);
+  return surfaceOf_[key] = addMaterial(t);
 }
 
 const VeinSettings* TraceScene::veinsOf(int index) const {
@@ -97,12 +113,12 @@ const VeinSettings* TraceScene::veinsOf(int index) const {
   return nullptr;
 }
 
-int TraceScene::veinedMaterial(const Scene& scene, int index, float aspect) {
-  const int plain = surfaceMaterial(scene, index);
+int TraceScene::veinedMaterial(const Scene& scene, int index, float aspect, bool thin) {
+  const int plain = surfaceMaterial(scene, index, thin);
   const VeinSettings* veins = veinsOf(index);
   if (!veins) return plain;
-  const auto slot = static_cast<std::size_t>(std::max(0, index));
-  if (slot >= veinedOf_.size()) veinedOf_.resize(slot + 1, -1);
+  const std::size_t slot = 2 * static_cast<std::size_t>(std::max(0, index)) + (thin ? 1 : 0);
+  if (slot >= veinedOf_.size()) veinedOf_.resize(slot + 2, -1);
   if (veinedOf_[slot] >= 0) return veinedOf_[slot];
   TraceMaterial t = materials_[static_cast<std::size_t>(plain)];
   std::vector<VeinMap> maps;
@@ -112,7 +128,8 @@ int TraceScene::veinedMaterial(const Scene& scene, int index, float aspect) {
   // Without a colour of their own, veins are the surface's colour, darker.
   // Kept as the ratio of the veins' colour to the surface's, which scales the reflected and
   // the transmitted light alike.
-  const glm::vec3 colour = linearColour(sceneMaterial(scene, index).diffuse);
+  const glm::vec3 colour =
+      linearColour(sceneMaterial(scene, shownIndex(scene, index, true)).diffuse);
   const glm::vec3 veinColour = veins->veinColour ? linearColour(*veins->veinColour) : 0.55f * colour;
   for (int c = 0; c < 3; ++c) t.veinColour[c] = colour[c] > 0 ? veinColour[c] / colour[c] : 1.0f;
   t.veinStrength = veins->strength;

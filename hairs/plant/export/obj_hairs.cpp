@@ -1,5 +1,6 @@
 // Plant hairs in the OBJ file (DESIGN.md, "Plant hairs"): each polyline of a hair's template,
-// placed, one `l` element under `o hairs`, grouped by the template's material. The rest of the
+// placed, one `l` element under `o hairs`, and its filled polygons as faces, grouped by the
+// template's material. The rest of the
 // file is obj_writer.cpp.
 #include <algorithm>
 #include <glm/gtc/quaternion.hpp>
@@ -37,7 +38,8 @@ void PlantHairWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
   for (int material : materials) {
     for (std::size_t t = 0; t < templates.size(); ++t) {
       const HairTemplate& shape = templates[t];
-      if (shape.material != material || shape.segmentCount() == 0 || first[t] == first[t + 1])
+      if (shape.material != material || (shape.segmentCount() == 0 && shape.triangles.empty()) ||
+          first[t] == first[t + 1])
         continue;
       obj.group("hairs");
       obj.useMaterial(material, -1);
@@ -51,6 +53,13 @@ void PlantHairWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
             obj.polyline().push_back(obj.stats().vertices);
           }
           obj.finishPolyline();
+        }
+        // The template's filled polygons, as faces.
+        for (std::size_t v = 0; v + 2 < shape.triangles.size(); v += 3) {
+          for (std::size_t c = 0; c < 3; ++c)
+            obj.vertex(h.root + h.length * (rotation * shape.triangles[v + c]));
+          const std::uint64_t last = obj.stats().vertices;
+          obj.face({last - 2, last - 1, last});
         }
         ++written;
         obj.advance();

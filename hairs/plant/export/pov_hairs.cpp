@@ -1,6 +1,7 @@
 // Plant hairs in the POV-Ray scene (DESIGN.md, "Plant hairs"; docs/export.md, "Hairs"): a tube
-// of the hair radius around each template polyline, declared once per template and radius/length
-// bucket, and each hair an `object` of it with its matrix, one union a material. The rest of the
+// of the hair radius around each template polyline (and the template's filled polygons),
+// declared once per template and radius/length bucket, and each hair an `object` of it with its
+// matrix, one union a material. The rest of the
 // scene is pov_writer.cpp.
 #include <algorithm>
 #include <cmath>
@@ -64,6 +65,19 @@ TriangleMesh hairTube(const HairTemplate& hair, float radius, int sides) {
       }
     }
   }
+  // The template's filled polygons (a scale's blade), flat, in the same mesh: POV-Ray lights
+  // both sides of a triangle alike.
+  for (std::size_t i = 0; i + 2 < hair.triangles.size(); i += 3) {
+    const glm::vec3 a = hair.triangles[i], b = hair.triangles[i + 1], c = hair.triangles[i + 2];
+    const glm::vec3 normal = glm::cross(b - a, c - a);
+    if (!(glm::length(normal) > 0)) continue;
+    const auto first = static_cast<std::uint32_t>(tube.positions.size());
+    for (const glm::vec3& p : {a, b, c}) {
+      tube.positions.push_back(p);
+      tube.normals.push_back(glm::normalize(normal));
+    }
+    tube.indices.insert(tube.indices.end(), {first, first + 1, first + 2});
+  }
   return tube;
 }
 
@@ -86,7 +100,7 @@ void PlantHairWriter::writePov(const Scene& scene, PovWriter& pov) const {
   std::vector<bool> drawable(templates.size());
   float extent = 0;
   for (std::size_t t = 0; t < templates.size(); ++t) {
-    drawable[t] = templates[t].segmentCount() > 0;
+    drawable[t] = templates[t].segmentCount() > 0 || !templates[t].triangles.empty();
     if (drawable[t]) extent = std::max(extent, templates[t].extent);
   }
   auto valid = [&](const Hair& h) {

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/gtc/type_ptr.hpp>
+#include <tuple>
 #include <utility>
 
 #include "hirsute/interpreter/hair_part.h"
@@ -27,6 +28,9 @@ struct HairDrawing::Batch {
   // consecutive hairs land in the same screen tiles) and in levels (prefixes for level of detail).
   GLuint vertexArray = 0, levelVertexArray = 0, segments = 0;
   GLsizei vertexCount = 0;    // two a segment
+  // The template's filled triangles (HairTemplate::triangles), read the same way.
+  GLuint triangleVertexArray = 0, triangleLevelVertexArray = 0, triangles = 0;
+  GLsizei triangleVertexCount = 0;  // three a triangle
   GLsizei instanceCount = 0;  // its hairs, in hash order
   glm::vec4 color{1.0f};      // unlit, as the shaders' unlit(material)
 };
@@ -98,6 +102,11 @@ void HairDrawing::release() {
     gl_.DeleteVertexArrays(1, &batch.vertexArray);
     gl_.DeleteVertexArrays(1, &batch.levelVertexArray);
     gl_.DeleteBuffers(1, &batch.segments);
+    if (batch.triangles) {
+      gl_.DeleteVertexArrays(1, &batch.triangleVertexArray);
+      gl_.DeleteVertexArrays(1, &batch.triangleLevelVertexArray);
+      gl_.DeleteBuffers(1, &batch.triangles);
+    }
   }
   batches_.clear();
   for (GLuint* b : {&instances_, &instancesInOrder_}) {
@@ -141,7 +150,9 @@ void HairDrawing::upload(const OrganUpload& upload) {
            (hairHash(static_cast<std::uint32_t>(i)) >> (32 - kHairLevelBits));
   };
   auto drawn = [&](const Hair& hair) {
-    return hair.templateIndex < templates && !ends[hair.templateIndex].empty();
+    return hair.templateIndex < templates &&
+           (!ends[hair.templateIndex].empty() ||
+            !part.templates[hair.templateIndex].triangles.empty());
   };
   std::vector<std::size_t> start(buckets + 1, 0);
   for (std::size_t i = 0; i < part.hairs.size(); ++i) {
@@ -178,13 +189,20 @@ void HairDrawing::upload(const OrganUpload& upload) {
     batch.vertexCount = static_cast<GLsizei>(ends[t].size());
     batch.instanceCount = static_cast<GLsizei>(hairs);
     batch.segments = makeBuffer(gl_, GL_ARRAY_BUFFER, ends[t]);
+    const std::vector<glm::vec3>& triangles = part.templates[t].triangles;
+    batch.triangleVertexCount = static_cast<GLsizei>(triangles.size());
+    if (!triangles.empty()) batch.triangles = makeBuffer(gl_, GL_ARRAY_BUFFER, triangles);
     // GL 3.3 has no base instance: each template's vertex arrays start at its own hairs.
     const std::size_t base = first[t] * sizeof(HairInstance);
-    for (auto [vertexArray, buffer] : {std::pair{&batch.vertexArray, instancesInOrder_},
-                                       std::pair{&batch.levelVertexArray, instances_}}) {
+    for (auto [vertexArray, shape, buffer] :
+         {std::tuple{&batch.vertexArray, batch.segments, instancesInOrder_},
+          std::tuple{&batch.levelVertexArray, batch.segments, instances_},
+          std::tuple{&batch.triangleVertexArray, batch.triangles, instancesInOrder_},
+          std::tuple{&batch.triangleLevelVertexArray, batch.triangles, instances_}}) {
+      if (shape == 0) continue;
       gl_.GenVertexArrays(1, vertexArray);
       gl_.BindVertexArray(*vertexArray);
-      gl_.BindBuffer(GL_ARRAY_BUFFER, batch.segments);
+      gl_.BindBuffer(GL_ARRAY_BUFFER, shape);
       floatAttribute(gl_, 0, 3, 0, 0, false);
       gl_.BindBuffer(GL_ARRAY_BUFFER, buffer);
       constexpr auto stride = static_cast<GLsizei>(sizeof(HairInstance));
@@ -212,9 +230,16 @@ void HairDrawing::draw(const Camera& camera, const glm::vec3& /*light*/, float f
         static_cast<GLsizei>(std::lround(static_cast<double>(fraction) * batch.instanceCount));
     if (instances == 0) continue;
     gl_.Uniform4fv(color_, 1, glm::value_ptr(batch.color));
-    gl_.BindVertexArray(instances == batch.instanceCount ? batch.vertexArray
-                                                         : batch.levelVertexArray);
-    gl_.DrawArraysInstanced(GL_LINES, 0, batch.vertexCount, instances);
+    const bool whole = instances == batch.instanceCount;
+    if (batch.vertexCount > 0) {
+      gl_.BindVertexArray(whole ? batch.vertexArray : batch.levelVertexArray);
+      gl_.DrawArraysInstanced(GL_LINES, 0, batch.vertexCount, instances);
+    }
+    // A filled template's polygons, in the same unlit colour as its outline.
+    if (batch.triangleVertexCount > 0) {
+      gl_.BindVertexArray(whole ? batch.triangleVertexArray : batch.triangleLevelVertexArray);
+      gl_.DrawArraysInstanced(GL_TRIANGLES, 0, batch.triangleVertexCount, instances);
+    }
   }
 }
 

@@ -15,6 +15,35 @@ float distanceToSegment(const glm::vec3& p, const glm::vec3& a, const glm::vec3&
   return glm::distance(p, a + t * along);
 }
 
+// A filled template's polygons (a scale's blade), placed with each of its hairs: flat,
+// two-sided triangles of the template's colour as a surface, which pass light as a leaf of that
+// colour does (docs/trace.md, "Materials"), where its outline is traced as hair.
+void addFilledPolygons(const Scene& scene, const HairPart& part, std::size_t t,
+                       trace::TraceScene& out) {
+  const HairTemplate& hair = part.templates[t];
+  if (hair.triangles.empty()) return;
+  std::size_t count = 0;
+  for (const Hair& h : part.hairs) {
+    if (h.templateIndex == t && h.radius > 0) ++count;
+  }
+  if (count == 0) return;
+  const std::size_t corners = hair.triangles.size() / 3 * 3;
+  const trace::TriangleBuffers b =
+      out.addTriangles(count * corners, count * corners / 3,
+                       out.surfaceMaterial(scene, hair.material, true, false), false, false);
+  if (!b.positions) return;
+  std::size_t vertex = 0;
+  for (const Hair& h : part.hairs) {
+    if (h.templateIndex != t || !(h.radius > 0)) continue;
+    const glm::quat rotation = h.rotation();
+    for (std::size_t k = 0; k < corners; ++k) {
+      b.positions[vertex] = h.root + h.length * (rotation * hair.triangles[k]);
+      b.indices[vertex] = static_cast<std::uint32_t>(vertex);
+      ++vertex;
+    }
+  }
+}
+
 class PlantHairTracer : public trace::OrganTracer {
  public:
   void addTo(const Scene& scene, const Camera& camera, trace::TraceScene& out) const override {
@@ -34,6 +63,7 @@ class PlantHairTracer : public trace::OrganTracer {
     // radius. The curves are written straight into Embree's buffers, a template at a time.
     for (std::size_t t = 0; t < part.templates.size(); ++t) {
       const HairTemplate& hair = part.templates[t];
+      addFilledPolygons(scene, part, t, out);
       // Each form's kept vertices of each polyline.
       std::vector<std::vector<std::vector<std::size_t>>> kept(forms[t].stray.size());
       for (std::size_t f = 0; f < kept.size(); ++f) {

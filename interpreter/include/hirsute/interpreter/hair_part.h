@@ -23,6 +23,9 @@ namespace hirsute {
 struct HairTemplate {
   std::string file;                               // the `hair:` line's file
   std::vector<std::vector<glm::vec3>> polylines;  // connected runs of turtle positions
+  // The filled polygons of the template's `{ }` (cpfg draws a polygon filled), three vertices a
+  // triangle, in the same frame and colour: a scale's blade, whose outline the polylines draw.
+  std::vector<glm::vec3> triangles;
   int material = 0;                               // the colour of the template's first segment
   float extent = 0;                               // the largest distance of a vertex from the root
 

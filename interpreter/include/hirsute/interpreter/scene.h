@@ -137,6 +137,13 @@ enum class OrganSurfaceKind : std::uint8_t {
                  // their bounds; organs are placed over its area, not over (u, v)
 };
 
+// A run of a mesh's triangle indices, [firstIndex, firstIndex + indexCount).
+struct IndexRange {
+  int mesh = -1;
+  std::uint32_t firstIndex = 0;
+  std::uint32_t indexCount = 0;
+};
+
 struct OrganSurface {
   OrganSurfaceKind kind = OrganSurfaceKind::Polygon;
   int mesh = -1;                  // the TriangleMesh holding its triangles
@@ -203,6 +210,11 @@ class Scene {
   std::vector<Label> labels;
   std::vector<CylinderSegment> cylinderSegments;
   std::vector<OrganSurface> organSurfaces;  // surfaces and polygons with organ attributes
+  // The triangles of thin surfaces, one sheet with two faces: `{ }` polygons and `~` patches
+  // (the path tracer lets leaves pass light by default; docs/trace.md). Open generalized
+  // cylinders are known from cylinderSegments; closed ones, cylinder-style lines and mesh files
+  // are not listed.
+  std::vector<IndexRange> thinSurfaces;
   std::vector<Texture> textures;
 
   // An organ's part (organ_part.h), made empty on first use.
@@ -218,6 +230,9 @@ class Scene {
 
   // The mesh for a material and texture, created on first use.
   TriangleMesh& meshFor(int material, int texture = -1);
+  // Lists the triangles of `mesh` from index `firstIndex` to its end as a thin surface (joined
+  // to the last range where it follows on).
+  void markThin(const TriangleMesh& mesh, std::uint32_t firstIndex);
   Bounds bounds() const;
   std::size_t triangleCount() const;
   // Vertices held: mesh vertices, two per line, one per sphere, disc and label.

@@ -99,8 +99,10 @@ class PovWriter : public ScenePrinter {
   // `triangles` to the triangles written.
   void count(std::string_view what, std::size_t count, std::size_t triangles = 0);
   // A colour and an opacity per vertex, quantized so that a mesh2's texture_list stays short.
+  // The colour is a display (sRGB) colour, as GL draws it; writeShadedMesh writes it in linear
+  // light, as every colour of the scene (assumed_gamma 1).
   struct Shade {
-    int r, g, b, a;  // colour in 1/255, alpha in 1/kShadeAlphaLevels
+    int r, g, b, a;  // display colour in 1/255, alpha in 1/kShadeAlphaLevels
     auto key() const { return std::tie(r, g, b, a); }
     bool operator<(const Shade& o) const { return key() < o.key(); }
   };

@@ -97,8 +97,18 @@ class TraceScene {
   TraceScene& operator=(const TraceScene&) = delete;
 
   int addMaterial(const TraceMaterial& material);
-  // The Scene's material `index` as a surface, or as a hair of that colour (cached).
-  int surfaceMaterial(const Scene& scene, int index);
+  // With a colour map, GL's shaded and flat modes shade a surface of colour c along the palette,
+  // from c − d facing away from the light to c + d facing it (d: `diffuse reflection:`; manual
+  // §8.1.3). The tracer's light does that shading, so a lit surface takes the colour GL gives
+  // it in full light, entry c + d of c's bank: `offset` d. 0 (the default): materials, or an
+  // unlit render mode, where GL draws entry c itself.
+  void setLitPaletteOffset(int offset) { litPaletteOffset_ = offset; }
+  // The Scene's material `index` as a surface, or as a hair of that colour (cached). A surface
+  // `lit` is shaded in GL (a mesh, sphere or disc), and takes the lit palette entry; an unlit one
+  // (a line, a template hair's polygon) the entry itself. A `thin` one (one sheet: a polygon, a
+  // patch, an open generalized cylinder) passes light through as a leaf: `translucency:` for
+  // its colour, or else kLeafTranslucency of its colour besides what it reflects.
+  int surfaceMaterial(const Scene& scene, int index, bool thin = false, bool lit = true);
   int hairMaterial(const Scene& scene, int index);
   // A hair or a two-sided surface of the linear colour `colour` (white for shapes whose tint
   // gives their colour), shaded as the view file says hairs are.
@@ -108,7 +118,7 @@ class TraceScene {
   const VeinSettings* veinsOf(int index) const;
   // The Scene's material `index` with its veins, made for surfaces of proportions `aspect`
   // (width over length) the first time it is asked for (cached).
-  int veinedMaterial(const Scene& scene, int index, float aspect);
+  int veinedMaterial(const Scene& scene, int index, float aspect, bool thin = false);
   const VeinMap& veinMap(int veins, float variant) const;
 
   CurveBuffers addCurves(CurveShape shape, std::size_t vertices, std::size_t segments,
@@ -142,13 +152,16 @@ class TraceScene {
 
  private:
   int attach(RTCGeometryTy* geometry, const TraceShape& shape);
+  // The palette entry a surface of colour `index` shows (setLitPaletteOffset).
+  int shownIndex(const Scene& scene, int index, bool lit) const;
 
   TraceSettings look_;
   RTCDeviceTy* device_ = nullptr;
   RTCSceneTy* scene_ = nullptr;
   std::vector<TraceShape> shapes_;
   std::vector<TraceMaterial> materials_;
-  std::vector<int> surfaceOf_, hairOf_, veinedOf_;
+  std::vector<int> surfaceOf_, hairOf_, veinedOf_;  // surfaceOf_, veinedOf_: 4 and 2 a colour
+  int litPaletteOffset_ = 0;
   std::vector<std::vector<VeinMap>> veinMaps_;               // kVeinVariants a vein line
   std::vector<std::unique_ptr<SurfacePoint[]>> surfacePoints_;  // the shapes' (not Embree's)
   std::vector<std::unique_ptr<glm::vec2[]>> texcoords_;
@@ -158,6 +171,10 @@ class TraceScene {
   bool transparency_ = false;
   std::size_t curveSegments_ = 0, triangles_ = 0, bufferBytes_ = 0;
 };
+
+// The share of a thin surface's colour that passes through it where the view file gives its
+// colour no `translucency:` line, over what it reflects (a leaf lit from behind glows).
+inline constexpr float kLeafTranslucency = 0.3f;
 
 // A colour as the view file and colour maps give it (display values) as the reflectance the
 // tracer computes with (linear light).
