@@ -75,6 +75,7 @@ void addWarningOptions(CLI::App& command, std::vector<std::string>& flags, bool&
   }
   command.add_option("-W", flags, "-W no-NAME silences the warning NAME (" + names + ")")
       ->check(CLI::IsMember(silenced))
+      ->allow_extra_args(false)  // one name each: `-W no-NAME model.l`
       ->type_name("no-NAME");
   command.add_flag("--Werror", werror, "Make warnings errors: the run ends with exit code 2");
 }
