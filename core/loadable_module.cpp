@@ -32,7 +32,7 @@ void* moduleEntry(const char* fileName, const char* environmentVariable, const c
     const fs::path folder = programFolder();
     std::vector<fs::path> candidates = {folder / fileName};
 #ifdef HIRSUTE_MODULE_INSTALL_DIR
-    candidates.push_back(folder / HIRSUTE_MODULE_INSTALL_DIR / fileName);
+    candidates.push_back((folder / HIRSUTE_MODULE_INSTALL_DIR / fileName).lexically_normal());
 #endif
 #ifdef HIRSUTE_MODULE_BUILD_DIR
     candidates.push_back(fs::path(HIRSUTE_MODULE_BUILD_DIR) / fileName);

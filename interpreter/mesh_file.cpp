@@ -630,6 +630,8 @@ std::string meshAnswer(const SurfaceMeshData& data, const std::vector<Diagnostic
     out.values(data.laterPositions[k]);
     out.values(data.laterNormals[k]);
   }
+  out.values(data.atlasUv);
+  out.values(data.atlasChart);
   return out.take();
 }
 
@@ -680,7 +682,13 @@ bool readAnswer(const std::string& answer, SurfaceMeshData& data, Diagnostics& d
       return false;
     }
   }
-  // What the rest of the program relies on: one of each per vertex, indices naming vertices.
+  if (!in.values(data.atlasUv) || !in.values(data.atlasChart)) return false;
+  // What the rest of the program relies on: one of each per vertex, indices naming vertices, an
+  // atlas (u, v) per corner and chart per triangle, or none.
+  if (!data.atlasUv.empty() && (data.atlasUv.size() != data.indices.size() ||
+                                data.atlasChart.size() != data.indices.size() / 3)) {
+    return false;
+  }
   if (!in.atEnd() || data.normals.size() != vertices || data.uv.size() != vertices ||
       (!data.colours.empty() && data.colours.size() != vertices) || data.indices.size() % 3 != 0 ||
       std::any_of(data.indices.begin(), data.indices.end(),

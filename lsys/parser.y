@@ -229,7 +229,9 @@ production
       $$.probability = std::move($5);
     }
   | predecessor condition_part ARROW probability {
-      throw DiagnosticError(@3, "the successor is missing; write '*' for an empty successor");
+      throw DiagnosticError(@3, "the successor is missing: write it on the line of '-->' (a line "
+                                "that begins with a tab continues it), or '*' for an empty "
+                                "successor");
     }
   ;
 
@@ -525,8 +527,9 @@ void hirsute::detail::Parser::report_syntax_error(const context& c) const {
                                      ", found " + found);
   }
   if (kind == SymbolKind::S_EOL && expects(SymbolKind::S_SYMBOL) && expects(SymbolKind::S_STAR)) {
-    throw DiagnosticError(where, "the successor is empty: write it on the line of '-->' (a line "
-                                 "that begins with a tab continues it), or '*' for none");
+    throw DiagnosticError(where, "the successor is missing: write it on the line of '-->' (a line "
+                                 "that begins with a tab continues it), or '*' for an empty "
+                                 "successor");
   }
   if (expects(SymbolKind::S_SEMICOLON) && kind != SymbolKind::S_RPAREN && kind != SymbolKind::S_RBRACKET) {
     throw DiagnosticError(where, std::string(expects(SymbolKind::S_PLUS) ? "expected an operator or ';'" : "expected ';'") +

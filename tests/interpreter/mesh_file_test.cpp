@@ -511,6 +511,7 @@ TEST_F(MeshFileTest, TheChildProcessReadsWhatThisProcessReads) {
   fs::copy_file(fs::path(HIRSUTE_SOURCE_DIR) / "tests/fixtures/interpreter/bending-strip.gltf",
                 file("strip.gltf"));
   fs::copy_file(fs::path(HIRSUTE_SOURCE_DIR) / "models/mesh-leaf/leaf.ply", file("leaf.ply"));
+  fs::copy_file(fs::path(HIRSUTE_SOURCE_DIR) / "tests/fixtures/hairs/torus.ply", file("torus.ply"));
   write("nan.obj", "v 0 0 0\nv 1 0 0\nv 1 nan 0\nf 1 2 3\n");
   const auto same = [](const SurfaceMeshData& a, const SurfaceMeshData& b) {
     EXPECT_EQ(a.positions, b.positions);
@@ -524,13 +525,15 @@ TEST_F(MeshFileTest, TheChildProcessReadsWhatThisProcessReads) {
     EXPECT_EQ(a.boundsMax, b.boundsMax);
     EXPECT_EQ(a.laterPositions, b.laterPositions);
     EXPECT_EQ(a.laterNormals, b.laterNormals);
+    EXPECT_EQ(a.atlasUv, b.atlasUv);  // a closed mesh without (u, v): the fur's atlas
+    EXPECT_EQ(a.atlasChart, b.atlasChart);
   };
   const auto texts = [](const Diagnostics& d) {
     std::vector<std::string> out;
     for (const Diagnostic& w : d.warnings()) out.push_back(w.text());
     return out;
   };
-  for (const char* name : {"cube.obj", "colours.ply", "strip.gltf", "leaf.ply"}) {
+  for (const char* name : {"cube.obj", "colours.ply", "strip.gltf", "leaf.ply", "torus.ply"}) {
     SCOPED_TRACE(name);
     Diagnostics inChild, inProcess;
     const SurfaceMeshData a = loadMeshFile(file(name), folder_, kDefaultMaxMeshTriangles, inChild,
@@ -538,6 +541,9 @@ TEST_F(MeshFileTest, TheChildProcessReadsWhatThisProcessReads) {
     const SurfaceMeshData b = loadMeshFile(file(name), folder_, kDefaultMaxMeshTriangles, inProcess,
                                            MeshReading::InProcess);
     EXPECT_GT(a.triangles(), 0u);
+    if (std::string(name) == "torus.ply") {
+      EXPECT_FALSE(a.atlasUv.empty());
+    }
     same(a, b);
     EXPECT_EQ(texts(inChild), texts(inProcess));
   }

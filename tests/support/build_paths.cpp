@@ -9,7 +9,7 @@
 #include <mutex>
 #include <string>
 
-namespace hirsute::testing {
+namespace hirsute::build_paths {
 namespace {
 
 namespace fs = std::filesystem;
@@ -51,4 +51,4 @@ const char* buildFile(const char* relative) {
   return at->second.c_str();
 }
 
-}  // namespace hirsute::testing
+}  // namespace hirsute::build_paths
