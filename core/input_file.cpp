@@ -45,11 +45,14 @@ FileDescriptor openInputFile(const std::filesystem::path& file, std::string& fai
 bool readInputFile(const std::filesystem::path& file, std::string& text, std::string& failure,
                    std::size_t maxBytes) {
   const FileDescriptor fd = openInputFile(file, failure);
-  if (!fd) return false;
+  return fd && readDescriptor(fd.get(), text, failure, maxBytes);
+}
+
+bool readDescriptor(int fd, std::string& text, std::string& failure, std::size_t maxBytes) {
   text.clear();
   char buffer[1 << 16];
   for (;;) {
-    const ssize_t n = ::read(fd.get(), buffer, sizeof buffer);
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
     if (n < 0) {
       if (errno == EINTR) continue;
       failure = std::strerror(errno);

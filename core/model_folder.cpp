@@ -11,6 +11,8 @@
 #include <cstring>
 #include <vector>
 
+#include "hirsute/core/input_file.h"
+
 namespace hirsute {
 namespace {
 
@@ -242,22 +244,7 @@ bool ModelFolder::read(const std::string& name, std::string& text, std::string& 
     failure = file.failure;
     return false;
   }
-  text.clear();
-  char buffer[1 << 16];
-  while (true) {
-    const ssize_t n = ::read(file.fd.get(), buffer, sizeof buffer);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      failure = std::strerror(errno);
-      return false;
-    }
-    if (n == 0) return true;
-    if (text.size() + static_cast<std::size_t>(n) > maxBytes) {
-      failure = "it is larger than " + std::to_string(maxBytes) + " bytes";
-      return false;
-    }
-    text.append(buffer, static_cast<std::size_t>(n));
-  }
+  return readDescriptor(file.fd.get(), text, failure, maxBytes);
 }
 
 void ModelFolder::remove(const std::string& name) const {

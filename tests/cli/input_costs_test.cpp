@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include "support/run_hirsute.h"
@@ -85,15 +86,22 @@ TEST_F(InputCosts, AKeyBarbHasAtMost64ControlVertices) {
               "a key barb has at most 64 control vertices");
 }
 
-TEST_F(InputCosts, ASurfaceIsCountedAgainstTheVertexLimitBeforeItIsBuilt) {
+// The herb's leaf at PRECISION S: 1000 T: 1000 (after its first line), as `leaf.s`, and a view
+// file that names it ~l.
+fs::path writeLeafAtPrecision1000(const std::function<fs::path(const std::string&, const std::string&)>& write) {
   std::string surface;
-  std::ifstream in(kModels / "herb" / "leaf.s");
+  std::ifstream in(fs::path(HIRSUTE_SOURCE_DIR) / "models" / "herb" / "leaf.s");
   for (std::string line; std::getline(in, line);) {
     surface += line + "\n";
     if (surface.find('\n') == surface.size() - 1) surface += "PRECISION S: 1000 T: 1000\n";
   }
   write("leaf.s", surface);
-  const fs::path view = write("model.v", "surface: l leaf.s 1\n");
+  return write("model.v", "surface: l leaf.s 1\n");
+}
+
+TEST_F(InputCosts, ASurfaceIsCountedAgainstTheVertexLimitBeforeItIsBuilt) {
+  const fs::path view = writeLeafAtPrecision1000(
+      [this](const std::string& name, const std::string& text) { return write(name, text); });
   const fs::path model =
       write("model.l", "Lsystem: 1\nderivation length: 0\nAxiom: ~l(1)\nendlsystem\n");
   const RunResult run = exportPov(model, view, {"--max-vertices", "200000"});
@@ -110,14 +118,8 @@ TEST_F(InputCosts, ASurfaceIsCountedAgainstTheVertexLimitBeforeItIsBuilt) {
 // machine (here a 2 GB address space) holds: the message names the surface and its precision,
 // before the geometry is built, instead of "out of memory" after seconds.
 TEST_F(InputCosts, ASurfaceThatNeedsMoreMemoryThanTheMachineHoldsIsNamed) {
-  std::string surface;
-  std::ifstream in(kModels / "herb" / "leaf.s");
-  for (std::string line; std::getline(in, line);) {
-    surface += line + "\n";
-    if (surface.find('\n') == surface.size() - 1) surface += "PRECISION S: 1000 T: 1000\n";
-  }
-  write("leaf.s", surface);
-  const fs::path view = write("model.v", "surface: l leaf.s 1\n");
+  const fs::path view = writeLeafAtPrecision1000(
+      [this](const std::string& name, const std::string& text) { return write(name, text); });
   std::string axiom;
   for (int i = 0; i < 40; ++i) axiom += "~l(1)";
   const fs::path model =

@@ -30,4 +30,7 @@ FileDescriptor openInputFile(const std::filesystem::path& file, std::string& fai
 bool readInputFile(const std::filesystem::path& file, std::string& text, std::string& failure,
                    std::size_t maxBytes);
 
+// Reads what is left of an open file into `text`, as readInputFile does.
+bool readDescriptor(int fd, std::string& text, std::string& failure, std::size_t maxBytes);
+
 }  // namespace hirsute
