@@ -27,6 +27,20 @@ namespace hirsute::testing {
 
 namespace fs = std::filesystem;
 
+// Whether this is a build with AddressSanitizer, whose shadow memory no address-space limit
+// holds: a test that limits the program's memory skips there.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
 // A run still going after this is a hang. Generous: the sanitizer build's renders take seconds,
 // and on a busy machine (CI's two test jobs and another process) the herb's took over 5.
 constexpr auto kKillAfter = std::chrono::seconds(20);
