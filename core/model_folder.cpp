@@ -16,17 +16,6 @@
 namespace hirsute {
 namespace {
 
-// What kind of file a mode is, for a message.
-std::string kindOf(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISLNK(mode)) return "a symbolic link";
-  return "a special file";
-}
-
 int flagsFor(FileAccess access) {
   switch (access) {
     case FileAccess::Read:
@@ -208,7 +197,7 @@ ConfinedFile ModelFolder::open(const std::string& name, FileAccess access) const
     return result;
   }
   if (!S_ISREG(st.st_mode)) {
-    result.failure = "it is " + kindOf(st.st_mode) + ", not a regular file";
+    result.failure = "it is " + fileKindOf(st.st_mode) + ", not a regular file";
     result.refused = true;
     return result;
   }
