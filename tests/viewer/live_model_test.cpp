@@ -51,12 +51,12 @@ struct RecordingView : LiveModelView {
   int furUpdates = 0, featherUpdates = 0;
   Scene lastFeathers;
   bool screenshotsWork = true;
-  struct Shot {
+  struct Taken {
     std::filesystem::path file;
-    bool withUi;
+    LiveModelView::Shot shot;
     int step;  // the step shown when it was taken
   };
-  std::vector<Shot> screenshots;
+  std::vector<Taken> screenshots;
   std::vector<int> measures;
 
   void upload(const ViewerModel& model) override { uploadedSteps.push_back(model.steps); }
@@ -69,8 +69,8 @@ struct RecordingView : LiveModelView {
     }
   }
   std::vector<std::size_t> featherPoses;  // the poses of each feathers' update
-  bool screenshot(const std::filesystem::path& file, bool withUi) override {
-    screenshots.push_back({file, withUi, live && live->model() ? live->model()->steps : -1});
+  bool screenshot(const std::filesystem::path& file, Shot shot) override {
+    screenshots.push_back({file, shot, live && live->model() ? live->model()->steps : -1});
     return screenshotsWork;
   }
   void measure(int frames) override { measures.push_back(frames); }
@@ -222,7 +222,7 @@ TEST(LiveModelTest, StepAnimationGoesToTheNextFrameAndAfterTheLastToTheFirst) {
 TEST(LiveModelTest, ScriptCommandsWaitForTheirBuildsAndAskTheWindowForPictures) {
   LiveModelOptions options = scripted(
       "goto 3; step 2; hairs off; wireframe on; screenshot a.png; measure 5;"
-      "back; screenshot b.png ui; panel off; quit; hairs on");
+      "back; screenshot b.png ui; screenshot c.png shown; panel off; quit; hairs on");
   StepBuilder steps;
   RecordingView view;
   HandClock clock;
@@ -231,13 +231,14 @@ TEST(LiveModelTest, ScriptCommandsWaitForTheirBuildsAndAskTheWindowForPictures) 
   runScript(live);
   ASSERT_TRUE(live.closed());
   EXPECT_EQ(live.exitCode(), 0);
-  ASSERT_EQ(view.screenshots.size(), 2u);
+  ASSERT_EQ(view.screenshots.size(), 3u);
   EXPECT_EQ(view.screenshots[0].file, "a.png");
-  EXPECT_FALSE(view.screenshots[0].withUi);
+  EXPECT_EQ(view.screenshots[0].shot, LiveModelView::Shot::Plant);
   EXPECT_EQ(view.screenshots[0].step, 5);  // goto 3 and step 2 were built before it
   EXPECT_EQ(view.screenshots[1].file, "b.png");
-  EXPECT_TRUE(view.screenshots[1].withUi);
+  EXPECT_EQ(view.screenshots[1].shot, LiveModelView::Shot::WithUi);
   EXPECT_EQ(view.screenshots[1].step, 4);
+  EXPECT_EQ(view.screenshots[2].shot, LiveModelView::Shot::Shown);
   EXPECT_EQ(view.measures, std::vector<int>{5});
   EXPECT_FALSE(live.shown().organShown("hairs"));  // nothing runs after quit
   EXPECT_TRUE(live.shown().wireframe);
@@ -503,7 +504,8 @@ TEST(LiveModelTest, ScriptGustMovesTheFurAndDryDriesIt) {
   ASSERT_FALSE(fur.fur().organ<FurPart>().surfaces.empty());
   auto tips = [&] {
     std::vector<glm::vec3> out;
-    for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces) out.insert(out.end(), s.tips.begin(), s.tips.end());
+    for (const FurSurface& s : fur.fur().organ<FurPart>().surfaces)
+      out.insert(out.end(), s.tips.begin(), s.tips.end());
     return out;
   };
   auto wetness = [&] { return furWetness(fur); };
@@ -518,7 +520,8 @@ TEST(LiveModelTest, ScriptGustMovesTheFurAndDryDriesIt) {
   const std::vector<glm::vec3> blown = tips();
   ASSERT_EQ(blown.size(), rest.size());
   double moved = 0;
-  for (std::size_t i = 0; i < rest.size(); ++i) moved = std::max(moved, double(glm::distance(blown[i], rest[i])));
+  for (std::size_t i = 0; i < rest.size(); ++i)
+    moved = std::max(moved, double(glm::distance(blown[i], rest[i])));
   EXPECT_GT(moved, 1e-3) << "the gust moved no strand";
   EXPECT_LT(wetness(), wet) << "drying dried nothing";
   // `dry off` stops the drying.

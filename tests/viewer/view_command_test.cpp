@@ -213,6 +213,44 @@ TEST_F(ViewCommandTest, ABrokenEditShowsItsLocationAndKeepsTheLastGoodPlant) {
   EXPECT_EQ(differentPixels(shot("good.png"), shot("broken.png")), 0u);
 }
 
+// Pixels in the error message's colour (overlays.cpp: a light red).
+std::size_t errorColouredPixels(const RgbaImage& image) {
+  std::size_t count = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      glm::ivec4 p = glm::ivec4(image.pixel(x, y));
+      if (p.r > 180 && p.g < 150 && p.b < 150 && p.r - p.g > 70) ++count;
+    }
+  }
+  return count;
+}
+
+// The window shows a broken save's error within a second, with no input event: `screenshot …
+// shown` reads what is on the screen without drawing it again.
+TEST_F(ViewCommandTest, ABrokenSaveShowsItsErrorOnTheScreenWithoutInput) {
+  fs::path herb = copyModel("herb");
+  std::string model = (herb / "herb.l").string() + " " + (herb / "herb.v").string();
+  int code = -1;
+  std::thread viewer([&] {
+    code = view(model,
+                "sleep 0.5; screenshot good.png shown; wait-reload 30; sleep 1; "
+                "screenshot broken.png shown; quit");
+  });
+  bool started = waitForShot("good.png");
+  if (started) {
+    std::string text = readText(herb / "herb.l");
+    text.replace(text.find("B(order) --> *"), 14, "B(order --> *");
+    writeText(herb / "herb.l", text);
+  }
+  viewer.join();
+  ASSERT_TRUE(started) << stderr_;
+  EXPECT_EQ(code, 2) << stderr_;
+  const std::size_t before = errorColouredPixels(shot("good.png"));
+  const std::size_t after = errorColouredPixels(shot("broken.png"));
+  EXPECT_GT(after, before + 100) << "the error is not on the screen: " << before << " then "
+                                 << after << " pixels in its colour";
+}
+
 TEST_F(ViewCommandTest, TheAnimationRunsToItsLastFrame) {
   fs::path herb = shipped("herb");
   std::string model =

@@ -424,7 +424,9 @@ void LiveModel::runScript() {
         view_.measure(static_cast<int>(number(0, 30)));
         break;
       case Kind::Screenshot:
-        if (!view_.screenshot(c.words[0], c.words.size() > 1)) {
+        if (!view_.screenshot(c.words[0], c.words.size() < 2   ? LiveModelView::Shot::Plant
+                                          : c.words[1] == "ui" ? LiveModelView::Shot::WithUi
+                                                               : LiveModelView::Shot::Shown)) {
           scriptFailure(c, "cannot write the screenshot " + c.words[0]);
           return;
         }

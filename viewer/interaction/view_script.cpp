@@ -154,9 +154,10 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
         command.words.push_back(t.text);
       }
     }
-    if (command.kind == Kind::Screenshot && command.words.size() == 2 && command.words[1] != "ui") {
+    if (command.kind == Kind::Screenshot && command.words.size() == 2 && command.words[1] != "ui" &&
+        command.words[1] != "shown") {
       throw DiagnosticError(SourceLocation{name, tokens[2].line, tokens[2].column},
-                            "expected 'ui' or nothing after the file name");
+                            "expected 'ui', 'shown' or nothing after the file name");
     }
     script.push_back(std::move(command));
   }

@@ -58,13 +58,14 @@ class Viewer final : public LiveModelView {
   void updateOrgan(std::string_view organ, const Scene& scene) override {
     renderer_->updateOrgan(organ, scene);
   }
-  bool screenshot(const std::filesystem::path& file, bool withUi) override;
+  bool screenshot(const std::filesystem::path& file, Shot shot) override;
   void measure(int frames) override;
 
  private:
-  // The frame drawn (with the panel when withUi) and read back, handed to `write`, which writes
-  // `file`; false, with the message printed, when it fails.
-  bool capture(const std::filesystem::path& file, bool withUi,
+  // The frame drawn (with the panel for WithUi) and read back, or for Shown the picture on the
+  // screen as it is, handed to `write`, which writes `file`; false, with the message printed,
+  // when it fails.
+  bool capture(const std::filesystem::path& file, Shot shot,
                const std::function<void(const RgbaImage&)>& write);
   // The key S's screenshot, "MODEL-N.png" in the current folder (which may be the model's own):
   // a name the viewer makes up, so it is created there without following a link planted at it.
@@ -107,6 +108,10 @@ class Viewer final : public LiveModelView {
   int uiFrames_ = 2;  // ImGui needs a frame or two after input to settle
   double frameMs_ = 0;
   Clock::time_point lastFrameEnd_;
+  // The picture the last frame put on the screen, kept for a script that asks for it
+  // (`screenshot FILE shown`): a window's front buffer cannot be read back everywhere.
+  bool keepShown_ = false;
+  RgbaImage shown_;
   int screenshots_ = 0;
 };
 
@@ -115,6 +120,13 @@ bool Viewer::open() {
   glfw_ = GlfwWindow::open(title, options_.width, options_.height, !options_.script);
   if (!glfw_) return false;
   window_ = glfw_->handle();
+  if (options_.script) {
+    keepShown_ =
+        std::any_of(options_.script->begin(), options_.script->end(), [](const ViewCommand& c) {
+          return c.kind == ViewCommand::Kind::Screenshot && c.words.size() > 1 &&
+                 c.words[1] == "shown";
+        });
+  }
   try {
     gl_ = std::make_unique<GlFunctions>(
         [](const char* name) { return reinterpret_cast<GlProc>(glfwGetProcAddress(name)); });
@@ -230,28 +242,36 @@ void Viewer::frame() {
   auto start = Clock::now();
   drawScene(moving());
   drawUi();
+  if (keepShown_) shown_ = glfw_->readPixels(*gl_);
   glfwSwapBuffers(window_);
   lastFrameEnd_ = Clock::now();
   frameMs_ = secondsSince(start) * 1000.0;
 }
 
-bool Viewer::screenshot(const std::filesystem::path& file, bool withUi) {
-  return capture(file, withUi, [&](const RgbaImage& image) { writePng(file, image); });
+bool Viewer::screenshot(const std::filesystem::path& file, Shot shot) {
+  return capture(file, shot, [&](const RgbaImage& image) { writePng(file, image); });
 }
 
 void Viewer::screenshotHere(const std::string& name) {
-  capture(name, false, [&](const RgbaImage& image) { writePng(OutputFolder("."), name, image); });
+  capture(name, Shot::Plant,
+          [&](const RgbaImage& image) { writePng(OutputFolder("."), name, image); });
 }
 
-bool Viewer::capture(const std::filesystem::path& file, bool withUi,
+bool Viewer::capture(const std::filesystem::path& file, Shot shot,
                      const std::function<void(const RgbaImage&)>& write) {
-  // ImGui sizes a window that has just appeared over its first frames.
-  for (int i = 0; withUi && i < 2; ++i) frame();
-  drawScene(false);
-  if (withUi) drawUi();
-  RgbaImage image = glfw_->readPixels(*gl_);
-  if (!withUi) drawUi();
-  glfwSwapBuffers(window_);
+  RgbaImage image;
+  if (shot == Shot::Shown) {
+    image = shown_;
+  } else {
+    const bool withUi = shot == Shot::WithUi;
+    // ImGui sizes a window that has just appeared over its first frames.
+    for (int i = 0; withUi && i < 2; ++i) frame();
+    drawScene(false);
+    if (withUi) drawUi();
+    image = glfw_->readPixels(*gl_);
+    if (!withUi) drawUi();
+    glfwSwapBuffers(window_);
+  }
   live_->ignoreWrite(file);
   try {
     write(image);
@@ -438,7 +458,12 @@ int Viewer::run() {
 
   while (!glfwWindowShouldClose(window_)) {
     live_->update();
-    if (live_->takeChanged()) dirty_ = true;
+    if (live_->takeChanged()) {
+      dirty_ = true;
+      // A message that has just appeared (a broken save's error) is laid out by ImGui over its
+      // first frames: draw them now, not when the next input event arrives.
+      uiFrames_ = std::max(uiFrames_, 2);
+    }
     if (live_->closed()) glfwSetWindowShouldClose(window_, GLFW_TRUE);
     if (glfwWindowShouldClose(window_)) break;
 

@@ -70,8 +70,11 @@ class LiveModelView {
   virtual void upload(const ViewerModel& model) = 0;
   // The organ named `organ` moved (live_organ.h): its drawing takes what moves from `scene`.
   virtual void updateOrgan(std::string_view organ, const Scene& scene) = 0;
-  // The script's `screenshot FILE [ui]`: false when the file cannot be written.
-  virtual bool screenshot(const std::filesystem::path& file, bool withUi) = 0;
+  // What the script's `screenshot FILE [ui|shown]` takes: the plant alone, drawn anew; the plant
+  // with the overlays, drawn anew; or the picture the window shows now, as it was last drawn.
+  enum class Shot { Plant, WithUi, Shown };
+  // The script's screenshot: false when the file cannot be written.
+  virtual bool screenshot(const std::filesystem::path& file, Shot shot) = 0;
   // The script's `measure N`: frame times printed over N frames.
   virtual void measure(int frames) = 0;
 };

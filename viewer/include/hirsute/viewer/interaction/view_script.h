@@ -19,7 +19,8 @@
 //   NAME on|off      show or hide the organ NAME (live_organ.h: hairs, feathers …), as its key
 //   …                each organ's own commands (its LiveOrganType's actions; docs/viewer.md)
 //   measure [N]      print the frame time over N frames still and N frames moving
-//   screenshot FILE [ui]  write the window's picture to a PNG (with ui: with the overlays)
+//   screenshot FILE [ui|shown]  write the window's picture to a PNG (with ui: with the overlays;
+//                    shown: what the window shows now, not drawn again)
 //   quit             close the window
 #pragma once
 
