@@ -54,13 +54,6 @@ inline glm::ivec2 imageSize(const std::string& size) {
 int runRender(const RenderOptions& options);
 // In the trace module: the path tracer needs no GL.
 int runTrace(const RenderOptions& options);
-// Whether `render -o PATH` asks for an OpenEXR file (its name ends in .exr, any case).
-inline bool hasExrExtension(const std::string& path) {
-  if (path.size() < 4) return false;
-  std::string ext = path.substr(path.size() - 4);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".exr";
-}
 int runView(const ViewOptions& options);
 
 }  // namespace hirsute::cli

@@ -18,6 +18,7 @@
 #include "hirsute/viewer/export/organ_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
+#include "hirsute/viewer/view/png_image.h"
 #include "model_pipeline.h"
 
 namespace hirsute::cli {
@@ -30,6 +31,7 @@ struct ExportOptions {
   // The organs' tables (organ_writer.h), one file name a writer of organWriters() (empty: none).
   std::vector<std::string> tables = std::vector<std::string>(organWriters().size());
   bool render = false;
+  std::string image;         // --render's picture (empty: the .pov's name with .png)
   bool traceLights = false;  // the path tracer's lights (PovOptions::traceLights)
   int width = 800, height = 600;
   int renderTimeout = 3600;  // seconds POV-Ray may run for --render
@@ -88,7 +90,17 @@ int runExport(ExportOptions o) {
                  "install povray)\n";
     return kExitIoError;
   }
-  std::filesystem::path image = std::filesystem::path(o.pov).replace_extension(".png");
+  std::filesystem::path image = o.image;
+  if (image.empty()) {
+    // A name derived from the scene's: an image already there is replaced, and the user is told.
+    image = std::filesystem::path(o.pov).replace_extension(".png");
+    std::error_code error;
+    if (std::filesystem::exists(std::filesystem::symlink_status(image, error)) && !error) {
+      std::cerr << "hirsute: note: replacing " << printableText(image.string())
+                << " with the picture of " << printableText(o.pov)
+                << " (--image FILE writes it elsewhere)\n";
+    }
+  }
   PovrayRun run =
       runPovray(o.pov, image, o.width, o.height, true, std::chrono::seconds(o.renderTimeout));
   // POV-Ray's messages quote the scene: its control bytes are shown escaped.
@@ -146,17 +158,23 @@ void registerExportCommand(CLI::App& app, Action& action) {
       "Render the POV-Ray scene with the installed povray, to the .pov's name with .png");
   render->needs(command->get_option("--pov"));
   command
+      ->add_option("--image", options->image,
+                   "The PNG file --render writes (default: the .pov's name with .png)")
+      ->check(CLI::Validator(
+          [](std::string& name) -> std::string {
+            if (imageFormatOf(name) == ImageFormat::Png) return {};
+            return "'" + name + "': POV-Ray's picture is a PNG: a name ending in .png";
+          },
+          "FILE.png"))
+      ->needs(render);
+  command
       ->add_option("--render-timeout", options->renderTimeout,
                    "Seconds POV-Ray may run for --render before it is stopped (default 3600)")
       ->check(CLI::Range(1, 7 * 24 * 3600))
       ->needs(render);
-  command
-      ->add_option("--width", options->width,
-                   "Image width in pixels: the camera's aspect, the size of pixel-wide lines, "
-                   "--render (default 800)")
-      ->check(CLI::Range(1, 16384));
-  command->add_option("--height", options->height, "Image height in pixels (default 600)")
-      ->check(CLI::Range(1, 16384));
+  addImageSizeOption(*command, options->width, options->height,
+                     "The picture's size in pixels, WIDTHxHEIGHT: the camera's aspect, the size "
+                     "of pixel-wide lines, --render (default 800x600)");
   command->callback([options, &action, tableFiles] {
     const bool noTable = std::all_of(options->tables.begin(), options->tables.end(),
                                      [](const std::string& file) { return file.empty(); });

@@ -47,14 +47,16 @@ class HelpFormatter : public CLI::Formatter {
     const auto names = [](const std::set<CLI::Option*>& options) {
       std::string list;
       for (const CLI::Option* other : options) {
+        if (other->get_group().empty()) continue;  // a hidden alias is not named
         if (!list.empty()) list += ", ";
         list += other->get_name();
       }
       return list;
     };
-    if (!option->get_needs().empty()) description += " (with " + names(option->get_needs()) + ")";
-    if (!option->get_excludes().empty())
-      description += " (not with " + names(option->get_excludes()) + ")";
+    if (const std::string needed = names(option->get_needs()); !needed.empty())
+      description += " (with " + needed + ")";
+    if (const std::string excluded = names(option->get_excludes()); !excluded.empty())
+      description += " (not with " + excluded + ")";
     return description;
   }
 };

@@ -3,37 +3,31 @@
 #include <cstdint>
 #include <iostream>
 #include <memory>
-#include <regex>
 #include <string>
 
 #include "command.h"
 #include "drawing_commands.h"
 #include "drawing_loader.h"
+#include "hirsute/viewer/view/png_image.h"
 
 namespace hirsute::cli {
 
 void registerRenderCommand(CLI::App& app, Action& action) {
   auto options = std::make_shared<RenderOptions>();
-  CLI::App* render = app.add_subcommand(
-      "render", "Render the model headless to a PNG image, with the view file's camera and lights");
+  CLI::App* render =
+      app.add_subcommand("render",
+                         "Render the model headless to a picture (PNG, JPEG; OpenEXR with "
+                         "--trace), with the view file's camera and lights");
   addModelOptions(*render, options->model);
   render
       ->add_option("-o,--output", options->output,
-                   "The PNG file to write (with --trace also FILE.exr: OpenEXR, linear half floats)")
+                   "The picture to write, in the format its extension names: .png, .jpg or "
+                   ".jpeg (JPEG, quality 95); with --trace also .exr (OpenEXR, linear half "
+                   "floats)")
       ->required();
   render
       ->add_option("--size", options->size, "Image size in pixels, WIDTHxHEIGHT (default 800x600)")
-      ->check(CLI::Validator(
-          [](std::string& value) -> std::string {
-            static const std::regex kSize("([1-9][0-9]{0,4})x([1-9][0-9]{0,4})");
-            std::smatch m;
-            if (!std::regex_match(value, m, kSize)) return "expected WIDTHxHEIGHT, as 1024x768";
-            if (std::stoi(m[1]) > 16384 || std::stoi(m[2]) > 16384) {
-              return "at most 16384 pixels a side";
-            }
-            return "";
-          },
-          "WIDTHxHEIGHT"));
+      ->check(imageSizeCheck());
   render
       ->add_option("--samples", options->samples,
                    "Multisample antialiasing: samples a pixel (default 4; 1 turns it off)")
@@ -73,19 +67,39 @@ void registerRenderCommand(CLI::App& app, Action& action) {
                    "With --trace: 8 (sRGB, default) or 16 bits a channel (linear light) in the PNG")
       ->check(CLI::IsMember({8, 16}));
   render->callback([options, &action] {
-    const bool exr = hasExrExtension(options->output);
+    const std::optional<ImageFormat> format = imageFormatOf(options->output);
+    if (!format) {
+      throw CLI::ValidationError("--output",
+                                 "'" + options->output +
+                                     "': the picture's format is chosen by its extension: " +
+                                     kImageExtensions + " (and .exr with --trace)");
+    }
+    const bool exr = format == ImageFormat::Exr;
     if (!options->trace && (exr || options->bits != 8)) {
       throw CLI::ValidationError(exr ? "--output" : "--bits",
                                  "an OpenEXR file and 16-bit PNGs are made by --trace only");
     }
+    if (format == ImageFormat::Jpeg && options->bits != 8) {
+      throw CLI::ValidationError("--bits", "a JPEG holds 8 bits a channel; --bits 16 is for PNGs");
+    }
     if (!options->trace && !options->sampleCountImage.empty()) {
       throw CLI::ValidationError("--spp-image", "sample counts are made by --trace only");
+    }
+    if (!options->sampleCountImage.empty()) {
+      const std::optional<ImageFormat> counts = imageFormatOf(options->sampleCountImage);
+      if (!counts || counts == ImageFormat::Exr) {
+        throw CLI::ValidationError("--spp-image", "'" + options->sampleCountImage +
+                                                      "': the picture's format is chosen by its "
+                                                      "extension: " +
+                                                      kImageExtensions);
+      }
     }
     if (!options->trace && options->traceDenoise) {
       throw CLI::ValidationError("--denoise", "only a traced picture (--trace) is denoised");
     }
     if (options->traceDenoise && options->traceSamples < 2) {
-      throw CLI::ValidationError("--denoise", "the denoiser needs each pixel's noise: --spp 2 or more");
+      throw CLI::ValidationError("--denoise",
+                                 "the denoiser needs each pixel's noise: --spp 2 or more");
     }
     if (options->traceDenoise) {
       // The filter keeps some 350 bytes a pixel besides the tracer's 52: 6 GB at this limit.
@@ -94,9 +108,10 @@ void registerRenderCommand(CLI::App& app, Action& action) {
       const long long pixels =
           std::stoll(options->size.substr(0, x)) * std::stoll(options->size.substr(x + 1));
       if (pixels > kMostDenoisedPixels) {
-        throw CLI::ValidationError("--denoise", "a denoised picture has at most 4096x4096 pixels (" +
-                                                    std::to_string(kMostDenoisedPixels) +
-                                                    "); --size asks for " + std::to_string(pixels));
+        throw CLI::ValidationError("--denoise",
+                                   "a denoised picture has at most 4096x4096 pixels (" +
+                                       std::to_string(kMostDenoisedPixels) + "); --size asks for " +
+                                       std::to_string(pixels));
       }
     }
     if (exr && options->bits != 8) {

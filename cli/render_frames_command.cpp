@@ -60,7 +60,7 @@ struct RenderFramesOptions {
 
 constexpr int kDefaultWidth = 800;  // simulate's own default size
 constexpr int kDefaultHeight = 600;
-constexpr int kMaxSide = 16384;  // as every command that makes pictures
+constexpr int kMaxSide = kMaxImageSide;  // as every command that makes pictures
 constexpr const char* kJobLog = "render-frames.log";
 constexpr const char* kWorkPrefix = ".render-frames-";
 // POV-Ray's exit status under `timeout` when a frame passed --frame-timeout (coreutils'
@@ -713,14 +713,9 @@ void registerRenderFramesCommand(CLI::App& app, Action& action) {
   command->add_option("folder", o->folder, "The folder of the frames (simulate's -o DIR)")
       ->required()
       ->check(CLI::ExistingDirectory);
-  command
-      ->add_option("--width", o->width,
-                   "The image's width (default: the size the scenes were written for, else 800)")
-      ->check(CLI::Range(1, kMaxSide));
-  command
-      ->add_option("--height", o->height,
-                   "The image's height (default: the size the scenes were written for, else 600)")
-      ->check(CLI::Range(1, kMaxSide));
+  addImageSizeOption(*command, o->width, o->height,
+                     "The pictures' size in pixels, WIDTHxHEIGHT (default: the size the scenes "
+                     "were written for, else 800x600)");
   command
       ->add_option("-j,--jobs", o->jobs,
                    "Frames rendered at once on each machine (default: one a core)")

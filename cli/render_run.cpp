@@ -40,7 +40,7 @@ int runRender(const RenderOptions& o) {
   }
   progress.clear();
   try {
-    writePng(o.output, image);
+    writeImage(o.output, image, imageFormatOf(o.output).value_or(ImageFormat::Png));
   } catch (const std::runtime_error& e) {
     std::cerr << "hirsute: error: " << e.what() << '\n';
     return kExitIoError;

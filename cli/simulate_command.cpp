@@ -17,11 +17,11 @@
 #include <vector>
 
 #include "command.h"
+#include "hirsute/core/output_target.h"
 #include "hirsute/hairs/dynamics/coat_motion.h"
 #include "hirsute/hairs/dynamics/wind_field.h"
 #include "hirsute/hairs/fur/fur_motion.h"
 #include "hirsute/hairs/fur/fur_stage.h"
-#include "hirsute/core/output_target.h"
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/feather_settings.h"
 #include "hirsute/interpreter/fur_part.h"
@@ -128,12 +128,11 @@ class FurRun {
  public:
   static constexpr double kDefaultDrag = 1;  // per second
 
-  FurRun(const SimulateOptions& o, const FurSettings& view,
-         const dynamics::WindParameters& wind, double frameTime)
+  FurRun(const SimulateOptions& o, const FurSettings& view, const dynamics::WindParameters& wind,
+         double frameTime)
       : wind_(wind),
-        force_(o.furForce.size() == 3
-                   ? glm::vec3(o.furForce[0], o.furForce[1], o.furForce[2])
-                   : view.force),
+        force_(o.furForce.size() == 3 ? glm::vec3(o.furForce[0], o.furForce[1], o.furForce[2])
+                                      : view.force),
         drag_(o.furDrag.value_or(kDefaultDrag)),
         dryRate_(o.dry.value_or(0)),
         dryFrom_(o.dryFrom),
@@ -147,7 +146,8 @@ class FurRun {
   // error naming the options, before any frame.
   std::optional<std::string> checkCosts(const Scene& scene, int frames) const {
     int mask = 0;
-    for (const FurSurface& s : scene.organ<FurPart>().surfaces) mask = std::max(mask, s.wetnessSize);
+    for (const FurSurface& s : scene.organ<FurPart>().surfaces)
+      mask = std::max(mask, s.wetnessSize);
     double droplets = 0, texels = 0;
     auto charge = [&](double count, float radius) {
       const double side = std::min<double>(mask, 2.0 * radius * mask + 2);
@@ -206,9 +206,9 @@ class FurRun {
   std::size_t fall(Scene& scene, int frame) {
     std::size_t landed = 0;
     auto spray = [&](std::size_t count, const DropletFall& f) {
-      landed += sprayDroplets(scene, count, f.radius, f.wetness,
-                              seed_ + 7919u * static_cast<std::uint32_t>(frame) +
-                                  static_cast<std::uint32_t>(landed));
+      landed += sprayDroplets(
+          scene, count, f.radius, f.wetness,
+          seed_ + 7919u * static_cast<std::uint32_t>(frame) + static_cast<std::uint32_t>(landed));
     };
     for (const DropletFall& f : falls_)
       if (f.frame == frame) spray(static_cast<std::size_t>(f.count), f);
@@ -341,11 +341,10 @@ int runSimulate(SimulateOptions o) {
   // middle and last frames too, so that a body that moves stays in view.
   Bounds fit = first.scene.bounds();
   if (frames > 1 && models->moves(2)) {
-    const int used =
-        define ? frames
-               : std::min(std::max(static_cast<int>(animation.size()),
-                                   static_cast<int>(first.resources.meshFrames())),
-                          frames);
+    const int used = define ? frames
+                            : std::min(std::max(static_cast<int>(animation.size()),
+                                                static_cast<int>(first.resources.meshFrames())),
+                                       frames);
     for (const int k : {(used + 1) / 2, used}) {
       try {
         fit.add(models->build(k, diagnostics).bounds());
@@ -410,8 +409,8 @@ int runSimulate(SimulateOptions o) {
   // vanes a frame, as dear as the frame's steps on a coat without vanes).
   const bool countVanes = parameters.vaneCollisions || o.countVaneIntersections;
   std::size_t vaneIntersectionsLeft = 0;  // over every frame's state
-  double simulating = 0;  // seconds in the steps, apart from deriving and writing
-  std::uint64_t written = 0;  // bytes of the frames' files
+  double simulating = 0;                  // seconds in the steps, apart from deriving and writing
+  std::uint64_t written = 0;              // bytes of the frames' files
   Scene drawn = first.scene;
   try {
     if (fur) fur->start(drawn);
@@ -547,9 +546,10 @@ int runSimulate(SimulateOptions o) {
   const dynamics::FeatherCoatSimulation& simulation = motion->simulation();
   const std::string overlaps =
       parameters.vaneCollisions || parameters.findVaneOverlaps
-          ? fmt::format(", {} pairs of segments whose vanes overlapped at the start left out ({} "
-                        "still at the end)",
-                        simulation.vaneOverlapsAtStart(), simulation.vaneOverlaps().size())
+          ? fmt::format(
+                ", {} pairs of segments whose vanes overlapped at the start left out ({} "
+                "still at the end)",
+                simulation.vaneOverlapsAtStart(), simulation.vaneOverlaps().size())
           : std::string();
   std::cout << fmt::format(
       "{} frames of {} feathers ({} rooted on the body) in {:.2f} s, {:.3f} s of it simulating "
@@ -570,10 +570,10 @@ int runSimulate(SimulateOptions o) {
 
 void registerSimulateCommand(CLI::App& app, Action& action) {
   auto options = std::make_shared<SimulateOptions>();
-  CLI::App* command = app.add_subcommand(
-      "simulate",
-      "Simulate the model's feathers (wind, gravity, collisions) over its animation and write a "
-      "POV-Ray scene per frame");
+  CLI::App* command = app.add_subcommand("simulate",
+                                         "Simulate the model's feathers and fur (wind, gravity, "
+                                         "collisions, droplets) over its animation "
+                                         "and write a POV-Ray scene per frame");
   addSimulateOptions(*command, *options);
   command->callback([options, &action] { action = [options] { return runSimulate(*options); }; });
 }

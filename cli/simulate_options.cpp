@@ -103,10 +103,8 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
   command.add_flag("--count-vane-intersections", options.countVaneIntersections,
                    "With the vanes not colliding, count in every frame's state the vanes that "
                    "pass through each other or through stems (counted anyway when they collide)");
-  command.add_option("--width", options.width, "The frames' width in pixels (default 800)")
-      ->check(CLI::Range(1, 16384));
-  command.add_option("--height", options.height, "The frames' height in pixels (default 600)")
-      ->check(CLI::Range(1, 16384));
+  addImageSizeOption(command, options.width, options.height,
+                     "The frames' size in pixels, WIDTHxHEIGHT (default 800x600)");
 }
 
 std::optional<DropletFall> dropletFall(const std::string& text, bool rain) {

@@ -128,15 +128,17 @@ int runTrace(const RenderOptions& o) {
   // leaves both files as they were.
   try {
     OutputGroup outputs;
-    if (hasExrExtension(o.output)) {
+    const ImageFormat format = imageFormatOf(o.output).value_or(ImageFormat::Png);
+    if (format == ImageFormat::Exr) {
       trace::writeExr(o.output, image.width, image.height, image.radiance, &outputs);
     } else if (o.bits == 16) {
       writeLinearPng16(o.output, image.width, image.height, image.radiance, &outputs);
     } else {
-      writePng(o.output, trace::displayImage(image), &outputs);
+      writeImage(o.output, trace::displayImage(image), format, &outputs);
     }
     if (!o.sampleCountImage.empty()) {
-      writePng(o.sampleCountImage, trace::sampleCountImage(image, o.traceSamples), &outputs);
+      writeImage(o.sampleCountImage, trace::sampleCountImage(image, o.traceSamples),
+                 imageFormatOf(o.sampleCountImage).value_or(ImageFormat::Png), &outputs);
     }
     outputs.commit();
   } catch (const std::runtime_error& e) {

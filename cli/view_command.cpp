@@ -1,7 +1,6 @@
 // `hirsute view`: the interactive window (viewer_window.h). This file reads the command line; the
 // drawing module runs the window (view_run.cpp).
 #include <memory>
-#include <regex>
 #include <string>
 
 #include "command.h"
@@ -23,17 +22,7 @@ void registerViewCommand(CLI::App& app, Action& action) {
   view->add_option("--script", options->scriptFile, "Run the viewer commands in FILE, then close")
       ->check(CLI::ExistingFile);
   view->add_option("--size", options->size, "Window size in pixels, WIDTHxHEIGHT (default 800x600)")
-      ->check(CLI::Validator(
-          [](std::string& value) -> std::string {
-            static const std::regex kSize("([1-9][0-9]{0,4})x([1-9][0-9]{0,4})");
-            std::smatch m;
-            if (!std::regex_match(value, m, kSize)) return "expected WIDTHxHEIGHT, as 1024x768";
-            if (std::stoi(m[1]) > 16384 || std::stoi(m[2]) > 16384) {
-              return "at most 16384 pixels a side";
-            }
-            return "";
-          },
-          "WIDTHxHEIGHT"));
+      ->check(imageSizeCheck());
   view->add_option("--samples", options->samples,
                    "Multisample antialiasing: samples a pixel (default 4; 1 turns it off)")
       ->check(CLI::Range(1, 64));

@@ -130,7 +130,8 @@ void Diagnostics::addSourceFolder(const ModelFolder& folder) {
 std::string Diagnostics::report(const Diagnostic& diagnostic) const {
   for (const ModelFolder& folder : sourceFolders_) {
     const std::string excerpt = sourceExcerpt(diagnostic.where, folder);
-    if (!excerpt.empty()) return diagnostic.text() + "\n" + excerpt;
+    if (!excerpt.empty())
+      return diagnostic.text() + "\n" + excerpt + macroNotes(diagnostic.where, diagnostic.message, folder);
   }
   return diagnostic.text() + "\n";
 }

@@ -4,7 +4,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+#include <utility>
+#include <vector>
 
 namespace hirsute {
 namespace {
@@ -46,7 +52,98 @@ bool readLine(int fd, int number, std::string& line) {
   }
 }
 
+bool isNameStart(char c) {
+  return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
+}
+bool isNameChar(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+// The lines of the open file, at most kMaxScannedBytes of it.
+std::vector<std::string> readLines(int fd) {
+  std::vector<std::string> lines(1);
+  std::string buffer(1 << 16, '\0');
+  std::size_t scanned = 0;
+  for (;;) {
+    const ssize_t got = ::read(fd, buffer.data(), buffer.size());
+    if (got <= 0) break;
+    for (ssize_t i = 0; i < got; ++i) {
+      const char c = buffer[static_cast<std::size_t>(i)];
+      if (c == '\n')
+        lines.emplace_back();
+      else
+        lines.back() += c;
+    }
+    scanned += static_cast<std::size_t>(got);
+    if (scanned > kMaxScannedBytes) break;
+  }
+  return lines;
+}
+
+// The name a `#define NAME …` line defines and its column (1-based); none for other lines.
+std::optional<std::pair<std::string, int>> definedName(const std::string& line) {
+  std::size_t i = 0;
+  const auto skipBlanks = [&] {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+  };
+  skipBlanks();
+  if (i >= line.size() || line[i] != '#') return std::nullopt;
+  ++i;
+  skipBlanks();
+  if (line.compare(i, 6, "define") != 0) return std::nullopt;
+  i += 6;
+  const std::size_t afterKeyword = i;
+  skipBlanks();
+  if (i == afterKeyword || i >= line.size() || !isNameStart(line[i])) return std::nullopt;
+  const std::size_t start = i;
+  while (i < line.size() && isNameChar(line[i])) ++i;
+  return std::pair{line.substr(start, i - start), static_cast<int>(start) + 1};
+}
+
 }  // namespace
+
+std::string macroNotes(const SourceLocation& where, const std::string& message,
+                       const ModelFolder& folder) {
+  if (where.line <= 0 || !where.file || where.file->empty()) return {};
+  ConfinedFile file = folder.open(nameInFolder(*where.file, folder), FileAccess::Read);
+  if (!file) return {};
+  const std::vector<std::string> lines = readLines(file.fd.get());
+  if (static_cast<std::size_t>(where.line) > lines.size()) return {};
+  std::map<std::string, std::pair<int, int>> macros;  // name: line and column of its #define
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    if (const auto defined = definedName(lines[k]))
+      macros.emplace(defined->first, std::pair{static_cast<int>(k) + 1, defined->second});
+  }
+  if (macros.empty()) return {};
+
+  const std::string& line = lines[static_cast<std::size_t>(where.line) - 1];
+  const std::size_t from = where.column > 0 ? static_cast<std::size_t>(where.column - 1) : 0;
+  if (const std::size_t found = message.rfind("found '"); found != std::string::npos) {
+    const std::size_t start = found + 7, end = message.find('\'', start);
+    if (end != std::string::npos && end > start &&
+        line.compare(from, end - start, message, start, end - start) == 0)
+      return {};
+  }
+  std::string notes;
+  std::set<std::string> noted;
+  for (std::size_t i = 0; i < line.size() && noted.size() < 3;) {
+    if (!isNameStart(line[i]) || (i > 0 && isNameChar(line[i - 1]))) {
+      ++i;
+      continue;
+    }
+    const std::size_t start = i;
+    while (i < line.size() && isNameChar(line[i])) ++i;
+    if (i <= from) continue;  // ends before the column
+    const std::string name = line.substr(start, i - start);
+    const auto macro = macros.find(name);
+    if (macro == macros.end() || macro->second.first == where.line || !noted.insert(name).second)
+      continue;
+    const SourceLocation definition{where.file, macro->second.first, macro->second.second};
+    notes += definition.text() + ": note: '" + name + "' is a macro, defined here\n" +
+             sourceExcerpt(definition, folder);
+  }
+  return notes;
+}
 
 std::string sourceExcerpt(const SourceLocation& where, const ModelFolder& folder) {
   if (where.line <= 0 || !where.file || where.file->empty()) return {};

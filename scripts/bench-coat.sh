@@ -3,7 +3,7 @@
 # DENSITY set for about 1 000, 10 000 and 30 000 feathers, each measured as the user meets it,
 # the whole process under GNU time (wall seconds, peak MiB):
 #   render   `hirsute render MODEL -o coat.png --size 800x600`
-#   export   `hirsute export MODEL --pov coat.pov --width 640 --height 480` (its size in MiB)
+#   export   `hirsute export MODEL --pov coat.pov --size 640x480` (its size in MiB)
 #   povray   `povray +W640 +H480 -D +FN coat.pov`, stopped after POV_TIMEOUT seconds (default 120):
 #            "not finished in N s"
 # and the templates the export declared for its feathers (`#declare Feather`).
@@ -64,7 +64,7 @@ for density in $densities; do
       tail -n +2 f.csv | wc -l || echo '?')"
     render="$(timed "$hirsute" render "coat-$density.l" feather-coat.v -o coat.png --size 800x600)"
     exported="$(timed "$hirsute" export "coat-$density.l" feather-coat.v --pov coat.pov \
-      --width 640 --height 480)"
+      --size 640x480)"
     pov_mib="-" templates="-" povray="-"
     if [[ -f coat.pov && $exported != exit* ]]; then
       pov_mib="$(awk "BEGIN { printf \"%.1f\", $(stat -c %s coat.pov) / 1048576 }")"

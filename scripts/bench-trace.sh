@@ -69,7 +69,7 @@ for m in $models; do
     if [[ "${POVRAY:-1}" != 0 && -z "$pov" ]]; then
       for lights in "" "--trace-lights"; do
         read -r es em < <(timed "$program" export "$folder/$base.l" "$folder/$base.v" $lights \
-          --pov "$work/$base.pov" --width "${size%x*}" --height "${size#*x}")
+          --pov "$work/$base.pov" --size "$size")
         read -r ps pm < <(timed timeout "${POVRAY_LIMIT:-1800}" povray -D +A0.3 +W"${size%x*}" \
           +H"${size#*x}" +I"$work/$base.pov" +O"$work/$base-pov.png")
         pov+="$(printf ' %15s %15s' "$es/$em" "$ps/$pm") $es $ps "

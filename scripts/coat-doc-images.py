@@ -115,8 +115,8 @@ def main():
         model, view = coat(folder, "80.5")
         for name, more in (("instanced", []), ("whole", ["--full-feathers"])):
             pov = os.path.join(folder, name + ".pov")
-            subprocess.run([hirsute, "export", model, view, "--pov", pov, "--width", "320", "--height",
-                            "240", "--render"] + more, check=True)
+            subprocess.run([hirsute, "export", model, view, "--pov", pov, "--size", "320x240",
+                            "--render"] + more, check=True)
             pictures[name] = read_png(os.path.join(folder, name + ".png"))[2]
         print(f"POV-Ray 320x240, 1 000 feathers: mean absolute difference "
               f"{mean_abs(pictures['instanced'], pictures['whole']):.2f} levels")

@@ -15,7 +15,7 @@ simulate() {
   shift 6
   # shellcheck disable=SC2086
   (cd "models/$folder" && "$hirsute" simulate $files -o "$work/$picture" --frames "$frames" \
-    --width "$width" --height "$height")
+    --size "${width}x${height}")
   for frame in "$@"; do
     local name
     name="$(printf 'frame-%04d' "$frame")"

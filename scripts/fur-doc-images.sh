@@ -24,14 +24,14 @@ if command -v povray >/dev/null; then
   work="$(mktemp -d)"
   trap 'rm -rf "$work"' EXIT
   (cd models/fur-square && "$hirsute" export square.l word.v --pov "$work/word.pov" --render \
-    --width 520 --height 440)
+    --size 520x440)
   cp "$work/word.png" "$out/word-povray.png"
 fi
 # Fur over time (docs/fur.md, "Over time"): the square in a gusty wind, six droplets at frame 2,
 # drying from frame 24; frames 1, 24 and 48 through POV-Ray.
 if command -v povray >/dev/null; then
   (cd models/fur-square && "$hirsute" simulate square.l square.v -o "$work/frames" --frames 48 \
-    --wind 3 0 0 --gusts 1 --drop 2:6:0.08 --dry 1 --dry-from 24 --width 320 --height 240)
+    --wind 3 0 0 --gusts 1 --drop 2:6:0.08 --dry 1 --dry-from 24 --size 320x240)
   for k in 0001 0024 0048; do
     povray -D +A +W320 +H240 "$work/frames/frame-$k.pov" +O"$out/simulate-$k.png" 2>/dev/null
   done

@@ -116,8 +116,7 @@ vector plain @/bending.l @/bending.v -o out
 vector animation @/bending.l @/bending.v @/bending.a -o out --frames 12 --fps 30 --obj
 vector forces @/bending.l @/bending.v -o out --gravity 0 -9.81 0 --wind 1 0 0.5 --gusts 2 \
   --gust-scale 0.5 --gust-period 1.5 --gust-seed 7 --drag 0.1 --substeps 8 --segments 4
-vector animate @/bending.l @/bending.v -o out --animate WIDTH=2:4 --no-frames --width 320 \
-  --height 240
+vector animate @/bending.l @/bending.v -o out --animate WIDTH=2:4 --no-frames --size 320x240
 vector fur @/bending.l @/bending.v -o out --droplets 20 --droplet-radius 0.1 \
   --droplet-wetness 0.5 --droplet-seed 3 --no-fur --no-hairs --max-hairs 10
 vector colours @/bending.l -o out -m 2:@/feather-coat.map -M @/feather-coat.map -n 3 \

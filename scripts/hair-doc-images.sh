@@ -22,6 +22,6 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 for name in radius density; do
   "$hirsute" export "$examples/$name.l" "$examples/hair-modules.v" --pov "$work/$name.pov" \
-    --render --width 800 --height 300
+    --render --size 800x300
   cp "$work/$name.png" "$out/$name-pov.png"
 done

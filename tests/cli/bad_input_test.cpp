@@ -625,6 +625,24 @@ TEST(SourceExcerpt, AnErrorShowsItsLineAndACaretUnderTheColumn) {
   EXPECT_EQ(run.err, expected);
 }
 
+// A mistake that comes from a macro's text shows where the macro is defined, as compilers note
+// an expansion; a mistake in the line as written (the '->' above) has no such note.
+TEST(SourceExcerpt, AMistakeInAMacrosTextShowsTheMacrosDefinition) {
+  const fs::path model = excerptFixture("macro.l");
+  const RunResult run = runHirsute({"derive", model.string()});
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  const std::string expected = model.string() +
+                               ":7:11: error: the '(' of module 'F' is not closed with ')' before "
+                               "'endlsystem'\n"
+                               " 7 | I(x) --> F(SHORT)\n"
+                               "   |           ^\n" +
+                               model.string() +
+                               ":2:9: note: 'SHORT' is a macro, defined here\n"
+                               " 2 | #define SHORT (LEN * 0.6\n"
+                               "   |         ^\n";
+  EXPECT_EQ(run.err, expected);
+}
+
 // A `#line` directive may make a location name any file: only files beneath the model's folder
 // are quoted, so no line of /etc/passwd reaches the terminal.
 TEST(SourceExcerpt, NoLineOfAFileOutsideTheModelsFolderIsShown) {

@@ -71,8 +71,7 @@ std::string missingTool() {
 void simulateThreeFrames(const fs::path& folder) {
   const RunResult run =
       runHirsute({"simulate", (kCoat / "bending.l").string(), (kCoat / "bending.v").string(),
-                  (kCoat / "bending.a").string(), "-o", folder.string(), "--frames", "3", "--width",
-                  "32", "--height", "24"});
+                  (kCoat / "bending.a").string(), "-o", folder.string(), "--frames", "3", "--size", "32x24"});
   ASSERT_EQ(run.exitCode, 0) << run.err;
 }
 
@@ -103,8 +102,7 @@ TEST(RenderFramesCommand, RendersEveryFrameThenOnlyWhatIsMissing) {
   TemporaryFolder folder;
   ASSERT_NO_FATAL_FAILURE(simulateThreeFrames(folder.path()));
   const std::string dir = folder.path().string();
-  const std::vector<std::string> render = {"render-frames", dir,  "--width", "32",
-                                           "--height",      "24", "--jobs",  "2"};
+  const std::vector<std::string> render = {"render-frames", dir,  "--size", "32x24", "--jobs",  "2"};
 
   RunResult run = runHirsute(render);
   ASSERT_EQ(run.exitCode, 0) << run.err << run.out;
@@ -142,7 +140,7 @@ TEST(RenderFramesCommand, RendersEveryFrameThenOnlyWhatIsMissing) {
 
   // --force renders every frame again.
   after = imageTimes(folder.path());
-  run = runHirsute({"render-frames", dir, "--width", "32", "--height", "24", "--force"});
+  run = runHirsute({"render-frames", dir, "--size", "32x24", "--force"});
   ASSERT_EQ(run.exitCode, 0) << run.err << run.out;
   EXPECT_NE(run.out.find("3 frames: 3 rendered, 0 already done, 0 failed, 0 not started in "),
             std::string::npos)
@@ -171,7 +169,7 @@ TEST(RenderFramesCommand, ASceneThatDoesNotParseFailsAloneAndLeavesNoImage) {
   fs::remove(folder.path() / "frame-0003.pov");
   std::ofstream(folder.path() / "frame-0002.pov") << "#version 3.7;\nsphere { <0, 0, 0>,\n";
   const RunResult run = runHirsute(
-      {"render-frames", folder.path().string(), "--width", "32", "--height", "24", "--jobs", "2"});
+      {"render-frames", folder.path().string(), "--size", "32x24", "--jobs", "2"});
   EXPECT_EQ(run.exitCode, 1) << run.err << run.out;
   EXPECT_NE(run.out.find("2 frames: 1 rendered, 0 already done, 1 failed, 0 not started in "),
             std::string::npos)
@@ -236,8 +234,7 @@ TEST(RenderFramesCommand, OverSshTheScenesAndTheirTexturesTravelAndTheImagesCome
   const ScopedEnvironment ssh(
       "PARALLEL_SSH", (kSource / "tests" / "fixtures" / "cli" / "stand_in_ssh.sh").string());
   const ScopedEnvironment home("STAND_IN_REMOTE_HOME", remoteHome.path().string());
-  const RunResult run = runHirsute({"render-frames", folder.path().string(), "--width", "32",
-                                    "--height", "24", "--sshlogin", "stand-in"});
+  const RunResult run = runHirsute({"render-frames", folder.path().string(), "--size", "32x24", "--sshlogin", "stand-in"});
   ASSERT_EQ(run.exitCode, 0) << run.err << run.out;
   EXPECT_NE(run.out.find("2 frames: 2 rendered, 0 already done, 0 failed, 0 not started in "),
             std::string::npos)
@@ -277,7 +274,7 @@ TEST(RenderFramesCommand, LinksPlantedInTheFolderAreReplacedNotWrittenThrough) {
   // DIR itself a link, as the user may name it.
   fs::create_directory_symlink(folder.path(), links.path() / "frames");
   const RunResult run = runHirsute(
-      {"render-frames", (links.path() / "frames").string(), "--width", "32", "--height", "24"});
+      {"render-frames", (links.path() / "frames").string(), "--size", "32x24"});
   ASSERT_EQ(run.exitCode, 0) << run.err << run.out;
   EXPECT_EQ(readText(outside.path() / "log.txt"), "the user's file\n");
   EXPECT_EQ(readText(outside.path() / "image.png"), "the user's image\n");
@@ -297,7 +294,7 @@ TEST(RenderFramesCommand, ASceneNameThatPovRayWouldReadAsOptionsIsLeftOut) {
                 folder.path() / "frame-7\" +GAinjected.log +I\"frame-7.pov");
   fs::copy_file(kFrames / "sphere.pov", folder.path() / "frame-8\x1b]0;owned\x07.pov");
   const RunResult run =
-      runHirsute({"render-frames", folder.path().string(), "--width", "32", "--height", "24"});
+      runHirsute({"render-frames", folder.path().string(), "--size", "32x24"});
   ASSERT_EQ(run.exitCode, 0) << run.err << run.out;
   EXPECT_NE(run.out.find("2 frames: 2 rendered, 0 already done, 0 failed, 0 not started in "),
             std::string::npos)
@@ -326,7 +323,7 @@ TEST(RenderFramesCommand, POVRayReadsAndWritesNothingOutsideTheFolder) {
   fs::copy_file(kFrames / "secret.inc", outer.path() / "secret.inc");
   fs::create_symlink(outer.path() / "secret.inc", folder / "secret.inc");
   const RunResult run = runHirsute(
-      {"render-frames", folder.string(), "--width", "32", "--height", "24", "--jobs", "2"});
+      {"render-frames", folder.string(), "--size", "32x24", "--jobs", "2"});
   EXPECT_EQ(run.exitCode, 1) << run.err << run.out;
   EXPECT_NE(run.out.find("4 frames: 1 rendered, 0 already done, 3 failed, 0 not started in "),
             std::string::npos)
@@ -349,8 +346,7 @@ TEST(RenderFramesCommand, AFrameThatRendersForeverIsStoppedAtTheFrameTimeout) {
   TemporaryFolder folder;
   fs::copy_file(kFrames / "sphere.pov", folder.path() / "frame-0001.pov");
   fs::copy_file(kFrames / "endless.pov", folder.path() / "frame-0002.pov");
-  const RunResult run = runHirsute({"render-frames", folder.path().string(), "--width", "32",
-                                    "--height", "24", "--frame-timeout", "1"});
+  const RunResult run = runHirsute({"render-frames", folder.path().string(), "--size", "32x24", "--frame-timeout", "1"});
   EXPECT_FALSE(run.killed);
   EXPECT_EQ(run.exitCode, 1) << run.err << run.out;
   EXPECT_NE(run.err.find("frame-0002.pov: error: not rendered: POV-Ray ran for more than 1 s "
@@ -440,10 +436,7 @@ TEST(RenderFramesCommand, SigtermEndsParallelAndEveryRendererAndSaysWhatWasNotRe
   std::vector<std::string> argv = {HIRSUTE_BINARY,
                                    "render-frames",
                                    folder.path().string(),
-                                   "--width",
-                                   "32",
-                                   "--height",
-                                   "24",
+                                   "--size", "32x24",
                                    "--jobs",
                                    "2"};
   std::vector<char*> pointers;

@@ -230,7 +230,7 @@ TEST_F(SimulateCommand, FurMovesInTheWindAndDropletsWetItAndItDries) {
   const std::string files = "square.l square.v";
   const Output out = simulate("fur-square", files,
                               "--frames 8 --wind 3 0 0 --gusts 1 --drop 2:6 --dry 0.5 "
-                              "--dry-from 4 --width 80 --height 60",
+                              "--dry-from 4 --size 80x60",
                               folder_ / "windy");
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("8 frames of fur (625 strands on 1 surfaces)"), std::string::npos)

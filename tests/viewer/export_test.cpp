@@ -724,7 +724,7 @@ int runHirsute(const std::string& arguments, const fs::path& log) {
 TEST_F(ExportTest, CommandWritesPovAndObjForAModel) {
   std::string herb = std::string(HIRSUTE_SOURCE_DIR) + "/models/herb/herb";
   fs::path pov = file("herb.pov"), obj = file("herb.obj");
-  std::string render = povrayAvailable() ? " --render --width 80 --height 60" : "";
+  std::string render = povrayAvailable() ? " --render --size 80x60" : "";
   ASSERT_EQ(runHirsute("export '" + herb + ".l' '" + herb + ".v' --pov '" + pov.string() +
                            "' --obj '" + obj.string() + "'" + render,
                        file("log")),

@@ -562,7 +562,7 @@ TEST_F(HairExportTest, FeatherTexturesReachPovRay) {
     const std::string base = std::string(HIRSUTE_SOURCE_DIR) + "/models/" + model;
     const fs::path pov = file(name + ".pov");
     EXPECT_EQ(runHirsute("export '" + base + "/" + name + ".l' '" + base + "/" + name +
-                             ".v' --pov '" + pov.string() + "' --width 200 --height 200",
+                             ".v' --pov '" + pov.string() + "' --size 200x200",
                          file("log")),
               0)
         << readText(file("log"));
@@ -619,7 +619,7 @@ TEST_F(HairExportTest, FurThroughPovRayHasThePreviewsColour) {
             0)
       << readText(file("log"));
   ASSERT_EQ(runHirsute("export " + model + " --pov '" + file("fur.pov").string() +
-                           "' --width 64 --height 48 --render",
+                           "' --size 64x48 --render",
                        file("log")),
             0)
       << readText(file("log"));
@@ -655,7 +655,7 @@ std::vector<glm::dvec3> rgbtColours(const std::string& text, std::size_t from) {
 TEST_F(HairExportTest, FeatherBarbColoursAreWrittenInLinearLight) {
   const std::string base = std::string(HIRSUTE_SOURCE_DIR) + "/models/feather-parameters/";
   ASSERT_EQ(runHirsute("export '" + base + "angles.l' '" + base + "angles.v' --pov '" +
-                           file("angles.pov").string() + "' --width 160 --height 120",
+                           file("angles.pov").string() + "' --size 160x120",
                        file("log")),
             0)
       << readText(file("log"));

@@ -58,6 +58,9 @@ TEST(ViewScriptTest, MistakesNameLineAndColumn) {
   expectError("rotate", "--commands:1:1: error: 'rotate' takes 1 to 2 arguments");
   expectError("dynamics soon", "--commands:1:10: error: expected on or off, found 'soon'");
   expectError("droplets", "--commands:1:1: error: 'droplets' takes 1 argument");
+  expectError("step; screenshot a.tiff",
+              "--commands:1:18: error: 'a.tiff': the picture's format is chosen by its "
+              "extension: .png, .jpg, .jpeg");
 }
 
 // Each organ of liveOrgans() adds `NAME on|off` and a command for each action that has one, with

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -152,6 +153,17 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
                                 "expected on or off, found '" + t.text + "'");
         }
         command.words.push_back(t.text);
+      }
+    }
+    if (command.kind == Kind::Screenshot) {
+      // The picture's format is its name's extension's, as for `hirsute render -o`.
+      std::string extension = std::filesystem::path(command.words[0]).extension().string();
+      for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (extension != ".png" && extension != ".jpg" && extension != ".jpeg") {
+        throw DiagnosticError(SourceLocation{name, tokens[1].line, tokens[1].column},
+                              "'" + command.words[0] +
+                                  "': the picture's format is chosen by its extension: .png, "
+                                  ".jpg, .jpeg");
       }
     }
     if (command.kind == Kind::Screenshot && command.words.size() == 2 && command.words[1] != "ui" &&

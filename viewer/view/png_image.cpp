@@ -3,13 +3,27 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 #include "hirsute/core/output_target.h"
+
+// stb's writer compiled into this file alone, with internal linkage, so that another library in
+// the same program may include its own copy.
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#include <stb/stb_image_write.h>
+#pragma GCC diagnostic pop
 
 namespace hirsute {
 namespace {
@@ -72,6 +86,55 @@ void writePng(const OutputFolder& folder, const std::string& name, const RgbaIma
     throw writeError(folder.pathOf(name), "the image is empty");
   OutputTarget file(folder, name);
   writePngTo(file, image);
+}
+
+std::optional<ImageFormat> imageFormatOf(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".png") return ImageFormat::Png;
+  if (extension == ".jpg" || extension == ".jpeg") return ImageFormat::Jpeg;
+  if (extension == ".exr") return ImageFormat::Exr;
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (!error && (std::filesystem::is_character_file(status) || std::filesystem::is_fifo(status)))
+    return ImageFormat::Png;
+  return std::nullopt;
+}
+
+void writeJpeg(const std::filesystem::path& path, const RgbaImage& image, OutputGroup* group) {
+  if (image.width <= 0 || image.height <= 0) throw writeError(path, "the image is empty");
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) * image.height * 3);
+  for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
+    std::copy_n(&image.rgba[i * 4], 3, &rgb[i * 3]);
+  std::vector<std::uint8_t> bytes;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+    const auto* first = static_cast<const std::uint8_t*>(data);
+    out->insert(out->end(), first, first + size);
+  };
+  constexpr int kQuality = 95;
+  if (stbi_write_jpg_to_func(append, &bytes, image.width, image.height, 3, rgb.data(), kQuality) ==
+      0)
+    throw writeError(path, "cannot encode the image as JPEG");
+  OutputTarget file(path, group);
+  if (std::fwrite(bytes.data(), 1, bytes.size(), file.stream()) != bytes.size())
+    throw writeError(path, std::strerror(errno));
+  file.commit();
+}
+
+void writeImage(const std::filesystem::path& path, const RgbaImage& image, ImageFormat format,
+                OutputGroup* group) {
+  switch (format) {
+    case ImageFormat::Png:
+      writePng(path, image, group);
+      return;
+    case ImageFormat::Jpeg:
+      writeJpeg(path, image, group);
+      return;
+    case ImageFormat::Exr:
+      break;
+  }
+  throw std::invalid_argument(path.string() + ": an OpenEXR file holds a traced picture's light");
 }
 
 void writeLinearPng16(const std::filesystem::path& path, int width, int height,

@@ -249,7 +249,9 @@ void Viewer::frame() {
 }
 
 bool Viewer::screenshot(const std::filesystem::path& file, Shot shot) {
-  return capture(file, shot, [&](const RgbaImage& image) { writePng(file, image); });
+  return capture(file, shot, [&](const RgbaImage& image) {
+    writeImage(file, image, imageFormatOf(file).value_or(ImageFormat::Png));
+  });
 }
 
 void Viewer::screenshotHere(const std::string& name) {

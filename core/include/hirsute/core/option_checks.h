@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <system_error>
+#include <utility>
 
 namespace hirsute {
 
@@ -52,6 +54,63 @@ inline CLI::Validator integerRange(std::int64_t min, std::uint64_t max) {
         return {};
       },
       fmt::format("INT in [{} - {}]", min, max));
+}
+
+// The largest side, in pixels, of a picture or window any command makes.
+inline constexpr int kMaxImageSide = 16384;
+
+// `WIDTHxHEIGHT` (`1024x768`), each side an integer from 1 to kMaxImageSide; none otherwise.
+inline std::optional<std::pair<int, int>> parseImageSize(const std::string& text) {
+  const std::size_t x = text.find('x');
+  if (x == std::string::npos) return std::nullopt;
+  int sides[2] = {0, 0};
+  const std::pair<std::size_t, std::size_t> parts[2] = {{0, x}, {x + 1, text.size()}};
+  for (int k = 0; k < 2; ++k) {
+    const char* first = text.data() + parts[k].first;
+    const char* last = text.data() + parts[k].second;
+    if (first == last || *first == '+' || *first == '-') return std::nullopt;
+    const auto [end, error] = std::from_chars(first, last, sides[k]);
+    if (error != std::errc() || end != last || sides[k] < 1 || sides[k] > kMaxImageSide)
+      return std::nullopt;
+  }
+  return std::pair{sides[0], sides[1]};
+}
+
+// `--size WIDTHxHEIGHT`, as parseImageSize reads it.
+inline CLI::Validator imageSizeCheck() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (parseImageSize(text)) return {};
+        return fmt::format("'{}' is not WIDTHxHEIGHT (as 1024x768) with each side from 1 to {}",
+                           text, kMaxImageSide);
+      },
+      "WIDTHxHEIGHT");
+}
+
+// Registers `--size WIDTHxHEIGHT` on a command that makes pictures, into `width` and `height`
+// (int, or std::optional<int> where no size means "as before"). The former spellings `--width N`
+// and `--height N` stay as hidden aliases with the same limit.
+template <typename Side>
+void addImageSizeOption(CLI::App& command, Side& width, Side& height,
+                        const std::string& description) {
+  CLI::Option* size = command
+                          .add_option_function<std::string>(
+                              "--size",
+                              [&width, &height](const std::string& text) {
+                                const auto sides = parseImageSize(text);
+                                width = sides->first;
+                                height = sides->second;
+                              },
+                              description)
+                          ->check(imageSizeCheck());
+  command.add_option("--width", width, "The width alone (as --size)")
+      ->check(integerRange(1, kMaxImageSide))
+      ->group("")
+      ->excludes(size);
+  command.add_option("--height", height, "The height alone (as --size)")
+      ->check(integerRange(1, kMaxImageSide))
+      ->group("")
+      ->excludes(size);
 }
 
 }  // namespace hirsute

@@ -22,4 +22,18 @@ namespace hirsute {
 // the part around the column. The source's control bytes are shown as printableText shows them.
 std::string sourceExcerpt(const SourceLocation& where, const ModelFolder& folder);
 
+// For each macro used on the location's line from its column on (a name the same file
+// `#define`s on another line), a note that shows where it is defined, so that a mistake that
+// comes from a macro's text points at that text too:
+//
+//   herb.l:2:9: note: 'SHORT' is a macro, defined here
+//    2 | #define SHORT (LEN * 0.6
+//      |         ^
+//
+// None when `message` says what it found (`found '->'`) and the source has just that at the
+// column: the mistake is in the line as written. At most three; empty when there are none or the
+// file cannot be read beneath `folder`.
+std::string macroNotes(const SourceLocation& where, const std::string& message,
+                       const ModelFolder& folder);
+
 }  // namespace hirsute

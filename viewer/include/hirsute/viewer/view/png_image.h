@@ -1,9 +1,10 @@
-// Images as the renderer produces them, and PNG files through libpng.
+// Images as the renderer produces them; PNG files through libpng, JPEG files through stb.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,24 @@ void writePng(const std::filesystem::path& path, const RgbaImage& image,
 // The same under `name`, a name the program makes up (a screenshot's), in `folder`: created there
 // without following a link planted at the name (hirsute/core/output_folder.h).
 void writePng(const OutputFolder& folder, const std::string& name, const RgbaImage& image);
+
+// The formats a picture the user names (`render -o FILE`) is written in, chosen by the name's
+// extension.
+enum class ImageFormat { Png, Jpeg, Exr };
+
+// The format `path`'s extension names, in any case: .png; .jpg or .jpeg; .exr. A device or FIFO
+// (/dev/stdout, a pipe) whose name names none takes PNG. None for any other name.
+std::optional<ImageFormat> imageFormatOf(const std::filesystem::path& path);
+// The extensions imageFormatOf knows, for a message: ".png, .jpg, .jpeg".
+inline constexpr const char* kImageExtensions = ".png, .jpg, .jpeg";
+
+// Writes a baseline JPEG (quality 95, RGB), as writePng writes a PNG.
+void writeJpeg(const std::filesystem::path& path, const RgbaImage& image,
+               OutputGroup* group = nullptr);
+// Writes a PNG or a JPEG, as `format` says (Exr: std::invalid_argument; the path tracer writes
+// those, exr_image.h).
+void writeImage(const std::filesystem::path& path, const RgbaImage& image, ImageFormat format,
+                OutputGroup* group = nullptr);
 
 // Writes linear RGB (`pixels`: width × height, row 0 at the top, 1 = white) as a 16-bit PNG of
 // linear light (gAMA 1.0), for compositing; values are clamped to [0, 1]. Written like writePng.
