@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The feather-coat dynamics benchmark (docs/dynamics.md, "Benchmarks"): coats of about 64, 500
-# and 2 000 feathers on the bending body of models/coat-bending, in gusty wind, FRAMES frames at
+# The feather-coat dynamics benchmark (docs/developers.md, "Feather-coat dynamics"): coats of
+# about 64, 500 and 2 000 feathers on the bending body of models/coat-bending, in gusty wind, FRAMES frames at
 # 24 frames a second while the body bends once, simulated with `hirsute simulate --no-frames`
 # (the scenes are not written: the figures are the simulation's and the re-derived body's). Per
 # coat: feathers and particles, the whole process's wall and CPU time and peak memory
@@ -10,7 +10,8 @@
 # separation, the pairs with a calamus they left within the separation (calami are not
 # guaranteed) and the pairs with a calamus found meeting their stem in a step tried (then
 # retried as halves) and of those the ones put into impact zones at the smallest step, and the
-# intersections left in accepted states (must be 0). The vane columns (docs/dynamics.md, "Vanes"):
+# intersections left in accepted states (must be 0). The vane columns (docs/dynamics.md, "How the
+# simulation works"):
 # per frame the candidates and contacts with a vane's primitive, then the intersections of vanes
 # with other vanes or stems in the frames' states, summed over the frames (0 with vanes on; with
 # them off, what passed through, counted only with COUNT_VANES=1: the count costs as much as the
