@@ -20,8 +20,8 @@ for n in 1 2 3 4; do
 done
 hirsute render models/tutorial/plant-5.l models/tutorial/hairy.v -o plant-5.png --size 480x360
 hirsute render models/tutorial/plant-5.l models/tutorial/still.v --trace --spp 24 --size 480x360 -o still.png
-hirsute export models/tutorial/plant-5.l models/tutorial/hairy.v --pov plant.pov --render --width 480 --height 360
-hirsute export models/tutorial/plant-5.l models/tutorial/still.v --pov still-pov.pov --trace-lights --render --width 480 --height 360
+hirsute export models/tutorial/plant-5.l models/tutorial/hairy.v --pov plant.pov --render --size 480x360
+hirsute export models/tutorial/plant-5.l models/tutorial/still.v --pov still-pov.pov --trace-lights --render --size 480x360
 cp plant-1.png plant-2.png plant-3.png plant-4.png plant-5.png still.png "$out/"
 cp plant.png "$out/plant-pov.png"
 cp still-pov.png "$out/still-pov.png"
