@@ -9,8 +9,11 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <utility>
 #include <vector>
+
+#include "hirsute/core/nearest_name.h"
 
 namespace hirsute {
 namespace {
@@ -115,6 +118,23 @@ std::string macroNotes(const SourceLocation& where, const std::string& message,
       macros.emplace(defined->first, std::pair{static_cast<int>(k) + 1, defined->second});
   }
   if (macros.empty()) return {};
+
+  // "'STEPZ' is no constant": a name no #define gave a value, most often a misspelt one.
+  constexpr std::string_view kNoConstant = "' is no constant";
+  if (message.size() > 1 && message[0] == '\'') {
+    const std::size_t end = message.find(kNoConstant);
+    if (end != std::string::npos) {
+      const std::string name = message.substr(1, end - 1);
+      std::vector<std::string> names;
+      for (const auto& [defined, place] : macros) names.push_back(defined);
+      const std::string meant = nearestName(name, names, typoDistance(name.size()));
+      if (meant.empty() || meant == name) return {};
+      const auto& [line, column] = macros.at(meant);
+      const SourceLocation definition{where.file, line, column};
+      return definition.text() + ": note: did you mean '" + meant + "'? It is defined here\n" +
+             sourceExcerpt(definition, folder);
+    }
+  }
 
   const std::string& line = lines[static_cast<std::size_t>(where.line) - 1];
   const std::size_t from = where.column > 0 ? static_cast<std::size_t>(where.column - 1) : 0;

@@ -643,6 +643,24 @@ TEST(SourceExcerpt, AMistakeInAMacrosTextShowsTheMacrosDefinition) {
   EXPECT_EQ(run.err, expected);
 }
 
+// A name no #define gives a value, a slip of the hand away from one that is, is named with it.
+TEST(SourceExcerpt, AnUndefinedNameIsShownTheDefineItMostLikelyMeant) {
+  const fs::path model = excerptFixture("misspelt_define.l");
+  const RunResult run = runHirsute({"derive", model.string()});
+  EXPECT_EQ(run.exitCode, 2) << run.err;
+  const std::string expected = model.string() +
+                               ":3:20: error: 'STEPZ' is no constant (a name here must be one the "
+                               "file #defines): the derivation length must be a constant "
+                               "expression (numbers, operators and math functions)\n"
+                               " 3 | derivation length: STEPZ\n"
+                               "   |                    ^\n" +
+                               model.string() +
+                               ":1:9: note: did you mean 'STEPS'? It is defined here\n"
+                               " 1 | #define STEPS 4\n"
+                               "   |         ^\n";
+  EXPECT_EQ(run.err, expected);
+}
+
 // A `#line` directive may make a location name any file: only files beneath the model's folder
 // are quoted, so no line of /etc/passwd reaches the terminal.
 TEST(SourceExcerpt, NoLineOfAFileOutsideTheModelsFolderIsShown) {

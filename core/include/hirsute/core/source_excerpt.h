@@ -30,6 +30,8 @@ std::string sourceExcerpt(const SourceLocation& where, const ModelFolder& folder
 //    2 | #define SHORT (LEN * 0.6
 //      |         ^
 //
+// For an undefined name (`'STEPZ' is no constant`), instead, the #define of the nearest name
+// (`did you mean 'STEPS'?`), if one is a slip of the hand away.
 // None when `message` says what it found (`found '->'`) and the source has just that at the
 // column: the mistake is in the line as written. At most three; empty when there are none or the
 // file cannot be read beneath `folder`.
