@@ -1,13 +1,13 @@
 #include "hirsute/hairs/feathers/feather_scan.h"
 
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
-
-#include <Eigen/Dense>
-#include <fmt/format.h>
 
 #include "hirsute/hairs/feathers/feather_geometry.h"
 
@@ -173,23 +173,51 @@ struct Orientation {
   }
 };
 
-Orientation orientationOf(const Plane& grey) {
-  const Plane smooth = blurred(grey, 1.0);
-  Plane xx(grey.width, grey.height), xy(grey.width, grey.height), yy(grey.width, grey.height);
-  for (int y = 0; y < grey.height; ++y)
-    for (int x = 0; x < grey.width; ++x) {
-      const auto v = [&](int dx, int dy) {
-        return smooth.at(std::clamp(x + dx, 0, grey.width - 1),
-                         std::clamp(y + dy, 0, grey.height - 1));
-      };
-      const float gx = 0.5f * (v(1, 0) - v(-1, 0)), gy = 0.5f * (v(0, 1) - v(0, -1));
-      xx.at(x, y) = gx * gx;
-      xy.at(x, y) = gx * gy;
-      yy.at(x, y) = gy * gy;
+// The derivative along x (or y) of `in`: the ideal differentiator's taps (-1)^(n+1) / n windowed
+// by a Hann window over 12 pixels each side. Its response is within 1% of the true derivative's
+// up to 0.4 cycles a pixel and 0.9 of it at 0.45, alike along x and y: the barbs of a flight
+// feather's narrow vane, 2 to 3 pixels apart across where they leave the rachis at 15°, keep
+// their direction. A central difference (its response sin(2πf) / 2πf, 0.11 at 0.45 cycles a
+// pixel across the barbs and 0.90 at 0.125 along them) turns them by 10° and more towards the
+// picture's axes.
+Plane derivativeOf(const Plane& in, bool alongX) {
+  constexpr int kTaps = 12;
+  std::array<float, kTaps + 1> h{};
+  for (int n = 1; n <= kTaps; ++n)
+    h[n] = static_cast<float>((n % 2 == 1 ? 1.0 : -1.0) / n *
+                              (0.5 + 0.5 * std::cos(std::numbers::pi * n / (kTaps + 1))));
+  Plane out(in.width, in.height);
+  for (int y = 0; y < in.height; ++y)
+    for (int x = 0; x < in.width; ++x) {
+      float v = 0;
+      for (int n = 1; n <= kTaps; ++n) {
+        const float ahead = alongX ? in.at(std::min(x + n, in.width - 1), y)
+                                   : in.at(x, std::min(y + n, in.height - 1));
+        const float behind = alongX ? in.at(std::max(x - n, 0), y) : in.at(x, std::max(y - n, 0));
+        v += h[n] * (ahead - behind);
+      }
+      out.at(x, y) = v;
     }
-  xx = blurred(xx, 2.5);
-  xy = blurred(xy, 2.5);
-  yy = blurred(yy, 2.5);
+  return out;
+}
+
+// The structure tensor of `grey`, its gradients' products averaged over a Gaussian window of
+// sigma 1 pixel: a flight feather's narrow vane shows 20 to 40 pixels of barbs beside its
+// rachis at 300 dpi, and a wider window mixes in the vane's rim and the rachis, both along the
+// rachis, turning the barbs read there towards it (and the rachis found beside its place). The
+// barbs' own noise averages out along the traced barb.
+Orientation orientationOf(const Plane& grey) {
+  constexpr double kIntegration = 1.0;
+  const Plane gx = derivativeOf(grey, true), gy = derivativeOf(grey, false);
+  Plane xx(grey.width, grey.height), xy(grey.width, grey.height), yy(grey.width, grey.height);
+  for (std::size_t i = 0; i < grey.values.size(); ++i) {
+    xx.values[i] = gx.values[i] * gx.values[i];
+    xy.values[i] = gx.values[i] * gy.values[i];
+    yy.values[i] = gy.values[i] * gy.values[i];
+  }
+  xx = blurred(xx, kIntegration);
+  xy = blurred(xy, kIntegration);
+  yy = blurred(yy, kIntegration);
   Orientation o{Plane(grey.width, grey.height), Plane(grey.width, grey.height),
                 Plane(grey.width, grey.height)};
   for (std::size_t i = 0; i < grey.values.size(); ++i) {
@@ -302,6 +330,8 @@ class Scanner {
       for (int x = 0; x < image_.width; ++x) grey_.at(x, y) = distance_.at(x, y);
     orientation_ = orientationOf(grey_);
     trackRachis();
+    // The barbs are traced on the vanes alone, the rachis known.
+    orientation_ = orientationOf(vaneOnly());
     // The rachis tip lies inside the feather's end by what the tip's barbs reach beyond it.
     findTip(shaftSeen_ - calamusEnd_);
     measureVanes();
@@ -314,7 +344,8 @@ class Scanner {
 
   void findFeather() {
     if (image_.width < 16 || image_.height < 16)
-      throw std::invalid_argument("the scan is too small to hold a feather (16 × 16 pixels at the least)");
+      throw std::invalid_argument(
+          "the scan is too small to hold a feather (16 × 16 pixels at the least)");
     background_ = backgroundOf(image_);
     distance_ = Plane(image_.width, image_.height);
     for (int y = 0; y < image_.height; ++y)
@@ -554,10 +585,12 @@ class Scanner {
   // How strongly the barbs lean towards `left` (positive) or away from it (negative) at p: the
   // doubled angle of their orientation against the axis.
   double lean(glm::dvec2 p) const {
-    double coherent = 0;
-    const glm::dvec2 d = orientation_.at(p, &coherent);
-    const double along = glm::dot(d, axis_), across = glm::dot(d, left_);
-    return coherent * 2 * along * across;  // sin 2φ, φ from the axis towards left
+    // The coherence times sin 2φ, φ from the axis towards left: with d = (cos θ, sin θ) the
+    // barbs' direction in the picture, 2 (d·axis)(d·left) = cos 2θ (ax lx - ay ly) +
+    // sin 2θ (ax ly + ay lx), the axis and left being orthogonal; the field holds the coherence
+    // times cos 2θ and sin 2θ.
+    return orientation_.along.sample(p) * (axis_.x * left_.x - axis_.y * left_.y) +
+           orientation_.across.sample(p) * (axis_.x * left_.y + axis_.y * left_.x);
   }
 
   // How much the picture at p looks like the calamus rather than the vane: 1 its colour, 0 the
@@ -575,7 +608,8 @@ class Scanner {
       ++n;
     }
     if (n == 0) return 0;
-    return std::clamp(1 - glm::length(sum / static_cast<double>(n) - shaftColour_) / apart, 0.0, 1.0);
+    return std::clamp(1 - glm::length(sum / static_cast<double>(n) - shaftColour_) / apart, 0.0,
+                      1.0);
   }
 
   void measureColours() {
@@ -676,23 +710,93 @@ class Scanner {
 
   // --- the vanes -----------------------------------------------------------------------------
 
+  // The picture with the shaft and the background outside the vane painted over in the vane's
+  // mean: what the barbs' orientation is read from once the rachis is known. The shaft's edges
+  // and the vane's rim are far stronger than the barbs, and the structure tensor spreads them
+  // over its window: beside them it would read the barbs turned towards the rachis, most of all
+  // on a narrow vane whose barbs lie nearly along it.
+  Plane vaneOnly() const {
+    const double length = fit_.length();
+    const glm::dvec2 along = (fit_.tip - fit_.base) / length;
+    const double calamus = glm::length(base_ - featherBase_) / length;
+    std::vector<std::uint8_t> keep(grey_.values.size(), 0);
+    double sum = 0;
+    std::size_t count = 0;
+    for (int y = 0; y < grey_.height; ++y)
+      for (int x = 0; x < grey_.width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * grey_.width + x;
+        if (!vane_[i]) continue;
+        const glm::dvec2 d = glm::dvec2(x, y) - fit_.base;
+        const double t = glm::dot(d, along) / length;
+        const double u = std::clamp(t, 0.0, 1.0);
+        const double lateral = glm::dot(d, fit_.left) - 3 * fit_.bulge * u * (1 - u);
+        const double half =
+            t < 0 ? 0.5 * std::max(rachisWidth_, calamusBaseWidth_) : rachisHalfWidth(u);
+        if (t > -calamus - 0.01 && std::abs(lateral) < half + 1.5) continue;
+        keep[i] = 1;
+        sum += grey_.values[i];
+        ++count;
+      }
+    const float mean = static_cast<float>(count > 0 ? sum / static_cast<double>(count) : 0.0);
+    Plane out = grey_;
+    for (std::size_t i = 0; i < keep.size(); ++i)
+      if (!keep[i]) out.values[i] = mean;
+    return out;
+  }
+
+  // Away from the rachis at rp, across its tangent, on the left (sideSign 1) or right (-1).
+  glm::dvec2 outwardAt(double rp, double sideSign) const {
+    const glm::dvec2 tangent = fit_.tangent(rp);
+    const glm::dvec2 across(-tangent.y, tangent.x);
+    return (glm::dot(across, fit_.left) > 0 ? sideSign : -sideSign) * across;
+  }
+
+  // Half the rachis's width at rp (pixels): as the .fea draws it, tapering linearly from its
+  // width at the calamus to a point at the tip.
+  double rachisHalfWidth(double rp) const { return 0.5 * rachisWidth_ * (1 - rp); }
+
+  // The barbs' direction where they leave the rachis at rp on one side: the orientation field
+  // averaged (its doubled angle, weighted by its coherence) over the vane beside the rachis,
+  // from just clear of the rachis's edge outwards over a dozen pixels and a few pixels along
+  // it, pointing away from the rachis. A narrow vane whose barbs lie nearly along the rachis (a
+  // flight feather's leading vane) is read as well as a broad one: nothing is assumed about the
+  // angle. None where the field there is too weak to tell.
+  std::optional<glm::dvec2> startDirection(double rp, double sideSign) const {
+    const glm::dvec2 attach = fit_.point(rp), tangent = fit_.tangent(rp);
+    const glm::dvec2 outward = outwardAt(rp, sideSign);
+    double c2 = 0, s2 = 0, weight = 0;
+    for (double along = -4; along <= 4; along += 2) {
+      for (double out = rachisHalfWidth(rp) + 3; out <= rachisHalfWidth(rp) + 15; out += 1) {
+        const glm::dvec2 q = attach + along * tangent + out * outward;
+        if (!inVane(q)) break;
+        c2 += orientation_.along.sample(q);
+        s2 += orientation_.across.sample(q);
+        weight += 1;
+      }
+    }
+    if (weight < 8 || std::hypot(c2, s2) < 0.2 * weight) return std::nullopt;
+    const double phi = 0.5 * std::atan2(s2, c2);
+    glm::dvec2 d(std::cos(phi), std::sin(phi));
+    if (glm::dot(d, outward) < 0) d = -d;
+    if (glm::dot(d, outward) < std::sin(3 * kDegrees)) return std::nullopt;
+    return d;
+  }
+
   Traced trace(double rp, double sideSign) const {
     Traced out;
     const glm::dvec2 attach = fit_.point(rp);
     const glm::dvec2 tangent = fit_.tangent(rp);
-    const glm::dvec2 outward = sideSign * fit_.left;
-    // A first guess between the usual angles; the field turns it.
-    glm::dvec2 direction = glm::normalize(std::cos(45 * kDegrees) * tangent +
-                                          std::sin(45 * kDegrees) * outward);
+    const glm::dvec2 outward = outwardAt(rp, sideSign);
+    // The barbs' direction where they leave the rachis (startDirection), or, where the field
+    // shows none, a guess between the usual angles that the field turns.
+    glm::dvec2 direction = startDirection(rp, sideSign)
+                               .value_or(glm::normalize(std::cos(45 * kDegrees) * tangent +
+                                                        std::sin(45 * kDegrees) * outward));
     out.path.push_back(attach);
-    // Clear of the rachis's own edge, which the orientation field smears over a few pixels.
-    glm::dvec2 p = attach + (0.5 * rachisWidth_ + 1) * outward;
-    for (int k = 0; k < 6 && inVane(p + direction); ++k) p += direction;
-    // Where the barb is clear of the rachis, the field gives its first direction.
-    double startCoherence = 0;
-    glm::dvec2 first = orientation_.at(p, &startCoherence);
-    if (glm::dot(first, outward) < 0) first = -first;
-    if (startCoherence > 0.3 && glm::dot(first, outward) > 0.25) direction = first;
+    // From a pixel clear of the rachis's edge (as wide as the .fea draws it), along the barb.
+    glm::dvec2 p = attach + (rachisHalfWidth(rp) + 1) /
+                                std::max(glm::dot(direction, outward), 0.1) * direction;
+    const double least = std::min(0.25, 0.6 * glm::dot(direction, outward));
     const double longest = 2.0 * glm::length(end_ - start_);
     // Thin barbs far apart leave gaps the path may cross while it follows one.
     const int gap = std::max(4, static_cast<int>(0.01 * longest));
@@ -715,18 +819,20 @@ class Scanner {
       // Turn along the barbs, gently (a barb bends smoothly: at most 1° a pixel), and never
       // towards another edge (a colour band's, the rachis's, the vane's blurred rim).
       if (coherent > 0.2 && glm::dot(field, direction) > std::cos(30 * kDegrees)) {
-        const double turn = std::clamp(std::atan2(direction.x * field.y - direction.y * field.x,
-                                                  glm::dot(direction, field)),
-                                       -1.0 * kDegrees, 1.0 * kDegrees);
+        const double turn = std::clamp(
+            std::atan2(direction.x * field.y - direction.y * field.x, glm::dot(direction, field)),
+            -1.0 * kDegrees, 1.0 * kDegrees);
         direction = glm::dvec2(std::cos(turn) * direction.x - std::sin(turn) * direction.y,
                                std::sin(turn) * direction.x + std::cos(turn) * direction.y);
       }
-      // A barb leaves the rachis at 15° or more all along; a path that turns nearer to it
-      // follows the vane's blurred edge, not a barb.
+      // A barb never turns much nearer to the rachis than it left it (a flight feather's
+      // leading vane leaves it at 10° to 15°); a path that does follows the vane's blurred
+      // edge, not a barb.
       const double away = glm::dot(direction, outward);
-      if (away < 0.25) {
+      if (away < least) {
         const glm::dvec2 up = direction - away * outward;
-        direction = glm::normalize(0.25 * outward + std::sqrt(1 - 0.0625) * glm::normalize(up));
+        direction =
+            glm::normalize(least * outward + std::sqrt(1 - least * least) * glm::normalize(up));
       }
       p += direction;
       if (out.path.size() < 4096 && static_cast<int>(walked) % 2 == 0) out.path.push_back(p);
@@ -744,7 +850,8 @@ class Scanner {
       auto& traces = traces_[side];
       traces.clear();
       for (int i = 0; i < kSilhouetteSamples; ++i)
-        traces.push_back(trace(static_cast<double>(i) / (kSilhouetteSamples - 1), side == 0 ? 1 : -1));
+        traces.push_back(
+            trace(static_cast<double>(i) / (kSilhouetteSamples - 1), side == 0 ? 1 : -1));
     }
   }
 
@@ -755,12 +862,12 @@ class Scanner {
     const glm::dvec2 attach = fit_.point(rp);
     const double beta = (180 - angle) * kDegrees;
     const glm::dvec2 direction =
-        std::cos(beta) * fit_.tangent(rp) + std::sin(beta) * sideSign * fit_.left;
+        std::cos(beta) * fit_.tangent(rp) + std::sin(beta) * outwardAt(rp, sideSign);
     const double longest = glm::length(end_ - start_);
     const int gap = std::max(4, static_cast<int>(0.025 * longest));
     double last = 0;
     int outside = 0;
-    for (double d = 0.5 * rachisWidth_; d < longest; d += 1) {
+    for (double d = rachisHalfWidth(rp); d < longest; d += 1) {
       if (inVane(attach + d * direction)) {
         last = d;
         outside = 0;
@@ -773,8 +880,9 @@ class Scanner {
 
   // The barb angle of a chord at rp (degrees: 180 along the rachis to the tip, 90 across it).
   double angleOf(const glm::dvec2& chord, double rp) const {
-    const double along = glm::dot(chord, fit_.tangent(rp));
-    const double across = std::abs(glm::dot(chord, fit_.left));
+    const glm::dvec2 tangent = fit_.tangent(rp);
+    const double along = glm::dot(chord, tangent);
+    const double across = std::abs(tangent.x * chord.y - tangent.y * chord.x);
     return 180 - std::atan2(across, along) / kDegrees;
   }
 
@@ -839,7 +947,8 @@ class Scanner {
                                    ? std::abs(glm::dot(traces_[side][i].chord(), fit_.left))
                                    : 0;
           if (width < 6) continue;
-          signal.push_back(grey_.sample(fit_.point(rp) + sign * (rachisWidth_ + 0.3 * width) * fit_.left));
+          signal.push_back(
+              grey_.sample(fit_.point(rp) + sign * (rachisWidth_ + 0.3 * width) * fit_.left));
         }
         if (const auto period = periodOf(signal)) periods.push_back(*period);
       }
@@ -908,9 +1017,12 @@ class Scanner {
         if (!barb.valid()) continue;
         coherence += barb.coherence;
         ++traced;
-        if (r >= 0.1 && r <= 0.85 && length > 4) {
+        // A chord that points back towards the base (a path that ran along the vane's edge)
+        // shows no barb.
+        const double angle = angleOf(barb.chord(), r);
+        if (r >= 0.1 && r <= 0.85 && length > 4 && angle > 90 && angle < 179) {
           rp.push_back(r);
-          angles.push_back(angleOf(barb.chord(), r));
+          angles.push_back(angle);
         }
       }
       if (rp.size() >= 4) {
@@ -1009,7 +1121,8 @@ class Scanner {
         const int centre = static_cast<int>(std::lround(rp * (kSilhouetteSamples - 1)));
         std::vector<glm::dvec2> samples;  // (u, y) and (u, x) in the chord frame
         std::vector<double> us;
-        for (int i = std::max(0, centre - 1); i <= std::min(kSilhouetteSamples - 1, centre + 1); ++i) {
+        for (int i = std::max(0, centre - 1); i <= std::min(kSilhouetteSamples - 1, centre + 1);
+             ++i) {
           const Traced& barb = traces_[side][i];
           const double length = barb.valid() ? glm::length(barb.chord()) : 0;
           if (length < 6) continue;
@@ -1076,9 +1189,9 @@ std::string number(double value) {
 
 FeatherScan scanFeather(const Texture& scan, const FeatherScanOptions& options) {
   if (static_cast<long long>(scan.width) * scan.height > kMaxScanPixels) {
-    throw std::invalid_argument(fmt::format(
-        "the scan has {} × {} pixels, more than {} Mpixel (the limit); scale it down", scan.width,
-        scan.height, kMaxScanPixels >> 20));
+    throw std::invalid_argument(
+        fmt::format("the scan has {} × {} pixels, more than {} Mpixel (the limit); scale it down",
+                    scan.width, scan.height, kMaxScanPixels >> 20));
   }
   if (scan.rgba.size() < 4 * static_cast<std::size_t>(scan.width) * scan.height || scan.width <= 0)
     throw std::invalid_argument("the scan has no pixels");
@@ -1098,16 +1211,19 @@ std::string featherFileText(const FeatherScan& scan, const std::string& scanName
       "than {};\n# {} model units a pixel; the calamus base at ({:.0f}, {:.0f}), the rachis from "
       "({:.0f}, {:.0f})\n# to ({:.0f}, {:.0f}), tilted {:.1f} degrees from the scan's vertical.\n",
       scanName, scan.featherPixels, scan.background.x * 255, scan.background.y * 255,
-      scan.background.z * 255, scan.threshold, number(scan.unitsPerPixel), scan.base.x,
-      scan.base.y, scan.rachisBase.x, scan.rachisBase.y, scan.rachisTip.x, scan.rachisTip.y,
-      scan.tiltDegrees);
+      scan.background.z * 255, scan.threshold, number(scan.unitsPerPixel), scan.base.x, scan.base.y,
+      scan.rachisBase.x, scan.rachisBase.y, scan.rachisTip.x, scan.rachisTip.y, scan.tiltDegrees);
   for (const std::string& note : scan.notes) out += "# Note: " + note + ".\n";
   out += "\n";
-  line("calamus length:         " + number(t.calamusLength), "the bare shaft below the first barbs");
-  line("calamus width ratio:    " + number(t.calamusWidthRatio), "its width at the base / rachis width");
-  line("rachis length:          " + number(t.rachisLength), "from the first barbs to the rachis tip");
+  line("calamus length:         " + number(t.calamusLength),
+       "the bare shaft below the first barbs");
+  line("calamus width ratio:    " + number(t.calamusWidthRatio),
+       "its width at the base / rachis width");
+  line("rachis length:          " + number(t.rachisLength),
+       "from the first barbs to the rachis tip");
   line("rachis width:           " + number(t.rachisWidth), "where the barbs begin");
-  line("rachis side curvature:  " + number(t.rachisSideCurvature), "its bend towards the left vane");
+  line("rachis side curvature:  " + number(t.rachisSideCurvature),
+       "its bend towards the left vane");
   line("rachis front curvature: 0", "a flat scan cannot show it: add it by hand");
   out += "\n";
   line("barb spacing:       " + number(t.barbSpacingBase) + " " + number(t.barbSpacingTip),
@@ -1126,8 +1242,9 @@ std::string featherFileText(const FeatherScan& scan, const std::string& scanName
     line(silhouette);
   }
   out += "# (silhouettes: the traced barbs' chord lengths along the rachis)\n\n";
-  out += "# Key barbs proposed from the traced barbs (chord normalised to 1, y towards the tip);\n"
-         "# a flat scan shows no front-to-back curvature: give the vertices a third coordinate.\n";
+  out +=
+      "# Key barbs proposed from the traced barbs (chord normalised to 1, y towards the tip);\n"
+      "# a flat scan shows no front-to-back curvature: give the vertices a third coordinate.\n";
   for (const KeyBarb& k : t.keyBarbs) {
     std::string text = fmt::format("key barb: {} {}", k.side == BarbSide::Left ? "left " : "right",
                                    number(k.position));
@@ -1174,7 +1291,8 @@ Texture vaneTextureOf(const Texture& scan, const FeatherScan& found, int size) {
   for (int row = 0; row < size; ++row) {
     const double v = 1 - (row + 0.5) / size;  // row 0 is the top: v = 1
     const double z = low.y + v * (high.y - low.y);
-    const double t = std::clamp((z - cl) / std::max(1e-9, static_cast<double>(found.type.rachisLength)), 0.0, 1.0);
+    const double t = std::clamp(
+        (z - cl) / std::max(1e-9, static_cast<double>(found.type.rachisLength)), 0.0, 1.0);
     for (int column = 0; column < size; ++column) {
       const double u = (column + 0.5) / size;
       const double y = low.x + u * (high.x - low.x);
