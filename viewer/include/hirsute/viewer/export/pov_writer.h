@@ -132,6 +132,10 @@ class PovWriter : public ScenePrinter {
     float radiusA, radiusB;
   };
   void emit(int material, const Primitive& primitive);
+  // The palette entry a surface of colour `material` is written with: a `lit` one (a mesh,
+  // sphere or disc) the entry GL gives it in full light (litPaletteEntry, view_lighting.h), as
+  // the path tracer does; lines and hairs, unlit in GL, their own.
+  int shownMaterial(int material, bool lit) const;
   void closeRun();
   void writePrimitive(const Primitive& primitive, const std::string* texture);
   void vector(const glm::vec3& v, NumberFormat format);
