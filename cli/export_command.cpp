@@ -52,6 +52,7 @@ int runExport(ExportOptions o) {
       options.group = &outputs;
       options.view = built->resources.view;
       options.materialMode = built->resources.materialMode;
+      options.colorMapFile = built->resources.colorMapFile;
       options.width = o.width;
       options.height = o.height;
       options.traceLights = o.traceLights;

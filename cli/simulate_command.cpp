@@ -335,6 +335,7 @@ int runSimulate(SimulateOptions o) {
   PovOptions pov;
   pov.view = first.resources.view;
   pov.materialMode = first.resources.materialMode;
+  pov.colorMapFile = first.resources.colorMapFile;
   pov.width = o.width;
   pov.height = o.height;
   // The camera is fitted once for all frames: to the first frame, and for an animation to its

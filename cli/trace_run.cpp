@@ -81,7 +81,8 @@ int runTrace(const RenderOptions& o) {
     progress.begin("building the ray tracer's scene", Progress::Unit::None);
     trace::TraceScene traced(view.trace, o.model.threads);
     // With a colour map, the colours GL shades along the palette (view_lighting.h).
-    traced.setLitPaletteOffset(litPaletteOffset(view, built->resources.materialMode));
+    traced.setLitPaletteOffset(
+        litPaletteOffset(view, built->resources.materialMode, built->resources.colorMapFile));
     trace::addSceneGeometry(scene, camera, traced);
     traced.commit();
     progress.clear();

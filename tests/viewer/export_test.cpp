@@ -308,14 +308,15 @@ TEST_F(ExportTest, PovSceneHasCameraLightsMaterialsAndPrimitives) {
   EXPECT_EQ(stats.bytes, pov.size());
 }
 
-// With a colour map in a shaded render mode, GL shades a surface of colour c along the palette up
-// to c + d in full light; POV-Ray's light does the shading, so meshes, spheres and discs take
-// entry c + d (kept in the palette), as the path tracer does, and lines keep their own.
+// With a colour map file in a shaded render mode, GL shades a surface of colour c along the
+// palette up to c + d in full light; POV-Ray's light does the shading, so meshes, spheres and discs
+// take entry c + d (kept in the palette), as the path tracer does, and lines keep their own.
 TEST_F(ExportTest, PovShadedColourMapSurfacesTakeTheirFullyLitEntry) {
   Scene scene = mixedScene();
   PovOptions options;
   options.view.renderMode = RenderMode::Shaded;
   options.view.diffuseReflection = 1;
+  options.colorMapFile = true;
   writePov(scene, options, file("plant.pov"));
   const std::string pov = readText(file("plant.pov"));
   EXPECT_EQ(countOccurrences(pov, "\nsphere{<-2,0,0>,.5 texture{M5}}\n"), 1u) << "4 + 1";
@@ -332,6 +333,12 @@ TEST_F(ExportTest, PovShadedColourMapSurfacesTakeTheirFullyLitEntry) {
   options.view.renderMode = RenderMode::Filled;
   writePov(scene, options, file("filled.pov"));
   EXPECT_EQ(countOccurrences(readText(file("filled.pov")), "\nsphere{<-2,0,0>,.5 texture{M4}}\n"),
+            1u);
+  // The default palette's neighbours are other colours, not the colour lit: entry c is kept.
+  options.view.renderMode = RenderMode::Shaded;
+  options.colorMapFile = false;
+  writePov(scene, options, file("default.pov"));
+  EXPECT_EQ(countOccurrences(readText(file("default.pov")), "\nsphere{<-2,0,0>,.5 texture{M4}}\n"),
             1u);
 }
 

@@ -594,8 +594,9 @@ void PovWriter::mesh(const TriangleMesh& mesh) {
 
 int PovWriter::shownMaterial(int material, bool lit) const {
   if (!lit) return material;
-  return litPaletteEntry(material, litPaletteOffset(options_.view, options_.materialMode),
-                         static_cast<int>(scene_->materials.size()));
+  return litPaletteEntry(
+      material, litPaletteOffset(options_.view, options_.materialMode, options_.colorMapFile),
+      static_cast<int>(scene_->materials.size()));
 }
 
 void PovWriter::line(const LineSegment& line, LineStyle style) {

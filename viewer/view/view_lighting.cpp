@@ -75,11 +75,11 @@ glm::vec3 traceLightFallback(const ViewLighting& lighting, const Bounds& plant,
   return towardsEye;
 }
 
-int litPaletteOffset(const ViewSettings& view, bool materialMode) {
+int litPaletteOffset(const ViewSettings& view, bool materialMode, bool colorMapFile) {
   const RenderMode mode = view.renderMode;
   const bool shaded =
       mode == RenderMode::Flat || mode == RenderMode::Shaded || mode == RenderMode::Shadows;
-  return materialMode || !shaded ? 0 : view.diffuseReflection;
+  return materialMode || !colorMapFile || !shaded ? 0 : view.diffuseReflection;
 }
 
 int litPaletteEntry(int index, int offset, int count) {

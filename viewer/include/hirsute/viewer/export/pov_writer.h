@@ -28,6 +28,7 @@ namespace hirsute {
 struct PovOptions {
   ViewSettings view;          // camera and lights (cpfg's view file)
   bool materialMode = false;  // the background is material 0's emission, else colour 0
+  bool colorMapFile = false;  // the colours are a colour map file's (litPaletteOffset)
   // The image the camera is fitted for (as the PNG of the same size) and the size of a pixel for
   // pixel-wide lines. Rendered at another aspect, the image shows at least the same window.
   int width = 800, height = 600;
