@@ -83,7 +83,7 @@ std::string clockText(double seconds) {
 }
 
 std::string timeLeftText(double seconds) {
-  if (seconds < 10) return "a few seconds left";
+  if (seconds < 5) return "a few seconds left";
   const double step = seconds < 60 ? 5 : seconds < 600 ? 10 : 60;
   return "about " + clockText(std::ceil(seconds / step) * step) + " left";
 }

@@ -95,7 +95,8 @@ TEST(ProgressLine, ClockTextInSecondsMinutesAndHours) {
 
 TEST(ProgressLine, TheTimeLeftIsRoundedAsAnEstimateDeserves) {
   EXPECT_EQ(timeLeftText(3), "a few seconds left");
-  EXPECT_EQ(timeLeftText(9.9), "a few seconds left");
+  EXPECT_EQ(timeLeftText(4.9), "a few seconds left");
+  EXPECT_EQ(timeLeftText(9), "about 0:10 left");
   EXPECT_EQ(timeLeftText(41), "about 0:45 left");  // to 5 s under a minute
   EXPECT_EQ(timeLeftText(45), "about 0:45 left");
   EXPECT_EQ(timeLeftText(63), "about 1:10 left");    // to 10 s under ten minutes

@@ -159,8 +159,8 @@ std::string progressLine(const ProgressReading& reading);
 std::string clockText(double seconds);
 
 // The time left as the line says it, rounded as far as an estimate deserves: "a few seconds
-// left" under ten seconds, then "about 0:45 left" (up to the next 5 s under a minute, 10 s under
-// ten minutes, the next minute beyond).
+// left" under five seconds, then "about 0:45 left" (up to the next 5 s under a minute, 10 s
+// under ten minutes, the next minute beyond).
 std::string timeLeftText(double seconds);
 
 // A run's length in a closing summary: "0.4 s", "12 s", "2:03", "1:02:03".
