@@ -89,8 +89,8 @@ int runExport(ExportOptions o) {
     return kExitIoError;
   }
   std::filesystem::path image = std::filesystem::path(o.pov).replace_extension(".png");
-  PovrayRun run =
-      runPovray(o.pov, image, o.width, o.height, true, std::chrono::seconds(o.renderTimeout));
+  PovrayRun run = runPovray(o.pov, image, o.width, o.height, true,
+                            std::chrono::seconds(o.renderTimeout), &progress);
   // POV-Ray's messages quote the scene: its control bytes are shown escaped.
   std::cerr << printableText(run.messages);
   if (run.interruptedBy != 0) {
