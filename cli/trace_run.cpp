@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -80,6 +81,7 @@ int runTrace(const RenderOptions& o) {
   try {
     const Clock::time_point started = Clock::now();
     progress.begin("building the ray tracer's scene", Progress::Unit::None);
+    std::optional<ProgressHeartbeat> heartbeat(std::in_place, progress);
     trace::TraceScene traced(view.trace, o.model.threads);
     // With a colour map, the colours GL shades along the palette (trace_scene.h).
     const RenderMode mode = view.renderMode;
@@ -89,6 +91,7 @@ int runTrace(const RenderOptions& o) {
     }
     trace::addSceneGeometry(scene, camera, traced);
     traced.commit();
+    heartbeat.reset();
     progress.clear();
     if (o.model.verbose) {
       std::cerr << fmt::format(
