@@ -156,16 +156,15 @@ PovrayRun runPovray(const std::filesystem::path& scene, const std::filesystem::p
   if (progress != nullptr && progress->enabled()) {
     progress->begin("rendering with POV-Ray", Progress::Unit::None);
     request.whileRunning = [&] {
-      if (const std::optional<PixelsRendered> pixels = lastPixelsRendered(recent)) {
-        if (!counting) {
-          progress->begin("rendering with POV-Ray", Progress::Unit::Percent,
-                          static_cast<double>(pixels->total), "of the pixels");
-          counting = true;
-        }
-        progress->update(static_cast<double>(pixels->done));
-      } else {
-        progress->update(0);
+      const std::optional<PixelsRendered> pixels = lastPixelsRendered(recent);
+      // The stage, and the clock of its time left, starts with the render, past the parsing.
+      if (!counting && (pixels || recent.find("==== [Rendering...]") != std::string::npos)) {
+        const double total = pixels ? static_cast<double>(pixels->total)
+                                    : static_cast<double>(width) * static_cast<double>(height);
+        progress->begin("rendering with POV-Ray", Progress::Unit::Percent, total, "of the pixels");
+        counting = true;
       }
+      progress->update(pixels ? static_cast<double>(pixels->done) : 0.0);
     };
   }
   request.onOutput = [&](std::string_view part) {
