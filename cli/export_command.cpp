@@ -102,8 +102,8 @@ int runExport(ExportOptions o) {
                 << " (--image FILE writes it elsewhere)\n";
     }
   }
-  PovrayRun run =
-      runPovray(o.pov, image, o.width, o.height, true, std::chrono::seconds(o.renderTimeout));
+  PovrayRun run = runPovray(o.pov, image, o.width, o.height, true,
+                            std::chrono::seconds(o.renderTimeout), &progress);
   // POV-Ray's messages quote the scene: its control bytes are shown escaped.
   std::cerr << printableText(run.messages);
   if (run.interruptedBy != 0) {

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 
 #include "command.h"
@@ -79,12 +80,14 @@ int runTrace(const RenderOptions& o) {
   try {
     const Clock::time_point started = Clock::now();
     progress.begin("building the ray tracer's scene", Progress::Unit::None);
+    std::optional<ProgressHeartbeat> heartbeat(std::in_place, progress);
     trace::TraceScene traced(view.trace, o.model.threads);
     // With a colour map, the colours GL shades along the palette (view_lighting.h).
     traced.setLitPaletteOffset(
         litPaletteOffset(view, built->resources.materialMode, built->resources.colorMapFile));
     trace::addSceneGeometry(scene, camera, traced);
     traced.commit();
+    heartbeat.reset();
     progress.clear();
     if (o.model.verbose) {
       std::cerr << fmt::format(

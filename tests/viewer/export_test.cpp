@@ -755,6 +755,22 @@ int runHirsute(const std::string& arguments, const fs::path& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// The progress line reads POV-Ray's reports of its render: the last whole one, past a part cut
+// off at the end of what has come so far.
+TEST(PovrayProgress, TheLastWholeReportOfPixelsRenderedCounts) {
+  EXPECT_FALSE(lastPixelsRendered("==== [Parsing...] ====\nParse Warning: …\n"));
+  const auto first =
+      lastPixelsRendered("==== [Rendering...] ===\nRendered 1024 of 307200 pixels (0%)\r");
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->done, 1024);
+  EXPECT_EQ(first->total, 307200);
+  const auto later = lastPixelsRendered(
+      "Rendered 1024 of 307200 pixels (0%)\rRendered 153600 of 307200 pixels (50%)\rRendered 15");
+  ASSERT_TRUE(later);
+  EXPECT_EQ(later->done, 153600);
+  EXPECT_FALSE(lastPixelsRendered("Rendered many of 307200 pixels"));
+}
+
 TEST_F(ExportTest, CommandWritesPovAndObjForAModel) {
   std::string herb = std::string(HIRSUTE_SOURCE_DIR) + "/models/herb/herb";
   fs::path pov = file("herb.pov"), obj = file("herb.obj");
