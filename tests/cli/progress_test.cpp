@@ -124,10 +124,10 @@ TEST(Progress, ExportRenderOnATerminalShowsTheShareOfThePixelsPovRayRendered) {
   ASSERT_NE(mkdtemp(folder), nullptr);
   int master = -1, slave = -1;
   ASSERT_EQ(openpty(&master, &slave, nullptr, nullptr, nullptr), 0);
-  const pid_t pid = spawnHirsute(
-      {"export", herb + "herb.l", herb + "herb.v", "--pov", std::string(folder) + "/herb.pov",
-       "--render", "--width", "1600", "--height", "1200"},
-      slave);
+  const pid_t pid =
+      spawnHirsute({"export", herb + "herb.l", herb + "herb.v", "--pov",
+                    std::string(folder) + "/herb.pov", "--render", "--size", "1600x1200"},
+                   slave);
   close(slave);
   ASSERT_GT(pid, 0);
   const std::string text = readUntil(master, "% of the pixels \u00b7 ", 60s);
@@ -157,9 +157,8 @@ TEST(Progress, RenderFramesOnATerminalCountsTheFramesFinishedAndFailed) {
   std::filesystem::copy_file(scenes / "endless.pov", frames / "frame-0003.pov");
   int master = -1, slave = -1;
   ASSERT_EQ(openpty(&master, &slave, nullptr, nullptr, nullptr), 0);
-  const pid_t pid = spawnHirsute({"render-frames", folder, "--width", "32", "--height", "24",
-                                  "--jobs", "3", "--frame-timeout", "3"},
-                                 slave);
+  const pid_t pid = spawnHirsute(
+      {"render-frames", folder, "--size", "32x24", "--jobs", "3", "--frame-timeout", "3"}, slave);
   close(slave);
   ASSERT_GT(pid, 0);
   // To its end: the endless frame is stopped after three seconds.
