@@ -745,6 +745,18 @@ TEST_F(ExportTest, PovrayRunStopsAtItsTimeLimit) {
   EXPECT_FALSE(fs::exists(file("endless.png")));
 }
 
+// Stopped while it renders, POV-Ray has reported no problem: nothing of its output (its banner,
+// its options, a progress line for every few pixels) is handed on; the caller says it stopped.
+TEST_F(ExportTest, PovrayStoppedWhileRenderingHandsOnNoneOfItsProgress) {
+  SKIP_WITHOUT_POVRAY();
+  fs::copy_file(kHostileScenes / "slow-render.pov", file("slow.pov"));
+  const PovrayRun run =
+      runPovray(file("slow.pov"), file("slow.png"), 800, 600, false, std::chrono::seconds(2));
+  EXPECT_TRUE(run.timedOut) << run.exitStatus;
+  EXPECT_EQ(run.messages.find("Rendered"), std::string::npos);
+  EXPECT_LT(run.messages.size(), 1000u) << run.messages.substr(0, 1000);
+}
+
 // ---- `hirsute export` ----
 
 // Runs the hirsute binary with `arguments` (each quoted), its output to `log`; the exit status.

@@ -44,6 +44,27 @@ std::string problemsIn(const std::string& output) {
   return problems;
 }
 
+// What POV-Ray said before it failed, when it failed before parsing reported a problem: its last
+// lines, without its progress ("Rendered 1200 of 4800 pixels", thousands of them in a long run).
+std::string lastLinesOf(const std::string& output) {
+  constexpr std::size_t kShown = 20;
+  std::vector<std::string> kept;
+  std::istringstream lines(output);
+  std::string line;
+  while (std::getline(lines, line)) {
+    // POV-Ray rewrites its progress in place: the part after the last carriage return shows.
+    if (const std::size_t cr = line.rfind('\r'); cr != std::string::npos) line.erase(0, cr + 1);
+    if (line.empty() || (line.find("Rendered ") != std::string::npos &&
+                         line.find(" pixels") != std::string::npos))
+      continue;
+    kept.push_back(line);
+  }
+  std::string shown = kept.size() > kShown ? "...\n" : "";
+  for (std::size_t i = kept.size() > kShown ? kept.size() - kShown : 0; i < kept.size(); ++i)
+    shown += kept[i] + '\n';
+  return shown;
+}
+
 // The seconds POV-Ray's statistics give for `what`, in the parentheses of the line
 // "  Parse Time:       0 hours  0 minutes  1 seconds (1.234 seconds)"; -1 when it printed none.
 double statisticSeconds(const std::string& output, const std::string& what) {
@@ -184,7 +205,10 @@ PovrayRun runPovray(const std::filesystem::path& scene, const std::filesystem::p
   run.interruptedBy = child.interruptedBy;
   run.exitStatus = child.signal != 0 ? 128 + child.signal : child.exitStatus;
   run.messages = problemsIn(text);
-  if (run.exitStatus != 0 && run.messages.empty()) run.messages = text;  // failed before parsing
+  // Failed before parsing, on its own: its last lines say why. Stopped (a signal, the time
+  // limit): the caller says so.
+  if (run.exitStatus != 0 && run.messages.empty() && !run.timedOut && run.interruptedBy == 0)
+    run.messages = lastLinesOf(text);
   run.parseSeconds = statisticSeconds(text, "Parse Time:");
   run.boundingSeconds = statisticSeconds(text, "Bounding Time:");
   run.traceSeconds = statisticSeconds(text, "Trace Time:");
