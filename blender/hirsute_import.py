@@ -356,6 +356,50 @@ def import_file(path, context=None):
     return Importer(path, context or bpy.context).build()
 
 
+def read_point_cache_header(path):
+    """(points, start frame, sample rate, samples) of a PC2 file, checked."""
+    with open(path, "rb") as f:
+        header = f.read(32)
+    if len(header) < 32 or header[:12] != b"POINTCACHE2\0":
+        raise HirsuteFileError(f"{path}: not a PC2 point cache (no POINTCACHE2 at its start)")
+    version, points, start, rate, samples = struct.unpack("<iiffi", header[12:])
+    if version != 1 or points < 0 or samples < 1 or rate <= 0:
+        raise HirsuteFileError(f"{path}: a PC2 header this add-on does not read")
+    if os.path.getsize(path) != 32 + 12 * points * samples:
+        raise HirsuteFileError(f"{path}: {samples} samples of {points} points announced, "
+                               "and the file is not that long")
+    return points, start, rate, samples
+
+
+def import_point_cache(path, context=None):
+    """A simulation of `hirsute simulate --pc2 CACHE.pc2` in one step: the base mesh beside the
+    cache (CACHE.obj) imported by Blender's OBJ importer, the cache played on it by a Mesh Cache
+    modifier, frame 1 its first sample, and the scene's frames its samples. Returns the object."""
+    context = context or bpy.context
+    points, start, rate, samples = read_point_cache_header(path)
+    base = os.path.splitext(path)[0] + ".obj"
+    if not os.path.isfile(base):
+        raise HirsuteFileError(f"{base}: the cache's base mesh is not there")
+    before = set(bpy.data.objects)
+    bpy.ops.wm.obj_import(filepath=base)
+    meshes = [o for o in bpy.data.objects if o not in before and o.type == "MESH"]
+    if len(meshes) != 1 or len(meshes[0].data.vertices) != points:
+        raise HirsuteFileError(f"{base}: not the base mesh of {path} ({points} points)")
+    obj = meshes[0]
+    modifier = obj.modifiers.new("hirsute point cache", "MESH_CACHE")
+    modifier.cache_format = "PC2"
+    modifier.filepath = os.path.abspath(path)
+    # Blender's frame F shows sample F − frame_start (the header's start frame is for other
+    # programs): sample 0 is Hirsute's frame 1. The importer keeps the file's coordinates in the
+    # mesh and turns y up into z up by the object's rotation, which turns the cache's points
+    # alike, so the modifier's axes stay as they are.
+    modifier.frame_start = start
+    modifier.frame_scale = 1.0 / rate
+    context.scene.frame_start = int(start)
+    context.scene.frame_end = int(start + (samples - 1) * rate)
+    return obj
+
+
 # The add-on: File > Import > Hirsute scene.
 try:
     from bpy.props import StringProperty
@@ -396,7 +440,9 @@ def main(argv):
     parser = argparse.ArgumentParser(
         prog="blender -b --python hirsute_import.py --",
         description="Import a Hirsute scene file, then save and/or render it.")
-    parser.add_argument("file", help="the file of `hirsute export --blender FILE`")
+    parser.add_argument("file", help="the file of `hirsute export --blender FILE`, or a point "
+                                     "cache of `hirsute simulate --pc2 FILE.pc2` (with its "
+                                     "base mesh FILE.obj beside it)")
     parser.add_argument("--save", metavar="OUT.blend", help="save the scene as a .blend file")
     parser.add_argument("--render", metavar="OUT.png", help="render the camera's view in Cycles")
     parser.add_argument("--samples", type=int, default=64, help="Cycles samples a pixel (64)")
@@ -405,14 +451,19 @@ def main(argv):
     options = parser.parse_args(argv)
     bpy.ops.wm.read_factory_settings(use_empty=True)
     try:
-        importer = import_file(options.file)
+        if options.file.endswith(".pc2"):
+            played = import_point_cache(options.file)
+            print(f"hirsute_import: {len(played.data.vertices)} points played over frames "
+                  f"{bpy.context.scene.frame_start} to {bpy.context.scene.frame_end}")
+        else:
+            importer = import_file(options.file)
+            print(f"hirsute_import: {len(importer.mesh_objects)} meshes, "
+                  f"{sum(len(o.data.curves) for o in importer.curve_objects)} curves in "
+                  f"{len(importer.curve_objects)} objects")
     except (HirsuteFileError, OSError, ValueError) as error:
         print(f"hirsute_import: error: {error}", file=sys.stderr)
         return 2
     scene = bpy.context.scene
-    print(f"hirsute_import: {len(importer.mesh_objects)} meshes, "
-          f"{sum(len(o.data.curves) for o in importer.curve_objects)} curves in "
-          f"{len(importer.curve_objects)} objects")
     if options.size:
         try:
             width, height = (int(v) for v in options.size.lower().split("x"))

@@ -91,7 +91,7 @@ void ObjWriter::beginScene(const Scene& scene, std::span<const OrganWriter* cons
 }
 
 void ObjWriter::group(std::string_view name) {
-  if (currentGroup_ == name) return;
+  if (currentGroup_ == name || options_.oneObject) return;
   out_.put("o ");
   out_.put(name);
   out_.put('\n');
@@ -150,6 +150,7 @@ void ObjWriter::texcoord(const glm::vec2& t) {
 }
 
 void ObjWriter::putVertexPosition(const glm::vec3& p) {
+  if (options_.positions != nullptr) options_.positions->push_back(p);
   out_.put("v ");
   out_.putFixed(p.x, position_);
   out_.put(' ');
@@ -197,9 +198,12 @@ void ObjWriter::mesh(const TriangleMesh& mesh) {
   // OBJ numbers vertices, normals and texture coordinates from 1 across the whole file.
   std::uint64_t firstVertex = stats_.vertices + 1, firstNormal = stats_.normals + 1,
                 firstTexcoord = stats_.texcoords + 1;
-  out_.put("o mesh");
-  out_.putInteger(meshNumber_++);
-  out_.put('\n');
+  if (!options_.oneObject) {
+    out_.put("o mesh");
+    out_.putInteger(meshNumber_);
+    out_.put('\n');
+  }
+  ++meshNumber_;
   currentGroup_ = {};
   useMaterial(mesh.material, textured ? mesh.texture : -1);
   for (const glm::vec3& p : mesh.positions) vertex(p);

@@ -34,6 +34,12 @@ struct ObjOptions {
   // are (output_folder.h). None: `target` is the name the user typed (output_target.h), and the
   // side files go into the folder it is in.
   const OutputFolder* folder = nullptr;
+  // Every vertex's position as it is written (`v`), in order: the points of a point cache of
+  // the scene (point_cache.h). None: not kept.
+  std::vector<glm::vec3>* positions = nullptr;
+  // No `o` lines: the file is one object, whose vertices OBJ importers keep in the order written
+  // (a point cache's base mesh, which the cache's points follow one for one).
+  bool oneObject = false;
 };
 
 struct ObjExportStats {
