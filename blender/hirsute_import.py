@@ -54,31 +54,42 @@ def read_index(path):
     with open(path, "rb") as f:
         data = f.read()
     if len(data) < 16 + FOOTER_BYTES or data[:8] != MAGIC or data[-8:] != MAGIC:
-        raise HirsuteFileError(f"{path}: not a Hirsute scene for Blender (no HIRSUTEB at its ends)")
+        raise HirsuteFileError("not a Hirsute scene for Blender (no HIRSUTEB at its ends)")
     version, = struct.unpack_from("<I", data, 8)
     if version != VERSION:
-        raise HirsuteFileError(f"{path}: version {version}; this add-on reads version {VERSION}")
+        raise HirsuteFileError(f"version {version} of the scene; this add-on reads version {VERSION}")
     offset, length = struct.unpack_from("<QQ", data, len(data) - FOOTER_BYTES)
     if offset < 16 or offset + length != len(data) - FOOTER_BYTES:
-        raise HirsuteFileError(f"{path}: the index is not where the footer says")
-    index = json.loads(data[offset:offset + length].decode("utf-8"))
+        raise HirsuteFileError("the index is not where the footer says")
+    try:
+        index = json.loads(data[offset:offset + length].decode("utf-8"))
+    except ValueError as error:
+        raise HirsuteFileError(f"the index is not JSON: {error}") from None
+    if index.get("format") != "hirsute-blender":
+        raise HirsuteFileError("the index is not a Hirsute scene's")
     return data, index
 
 
-def floats(data, offset, count):
-    values = array.array("f")
-    values.frombytes(data[offset:offset + 4 * count])
+def values(data, kind, offset, count):
+    """`count` 4-byte numbers of type `kind` at `offset`, which must lie among the arrays (between
+    the header and the index): a file that says otherwise is refused, not read past."""
+    end = len(data) - FOOTER_BYTES
+    if not (isinstance(offset, int) and isinstance(count, int) and 16 <= offset
+            and count >= 0 and offset + 4 * count <= end):
+        raise HirsuteFileError(f"an array of {count} numbers at byte {offset} is not in the file")
+    result = array.array(kind)
+    result.frombytes(data[offset:offset + 4 * count])
     if sys.byteorder != "little":
-        values.byteswap()
-    return values
+        result.byteswap()
+    return result
+
+
+def floats(data, offset, count):
+    return values(data, "f", offset, count)
 
 
 def uints(data, offset, count):
-    values = array.array("I")
-    values.frombytes(data[offset:offset + 4 * count])
-    if sys.byteorder != "little":
-        values.byteswap()
-    return values
+    return values(data, "I", offset, count)
 
 
 def shininess_to_roughness(shininess):
@@ -145,6 +156,8 @@ class Importer:
         self.mesh_objects = []
 
     def material(self, number, coloured=False):
+        if not 0 <= number < len(self.index["materials"]):
+            raise HirsuteFileError(f"material {number} is not in the file")
         key = (number, coloured)
         if key not in self.materials:
             self.materials[key] = make_material(self.index["materials"][number], coloured)
@@ -167,6 +180,8 @@ class Importer:
         mesh.vertices.add(n)
         mesh.vertices.foreach_set("co", floats(data, entry["positions"], 3 * n))
         indices = uints(data, entry["indices"], 3 * t)
+        if t > 0 and max(indices) >= n:
+            raise HirsuteFileError(f"mesh {entry['name']}: a triangle names a vertex past {n}")
         mesh.loops.add(3 * t)
         mesh.loops.foreach_set("vertex_index", indices)
         mesh.polygons.add(t)
@@ -204,6 +219,9 @@ class Importer:
         data, count, points = self.data, entry["curves"], entry["points"]
         record = floats(data, entry["data"], POINT_FLOATS * points)
         sizes = uints(data, entry["sizes"], count)
+        if sum(sizes) != points or (count > 0 and min(sizes) < 2):
+            raise HirsuteFileError(f"curves {entry['name']}: the curves' sizes do not add up to "
+                                   f"their {points} points")
         mesh = bpy.data.meshes.new(entry["name"])
         mesh.vertices.add(points)
         position = array.array("f", [0.0]) * (3 * points)
@@ -361,12 +379,12 @@ def read_point_cache_header(path):
     with open(path, "rb") as f:
         header = f.read(32)
     if len(header) < 32 or header[:12] != b"POINTCACHE2\0":
-        raise HirsuteFileError(f"{path}: not a PC2 point cache (no POINTCACHE2 at its start)")
+        raise HirsuteFileError("not a PC2 point cache (no POINTCACHE2 at its start)")
     version, points, start, rate, samples = struct.unpack("<iiffi", header[12:])
     if version != 1 or points < 0 or samples < 1 or rate <= 0:
-        raise HirsuteFileError(f"{path}: a PC2 header this add-on does not read")
+        raise HirsuteFileError("a PC2 header this add-on does not read")
     if os.path.getsize(path) != 32 + 12 * points * samples:
-        raise HirsuteFileError(f"{path}: {samples} samples of {points} points announced, "
+        raise HirsuteFileError(f"{samples} samples of {points} points announced, "
                                "and the file is not that long")
     return points, start, rate, samples
 
@@ -379,12 +397,12 @@ def import_point_cache(path, context=None):
     points, start, rate, samples = read_point_cache_header(path)
     base = os.path.splitext(path)[0] + ".obj"
     if not os.path.isfile(base):
-        raise HirsuteFileError(f"{base}: the cache's base mesh is not there")
+        raise HirsuteFileError(f"its base mesh {base} is not there")
     before = set(bpy.data.objects)
     bpy.ops.wm.obj_import(filepath=base)
     meshes = [o for o in bpy.data.objects if o not in before and o.type == "MESH"]
     if len(meshes) != 1 or len(meshes[0].data.vertices) != points:
-        raise HirsuteFileError(f"{base}: not the base mesh of {path} ({points} points)")
+        raise HirsuteFileError(f"{base} is not the base mesh of the cache ({points} points)")
     obj = meshes[0]
     modifier = obj.modifiers.new("hirsute point cache", "MESH_CACHE")
     modifier.cache_format = "PC2"
@@ -416,8 +434,8 @@ try:
         def execute(self, context):
             try:
                 import_file(self.filepath, context)
-            except (HirsuteFileError, OSError, ValueError) as error:
-                self.report({"ERROR"}, str(error))
+            except (HirsuteFileError, OSError, ValueError, KeyError, TypeError) as error:
+                self.report({"ERROR"}, f"{self.filepath}: {error}")
                 return {"CANCELLED"}
             return {"FINISHED"}
 
@@ -460,8 +478,8 @@ def main(argv):
             print(f"hirsute_import: {len(importer.mesh_objects)} meshes, "
                   f"{sum(len(o.data.curves) for o in importer.curve_objects)} curves in "
                   f"{len(importer.curve_objects)} objects")
-    except (HirsuteFileError, OSError, ValueError) as error:
-        print(f"hirsute_import: error: {error}", file=sys.stderr)
+    except (HirsuteFileError, OSError, ValueError, KeyError, TypeError) as error:
+        print(f"hirsute_import: error: {options.file}: {error}", file=sys.stderr)
         return 2
     scene = bpy.context.scene
     if options.size:

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -144,24 +145,26 @@ void BlenderWriter::beginCurves(std::string_view organ, std::string_view name, i
   groupMaterial_ = material;
   groupOffset_ = out_.bytesWritten();
   groupPoints_ = 0;
-  curvePoints_ = 0;
+  curve_.clear();
   groupSizes_.clear();
 }
 
 void BlenderWriter::curvePoint(const glm::vec3& p, float radius, const glm::vec3& colour) {
   const glm::vec3 linear = srgbToLinear(colour);
-  const float record[7] = {p.x, p.y, p.z, std::max(radius, 0.0f), linear.r, linear.g, linear.b};
+  const std::array<float, 7> record{p.x,      p.y,      p.z,     std::max(radius, 0.0f),
+                                    linear.r, linear.g, linear.b};
   for (float v : record) requireFinite(v);
-  out_.putBytes(record, sizeof record);
-  ++curvePoints_;
+  curve_.push_back(record);
 }
 
 void BlenderWriter::endCurve() {
-  if (curvePoints_ == 0) return;
-  // The organs write curves of two points or more; the sizes say where each ends.
-  groupSizes_.push_back(static_cast<std::uint32_t>(curvePoints_));
-  groupPoints_ += curvePoints_;
-  curvePoints_ = 0;
+  // A curve of one point draws nothing: it is left out, and the sizes say where each ends.
+  if (curve_.size() >= 2) {
+    out_.putBytes(curve_.data(), curve_.size() * sizeof(curve_[0]));
+    groupSizes_.push_back(static_cast<std::uint32_t>(curve_.size()));
+    groupPoints_ += curve_.size();
+  }
+  curve_.clear();
 }
 
 void BlenderWriter::endCurves() {
@@ -245,7 +248,7 @@ void BlenderWriter::line(const LineSegment& line, LineStyle style) {
   const float scale = style == LineStyle::Pixel ? worldPerPixel_ : 1.0f;
   const glm::vec3 colour = materialAt(*scene_, line.material).diffuse;
   const bool continues = inGroup_ && groupOrgan_ == "lines" && lineMaterial_ == line.material &&
-                         curvePoints_ > 0 && line.from == lineEnd_;
+                         !curve_.empty() && line.from == lineEnd_;
   if (!continues) {
     if (!(inGroup_ && groupOrgan_ == "lines" && lineMaterial_ == line.material)) {
       beginCurves("lines", fmt::format("m{}", line.material),

@@ -8,6 +8,7 @@
 // group's sizes are held until the group ends, so a million hairs cost their file, not memory.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
@@ -120,7 +121,8 @@ class BlenderWriter : public ScenePrinter {
   bool inGroup_ = false;
   std::string groupOrgan_, groupName_;
   int groupMaterial_ = 0;
-  std::uint64_t groupOffset_ = 0, groupPoints_ = 0, curvePoints_ = 0;
+  std::uint64_t groupOffset_ = 0, groupPoints_ = 0;
+  std::vector<std::array<float, 7>> curve_;  // the curve being gathered: x y z radius r g b
   std::vector<std::uint32_t> groupSizes_;
   // The scene's lines: the curve being gathered, its material and end.
   int lineMaterial_ = -1;
