@@ -2,8 +2,9 @@
 # The oriental poppy through `hirsute export --blender` and the add-on blender/hirsute_import.py,
 # in Debian's Blender run headless: the add-on's command line imports, saves and renders it in
 # Cycles at 96x72, and check_import.py counts its hair curves against the hairs' table, checks
-# the camera frames the plant and finds the hairs in the render. Skipped (exit 77) where Blender
-# is not installed: `apt-get install --no-install-recommends blender` (Debian 12: Blender 3.4).
+# the camera frames the plant and finds the hairs in the render; a file cut short is refused.
+# Skipped (exit 77) where Blender is not installed: `apt-get install --no-install-recommends
+# blender` (Debian 12: Blender 3.4).
 #
 #   blender_import_test.sh HIRSUTE SOURCE_DIR
 set -euo pipefail
@@ -30,3 +31,15 @@ test -s "$work/poppy.blend"
 "${blender[@]}" --python "$source/tests/blender/check_import.py" -- \
   "$source/blender/hirsute_import.py" "$work/poppy.hirsute" "$hairs" "$work/poppy.png" 2>&1 |
   grep -v '^Fra:'
+
+# A file cut short is refused with a message and exit code 2, not read past its end.
+head -c 100000 "$work/poppy.hirsute" > "$work/cut.hirsute"
+status=0
+"${blender[@]}" --python "$source/blender/hirsute_import.py" -- "$work/cut.hirsute" \
+  > "$work/cut.log" 2>&1 || status=$?
+if [ "$status" -ne 2 ] || ! grep -q "cut.hirsute: not a Hirsute scene for Blender" "$work/cut.log"; then
+  echo "FAILED: a file cut short: exit code $status"
+  grep -v '^Fra:' "$work/cut.log"
+  exit 1
+fi
+echo "ok: a file cut short is refused (exit code 2)"
