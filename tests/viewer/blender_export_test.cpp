@@ -219,5 +219,69 @@ TEST_F(BlenderExportTest, ThePoppysCurvesAreItsHairs) {
   EXPECT_NE(index.json.find("\"projection\":\"orthographic\""), std::string::npos);
 }
 
+// `hirsute export --blender` of `model` (in models/) at a small size into `file`.
+int exportBlender(const std::string& model, const fs::path& file, const fs::path& log) {
+  const std::string base = std::string(HIRSUTE_SOURCE_DIR) + "/models/" + model;
+  const std::string command = std::string("'") + HIRSUTE_BINARY + "' export '" + base + ".l' '" +
+                              base + ".v' --blender '" + file.string() + "' --size 32x24 > '" +
+                              log.string() + "' 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Every point's radius and colour at the offsets the group gives: radii positive, colours in
+// [0, 1]; the sizes add up to the points.
+void expectWholeCurves(const std::string& bytes, const CurveGroup& group) {
+  std::uint64_t points = 0;
+  for (std::uint32_t size : arrayAt<std::uint32_t>(bytes, group.sizes, group.curves)) {
+    EXPECT_GE(size, 2u);
+    points += size;
+  }
+  EXPECT_EQ(points, group.points) << group.name;
+  const std::vector<float> data = arrayAt<float>(bytes, group.data, 7 * group.points);
+  std::size_t thin = 0;
+  for (std::size_t p = 0; p < group.points; ++p) {
+    thin += !(data[7 * p + 3] > 0);
+    for (int k = 4; k < 7; ++k) {
+      EXPECT_GE(data[7 * p + k], 0.0f);
+      EXPECT_LE(data[7 * p + k], 1.0f);
+    }
+  }
+  // A barb's radius falls to nothing where it fades out at its tip, and no further.
+  EXPECT_LT(thin, group.points / 4) << group.name;
+}
+
+// The fur's strands and the feathers' barbs are curves too: one curve a strand, as many as the
+// fur writer counts, and the coat's barbs with their shafts' mesh (coloured at its vertices).
+TEST_F(BlenderExportTest, FurStrandsAndFeatherBarbsAreCurves) {
+  ASSERT_EQ(exportBlender("fur-square/square", file("fur.hirsute"), file("log")), 0)
+      << readText(file("log"));
+  BlenderFileIndex index = readBlenderIndex(file("fur.hirsute"));
+  std::string bytes = readText(file("fur.hirsute"));
+  std::vector<CurveGroup> groups = curveGroups(index.json);
+  ASSERT_EQ(groups.size(), 1u) << index.json;
+  EXPECT_EQ(groups[0].organ, "fur");
+  EXPECT_GT(groups[0].curves, 10000u);
+  EXPECT_EQ(groups[0].curves, countOf(index.json, "fur strands"));
+  expectWholeCurves(bytes, groups[0]);
+
+  ASSERT_EQ(exportBlender("coat-bending/bending", file("coat.hirsute"), file("log")), 0)
+      << readText(file("log"));
+  index = readBlenderIndex(file("coat.hirsute"));
+  bytes = readText(file("coat.hirsute"));
+  groups = curveGroups(index.json);
+  ASSERT_EQ(groups.size(), 1u) << index.json;
+  EXPECT_EQ(groups[0].organ, "feathers");
+  EXPECT_EQ(groups[0].name, "barbs");
+  EXPECT_GT(groups[0].curves, 63u * 50);  // 63 feathers of many barbs
+  EXPECT_EQ(countOf(index.json, "feathers"), 63u);
+  expectWholeCurves(bytes, groups[0]);
+  const std::vector<MeshEntry> meshes = meshEntries(index.json);
+  ASSERT_EQ(meshes.size(), 2u) << index.json;
+  EXPECT_EQ(meshes[1].name, "shafts");
+  const std::regex colouredShafts(R"re("name":"shafts"[^}]*"colours":\d+)re");
+  EXPECT_TRUE(std::regex_search(index.json, colouredShafts)) << "the shafts' vertex colours";
+}
+
 }  // namespace
 }  // namespace hirsute
