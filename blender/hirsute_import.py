@@ -57,7 +57,8 @@ def read_index(path):
         raise HirsuteFileError("not a Hirsute scene for Blender (no HIRSUTEB at its ends)")
     version, = struct.unpack_from("<I", data, 8)
     if version != VERSION:
-        raise HirsuteFileError(f"version {version} of the scene; this add-on reads version {VERSION}")
+        raise HirsuteFileError(
+            f"version {version} of the scene; this add-on reads version {VERSION}")
     offset, length = struct.unpack_from("<QQ", data, len(data) - FOOTER_BYTES)
     if offset < 16 or offset + length != len(data) - FOOTER_BYTES:
         raise HirsuteFileError("the index is not where the footer says")

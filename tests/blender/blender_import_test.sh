@@ -37,7 +37,8 @@ head -c 100000 "$work/poppy.hirsute" > "$work/cut.hirsute"
 status=0
 "${blender[@]}" --python "$source/blender/hirsute_import.py" -- "$work/cut.hirsute" \
   > "$work/cut.log" 2>&1 || status=$?
-if [ "$status" -ne 2 ] || ! grep -q "cut.hirsute: not a Hirsute scene for Blender" "$work/cut.log"; then
+if [ "$status" -ne 2 ] ||
+  ! grep -q "cut.hirsute: not a Hirsute scene for Blender" "$work/cut.log"; then
   echo "FAILED: a file cut short: exit code $status"
   grep -v '^Fra:' "$work/cut.log"
   exit 1

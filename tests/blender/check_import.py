@@ -32,7 +32,8 @@ bpy.context.view_layer.update()
 
 hair_objects = [o for o in imported.curve_objects if o.users_collection[0].name.startswith("hairs")]
 curves = sum(len(o.data.curves) for o in hair_objects)
-check(all(o.type == "CURVES" for o in imported.curve_objects), "the curve groups are Curves objects")
+check(all(o.type == "CURVES" for o in imported.curve_objects),
+      "the curve groups are Curves objects")
 check(curves == int(hairs), f"{curves} hair curves in Blender, {hairs} hairs in the table")
 radii = [a.value for o in hair_objects for a in o.data.attributes["radius"].data[:100]]
 check(radii and min(radii) > 0, "the hair curves have a radius at each point")

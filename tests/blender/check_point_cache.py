@@ -1,8 +1,9 @@
 # Run by point_cache_test.sh inside Blender (blender -b --python check_point_cache.py -- ADDON
 # CACHE.pc2 FRAME1.obj FRAME2.obj …): the add-on imports the cache's base mesh with Blender's
-# default OBJ importer and plays the cache on it with the Mesh Cache modifier; this compares the deformed mesh at
-# each frame with that frame's own OBJ, vertex by vertex (in the object's own coordinates), within the precision the OBJ is printed
-# with. The frames must differ from the first, or the comparison would prove nothing.
+# default OBJ importer and plays the cache on it with the Mesh Cache modifier; this compares the
+# deformed mesh at each frame with that frame's own OBJ, vertex by vertex (in the object's own
+# coordinates), within the precision the OBJ is printed with. The frames must differ from the
+# first, or the comparison would prove nothing.
 import importlib.util
 import struct
 import sys
@@ -59,7 +60,8 @@ for number, path in enumerate(frames, start=1):
     error = max((a - b).length for a, b in zip(played, expected))
     moved = max((a - b).length for a, b in zip(expected, first))
     check(error <= tolerance,
-          f"frame {number}: the cache within {error:.3g} of the frame's OBJ (at most {tolerance:.3g})")
+          f"frame {number}: the cache within {error:.3g} of the frame's OBJ "
+          f"(at most {tolerance:.3g})")
     if number > 1:
         check(moved > 100 * tolerance, f"frame {number}: the coat moved by up to {moved:.3g}")
 if failures:

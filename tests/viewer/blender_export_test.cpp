@@ -57,8 +57,9 @@ std::vector<CurveGroup> curveGroups(const std::string& json) {
 
 std::vector<MeshEntry> meshEntries(const std::string& json) {
   static const std::regex entry(
-      R"re(\{"organ":"([^"]*)","name":"([^"]*)","material":\d+,"vertices":(\d+),"triangles":(\d+),)re"
-      R"re("positions":(\d+),"normals":(\d+|null),"texcoords":(?:\d+|null),"colours":(?:\d+|null),)re"
+      R"re(\{"organ":"([^"]*)","name":"([^"]*)","material":\d+,"vertices":(\d+),)re"
+      R"re("triangles":(\d+),"positions":(\d+),"normals":(\d+|null),)re"
+      R"re("texcoords":(?:\d+|null),"colours":(?:\d+|null),)re"
       R"re("indices":(\d+)\})re");
   std::vector<MeshEntry> meshes;
   for (auto it = std::sregex_iterator(json.begin(), json.end(), entry);
