@@ -123,7 +123,10 @@ def make_material(entry, coloured):
     bsdf = nodes.new("ShaderNodeBsdfPrincipled")
     bsdf.inputs["Base Color"].default_value = diffuse
     bsdf.inputs["Roughness"].default_value = shininess_to_roughness(entry["shininess"])
-    bsdf.inputs["Specular"].default_value = min(1.0, max(entry["specular"]) * 4.0)
+    # GL's specular colour scales its highlight from none (0) to the light's colour (1); the
+    # principled BSDF's Specular 0.5 is the 4% reflectance of most dielectrics: the colour's
+    # display value (the file's is linear) times 0.5.
+    bsdf.inputs["Specular"].default_value = 0.5 * min(1.0, max(entry["specular"])) ** (1 / 2.2)
     emission = entry["emission"]
     if max(emission) > 0:
         bsdf.inputs["Emission"].default_value = tuple(emission) + (1.0,)
