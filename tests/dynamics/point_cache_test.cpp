@@ -105,7 +105,7 @@ TEST(PointCache, EverySampleIsItsFramesObjVertexByVertex) {
 TEST(PointCache, FramesWhosePointsChangeAreAnErrorAndLeaveNoCache) {
   TemporaryFolder folder;
   const fs::path fur = kModels / "fur-square";
-  // Droplets curl the strands, which then take more points to follow.
+  // Droplets change the strands in number.
   const RunResult run =
       runHirsute({"simulate", (fur / "square.l").string(), (fur / "square.v").string(), "-o",
                   folder.path().string(), "--frames", "3", "--no-frames", "--drop", "2:50", "--pc2",
