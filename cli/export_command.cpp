@@ -193,8 +193,9 @@ void registerExportCommand(CLI::App& app, Action& action) {
     const bool noTable = std::all_of(options->tables.begin(), options->tables.end(),
                                      [](const std::string& file) { return file.empty(); });
     if (options->pov.empty() && options->obj.empty() && options->blender.empty() && noTable) {
-      throw CLI::RequiredError("export needs an output: --pov FILE or --obj FILE or --blender FILE" + tableFiles +
-                               " (or several)");
+      throw CLI::RequiredError(
+          "export needs an output: --pov FILE or --obj FILE or --blender FILE" + tableFiles +
+          " (or several)");
     }
     action = [options] { return runExport(*options); };
   });
