@@ -5,7 +5,7 @@
 // preprocessor, `cpp`, a separate process that the child spawns and that peaks near 18 MiB by
 // itself before the derivation begins; that figure is printed beside it. The child times loading
 // (preprocess, parse, compile), deriving, and writing the string in cpfg's -str format to a
-// temporary file, and reports the figures through a pipe. DESIGN.md, "Performance": modules per
+// temporary file, and reports the figures through a pipe. docs/design.md, "Benchmarks": modules per
 // second and bytes per module at the peak.
 #include <sys/resource.h>
 #include <sys/stat.h>

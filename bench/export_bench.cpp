@@ -1,4 +1,4 @@
-// hirsute_export_bench: export figures (DESIGN.md, "Performance").
+// hirsute_export_bench: export figures (docs/design.md, "Benchmarks").
 //
 // POV-Ray export of one million triangles: the seconds the writer takes and the bytes it writes,
 // and, when povray is installed, the seconds POV-Ray takes to parse the file (parse time grows

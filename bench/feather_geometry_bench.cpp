@@ -1,4 +1,4 @@
-// hirsute_feather_geometry_bench: what feather geometry costs (DESIGN.md, "Performance";
+// hirsute_feather_geometry_bench: what feather geometry costs (docs/design.md, "Benchmarks";
 // docs/feathers.md): barbs generated per second and bytes per feather geometry, at a low, a
 // middle and a high level of detail, for the fixture contour feather (key barbs, silhouette,
 // strips, an afterfeather) and its down afterfeather alone (Bdf1 throughout). Each figure is the

@@ -1,4 +1,4 @@
-// hirsute_fur_export_bench: fur strand export figures (DESIGN.md, "Performance"; docs/fur.md).
+// hirsute_fur_export_bench: fur strand export figures (docs/design.md, "Benchmarks"; docs/fur.md).
 //
 // POV-Ray cannot draw shells, so the export turns fur into explicit strands (pov_fur.cpp). This
 // scales the furry torus (models/fur-torus) to about a million strands by the texels along a

@@ -1,4 +1,4 @@
-// hirsute_hair_export_bench: hair export figures (DESIGN.md, "Performance").
+// hirsute_hair_export_bench: hair export figures (docs/design.md, "Benchmarks").
 //
 // One million hairs (the synthetic plant of synthetic_hairs.h: three four-segment templates) as a
 // POV-Ray scene of instances (pov_writer.h: a tube per template and radius/length bucket, an

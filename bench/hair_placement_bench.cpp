@@ -1,5 +1,5 @@
 // hirsute_hair_placement_bench: how fast hairs are generated and what a placed hair costs
-// (DESIGN.md, "Performance": hairs per second and bytes per placed hair; issue targets: a
+// (docs/design.md, "Benchmarks": hairs per second and bytes per placed hair; issue targets: a
 // million hairs in at most 1 s, at most 48 bytes per hair).
 //
 // The model (default: the shipped Nankin cherry, about a million hairs) is derived and

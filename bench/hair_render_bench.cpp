@@ -1,6 +1,6 @@
 // hirsute_hair_render_bench: the GL renderer's hairs against the raw line throughput of the same
-// GL (DESIGN.md, "Performance"; hairs as instances of templates, "the benchmark proves the layout
-// pays").
+// GL (docs/design.md, "Benchmarks": hairs as instances of templates, and the benchmark shows the
+// layout pays).
 //
 // The scene is, by default, a seeded synthetic plant: 120 000 hairs of three four-segment
 // templates rooted on a fan of stems, pointing out of them (`--hairs N` changes the count), or a

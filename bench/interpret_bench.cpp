@@ -1,7 +1,7 @@
 // hirsute_interpret_bench: how fast the turtle turns a derived string into the Scene.
 //
-// DESIGN.md, "Performance": figures printed, never asserted. For each model the string is derived
-// first (not timed), then, in turn and repeated (the fastest run is reported):
+// docs/design.md, "Benchmarks": figures printed, never asserted. For each model the string is
+// derived first (not timed), then, in turn and repeated (the fastest run is reported):
 //   homomorphism  the string after the homomorphism, recorded into a ModuleString: what
 //                 `interpret()` feeds the turtle (for a model without one, a copy of the string);
 //   turtle        the turtle alone on that recorded string into a fresh Scene: modules per second

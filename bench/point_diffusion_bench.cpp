@@ -1,5 +1,5 @@
 // hirsute_point_diffusion_bench: the point-diffusion texture's quality and cost per fill
-// (DESIGN.md, "Plant hairs"; docs/hairs.md). For each fill, over seeds 1..20 of a 100 × 100
+// (docs/design.md, "Placement"; docs/hairs.md). For each fill, over seeds 1..20 of a 100 × 100
 // texture: the relative radius ρ (Lagae & Dutré 2008; the design asks ≥ 0.65), the point count
 // against fill·W·H (within 2%), and the generation time.
 #include <algorithm>

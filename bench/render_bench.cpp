@@ -1,6 +1,6 @@
 // hirsute_render_bench: the renderer's frame time against the raw throughput of the same GL.
 //
-// DESIGN.md, "Performance": frame time of a scene against the raw line and triangle throughput
+// docs/design.md, "Benchmarks": frame time of a scene against the raw line and triangle throughput
 // of the same GL. The scene is a seeded fan of tubes (at least a million triangles, eight
 // materials, `render mode: shaded` with two lights, two-sided) and a seeded cloud of pixel-style
 // line segments, one and three pixels wide. Each is drawn by GlRenderer into the headless path's

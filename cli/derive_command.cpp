@@ -77,7 +77,8 @@ int runDerive(const DeriveOptions& o) {
       environment = openEnvironment(o.environmentFile, diagnostics, environmentOptions);
     }
     if (model.program.usesQueries || environment) {
-      resources = loadModelResources(view, {}, diagnostics);
+      resources = loadModelResources(view, {}, diagnostics, kDefaultMaxMeshTriangles,
+                                     o.maxSourceBytes);
       installQueryPass(derivation, resources, diagnostics, environment.get());
     }
 

@@ -54,6 +54,7 @@ int runExport(ExportOptions o) {
       options.group = &outputs;
       options.view = built->resources.view;
       options.materialMode = built->resources.materialMode;
+      options.colorMapFile = built->resources.colorMapFile;
       options.width = o.width;
       options.height = o.height;
       options.traceLights = o.traceLights;
@@ -112,8 +113,8 @@ int runExport(ExportOptions o) {
                 << " (--image FILE writes it elsewhere)\n";
     }
   }
-  PovrayRun run =
-      runPovray(o.pov, image, o.width, o.height, true, std::chrono::seconds(o.renderTimeout));
+  PovrayRun run = runPovray(o.pov, image, o.width, o.height, true,
+                            std::chrono::seconds(o.renderTimeout), &progress);
   // POV-Ray's messages quote the scene: its control bytes are shown escaped.
   std::cerr << printableText(run.messages);
   if (run.interruptedBy != 0) {

@@ -161,7 +161,7 @@ ModelResources loadResources(const ModelOptions& o, Diagnostics& diagnostics) {
   std::optional<std::filesystem::path> view;
   if (!o.viewFile.empty()) view = o.viewFile;
   return loadModelResources(view, colorFilesFor(o, diagnostics), diagnostics,
-                            o.maxMeshTriangles);
+                            o.maxMeshTriangles, o.maxSourceBytes);
 }
 
 Model loadLsystem(const ModelOptions& o, Diagnostics& diagnostics) {

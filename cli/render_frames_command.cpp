@@ -475,22 +475,38 @@ bool workHolds(int workFd, const std::string& name) {
 // scene's text (in POV-Ray's error) must not reach the terminal raw.
 class EscapedLines {
  public:
+  explicit EscapedLines(Progress& progress) : progress_(progress) {}
   void add(std::string_view text) {
     pending_.append(text);
     for (std::size_t end; (end = pending_.find('\n')) != std::string::npos;) {
+      progress_.clear();
       std::cerr << printableText(pending_.substr(0, end)) << '\n';
       pending_.erase(0, end + 1);
     }
   }
   // The last line, when it had no newline.
   void finish() {
+    progress_.clear();
     if (!pending_.empty()) std::cerr << printableText(pending_) << '\n';
     pending_.clear();
   }
 
  private:
+  Progress& progress_;
   std::string pending_;
 };
+
+// The progress line while parallel runs: the frames finished (rendered or failed) of those it
+// was given, from its job log, which it writes a line to as each job ends.
+void showFramesFinished(Progress& progress, int workFd) {
+  std::size_t finished = 0, failed = 0;
+  for (const auto& [seq, job] : readJobLog(workFd)) {
+    ++finished;
+    if (job.exitStatus != 0 || job.signal != 0) ++failed;
+  }
+  progress.note(failed > 0 ? fmt::format(", {} failed", failed) : std::string());
+  progress.update(static_cast<double>(finished));
+}
 
 int runRenderFrames(const RenderFramesOptions& o) {
   // DIR is the user's choice, link or not; everything beneath it is reached without links.
@@ -632,8 +648,14 @@ int runRenderFrames(const RenderFramesOptions& o) {
   request.folder = folder;
   request.input = fileno(list.get());
   if (o.sshLogins.empty()) request.confinement = &confinement;
-  EscapedLines lines;
+  Progress progress = Progress::onTerminal(stderr);
+  EscapedLines lines(progress);
   request.onOutput = [&lines](std::string_view text) { lines.add(text); };
+  if (progress.enabled()) {
+    progress.begin("rendering frames", Progress::Unit::Steps, static_cast<double>(toRender.size()),
+                   "frames");
+    request.whileRunning = [&progress, &work] { showFramesFinished(progress, work.fd()); };
+  }
   const auto start = std::chrono::steady_clock::now();
   const ChildResult run = runChild(request);
   lines.finish();

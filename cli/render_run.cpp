@@ -23,9 +23,10 @@ int runRender(const RenderOptions& o) {
   options.height = size.y;
   options.samples = o.samples;
   RgbaImage image;
-  progress.begin("rendering", Progress::Unit::None);
+  progress.begin("rendering with OpenGL", Progress::Unit::None);
   progress.update(0);
   try {
+    const ProgressHeartbeat heartbeat(progress);  // the render says nothing while it runs
     image =
         renderOffscreen(built->scene, built->resources.view, built->resources.materialMode, options);
   } catch (const GeometryLimitError& e) {

@@ -336,6 +336,7 @@ int runSimulate(SimulateOptions o) {
   PovOptions pov;
   pov.view = first.resources.view;
   pov.materialMode = first.resources.materialMode;
+  pov.colorMapFile = first.resources.colorMapFile;
   pov.width = o.width;
   pov.height = o.height;
   // The camera is fitted once for all frames: to the first frame, and for an animation to its
@@ -432,9 +433,9 @@ int runSimulate(SimulateOptions o) {
       return kExitIoError;
     }
   }
-  progress.begin("simulating", Progress::Unit::Steps, frames);
+  progress.begin("simulating", Progress::Unit::Steps, frames, "frames");
   for (int frame = 1; frame <= frames; ++frame) {
-    progress.update(frame);
+    progress.update(frame - 1);  // the frames done
     const auto frameStarted = Clock::now();
     const Scene* body = nullptr;
     Scene moved;
@@ -570,9 +571,26 @@ int runSimulate(SimulateOptions o) {
   }
   progress.clear();
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+  // The closing line: what was simulated, for how long of motion, in what time, and where it
+  // went; the counts of the steps and contacts behind it with -v.
+  std::optional<fur::FurMeasures> furAtEnd;
+  if (fur) furAtEnd = fur::measureFur(drawn);
+  std::string simulated;
+  if (motion) simulated = fmt::format("{} feathers", motion->simulation().stems().size());
+  if (fur)
+    simulated += fmt::format("{}{} strands of fur", motion ? " and " : "", furAtEnd->strands);
+  std::string folder = printableText(o.output);
+  if (folder.empty() || folder.back() != '/') folder += '/';
+  const double motionSeconds = (frames - 1) * frameTime;
+  std::cout << fmt::format("simulated {} frame{} of {} ({} s of motion) in {} \u2192 {}\n", frames,
+                           frames == 1 ? "" : "s", simulated,
+                           motionSeconds < 100 ? fmt::format("{:.3g}", motionSeconds)
+                                               : fmt::format("{:.0f}", motionSeconds),
+                           durationText(seconds), folder);
+  if (!o.model.verbose) return kExitOk;
   if (fur) {
-    const fur::FurMeasures m = fur::measureFur(drawn);
-    std::cout << fmt::format(
+    const fur::FurMeasures& m = *furAtEnd;
+    std::cerr << fmt::format(
         "{} frames of fur ({} strands on {} surfaces) in {:.2f} s, {:.3f} s of it simulating: "
         "{} droplets; at the end a mean bend of {:.3g} fur lengths, {} texels wet\n",
         frames, m.strands, drawn.organ<FurPart>().surfaces.size(), seconds, simulating,
@@ -588,7 +606,7 @@ int runSimulate(SimulateOptions o) {
                 "still at the end)",
                 simulation.vaneOverlapsAtStart(), simulation.vaneOverlaps().size())
           : std::string();
-  std::cout << fmt::format(
+  std::cerr << fmt::format(
       "{} frames of {} feathers ({} rooted on the body) in {:.2f} s, {:.3f} s of it simulating "
       "({:.1f} frames/s): {} steps, {} retried; {} candidates, {} contacts, {} impact zones; "
       "{} intersections found and undone, {} calamus crossings put into zones at the smallest "

@@ -1,12 +1,13 @@
 // `hirsute render --trace`: the model's still by the path tracer (docs/trace.md), framed as the
 // GL render frames it, so that a preview and a still of one view line up.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstddef>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "command.h"
 #include "drawing_commands.h"
@@ -62,8 +63,7 @@ int runTrace(const RenderOptions& o) {
 
   // Without a `trace light:` line the light comes from where the view's first light shines
   // from, as in the GL render; with none, from the eye.
-  const ViewLighting lighting =
-      viewLighting(view, built->resources.materialMode, -camera.forward);
+  const ViewLighting lighting = viewLighting(view, built->resources.materialMode, -camera.forward);
   const trace::TraceLights lights =
       trace::traceLights(view.trace, bounds, traceLightFallback(lighting, bounds, -camera.forward));
 
@@ -80,15 +80,14 @@ int runTrace(const RenderOptions& o) {
   try {
     const Clock::time_point started = Clock::now();
     progress.begin("building the ray tracer's scene", Progress::Unit::None);
+    std::optional<ProgressHeartbeat> heartbeat(std::in_place, progress);
     trace::TraceScene traced(view.trace, o.model.threads);
-    // With a colour map, the colours GL shades along the palette (trace_scene.h).
-    const RenderMode mode = view.renderMode;
-    if (!built->resources.materialMode &&
-        (mode == RenderMode::Flat || mode == RenderMode::Shaded || mode == RenderMode::Shadows)) {
-      traced.setLitPaletteOffset(view.diffuseReflection);
-    }
+    // With a colour map, the colours GL shades along the palette (view_lighting.h).
+    traced.setLitPaletteOffset(
+        litPaletteOffset(view, built->resources.materialMode, built->resources.colorMapFile));
     trace::addSceneGeometry(scene, camera, traced);
     traced.commit();
+    heartbeat.reset();
     progress.clear();
     if (o.model.verbose) {
       std::cerr << fmt::format(

@@ -285,7 +285,12 @@ ChildResult runChild(const ChildRequest& request) {
   FileDescriptor exited(static_cast<int>(::syscall(SYS_pidfd_open, child, 0)));
   char buffer[65536];
   bool childDone = false;
+  auto lastCalled = Clock::now();
   for (;;) {
+    if (request.whileRunning && Clock::now() - lastCalled >= kWhileRunningInterval) {
+      lastCalled = Clock::now();
+      request.whileRunning();
+    }
     if (waitpid(child, &exitStatus, WNOHANG) == child) {
       childDone = true;
       child = 0;
@@ -306,6 +311,8 @@ ChildResult runChild(const ChildRequest& request) {
       wait = static_cast<int>(std::min<long long>(left.count() + 1, wait));
     }
     if (!exited) wait = std::min(wait, 20);
+    if (request.whileRunning)
+      wait = std::min(wait, static_cast<int>(kWhileRunningInterval.count()));
     std::vector<pollfd> fds = {{watch.readEnd(), POLLIN, 0}};
     if (exited) fds.push_back({exited.get(), POLLIN, 0});
     if (outputRead) fds.push_back({outputRead.get(), POLLIN, 0});

@@ -4,13 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <string_view>
-
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include "hirsute/lsys/preprocessor.h"
 #include "hirsute/lsys/view_file_lines.h"
@@ -214,7 +213,9 @@ class BackgroundReader {
     return background_.meshes.back();
   }
 
-  glm::vec3 transformPoint(const glm::vec3& p) const { return glm::vec3(matrix_ * glm::vec4(p, 1)); }
+  glm::vec3 transformPoint(const glm::vec3& p) const {
+    return glm::vec3(matrix_ * glm::vec4(p, 1));
+  }
 
   glm::vec3 transformNormal(const glm::vec3& n) const {
     const glm::vec3 world = glm::transpose(glm::inverse(glm::mat3(matrix_))) * n;
@@ -312,7 +313,8 @@ class BackgroundReader {
                             std::abs(glm::dot(linear[0], linear[2])) <= tolerance * sx &&
                             std::abs(glm::dot(linear[1], linear[2])) <= tolerance * sy;
     if (orthogonal && std::abs(sx - sy) <= tolerance && std::abs(sx - sz) <= tolerance) {
-      background_.spheres.push_back(Sphere{transformPoint(glm::vec3(0)), radius * sx, currentMaterial_});
+      background_.spheres.push_back(
+          Sphere{transformPoint(glm::vec3(0)), radius * sx, currentMaterial_});
       return;
     }
     TriangleMesh& m = mesh();
@@ -346,10 +348,11 @@ class BackgroundReader {
 
 }  // namespace
 
-BackgroundScene loadBackgroundScene(const std::filesystem::path& file, Diagnostics& diagnostics) {
+BackgroundScene loadBackgroundScene(const std::filesystem::path& file, Diagnostics& diagnostics,
+                                    const PreprocessorOptions& preprocessing) {
   // Manual §8.3.5: "The file is preprocessed by cpfg, and therefore macros and comments are
   // allowed."
-  const std::string text = preprocessFile(file, PreprocessorOptions{}, diagnostics);
+  const std::string text = preprocessFile(file, preprocessing, diagnostics);
   return BackgroundReader(words(text, file)).read();
 }
 

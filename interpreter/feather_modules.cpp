@@ -1,4 +1,4 @@
-// The @F modules of feathers (Streit & Heidrich 2002; DESIGN.md, "Feathers"): single feathers at
+// The @F modules of feathers (Streit & Heidrich 2002; docs/design.md, "Feathers"): one feather at
 // the turtle (@Fe, @Fi) and the coat attributes of the following generalized-cylinder segments
 // (@Ff @Fb @Fd @Fk @Fa @Fs @Fl @Ft), one row each, read by the turtle through organ_modules.h.
 #include <algorithm>
@@ -37,7 +37,7 @@ int featherType(const OrganModuleCall& call, const std::string& name, float para
 }
 
 // @Fe(k[,age[,size]]) and @Fi(k1,k2,t[,age[,size]]): one feather at the turtle, its calamus base
-// at the turtle's position, the rachis along H, the front towards U (DESIGN.md).
+// at the turtle's position, the rachis along H, the front towards U (feather_geometry.h).
 void emitFeather(const OrganModuleCall& call, const std::string& name, bool blended) {
   const std::size_t needed = blended ? 3 : 1;
   if (call.count < needed) {

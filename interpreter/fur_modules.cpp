@@ -1,4 +1,4 @@
-// The @U modules of shell fur (Silva et al. 2010; DESIGN.md, "Fur"): the switch and the strand,
+// The @U modules of shell fur (Silva et al. 2010; docs/design.md, "Fur"): the switch, the strand,
 // curl, shading and clump parameters of the following surfaces, one row each, read by the turtle
 // through organ_modules.h.
 #include <array>

@@ -1,5 +1,5 @@
-// The @H modules of plant hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Table 1; DESIGN.md, "Plant
-// hairs: the @H modules"): one row each, read by the turtle through organ_modules.h.
+// The @H modules of plant hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Table 1; docs/design.md,
+// "Plant hairs"): one row each, read by the turtle through organ_modules.h.
 #include <algorithm>
 
 #include "hirsute/interpreter/hair_part.h"

@@ -18,7 +18,7 @@ HairSettings& hairs(ViewLine& c) {
 
 using view_text::inQuotes;
 
-// `hair texture: SIZE SEED [FILL]` (DESIGN.md): the point-diffusion texture is SIZE×SIZE cells
+// `hair texture: SIZE SEED [FILL]`: the point-diffusion texture is SIZE×SIZE cells
 // with FILL points per cell (0.02 to 0.3 measured; default 0.1).
 void hairTexture(ViewLine& c) {
   hairs(c).textureSize = static_cast<int>(c.requiredInteger("the texture size", 4, 4096));

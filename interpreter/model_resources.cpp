@@ -61,6 +61,7 @@ void loadPalette(ModelResources& resources, const ColorFiles& colors, Diagnostic
 
   // cpfg draws in the mode of the last -m or -M option; ColorFiles does not keep their order.
   resources.materialMode = !colors.materials.empty();
+  resources.colorMapFile = !colors.colormaps.empty();
   if (!colors.materials.empty() && !colors.colormaps.empty()) {
     diagnostics.warn(fileLocation(colors.colormaps.front().second),
                      "both colour maps and material files are given; drawing in material mode");
@@ -176,7 +177,8 @@ void loadSurfaces(ModelResources& resources, std::size_t maxMeshTriangles,
 
 // cpfg (manual §8.1.4): `background scene: file1, file2, …`, drawn after the string. A missing
 // file is a warning, like the other files the view names.
-void loadBackgroundScenes(ModelResources& resources, Diagnostics& diagnostics) {
+void loadBackgroundScenes(ModelResources& resources, const PreprocessorOptions& preprocessing,
+                          Diagnostics& diagnostics) {
   for (const std::string& file : resources.view.backgroundScenes) {
     if (!fileExists(file)) {
       diagnostics.warn(fileLocation(file), "cannot open background scene file " +
@@ -184,7 +186,7 @@ void loadBackgroundScenes(ModelResources& resources, Diagnostics& diagnostics) {
                                                "; it is not drawn");
       continue;
     }
-    resources.backgroundScenes.push_back(loadBackgroundScene(file, diagnostics));
+    resources.backgroundScenes.push_back(loadBackgroundScene(file, diagnostics, preprocessing));
   }
 }
 
@@ -192,21 +194,23 @@ void loadBackgroundScenes(ModelResources& resources, Diagnostics& diagnostics) {
 
 ModelResources loadModelResources(const std::optional<std::filesystem::path>& viewFile,
                                   const ColorFiles& colors, Diagnostics& diagnostics,
-                                  std::size_t maxMeshTriangles) {
+                                  std::size_t maxMeshTriangles, std::size_t maxSourceBytes) {
   ModelResources resources;
+  PreprocessorOptions preprocessing;
+  preprocessing.maxOutputBytes = maxSourceBytes;
   if (viewFile) {
     resources.folder = viewFile->parent_path();
     resources.viewFile = *viewFile;
     diagnostics.addSourceFolder(ModelFolder(resources.folder));  // messages quote its lines
     // cpfg runs the view file through the C preprocessor too: #define, /* */ and // work.
-    const std::string text = preprocessFile(*viewFile, PreprocessorOptions{}, diagnostics);
+    const std::string text = preprocessFile(*viewFile, preprocessing, diagnostics);
     resources.view = parseViewFile(text, *viewFile, diagnostics);
   }
   loadPalette(resources, colors, diagnostics);
   loadTextures(resources, diagnostics);
   loadContours(resources, diagnostics);
   loadSurfaces(resources, maxMeshTriangles, diagnostics);
-  loadBackgroundScenes(resources, diagnostics);
+  loadBackgroundScenes(resources, preprocessing, diagnostics);
   return resources;
 }
 

@@ -1,5 +1,5 @@
-// The list of organ tables, the list of the organs' view-file lines, and the readers of the
-// parameter forms they share (DESIGN.md, "Organs"; the value form is Fuhrer et al. 2004, Table 1).
+// The lists of organ tables and of the organs' view-file lines, and the readers of the parameter
+// forms they share (docs/design.md, "Organs"; the value form is Fuhrer et al. 2004, Table 1).
 #include "hirsute/interpreter/organ_modules.h"
 
 #include <algorithm>

@@ -375,7 +375,10 @@ bool Derivation::step() {
   evaluator_.shared()[static_cast<std::size_t>(program_.stepSlot)] = stepsDone_ + 1;
   evaluator_.run(main.startEach, nullptr);
   if (options_.progress) {
-    if (stepsDone_ == 0) options_.progress->begin("deriving", Progress::Unit::Steps, totalSteps_);
+    if (stepsDone_ == 0) {
+      options_.progress->begin("deriving", Progress::Unit::Steps, totalSteps_);
+      options_.progress->withoutTimeLeft();  // a step costs as much as the string has grown
+    }
     options_.progress->update(stepsDone_ + 1);  // the step under way
   }
   rewriteStep();

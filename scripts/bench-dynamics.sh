@@ -43,7 +43,7 @@ for vanes in ${VANES:-off}; do
     models/coat-bending/*.fea models/coat-bending/*.con "$model/"
   status=0
   (cd "$model" && /usr/bin/time -v "$hirsute" simulate bending.l bending.v bending.a -o out \
-    --frames "$simulated" --no-frames --wind 0.5 0 0 --gusts 1 --gust-scale 2 $vaneOption >summary.txt \
+    --frames "$simulated" --no-frames -v --wind 0.5 0 0 --gusts 1 --gust-scale 2 $vaneOption >summary.txt \
     2>time.txt) || status=$?
   if [ "$status" -ne 0 ]; then
     # A step that could not be resolved: the frames before it have their rows in the table.
@@ -53,7 +53,8 @@ for vanes in ${VANES:-off}; do
     left="failed"
     vaneLeft="-"
   else
-    summary="$(cat "$model/summary.txt")"
+    # The counts behind the closing line, which -v prints on the standard error.
+    summary="$(grep -E '^[0-9]+ frames of [0-9]+ feathers' "$model/time.txt")"
     feathers="$(sed -E 's/^[0-9]+ frames of ([0-9]+) feathers.*/\1/' <<<"$summary")"
     left="$(sed -E 's/.* ([0-9]+) left; vanes.*/\1/' <<<"$summary")"
     vaneLeft="-"

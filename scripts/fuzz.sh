@@ -22,15 +22,15 @@
 # their formats flat, so they cover in seconds what the .l targets take a minute for, and CI's
 # stage (`scripts/fuzz.sh 60`: 2 × 60 s + 6 × 20 s after the build) stays within ten minutes.
 #
-# Seeds are prepared in build/fuzz/seeds/TARGET: every `.l` under models/ and tests/ (and
-# ../shared/conformance when it is there), each as written and as the C preprocessor hands it to
-# the parser; every `.fea`; every `.v` as written and preprocessed; every `.a`; every `.e` and
-# every specification file its executable line names (with the byte that picks the program),
-# and a few answer and query texts; a few hand-written argument vectors for simulate; every mesh
-# file under models/ and tests/ and a small one of each format (the first byte picks it). Each
-# target has its dictionary in fuzz/. Seeds, the growing corpus and any crash files live in
-# build/fuzz/, never in the repository. A finding ends the run with a non-zero status and leaves
-# its input in build/fuzz/artifacts/; replay it with
+# Seeds are prepared in build/fuzz/seeds/TARGET: every `.l` under models/ and tests/ (and of
+# cpfg's conformance set in ../shared/conformance when it is there), each as written and as the C
+# preprocessor hands it to the parser; every `.fea`; every `.v` as written and preprocessed; every
+# `.a`; every `.e` and every specification file its executable line names (with the byte that
+# picks the program), and a few answer and query texts; a few hand-written argument vectors for
+# simulate; every mesh file under models/ and tests/ and a small one of each format (the first
+# byte picks it). Each target has its dictionary in fuzz/. Seeds, the growing corpus and any crash
+# files live in build/fuzz/, never in the repository. A finding ends the run with a non-zero
+# status and leaves its input in build/fuzz/artifacts/; replay it with
 #   build/fuzz/fuzz/TARGET build/fuzz/artifacts/crash-…
 set -euo pipefail
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds Hirsute (Release) and runs every test: unit tests, the broken-input corpus, and the
-# conformance runner over ../shared/conformance (skipped when that folder is absent).
+# conformance runner over ../shared/conformance, vlab's models with cpfg's own strings (skipped
+# when that folder is absent; docs/design.md, "Tests and CI").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

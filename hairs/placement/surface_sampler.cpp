@@ -1,5 +1,5 @@
 // The shared placement engine: the point pattern tiled over unfolded segments and their edges
-// (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.1, 3.2 and 4.4; DESIGN.md, "Organs").
+// (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.1, 3.2 and 4.4; docs/design.md, "Placement").
 #include "hirsute/hairs/placement/surface_sampler.h"
 
 #include "hirsute/hairs/placement/mesh_sampling.h"

@@ -1,5 +1,5 @@
 // Plant hairs on generalized-cylinder segments (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3–4;
-// DESIGN.md, "Plant hairs"): the attachment points of the shared placement engine
+// docs/design.md, "Plant hairs"): the attachment points of the shared placement engine
 // (hairs/placement/), thinned by the @Hd density, each given a template, a length, a radius and
 // the hair direction from the corner frames, by the attributes of Table 1.
 #include "hirsute/hairs/plant/hair_placement.h"

@@ -88,7 +88,8 @@ TEST_F(InputCosts, AKeyBarbHasAtMost64ControlVertices) {
 
 // The herb's leaf at PRECISION S: 1000 T: 1000 (after its first line), as `leaf.s`, and a view
 // file that names it ~l.
-fs::path writeLeafAtPrecision1000(const std::function<fs::path(const std::string&, const std::string&)>& write) {
+fs::path writeLeafAtPrecision1000(
+    const std::function<fs::path(const std::string&, const std::string&)>& write) {
   std::string surface;
   std::ifstream in(fs::path(HIRSUTE_SOURCE_DIR) / "models" / "herb" / "leaf.s");
   for (std::string line; std::getline(in, line);) {
@@ -125,10 +126,9 @@ TEST_F(InputCosts, ASurfaceThatNeedsMoreMemoryThanTheMachineHoldsIsNamed) {
   for (int i = 0; i < 40; ++i) axiom += "~l(1)";
   const fs::path model =
       write("model.l", "Lsystem: 1\nderivation length: 0\nAxiom: " + axiom + "\nendlsystem\n");
-  const RunResult run =
-      runHirsute({"export", model.string(), view.string(), "--pov",
-                  (folder_.path() / "out.pov").string()},
-                 std::size_t{2} << 30);
+  const RunResult run = runHirsute(
+      {"export", model.string(), view.string(), "--pov", (folder_.path() / "out.pov").string()},
+      std::size_t{2} << 30);
   EXPECT_FALSE(run.killed) << "the run did not end";
   EXPECT_EQ(run.exitCode, 2) << run.err;
   EXPECT_NE(run.err.find("surface ~l (1 patches at precision 1000 × 1000) would grow the geometry "
@@ -160,8 +160,9 @@ TEST_F(InputCosts, TheViewFilesDropletsOnALargeMaskHaveALimit) {
   std::string view = "line style: cylinder\ncontour: 1 flat.con\nwetness mask: 4096\n";
   for (int i = 0; i < 70; ++i) view += "droplet: 0.5 0.5 1 1\n";
   // Each droplet of radius 1 blends the whole 4096² mask: the 65th passes 2^30 texels.
-  expectError(exportPov(folder_.path() / "square.l", write("square.v", view)), "square.v:68:1: error:",
-              "the view file's droplets would blend more than 1073741824 texels");
+  expectError(
+      exportPov(folder_.path() / "square.l", write("square.v", view)),
+      "square.v:68:1: error:", "the view file's droplets would blend more than 1073741824 texels");
 }
 
 // Feathers at the turtle count against --max-feathers before any output builds them.
@@ -187,16 +188,16 @@ TEST_F(InputCosts, FeathersGeometryAtThePicturesDetailHasALimit) {
   const fs::path peacock = kModels / "peacock-feather";
   for (const char* file : {"peacock.fea", "peacock-eye.png", "peacock-feather.v"})
     fs::copy_file(peacock / file, folder_.path() / file);
-  const fs::path model = write(
-      "few.l", "Lsystem: 1\nderivation length: 0\nAxiom: @Fe(1)@Fe(1)@Fe(1)\nendlsystem\n");
+  const fs::path model =
+      write("few.l", "Lsystem: 1\nderivation length: 0\nAxiom: @Fe(1)@Fe(1)@Fe(1)\nendlsystem\n");
   const fs::path view = folder_.path() / "peacock-feather.v";
   const std::string message =
       "the feathers' geometry grew past 20000 vertices (--max-vertices) at feather ";
   expectError(exportPov(model, view, {"--max-vertices", "20000"}), "few.l: error:", message);
   EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
   const fs::path picture = folder_.path() / "few.png";
-  expectError(runHirsute({"render", model.string(), view.string(), "-o", picture.string(),
-                          "--size", "320x240", "--max-vertices", "20000"}),
+  expectError(runHirsute({"render", model.string(), view.string(), "-o", picture.string(), "--size",
+                          "320x240", "--max-vertices", "20000"}),
               "few.l: error:", message);
   EXPECT_FALSE(fs::exists(picture));
   // Within the limit the same feathers export.
@@ -218,8 +219,8 @@ TEST_F(InputCosts, ManyFeathersAtOneSpotRenderOrStopQuickly) {
       write("many.l", "Lsystem: 1\nderivation length: 0\nAxiom: " + axiom + "\nendlsystem\n");
   const fs::path view = folder_.path() / "peacock-feather.v";
   const fs::path picture = folder_.path() / "many.png";
-  expectError(runHirsute({"render", model.string(), view.string(), "-o", picture.string(),
-                          "--size", "800x600"}),
+  expectError(runHirsute({"render", model.string(), view.string(), "-o", picture.string(), "--size",
+                          "800x600"}),
               "many.l: error:",
               "the feathers' geometry grew past 100000000 vertices (--max-vertices) at feather ");
   EXPECT_FALSE(fs::exists(picture));
@@ -227,8 +228,8 @@ TEST_F(InputCosts, ManyFeathersAtOneSpotRenderOrStopQuickly) {
   for (int i = 0; i < 300; ++i) few += "@Fe(1)";
   const fs::path fewer =
       write("fewer.l", "Lsystem: 1\nderivation length: 0\nAxiom: " + few + "\nendlsystem\n");
-  const RunResult run = runHirsute({"render", fewer.string(), view.string(), "-o",
-                                    picture.string(), "--size", "160x120"});
+  const RunResult run = runHirsute(
+      {"render", fewer.string(), view.string(), "-o", picture.string(), "--size", "160x120"});
   EXPECT_EQ(run.exitCode, 0) << run.err;
   EXPECT_TRUE(fs::exists(picture));
 }
@@ -241,7 +242,8 @@ TEST_F(InputCosts, FurStrandsPointsHaveALimit) {
     fs::copy_file(curls / file, folder_.path() / file);
   const fs::path model = folder_.path() / "curls.l";
   const fs::path view = folder_.path() / "curls.v";
-  const std::string message = "the fur's strands grew past 200000 points (--max-vertices) at fur surface ";
+  const std::string message =
+      "the fur's strands grew past 200000 points (--max-vertices) at fur surface ";
   expectError(exportPov(model, view, {"--max-vertices", "200000"}), "curls.l: error:", message);
   EXPECT_FALSE(fs::exists(folder_.path() / "out.pov"));
   const fs::path obj = folder_.path() / "out.obj";
@@ -276,6 +278,33 @@ TEST_F(InputCosts, TheSourceTextHasALimit) {
   EXPECT_EQ(within.exitCode, 0) << within.err;
 }
 
+// The view file and the background scenes it names go through the preprocessor too, under the
+// same limit: a scene that grows past --max-source-bytes is refused as the .l would be.
+TEST_F(InputCosts, TheViewFilesAndBackgroundScenesHaveTheSameLimit) {
+  const fs::path model =
+      write("small.l", "Lsystem: 1\nderivation length: 0\nAxiom: F\nendlsystem\n");
+  std::string spheres;
+  for (int i = 0; i < 200; ++i) spheres += "pushmatrix\n translate 1 0 0\n sphere 0.5\npopmatrix\n";
+  write("scene.dat", spheres);
+  const fs::path view = write("scene.v", "background scene: scene.dat\n");
+  for (const char* command : {"render", "export"}) {
+    std::vector<std::string> arguments{command, model.string(), view.string(), "--max-source-bytes",
+                                       "2000"};
+    if (std::string(command) == "export")
+      arguments.insert(arguments.end(), {"--pov", (folder_.path() / "out.pov").string()});
+    else
+      arguments.insert(arguments.end(), {"-o", (folder_.path() / "out.png").string()});
+    expectError(runHirsute(arguments), "scene.dat: error:",
+                "the preprocessed text is larger than 2000 bytes (--max-source-bytes");
+  }
+  std::string lines;
+  for (int i = 0; i < 200; ++i) lines += "/* a comment kept out */ scale factor: 1.0\n";
+  const fs::path longView = write("long.v", lines);
+  expectError(
+      runHirsute({"derive", model.string(), longView.string(), "--max-source-bytes", "2000"}),
+      "long.v: error:", "the preprocessed text is larger than 2000 bytes");
+}
+
 // A block of 50 000 assignments, each with a number of its own, runs and computes what it
 // says (its speed, which once grew with the square of the numbers, is in
 // scripts/bench-input-costs.sh).
@@ -286,9 +315,9 @@ TEST_F(InputCosts, ABlockOfFiftyThousandAssignmentsRuns) {
     body += "x = x + " + std::to_string(i) + ".5;\n";
     expected += i + 0.5;
   }
-  const fs::path model =
-      write("sum.l", "Lsystem: 1\nStart: { x = 0;\n" + body +
-                         "printf(\"sum %.1f\\n\", x); }\nderivation length: 0\nAxiom: A\nendlsystem\n");
+  const fs::path model = write(
+      "sum.l", "Lsystem: 1\nStart: { x = 0;\n" + body +
+                   "printf(\"sum %.1f\\n\", x); }\nderivation length: 0\nAxiom: A\nendlsystem\n");
   const RunResult run = runHirsute({"derive", model.string()});
   EXPECT_EQ(run.exitCode, 0) << run.err;
   char text[64];

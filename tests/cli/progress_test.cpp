@@ -1,6 +1,8 @@
-// The progress line of `hirsute derive` (hirsute/core/progress.h): on a terminal (a pseudo-
-// terminal here) a run that takes longer than a second names its stage on stderr; with stderr on
-// a pipe the same run writes nothing there at all.
+// The progress line (hirsute/core/progress.h) on a terminal (a pseudo-terminal here): a run that
+// takes longer than a second names its stage on stderr, rewritten in place (`derive`'s steps,
+// `simulate`'s frames with the time left, `export --render`'s share of POV-Ray's pixels,
+// `render-frames`' frames finished and failed); with stderr on a pipe the same run writes
+// nothing there at all.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -11,8 +13,12 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
+
+#include "hirsute/core/program_path.h"
 
 extern char** environ;
 
@@ -80,6 +86,90 @@ TEST(Progress, ALongDerivationOnATerminalShowsItsStepsInPlace) {
   EXPECT_NE(text.find("/100000", at), std::string::npos);
   EXPECT_EQ(text.find('\n'), std::string::npos) << "the line is rewritten in place: " << text;
   EXPECT_GE(seconds, 1.0) << "nothing before the first second";
+}
+
+// A simulation counts its frames, the time since it started and, once a twentieth of them are
+// done (a few seconds of fur in the wind here), the time it has left; it is stopped then.
+TEST(Progress, ASimulationOnATerminalShowsItsFramesAndTheTimeLeft) {
+  const std::string models = std::string(HIRSUTE_SOURCE_DIR) + "/models/fur-square/";
+  char folder[] = "/tmp/hirsute_progress_XXXXXX";
+  ASSERT_NE(mkdtemp(folder), nullptr);
+  int master = -1, slave = -1;
+  ASSERT_EQ(openpty(&master, &slave, nullptr, nullptr, nullptr), 0);
+  const pid_t pid =
+      spawnHirsute({"simulate", models + "square.l", models + "square.v", "-o", folder, "--frames",
+                    "100000", "--no-frames", "--wind", "3", "0", "0", "--gusts", "1"},
+                   slave);
+  close(slave);
+  ASSERT_GT(pid, 0);
+  const std::string text = readUntil(master, " left", 60s);
+  stop(pid);
+  close(master);
+  std::filesystem::remove_all(folder);
+  const std::size_t at = text.rfind("\rsimulating: ");
+  ASSERT_NE(at, std::string::npos) << "stderr: " << text;
+  const std::string line = text.substr(at + 1);
+  EXPECT_NE(line.find("/100000 frames \u00b7 "), std::string::npos) << line;
+  EXPECT_NE(line.find(" elapsed \u00b7 "), std::string::npos) << line;
+  EXPECT_NE(line.find(" left"), std::string::npos) << line;
+  EXPECT_EQ(text.find('\n'), std::string::npos) << "the line is rewritten in place: " << text;
+}
+
+// export --render shows the share of the pixels POV-Ray reports rendered (a large picture of the
+// herb, stopped as soon as the line shows it).
+TEST(Progress, ExportRenderOnATerminalShowsTheShareOfThePixelsPovRayRendered) {
+  if (hirsute::findOnPath("povray").empty()) GTEST_SKIP() << "needs povray";
+  const std::string herb = std::string(HIRSUTE_SOURCE_DIR) + "/models/herb/";
+  char folder[] = "/tmp/hirsute_progress_XXXXXX";
+  ASSERT_NE(mkdtemp(folder), nullptr);
+  int master = -1, slave = -1;
+  ASSERT_EQ(openpty(&master, &slave, nullptr, nullptr, nullptr), 0);
+  const pid_t pid =
+      spawnHirsute({"export", herb + "herb.l", herb + "herb.v", "--pov",
+                    std::string(folder) + "/herb.pov", "--render", "--size", "1600x1200"},
+                   slave);
+  close(slave);
+  ASSERT_GT(pid, 0);
+  const std::string text = readUntil(master, "% of the pixels \u00b7 ", 60s);
+  // Stopped: hirsute ends POV-Ray and says what it said, read to the end so that it can write.
+  kill(pid, SIGTERM);
+  readUntil(master, "", 20s);
+  stop(pid);
+  close(master);
+  std::filesystem::remove_all(folder);
+  const std::size_t at = text.rfind("\rrendering with POV-Ray: ");
+  ASSERT_NE(at, std::string::npos) << "stderr: " << text;
+  EXPECT_NE(text.find("% of the pixels \u00b7 0:0", at), std::string::npos) << text.substr(at);
+}
+
+// render-frames counts the frames finished and failed as GNU parallel's job log records them:
+// one renders, one cannot be parsed, one never ends and is stopped at --frame-timeout.
+TEST(Progress, RenderFramesOnATerminalCountsTheFramesFinishedAndFailed) {
+  if (hirsute::findOnPath("parallel").empty() || hirsute::findOnPath("povray").empty())
+    GTEST_SKIP() << "needs GNU parallel and povray";
+  const std::filesystem::path scenes =
+      std::filesystem::path(HIRSUTE_SOURCE_DIR) / "tests/fixtures/cli/render_frames";
+  char folder[] = "/tmp/hirsute_progress_XXXXXX";
+  ASSERT_NE(mkdtemp(folder), nullptr);
+  const std::filesystem::path frames = folder;
+  std::filesystem::copy_file(scenes / "sphere.pov", frames / "frame-0001.pov");
+  std::ofstream(frames / "frame-0002.pov") << "#version 3.7;\nsphere { <0, 0, 0>,\n";
+  std::filesystem::copy_file(scenes / "endless.pov", frames / "frame-0003.pov");
+  int master = -1, slave = -1;
+  ASSERT_EQ(openpty(&master, &slave, nullptr, nullptr, nullptr), 0);
+  const pid_t pid = spawnHirsute(
+      {"render-frames", folder, "--size", "32x24", "--jobs", "3", "--frame-timeout", "3"}, slave);
+  close(slave);
+  ASSERT_GT(pid, 0);
+  // To its end: the endless frame is stopped after three seconds.
+  const std::string text = readUntil(master, "", 30s);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  close(master);
+  std::filesystem::remove_all(folder);
+  EXPECT_NE(text.find("\rrendering frames: 2/3 frames, 1 failed \u00b7 0:0"), std::string::npos)
+      << "stderr: " << text;
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << status;
 }
 
 TEST(Progress, StderrThatIsNoTerminalStaysEmpty) {

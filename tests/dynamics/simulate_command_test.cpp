@@ -5,6 +5,7 @@
 // or fur and of bad fur options.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -80,8 +81,8 @@ class SimulateCommand : public ::testing::Test {
 };
 
 TEST_F(SimulateCommand, TheBendingBodyCarriesItsCoatAndNothingIntersects) {
-  const Output out =
-      simulate("coat-bending", "bending.l bending.v bending.a", "--frames 4 --vane-collisions", folder_);
+  const Output out = simulate("coat-bending", "bending.l bending.v bending.a",
+                              "--frames 4 --vane-collisions -v", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("4 frames of"), std::string::npos) << out.text;
   EXPECT_NE(out.text.find("0 left"), std::string::npos) << out.text;
@@ -113,9 +114,9 @@ TEST_F(SimulateCommand, TheBendingBodyCarriesItsCoatAndNothingIntersects) {
 // Without vane collisions the same frames have vanes passing through each other (so the test
 // above can fail), and no vane is a candidate.
 TEST_F(SimulateCommand, WithoutVaneCollisionsTheBendingCoatsVanesPassThrough) {
-  const Output out =
-      simulate("coat-bending", "bending.l bending.v bending.a",
-               "--frames 4 --no-frames --no-vane-collisions --count-vane-intersections", folder_);
+  const Output out = simulate(
+      "coat-bending", "bending.l bending.v bending.a",
+      "--frames 4 --no-frames --no-vane-collisions --count-vane-intersections -v", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("vanes not colliding: 0 vane candidates"), std::string::npos)
       << out.text;
@@ -135,7 +136,7 @@ TEST_F(SimulateCommand, WithoutVaneCollisionsTheBendingCoatsVanesPassThrough) {
 // overlapping where the coat is placed are not looked for.
 TEST_F(SimulateCommand, VanesNotCollidingAreCountedOnlyWhenAsked) {
   const Output out = simulate("coat-bending", "bending.l bending.v bending.a",
-                              "--frames 2 --no-frames --no-vane-collisions", folder_);
+                              "--frames 2 --no-frames --no-vane-collisions -v", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("vane intersections not counted"), std::string::npos) << out.text;
   EXPECT_EQ(out.text.find("overlapped at the start"), std::string::npos) << out.text;
@@ -178,7 +179,7 @@ TEST_F(SimulateCommand, AnAnimatedDefineMovesTheBody) {
 // draws its k-th mesh, the coat's roots follow its triangles, nothing intersects, and without
 // --frames the run is as long as the sequence.
 TEST_F(SimulateCommand, AMeshSequenceMovesTheBodyAndItsCoat) {
-  const Output out = simulate("mesh-bird", "bird.l nod.v", "--frames 4", folder_);
+  const Output out = simulate("mesh-bird", "bird.l nod.v", "--frames 4 -v", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("4 frames of"), std::string::npos) << out.text;
   EXPECT_NE(out.text.find("rooted on the body"), std::string::npos) << out.text;
@@ -188,9 +189,32 @@ TEST_F(SimulateCommand, AMeshSequenceMovesTheBodyAndItsCoat) {
   ASSERT_EQ(rows.size(), 5u);
   for (std::size_t r = 1; r < rows.size(); ++r) EXPECT_EQ(rows[r][10], "0") << "frame " << r;
 
-  const Output whole = simulate("mesh-bird", "bird.l nod.v", "--no-frames", folder_ / "whole");
+  const Output whole = simulate("mesh-bird", "bird.l nod.v", "--no-frames -v", folder_ / "whole");
   ASSERT_EQ(whole.status, 0) << whole.text;
   EXPECT_NE(whole.text.find("12 frames of"), std::string::npos) << whole.text;
+}
+
+// The run ends with one short line on standard output; the counts behind it come with -v. Off
+// a terminal (a pipe here) nothing else is written: no progress line, no carriage return.
+TEST_F(SimulateCommand, TheClosingLineIsShortAndTheCountsComeWithVerbose) {
+  const Output out = simulate("fur-square", "square.l square.v", "--frames 3 --no-frames", folder_);
+  ASSERT_EQ(out.status, 0) << out.text;
+  const std::string start = "simulated 3 frames of 625 strands of fur (0.0833 s of motion) in ";
+  const std::string end = " \u2192 " + folder_.string() + "/\n";
+  ASSERT_GT(out.text.size(), start.size() + end.size()) << out.text;
+  EXPECT_EQ(out.text.substr(0, start.size()), start) << out.text;
+  EXPECT_EQ(out.text.substr(out.text.size() - end.size()), end) << out.text;
+  EXPECT_EQ(std::count(out.text.begin(), out.text.end(), '\n'), 1) << out.text;
+  EXPECT_EQ(out.text.find_first_of("\r\x1b"), std::string::npos) << out.text;
+
+  const Output verbose =
+      simulate("fur-square", "square.l square.v", "--frames 3 --no-frames -v", folder_);
+  ASSERT_EQ(verbose.status, 0) << verbose.text;
+  EXPECT_NE(verbose.text.find(start), std::string::npos) << verbose.text;
+  EXPECT_NE(verbose.text.find("3 frames of fur (625 strands on 1 surfaces) in "), std::string::npos)
+      << verbose.text;
+  EXPECT_NE(verbose.text.find(" droplets; at the end a mean bend of "), std::string::npos)
+      << verbose.text;
 }
 
 TEST_F(SimulateCommand, AModelWithoutFeathersOrFurIsAnError) {
@@ -230,7 +254,7 @@ TEST_F(SimulateCommand, FurMovesInTheWindAndDropletsWetItAndItDries) {
   const std::string files = "square.l square.v";
   const Output out = simulate("fur-square", files,
                               "--frames 8 --wind 3 0 0 --gusts 1 --drop 2:6 --dry 0.5 "
-                              "--dry-from 4 --size 80x60",
+                              "--dry-from 4 --size 80x60 -v",
                               folder_ / "windy");
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("8 frames of fur (625 strands on 1 surfaces)"), std::string::npos)

@@ -1,5 +1,5 @@
-// Placing plant hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3–4; DESIGN.md, "Plant hairs:
-// the @H modules"): each module's effect on the placed hairs, measured on fixture models in
+// Placing plant hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3–4; docs/design.md, "Plant
+// hairs"): each module's effect on the placed hairs, measured on fixture models in
 // tests/fixtures/hairs built through the same steps as `hirsute render`.
 #include "hirsute/hairs/plant/hair_placement.h"
 
@@ -1050,7 +1050,7 @@ TEST(HairProbability, WithoutTemplatesEveryHairIsTheStraightDefault) {
 }
 
 // Interpolation mixes the probabilities, normalised at each end, linearly along the segment
-// (DESIGN.md: every attribute varies linearly between the values at the two ends).
+// (docs/design.md, "Placement": attributes vary linearly between the two ends).
 TEST(HairProbability, InterpolatedProbabilitiesVaryLinearlyAlongTheSegment) {
   const PlacedHairs placed = place("probability_ramp.l", "three_templates_interpolated.v");
   ASSERT_TRUE(placed.warnings.empty()) << warningsOf(placed);

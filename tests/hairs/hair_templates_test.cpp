@@ -1,4 +1,4 @@
-// Template hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.2; DESIGN.md, "Template hairs"):
+// Template hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.2; docs/design.md, "Plant hairs"):
 // each `hair:` L-system of the view file becomes polylines of turtle positions in the hair's
 // frame, x along the first segment. Fixtures in tests/fixtures/hairs.
 #include "hirsute/hairs/plant/hair_templates.h"

@@ -1,4 +1,4 @@
-// Plant hairs on a mesh surface (DESIGN.md, "Meshes as surfaces"; mesh_sampling.h): placed over
+// Plant hairs on a mesh surface (docs/design.md, "Meshes"; mesh_sampling.h): placed over
 // the mesh's own area, whatever its texture atlas, measured on the surface in world distances.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The point-diffusion texture (DESIGN.md, "Plant hairs"): spacing measured as Lagae & Dutré's
+// The point-diffusion texture (docs/design.md, "Placement"): spacing measured as Lagae & Dutré's
 // relative radius, the point count, seeding, and seams where tiles meet.
 #include "hirsute/hairs/placement/point_diffusion.h"
 

@@ -350,7 +350,7 @@ Derived derive(const Model& model, std::optional<int> steps) {
 }
 
 // Every model of the repository (the fixtures, models/, the benchmark kinds cut short) and, when
-// present, of ../shared/conformance: the same string, warnings, printed text and error with the
+// present, of cpfg's conformance set: the same string, warnings, printed text and error with the
 // machine code as with the evaluator alone.
 TEST(NativeCode, EveryModelDerivesAsWithTheEvaluatorAlone) {
   const testing::ModelCorpus corpus(HIRSUTE_SOURCE_DIR, "native",

@@ -139,7 +139,7 @@ TEST(ParallelRewriting, DependentProgramsStayOnOneThread) {
 }
 
 // Every model of the repository (the fixtures, models/, the benchmark kinds cut short) and, when
-// present, of ../shared/conformance: the same string, warnings and error with every step that
+// present, of cpfg's conformance set: the same string, warnings and error with every step that
 // may be split rewritten in three parts.
 // The cost rule, fed with made-up step times: a step of a new kind (a growth step, or the first
 // of other productions) is not held against splitting, and steps in parts that do not pay send

@@ -1,5 +1,5 @@
 // What the tests that derive every model share: the models (the lsys fixtures, models/, some
-// benchmark kinds cut short, and ../shared/conformance when it is there), the view file each is
+// benchmark kinds cut short, and cpfg's conformance set when it is there), the view file each is
 // derived with, and a derivation's string in the compact format.
 #pragma once
 

@@ -313,6 +313,40 @@ TEST_F(ExportTest, PovSceneHasCameraLightsMaterialsAndPrimitives) {
   EXPECT_EQ(stats.bytes, pov.size());
 }
 
+// With a colour map file in a shaded render mode, GL shades a surface of colour c along the
+// palette up to c + d in full light; POV-Ray's light does the shading, so meshes, spheres and discs
+// take entry c + d (kept in the palette), as the path tracer does, and lines keep their own.
+TEST_F(ExportTest, PovShadedColourMapSurfacesTakeTheirFullyLitEntry) {
+  Scene scene = mixedScene();
+  PovOptions options;
+  options.view.renderMode = RenderMode::Shaded;
+  options.view.diffuseReflection = 1;
+  options.colorMapFile = true;
+  writePov(scene, options, file("plant.pov"));
+  const std::string pov = readText(file("plant.pov"));
+  EXPECT_EQ(countOccurrences(pov, "\nsphere{<-2,0,0>,.5 texture{M5}}\n"), 1u) << "4 + 1";
+  EXPECT_EQ(countOccurrences(pov, "\ndisc{<-2,2,0>,<0,0,1>,.5 texture{M2}}\n"), 1u) << "1 + 1";
+  EXPECT_EQ(countOccurrences(pov, "}\ntexture{M3}}\n"), 1u) << "the lines keep theirs";
+  EXPECT_EQ(countOccurrences(pov, "texture{M2}"), 2u) << "the red quad's mesh and the disc";
+  EXPECT_EQ(countOccurrences(pov, "texture{M1}"), 0u);
+  // Past the palette's end an entry stays at its last colour; unlit modes keep every entry.
+  options.view.diffuseReflection = 7;
+  writePov(scene, options, file("far.pov"));
+  const std::string far = readText(file("far.pov"));
+  EXPECT_EQ(countOccurrences(far, "=texture{"), 2u) << "the lines' M3 and the last entry, M5";
+  EXPECT_EQ(countOccurrences(far, "#declare M5="), 1u);
+  options.view.renderMode = RenderMode::Filled;
+  writePov(scene, options, file("filled.pov"));
+  EXPECT_EQ(countOccurrences(readText(file("filled.pov")), "\nsphere{<-2,0,0>,.5 texture{M4}}\n"),
+            1u);
+  // The default palette's neighbours are other colours, not the colour lit: entry c is kept.
+  options.view.renderMode = RenderMode::Shaded;
+  options.colorMapFile = false;
+  writePov(scene, options, file("default.pov"));
+  EXPECT_EQ(countOccurrences(readText(file("default.pov")), "\nsphere{<-2,0,0>,.5 texture{M4}}\n"),
+            1u);
+}
+
 TEST_F(ExportTest, PovPixelWidthsBecomeWorldRadii) {
   // Bounds 0..2 in y: the parallel camera is fitted 2 units high, so at 600 pixels a pixel is
   // 1/300 unit, and widths 10 and 4 pixels are radii 1/60 and 1/150.
@@ -724,6 +758,22 @@ int runHirsute(const std::string& arguments, const fs::path& log) {
       std::string("'") + HIRSUTE_BINARY + "' " + arguments + " > '" + log.string() + "' 2>&1";
   int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The progress line reads POV-Ray's reports of its render: the last whole one, past a part cut
+// off at the end of what has come so far.
+TEST(PovrayProgress, TheLastWholeReportOfPixelsRenderedCounts) {
+  EXPECT_FALSE(lastPixelsRendered("==== [Parsing...] ====\nParse Warning: …\n"));
+  const auto first =
+      lastPixelsRendered("==== [Rendering...] ===\nRendered 1024 of 307200 pixels (0%)\r");
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->done, 1024);
+  EXPECT_EQ(first->total, 307200);
+  const auto later = lastPixelsRendered(
+      "Rendered 1024 of 307200 pixels (0%)\rRendered 153600 of 307200 pixels (50%)\rRendered 15");
+  ASSERT_TRUE(later);
+  EXPECT_EQ(later->done, 153600);
+  EXPECT_FALSE(lastPixelsRendered("Rendered many of 307200 pixels"));
 }
 
 TEST_F(ExportTest, CommandWritesPovAndObjForAModel) {

@@ -1,4 +1,4 @@
-// Plant hairs in every output (DESIGN.md, "Plant hairs"), on hand-built scenes whose hairs are
+// Plant hairs in every output (docs/design.md, "Plant hairs"), on hand-built scenes whose hairs are
 // placed directly: the GL renderer draws them where root, orientation and length put them and
 // nowhere else, hides them, and draws a uniform fraction of them; the POV-Ray scene declares one
 // tube per template and radius bucket and places one object per hair (and POV-Ray renders it

@@ -248,9 +248,10 @@ void PovWriter::writeHeader(const Scene& scene, std::span<const OrganWriter* con
   out_.put("global_settings{assumed_gamma 1 ambient_light rgb");
   vector(ambient, colour_);
   if (options_.traceLights) {
-    out_.put(" radiosity{pretrace_start 0.08 pretrace_end 0.04 count 35 nearest_count 5 "
-             "error_bound 1.8 recursion_limit 2 low_error_factor 0.5 gray_threshold 0 "
-             "brightness 1 adc_bailout 0.005 normal on}");
+    out_.put(
+        " radiosity{pretrace_start 0.08 pretrace_end 0.04 count 35 nearest_count 5 "
+        "error_bound 1.8 recursion_limit 2 low_error_factor 0.5 gray_threshold 0 "
+        "brightness 1 adc_bailout 0.005 normal on}");
   }
   if (traceLevel > 0) {
     out_.put(" max_trace_level ");
@@ -314,7 +315,8 @@ void PovWriter::writeCamera() {
 // shadow. A white surface facing the light, or the sky, then looks as it does in the tracer.
 void PovWriter::writeTraceLights(const Bounds& bounds) {
   const TraceSettings& look = options_.view.trace;
-  const ViewLighting lighting = viewLighting(options_.view, options_.materialMode, -camera_.forward);
+  const ViewLighting lighting =
+      viewLighting(options_.view, options_.materialMode, -camera_.forward);
   const SphereLight light =
       sphereLight(look, bounds, traceLightFallback(lighting, bounds, -camera_.forward));
   NumberFormat format{5, false};
@@ -586,7 +588,15 @@ void PovWriter::placeObject(std::string_view name, int material, int textureInde
 
 void PovWriter::mesh(const TriangleMesh& mesh) {
   std::string name = declareMesh(mesh);
-  placeObject(name, mesh.material, drawnTextured(*scene_, mesh) ? mesh.texture : -1);
+  placeObject(name, shownMaterial(mesh.material, true),
+              drawnTextured(*scene_, mesh) ? mesh.texture : -1);
+}
+
+int PovWriter::shownMaterial(int material, bool lit) const {
+  if (!lit) return material;
+  return litPaletteEntry(
+      material, litPaletteOffset(options_.view, options_.materialMode, options_.colorMapFile),
+      static_cast<int>(scene_->materials.size()));
 }
 
 void PovWriter::line(const LineSegment& line, LineStyle style) {
@@ -612,7 +622,8 @@ void PovWriter::line(const LineSegment& line, LineStyle style) {
 
 void PovWriter::sphere(const Sphere& sphere) {
   if (samePrinted(sphere.radius, 0, position_.decimals) || sphere.radius < 0) return;
-  emit(sphere.material, {Primitive::Sphere, sphere.center, glm::vec3(0.0f), sphere.radius, 0});
+  emit(shownMaterial(sphere.material, true),
+       {Primitive::Sphere, sphere.center, glm::vec3(0.0f), sphere.radius, 0});
   ++stats_.spheres;
 }
 
@@ -620,7 +631,7 @@ void PovWriter::disc(const Disc& disc) {
   if (samePrinted(disc.radius, 0, position_.decimals) || disc.radius < 0) return;
   // A screen-aligned disc (cpfg's @o) faces the camera.
   glm::vec3 normal = glm::length(disc.normal) > 0 ? glm::normalize(disc.normal) : -camera_.forward;
-  emit(disc.material, {Primitive::Disc, disc.center, normal, disc.radius, 0});
+  emit(shownMaterial(disc.material, true), {Primitive::Disc, disc.center, normal, disc.radius, 0});
   ++stats_.discs;
 }
 

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -56,12 +57,33 @@ double statisticSeconds(const std::string& output, const std::string& what) {
 
 }  // namespace
 
+std::optional<PixelsRendered> lastPixelsRendered(std::string_view output) {
+  constexpr std::string_view kStart = "Rendered ", kOf = " of ", kEnd = " pixels";
+  for (std::size_t at = output.rfind(kStart); at != std::string_view::npos;
+       at = at == 0 ? std::string_view::npos : output.rfind(kStart, at - 1)) {
+    const std::string_view rest = output.substr(at + kStart.size());
+    const std::size_t of = rest.find(kOf);
+    const std::size_t end = of == std::string_view::npos ? of : rest.find(kEnd, of);
+    if (end == std::string_view::npos || end > 48) continue;  // cut short: an earlier one
+    const std::string done(rest.substr(0, of));
+    const std::string total(rest.substr(of + kOf.size(), end - of - kOf.size()));
+    const auto digits = [](const std::string& t) {
+      return !t.empty() && t.size() < 19 &&
+             std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (!digits(done) || !digits(total)) continue;
+    return PixelsRendered{std::stoll(done), std::stoll(total)};
+  }
+  return std::nullopt;
+}
+
 bool povrayAvailable() {
   return !findOnPath("povray").empty();
 }
 
 PovrayRun runPovray(const std::filesystem::path& scene, const std::filesystem::path& image,
-                    int width, int height, bool antialias, std::chrono::seconds timeLimit) {
+                    int width, int height, bool antialias, std::chrono::seconds timeLimit,
+                    Progress* progress) {
   PovrayRun run;
   const std::string povray = findOnPath("povray");
   if (povray.empty()) {
@@ -127,10 +149,33 @@ PovrayRun runPovray(const std::filesystem::path& scene, const std::filesystem::p
   request.timeLimit = timeLimit;
   std::string text;
   constexpr std::size_t kMaxOutput = 4 << 20;  // a scene's #debug may say much more
-  request.onOutput = [&text](std::string_view part) {
+  // The progress line: the time elapsed while POV-Ray parses, then the share of the pixels it
+  // reports, read from the end of what it has written (a report may come in two parts).
+  std::string recent;
+  bool counting = false;
+  if (progress != nullptr && progress->enabled()) {
+    progress->begin("rendering with POV-Ray", Progress::Unit::None);
+    request.whileRunning = [&] {
+      const std::optional<PixelsRendered> pixels = lastPixelsRendered(recent);
+      // The stage, and the clock of its time left, starts with the render, past the parsing.
+      if (!counting && (pixels || recent.find("==== [Rendering...]") != std::string::npos)) {
+        const double total = pixels ? static_cast<double>(pixels->total)
+                                    : static_cast<double>(width) * static_cast<double>(height);
+        progress->begin("rendering with POV-Ray", Progress::Unit::Percent, total, "of the pixels");
+        counting = true;
+      }
+      progress->update(pixels ? static_cast<double>(pixels->done) : 0.0);
+    };
+  }
+  request.onOutput = [&](std::string_view part) {
     if (text.size() < kMaxOutput) text.append(part.substr(0, kMaxOutput - text.size()));
+    if (!request.whileRunning) return;
+    recent.append(part);
+    constexpr std::size_t kKept = 4096;
+    if (recent.size() > 2 * kKept) recent.erase(0, recent.size() - kKept);
   };
   const ChildResult child = runChild(request);
+  if (progress != nullptr) progress->clear();
   if (!child.started) {
     run.messages = "cannot start povray: " + child.failure + '\n';
     return run;

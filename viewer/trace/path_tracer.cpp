@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -520,8 +521,11 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
     return true;
   };
 
-  if (options.progress) options.progress->begin("tracing", Progress::Unit::Steps, passes);
+  if (options.progress) {
+    options.progress->begin("tracing", Progress::Unit::Steps, passes, "samples a pixel");
+  }
   double lastPass = 0;
+  double sampled = 0;  // samples taken, over every pixel: the work done, for the time left
   for (int pass = 0; pass < passes && !active.empty(); ++pass) {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     if (options.seconds > 0 && pass > 0 && elapsed + lastPass > options.seconds) break;
@@ -591,6 +595,7 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
     for (std::thread& t : pool) t.join();
     lastPass = std::chrono::duration<double>(Clock::now() - passStart).count();
     image.passes = pass + 1;
+    sampled += static_cast<double>(activePixels);
     if (judged) {
       std::size_t kept = 0;
       for (std::size_t k = 0; k < active.size(); ++k) {
@@ -610,7 +615,15 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
         options.progress->note(", " + std::to_string(static_cast<int>(std::ceil(100 * share))) +
                                "% of pixels active");
       }
-      options.progress->update(pass + 1);
+      // The share of the work done: at most the pixels still active sample every pass left (a
+      // tile that stops makes the rest cheaper), and no more than the time budget allows.
+      const double left = static_cast<double>(activePixels) * (passes - pass - 1);
+      double share = sampled / std::max(1.0, sampled + left);
+      if (options.seconds > 0) {
+        const double spent = std::chrono::duration<double>(Clock::now() - start).count();
+        share = std::max(share, std::min(1.0, spent / options.seconds));
+      }
+      options.progress->update(pass + 1, share);
     }
   }
   for (std::size_t i = 0; i < pixels; ++i) {
@@ -640,7 +653,10 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
     }
     DenoiseOptions denoising;
     denoising.threads = threads;
+    std::optional<ProgressHeartbeat> heartbeat;
+    if (options.progress) heartbeat.emplace(*options.progress);
     image.radiance = denoise(noisy, denoising);
+    heartbeat.reset();
     image.denoiseSeconds = std::chrono::duration<double>(Clock::now() - denoiseStart).count();
   }
   image.seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute::trace {
 namespace {
@@ -75,10 +76,8 @@ int TraceScene::addMaterial(const TraceMaterial& material) {
 }
 
 int TraceScene::shownIndex(const Scene& scene, int index, bool lit) const {
-  if (!lit || litPaletteOffset_ == 0 || scene.materials.empty()) return index;
-  const int last = static_cast<int>(scene.materials.size()) - 1;
-  const int bank = std::clamp(index, 0, last) / 256 * 256;
-  return std::clamp(index + litPaletteOffset_, bank, std::min(bank + 255, last));
+  if (!lit) return index;
+  return litPaletteEntry(index, litPaletteOffset_, static_cast<int>(scene.materials.size()));
 }
 
 int TraceScene::surfaceMaterial(const Scene& scene, int index, bool thin, bool lit) {
@@ -130,7 +129,8 @@ int TraceScene::veinedMaterial(const Scene& scene, int index, float aspect, bool
   // the transmitted light alike.
   const glm::vec3 colour =
       linearColour(sceneMaterial(scene, shownIndex(scene, index, true)).diffuse);
-  const glm::vec3 veinColour = veins->veinColour ? linearColour(*veins->veinColour) : 0.55f * colour;
+  const glm::vec3 veinColour =
+      veins->veinColour ? linearColour(*veins->veinColour) : 0.55f * colour;
   for (int c = 0; c < 3; ++c) t.veinColour[c] = colour[c] > 0 ? veinColour[c] / colour[c] : 1.0f;
   t.veinStrength = veins->strength;
   t.veinBump = veins->bump;
@@ -181,19 +181,21 @@ int TraceScene::attach(RTCGeometry geometry, const TraceShape& shape) {
   return static_cast<int>(id);
 }
 
-RTCGeometry TraceScene::geometry(unsigned id) const { return rtcGetGeometry(scene_, id); }
+RTCGeometry TraceScene::geometry(unsigned id) const {
+  return rtcGetGeometry(scene_, id);
+}
 
 CurveBuffers TraceScene::addCurves(CurveShape shape, std::size_t vertices, std::size_t segments,
                                    int material, bool tint) {
   CurveBuffers out;
   if (segments == 0) return out;
-  RTCGeometry g = rtcNewGeometry(device_, shape == CurveShape::Round
-                                              ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE
-                                              : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
+  RTCGeometry g =
+      rtcNewGeometry(device_, shape == CurveShape::Round ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE
+                                                         : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
   out.vertices =
       newBuffer<glm::vec4>(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, vertices, bufferBytes_);
-  out.segments =
-      newBuffer<std::uint32_t>(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, segments, bufferBytes_);
+  out.segments = newBuffer<std::uint32_t>(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, segments,
+                                          bufferBytes_);
   if (tint) {
     rtcSetGeometryVertexAttributeCount(g, 2);
     out.tint = newBuffer<glm::vec4>(g, RTC_BUFFER_TYPE_VERTEX_ATTRIBUTE, 1, RTC_FORMAT_FLOAT4,
@@ -218,9 +220,8 @@ int TraceScene::addTexture(const Scene& scene, int index) {
   return textureOf_[slot] = static_cast<int>(textures_.size()) - 1;
 }
 
-TriangleBuffers TraceScene::addTriangles(std::size_t vertices, std::size_t triangles,
-                                         int material, bool normals, bool tint, bool surface,
-                                         int texture) {
+TriangleBuffers TraceScene::addTriangles(std::size_t vertices, std::size_t triangles, int material,
+                                         bool normals, bool tint, bool surface, int texture) {
   TriangleBuffers out;
   if (triangles == 0) return out;
   RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);

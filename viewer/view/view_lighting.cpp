@@ -75,4 +75,18 @@ glm::vec3 traceLightFallback(const ViewLighting& lighting, const Bounds& plant,
   return towardsEye;
 }
 
+int litPaletteOffset(const ViewSettings& view, bool materialMode, bool colorMapFile) {
+  const RenderMode mode = view.renderMode;
+  const bool shaded =
+      mode == RenderMode::Flat || mode == RenderMode::Shaded || mode == RenderMode::Shadows;
+  return materialMode || !colorMapFile || !shaded ? 0 : view.diffuseReflection;
+}
+
+int litPaletteEntry(int index, int offset, int count) {
+  if (offset == 0 || count <= 0) return index;
+  const int last = count - 1;
+  const int bank = std::clamp(index, 0, last) / 256 * 256;
+  return std::clamp(index + offset, bank, std::min(bank + 255, last));
+}
+
 }  // namespace hirsute

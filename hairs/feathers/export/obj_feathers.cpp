@@ -1,4 +1,4 @@
-// Feathers in the OBJ file (DESIGN.md, "Feathers"): built at a still's level of detail
+// Feathers in the OBJ file (docs/design.md, "Feathers"): built at a still's level of detail
 // (feather_buffers.h), the shafts as triangles with their normals, the barbs as polylines of `l`
 // segments (`drawing: lines`) or as the triangles of their two strips (`drawing: strips`), under
 // `o feathers`. OBJ has no per-vertex transparency: the barbs' fading is left out. The shafts take

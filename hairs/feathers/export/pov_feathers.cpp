@@ -1,4 +1,4 @@
-// Feathers in the POV-Ray scene (DESIGN.md, "Feathers"; docs/export.md, "Feathers"): built at the
+// Feathers in the POV-Ray scene (docs/design.md and docs/export.md, "Feathers"): built at the
 // level of detail of their size in the scene's image (--width, --height), as the GL renderer
 // builds them (feather_buffers.h), one level finer, their barbs thinned as GL thins them, and
 // written as instances (FeatherInstances): each template once, `#declare FeatherK=mesh2{…}` of

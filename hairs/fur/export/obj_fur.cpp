@@ -1,4 +1,4 @@
-// Fur in the OBJ file (DESIGN.md, "Fur"): every strand of the fur texture on each fur surface,
+// Fur in the OBJ file (docs/design.md, "Fur"): every strand of the fur texture on each fur surface,
 // bent, curled and clumped as the shells draw it (hirsute/hairs/fur/fur_strands.h), one `l`
 // polyline, under `o fur`, in the surface's material.
 #include "hirsute/hairs/fur/fur_strands.h"

@@ -1,4 +1,4 @@
-// Fur in the POV-Ray scene (DESIGN.md, "Fur"; docs/fur.md, "Stills"): POV-Ray draws no shells, so
+// Fur in the POV-Ray scene (docs/design.md, "Fur"; docs/fur.md, "Stills"): POV-Ray has no shells:
 // every strand of the fur texture on a fur surface becomes a ribbon of its own, bent, curled and
 // clumped by the shells' equations (hirsute/hairs/fur/fur_strands.h), facing the camera and a
 // strand thick. Each vertex carries the colour the shells' fragment shader computes there

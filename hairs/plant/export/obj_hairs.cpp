@@ -1,4 +1,4 @@
-// Plant hairs in the OBJ file (DESIGN.md, "Plant hairs"): each polyline of a hair's template,
+// Plant hairs in the OBJ file (docs/design.md, "Plant hairs"): each polyline of a hair's template,
 // placed, one `l` element under `o hairs`, and its filled polygons as faces, grouped by the
 // template's material. The rest of the
 // file is obj_writer.cpp.

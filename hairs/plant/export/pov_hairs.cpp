@@ -1,4 +1,4 @@
-// Plant hairs in the POV-Ray scene (DESIGN.md, "Plant hairs"; docs/export.md, "Hairs"): a tube
+// Plant hairs in the POV-Ray scene (docs/design.md, "Plant hairs"; docs/export.md, "Hairs"): a tube
 // of the hair radius around each template polyline (and the template's filled polygons),
 // declared once per template and radius/length bucket, and each hair an `object` of it with its
 // matrix, one union a material. The rest of the

@@ -1,4 +1,4 @@
-// Plant hairs in the GL renderer: instanced template segments (DESIGN.md, "Plant hairs").
+// Plant hairs in the GL renderer: instanced template segments (docs/design.md, "Plant hairs").
 #include "hirsute/hairs/plant/hair_drawing.h"
 
 #include <algorithm>
@@ -116,7 +116,7 @@ void HairDrawing::release() {
   hairs_ = segments_ = 0;
 }
 
-// Hairs are instances, not copies (DESIGN.md: hairs as instances of templates): each template's
+// Hairs are instances, not copies (docs/design.md, "Plant hairs"): each template's
 // segments go up once, and the hairs, grouped by template with a counting sort, go up as 24-byte
 // instances, once ordered within their template into levels by hairHash and once in placement
 // order.

@@ -31,7 +31,12 @@ struct ChildRequest {
   std::chrono::milliseconds timeLimit{0};  // 0: none
   // What it writes to its standard error (and output, where `output` is -1), as it comes.
   std::function<void(std::string_view)> onOutput;
+  // Called about every kWhileRunningInterval while it runs, on this thread: to show how far it
+  // has got (the progress line). The limits and signals are watched between the calls.
+  std::function<void()> whileRunning;
 };
+
+inline constexpr std::chrono::milliseconds kWhileRunningInterval{250};
 
 struct ChildResult {
   bool started = false;

@@ -1,5 +1,5 @@
 // Parts of Hirsute that link large libraries are built as modules that lie beside the program
-// and are loaded when first needed (DESIGN.md's folders; docs/cli.md): the GL drawing
+// and are loaded when first needed (docs/design.md, "Loadable modules"): the GL drawing
 // (libhirsute-drawing.so), the path tracer with Embree and OpenEXR (libhirsute-trace.so) and
 // the mesh files with Assimp and CGAL (libhirsute-meshes.so). A run that does not draw, trace or
 // read a mesh starts without loading and relocating those libraries.

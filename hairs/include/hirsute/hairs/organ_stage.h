@@ -1,4 +1,4 @@
-// An organ's stage of the pipeline (DESIGN.md, "Organs as plug-ins"): after interpretation, each
+// An organ's stage of the pipeline (docs/design.md, "Organs"): after interpretation, each
 // organ in turn adds its own data to the Scene from the records the turtle left there. The
 // pipeline runs organStages() in order and names no organ; an organ brings its command-line
 // options (its settings), its limits, its warnings and its progress.

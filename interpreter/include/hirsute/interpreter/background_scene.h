@@ -8,8 +8,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/interpreter/scene.h"
+#include "hirsute/lsys/preprocessor.h"
 
 namespace hirsute {
 
@@ -32,9 +33,10 @@ struct BackgroundScene {
   BackgroundPrimitiveCounts counts;
 };
 
-// Reads a background file through the C preprocessor, as cpfg does. Errors are thrown as
-// DiagnosticError at `file:line`.
-BackgroundScene loadBackgroundScene(const std::filesystem::path& file, Diagnostics& diagnostics);
+// Reads a background file through the C preprocessor, as cpfg does, with `preprocessing`'s
+// limits. Errors are thrown as DiagnosticError at `file:line`.
+BackgroundScene loadBackgroundScene(const std::filesystem::path& file, Diagnostics& diagnostics,
+                                    const PreprocessorOptions& preprocessing = {});
 
 // Appends the background's materials to scene.materials (at new indices after the palette) and
 // its meshes and spheres, drawn with them.

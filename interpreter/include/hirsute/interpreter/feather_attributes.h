@@ -1,4 +1,4 @@
-// Feather-coat attributes carried by the turtle (DESIGN.md, "Feathers": the @F modules), as it
+// Feather-coat attributes carried by the turtle (docs/design.md, "Feathers": the @F modules), as it
 // carries the hair attributes: `[ ]` save and restore them, generalized-cylinder segments record
 // them at their two control points, and hairs/feathers/ places the coat feathers from them.
 #pragma once

@@ -1,4 +1,4 @@
-// The feathers' part of the Scene (organ_part.h; DESIGN.md, "Feathers"): the types of the view
+// The feathers' part of the Scene (organ_part.h; docs/design.md, "Feathers"): the types of the view
 // file's `feather:` lines, the records the @F modules make, the feathers to draw, how the
 // dynamics bent them, and the box that holds their geometry.
 #pragma once
@@ -19,7 +19,7 @@ namespace hirsute {
 // Where a feather comes from: one at the turtle (@Fe, @Fi) or a coat on a surface (@Ff, @Fb).
 enum class FeatherOrigin : std::uint8_t { Single, Coat };
 
-// A feather to draw (DESIGN.md, "Feathers"): an instance of the model's feather types, blended
+// A feather to draw (docs/design.md, "Feathers"): an instance of the model's feather types, blended
 // and grown, not a copy of geometry; every output builds the geometry from the type at its own
 // level of detail (hirsute/hairs/feathers/feather_geometry.h). The frame is the turtle's at the
 // feather: the calamus base at `position`, the rachis along `heading`, the front towards `up`,

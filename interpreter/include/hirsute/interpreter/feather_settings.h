@@ -1,4 +1,4 @@
-// The feathers' view-file settings (organ_settings.h; DESIGN.md, "Feathers"; docs/feathers.md):
+// The feathers' view-file settings (organ_settings.h; docs/design.md and docs/feathers.md):
 // what `feather:`, `feather follicles:` and the `dynamics …:` lines of the coat's dynamics
 // (docs/dynamics.md) set (feather_view_lines.cpp).
 #pragma once
@@ -22,7 +22,7 @@ struct FeatherTypeDeclaration {
 // The most `feather:` lines a view file may have.
 inline constexpr int kMaxFeatherTypes = 1024;
 
-// How coat follicles are laid out (`feather follicles:`, DESIGN.md "Feathers").
+// How coat follicles are laid out (`feather follicles:`, docs/design.md, "Feathers").
 enum class FollicleLayout { Diffusion, Hexagonal };
 
 // The `dynamics …:` lines of a view file (docs/dynamics.md): the forces on simulated feathers,
@@ -47,7 +47,7 @@ struct FeatherDynamicsSettings {
 struct FeatherSettings : OrganSettingsOf<FeatherSettings> {
   std::vector<FeatherTypeDeclaration> types;  // in order
   FollicleLayout follicleLayout = FollicleLayout::Diffusion;
-  // Feather-coat dynamics (DESIGN.md; docs/dynamics.md, "hirsute simulate"): the `dynamics …:`
+  // Feather-coat dynamics (docs/design.md; docs/dynamics.md, "hirsute simulate"): the `dynamics …:`
   // lines. Lengths are the model's units, times seconds.
   FeatherDynamicsSettings dynamics;
 };

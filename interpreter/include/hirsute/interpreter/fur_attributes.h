@@ -1,4 +1,4 @@
-// Fur attributes carried by the turtle (DESIGN.md, "Fur": the @U modules; Silva, Bando, Chen &
+// Fur attributes carried by the turtle (docs/design.md, "Fur": the @U modules; Silva, Bando, Chen &
 // Nishita 2010). Like the hair and feather records, `[ ]` save and restore them and the surfaces
 // the turtle draws record them; hairs/fur/ turns every covered surface into a fur surface.
 #pragma once

@@ -1,5 +1,5 @@
-// The fur's part of the Scene (organ_part.h; DESIGN.md, "Fur"): the records the @U modules make,
-// the surfaces the fur stage covers with shells, and the fur textures they share.
+// The fur's part of the Scene (organ_part.h; docs/design.md, "Fur"): the records the @U modules
+// make, the surfaces the fur stage covers with shells, and the fur textures they share.
 #pragma once
 
 #include <cstddef>
@@ -14,7 +14,7 @@
 
 namespace hirsute {
 
-// A surface covered with shell fur (DESIGN.md, "Fur"; Silva et al. 2010): its triangles as the
+// A surface covered with shell fur (docs/design.md, "Fur"; Silva et al. 2010): its triangles as the
 // fur stage (hairs/fur/) gathered them from a covered generalized cylinder, bicubic surface or
 // polygon, each vertex with its surface frame and two parametrizations: `uv` in [0, 1]² over the
 // whole surface, where the wetness mask lies (cylinders: around the girth and along the axis),

@@ -1,4 +1,4 @@
-// The fur's view-file settings (organ_settings.h; DESIGN.md, "Fur"; docs/fur.md): what
+// The fur's view-file settings (organ_settings.h; docs/design.md, "Fur"; docs/fur.md): what
 // `fur layers:`, `fur texture:`, `wetness mask:`, `droplet:` and `fur force:` set
 // (fur_view_lines.cpp).
 #pragma once

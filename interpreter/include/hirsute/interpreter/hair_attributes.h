@@ -1,5 +1,5 @@
 // Hair attributes carried by the turtle (Fuhrer, Jensen & Prusinkiewicz 2004, Table 1;
-// DESIGN.md, "Plant hairs: the @H modules"). The turtle keeps them as it keeps colour and width;
+// docs/design.md, "Plant hairs"). The turtle keeps them as it keeps colour and width;
 // generalized-cylinder segments record the attributes at their two ends, and hairs/ places hairs
 // from them.
 #pragma once

@@ -1,4 +1,4 @@
-// The plant hairs' part of the Scene (organ_part.h; DESIGN.md, "Template hairs"): the records
+// The plant hairs' part of the Scene (organ_part.h; docs/design.md, "Plant hairs"): the records
 // the @H modules make, the template hairs of the view file's `hair:` lines, and the placed hairs.
 #pragma once
 
@@ -17,7 +17,7 @@
 
 namespace hirsute {
 
-// A template hair (DESIGN.md, "Template hairs"): the turtle positions of a small L-system,
+// A template hair (docs/design.md, "Plant hairs"): the turtle positions of a small L-system,
 // stored once, in the hair's own frame: x along its first segment (the hair direction), y the
 // second axis (the turtle's initial left, made orthogonal), z = x × y. The root is the origin.
 struct HairTemplate {
@@ -64,7 +64,7 @@ struct Hair {
   glm::vec3 place(const glm::vec3& p) const { return root + length * (rotation() * p); }
 };
 static_assert(sizeof(Hair) == 32,
-              "a placed hair stays 32 bytes (DESIGN.md: bytes per placed hair)");
+              "a placed hair stays 32 bytes (docs/design.md: bytes per placed hair)");
 
 struct HairPart : OrganPartOf<HairPart> {
   std::vector<HairAttributes> attributes;  // the records segments and surfaces refer to

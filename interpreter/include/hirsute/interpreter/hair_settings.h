@@ -1,4 +1,4 @@
-// The plant hairs' view-file settings (organ_settings.h; DESIGN.md, "Hairs"; docs/hairs.md):
+// The plant hairs' view-file settings (organ_settings.h; docs/design.md and docs/hairs.md):
 // what `hair:`, `hair texture:` and `hair interpolation:` set (hair_view_lines.cpp).
 #pragma once
 

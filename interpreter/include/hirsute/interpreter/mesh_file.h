@@ -1,4 +1,4 @@
-// Meshes as surfaces (DESIGN.md, "Meshes as surfaces"): a view file's `surface:` line whose file
+// Meshes as surfaces (docs/design.md, "Meshes"): a view file's `surface:` line whose file
 // is a mesh (OBJ, PLY, STL, OFF, glTF/GLB, FBX, … whatever Assimp reads, chosen by the file)
 // defines a surface drawn by `~X` like a cpfg `.s` surface (docs/meshes.md).
 #pragma once

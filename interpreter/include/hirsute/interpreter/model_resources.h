@@ -31,6 +31,9 @@ struct ModelResources {
   ViewSettings view;
   std::vector<Material> palette;     // 256 per bank; index 0 of bank 1 is the background
   bool materialMode = false;         // materials (.mat) rather than a colour map (.map)
+  // A colour map file (.map) gives colours: its entries are the user's own, usually ramps that
+  // `diffuse reflection:` shades along (the default palette's are distinct colours).
+  bool colorMapFile = false;
   ContourLibrary contours;
   std::map<char, Surface> surfaces;
   // By texture id - 1. A texture whose file is missing (a warning) has no pixels (width 0) and
@@ -57,10 +60,13 @@ inline constexpr int kMaxColorBanks = 12;
 
 // Reads the view file (through the preprocessor) and every file it and `colors` name.
 // Without a colour file, a default palette is used; a mesh surface of more than
-// `maxMeshTriangles` triangles is refused. Throws DiagnosticError (file:line).
+// `maxMeshTriangles` triangles is refused; the view file and its background scenes after the
+// preprocessor may be `maxSourceBytes` long each (--max-source-bytes). Throws DiagnosticError
+// (file:line).
 ModelResources loadModelResources(const std::optional<std::filesystem::path>& viewFile,
                                   const ColorFiles& colors, Diagnostics& diagnostics,
-                                  std::size_t maxMeshTriangles = kDefaultMaxMeshTriangles);
+                                  std::size_t maxMeshTriangles = kDefaultMaxMeshTriangles,
+                                  std::size_t maxSourceBytes = kDefaultMaxSourceBytes);
 
 // The view settings alone (used by tests and by loadModelResources).
 ViewSettings parseViewFile(const std::string& preprocessedText, const std::filesystem::path& viewFile,

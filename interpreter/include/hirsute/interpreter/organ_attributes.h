@@ -1,5 +1,5 @@
-// What every organ's attribute record shares (DESIGN.md, "Organs: one placement engine, one
-// Scene, several organ types"): the value form of its modules, and the indices by which the
+// What every organ's attribute record shares (docs/design.md,
+// "Organs"): the value form of its modules, and the indices by which the
 // turtle carries the records. Each organ keeps its records in its part of the Scene; the turtle
 // state holds an index into each, copied on write, so `[` and `]` save and restore them
 // and generalized-cylinder segments record them at their two ends.

@@ -1,4 +1,4 @@
-// Organ modules declared in tables (DESIGN.md, "Organs": a registry, not a growing switch).
+// Organ modules declared in tables (docs/design.md, "Organs": a registry, not a growing switch).
 // Every organ (plant hairs `@H…`, feathers `@F…`, …) is one table: the letter after
 // `@`, its attribute record kept in its part of the Scene, and one row per module naming its
 // parameter form and what it sets. The turtle looks `@XY` up by X and hands the module to the
@@ -26,7 +26,7 @@
 
 namespace hirsute {
 
-// The parameter forms of organ modules (DESIGN.md's module tables).
+// The parameter forms of organ modules (docs/design.md, "Organs").
 enum class ParameterForm {
   Switch,         // (b): the row's side on (no parameter, or non-zero) or off (0)
   Value,          // (v[,rng[,fun[,loc]]]): an OrganValue on the sides loc picks (0: all)

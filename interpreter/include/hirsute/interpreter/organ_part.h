@@ -1,4 +1,4 @@
-// An organ's part of the Scene (DESIGN.md, "Organs as plug-ins"): the data its modules record and
+// An organ's part of the Scene (docs/design.md, "Organs"): the data its modules record and
 // its stage grows, which its drawing and its writers read. Each organ declares its own type,
 // derived from OrganPartOf, beside its attribute record (NAME_part.h); the Scene holds one of
 // each type it has been asked for and reaches it by type, so that the Scene names no organ.

@@ -1,4 +1,4 @@
-// An organ's settings from the view file (DESIGN.md, "Organs as plug-ins"): what its view-file
+// An organ's settings from the view file (docs/design.md, "Organs"): what its view-file
 // lines (view_lines.h) set and its stage, drawing and writers read. Each organ declares its own
 // type, derived from OrganSettingsOf, beside its part (NAME_settings.h); ViewSettings holds
 // one of each type asked for and reaches it by type (by_type.h), so that it names no organ.

@@ -93,8 +93,8 @@ struct CylinderRing {
   float textureT = 0;       // the texture coordinate t (§4)
 };
 
-// A segment of a generalized cylinder between two control points, as appendages need it
-// (DESIGN.md): its two control frames, the contour points around it at each end (in the ring's
+// A generalized-cylinder segment between two control points, as the organs read it
+// (docs/design.md): its two control frames, the contour points around each end (in the ring's
 // plane, contour x along U and y along -L, already multiplied by the radius), open or closed,
 // the girth (contour length) at each end and the arc length along the axis accumulated from @Gs.
 struct CylinderSegment {
@@ -124,7 +124,7 @@ struct CylinderSegment {
   OrganAttributeIndices organStart, organEnd;
 };
 
-// A `~` surface patch or a `{ }` polygon as organs see it (DESIGN.md, "Organs": organs grow on
+// A `~` surface patch or a `{ }` polygon as organs see it (docs/design.md, "Organs": organs grow on
 // bicubic surfaces and polygons in their own (u, v)): its triangles, a range of one
 // mesh, the (u, v) of each of its vertices, and the organ attributes in force where the turtle
 // drew it. The turtle records one only where some organ's attributes are set.

@@ -37,7 +37,7 @@ struct TurtleState {
   double oldElasticity = 0;
   glm::dvec3 previousUp{0, 0, -1};  // for @Tf/@Tp
 
-  // Organ attributes (DESIGN.md, "Organs"; the @H modules): per organ an index into its Scene
+  // Organ attributes (docs/design.md, "Organs"; the @H modules): per organ an index into its Scene
   // vector, -1 for the defaults (none). The turtle copies a record before a module changes it
   // once a segment or a saved state refers to it, so `[` and `]` save and restore them for free.
   OrganAttributeIndices organs;

@@ -1,5 +1,5 @@
 // Reading a line of the view file (view_file.cpp), for the view file's own lines and for the
-// lines each organ adds (DESIGN.md, "Organs as plug-ins"): an organ lists its lines as
+// lines each organ adds (docs/design.md, "Organs"): an organ lists its lines as
 // ViewLineCommand in a file of its own (hair_view_lines.cpp and the others) and organViewLines()
 // (organ_modules.cpp) gathers them, so that the view file names no organ.
 #pragma once

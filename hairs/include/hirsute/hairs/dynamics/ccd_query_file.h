@@ -1,4 +1,4 @@
-// The CCD query files of Wang et al. 2021's benchmark (../shared/ccd-queries/README.md): eight
+// The CCD query files of Wang et al. 2021's benchmark (docs/design.md, "Tests and CI"): eight
 // rows per query, each a vertex as three exact rationals and the ground truth; the query kind is
 // the name of the folder the file is in (`edge-edge` or `vertex-face`). Read for
 // `hirsute bench ccd` and the tests.

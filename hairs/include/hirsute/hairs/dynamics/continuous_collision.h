@@ -1,5 +1,5 @@
 // Continuous collision detection between primitives whose vertices move linearly over a time
-// step: a vertex against a triangle and an edge against an edge (DESIGN.md, "Feather-coat
+// step: a vertex against a triangle and an edge against an edge (docs/design.md, "Feather-coat
 // dynamics"; docs/dynamics.md, "Continuous collision detection").
 //
 // Method: inclusion-based bisection over the contact parameters (Wang, Ferguson, Schneider, Jiang,

@@ -1,4 +1,4 @@
-// A feather coat in motion (DESIGN.md, "Feather-coat dynamics"; docs/dynamics.md, "The
+// A feather coat in motion (docs/design.md, "Feather-coat dynamics"; docs/dynamics.md, "The
 // simulator"): stems of particles (feather_stem.h) anchored to moving frames, under gravity, drag
 // and gusty wind, colliding continuously with each other and with a body mesh, and never left
 // in a state with an intersection.

@@ -1,5 +1,5 @@
 // A feather as a stem of particles along its rachis (Fido Film 2008 study, Sec. 3.2 and 3.3.1;
-// DESIGN.md, "Feather-coat dynamics"; docs/dynamics.md, "Stems"). Node 0 is the calamus base,
+// docs/design.md, "Feather-coat dynamics"; docs/dynamics.md, "Stems"). Node 0 is the calamus base,
 // bound to the body (kinematic); nodes 1..n follow the rachis to its tip. Every node i >= 1 has a
 // gold (rest) position in the frame of its parent node i - 1, held by an implicit damped linear
 // spring, and every segment is kept within a strain limit of its rest length.

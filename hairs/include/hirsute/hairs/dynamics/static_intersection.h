@@ -1,5 +1,5 @@
 // Exact intersection tests of closed segments and triangles at one instant: the final check that
-// a simulation step ends in a state without intersections (DESIGN.md, "Feather-coat dynamics").
+// a simulation step ends in a state without intersection (docs/design.md, "Feather-coat dynamics").
 // Every decision is a sign of an exact orientation predicate (exact_predicates.h), so the answer
 // is that of exact arithmetic on the given doubles, degenerate cases included: touching at a
 // vertex or along an edge counts as intersecting, coplanar configurations are decided in the

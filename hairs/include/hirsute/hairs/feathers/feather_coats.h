@@ -1,4 +1,4 @@
-// Feather coats (Streit & Heidrich 2002, Sec. 4.4; DESIGN.md, "Feathers"): follicles on the
+// Feather coats (Streit & Heidrich 2002, Sec. 4.4; docs/design.md, "Feathers"): follicles on the
 // generalized-cylinder segments whose @F attributes switch a side on, placed by the shared
 // placement engine, each growing one feather whose type is the bilinear blend of the key
 // feathers (@Fk) at the segment's two control points: across the girth by each control point's

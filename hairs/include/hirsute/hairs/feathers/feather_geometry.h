@@ -2,7 +2,7 @@
 // as a tube, every barb as a polyline with what polylines, strips and textures need, and the
 // afterfeather. Recomputed for every drawing, never stored in the FeatherType (Sec. 4.3).
 //
-// The local frame, the turtle's at the feather (DESIGN.md, "Feathers"):
+// The local frame, the turtle's at the feather (docs/design.md, "Feathers"):
 //   origin  the calamus base;
 //   +z      the rachis direction (the turtle's H): the calamus runs from the origin to (0,0,cl),
 //           the rachis is the cubic Bézier of Sec. 4.3.1 with control vertices (0,0,cl),

@@ -1,4 +1,4 @@
-// What every output needs to draw a Scene's feathers (DESIGN.md, "Feathers"): the type a feather
+// What every output needs to draw a Scene's feathers (docs/design.md, "Feathers"): the type each
 // is built from (its two types blended, then grown) and the map from the geometry's local frame to
 // the world. Each output builds the geometry itself, at the level of detail it needs.
 #pragma once

@@ -1,4 +1,4 @@
-// The feather stage of the pipeline (DESIGN.md, "Feathers"): after interpretation, the feather
+// The feather stage of the pipeline (docs/design.md, "Feathers"): after interpretation, the feather
 // types the view file names are read into the Scene, the feathers whose types the model lacks
 // are dropped with a warning, and the box that holds every feather is measured for the camera.
 #pragma once

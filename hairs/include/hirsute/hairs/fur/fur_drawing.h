@@ -1,4 +1,4 @@
-// Shell fur in the GL renderer (Silva, Bando, Chen & Nishita 2010, Sec. 3-4; DESIGN.md, "Fur"):
+// Shell fur in the GL renderer (Silva et al. 2010, Sec. 3-4; docs/design.md, "Fur"):
 // after the surfaces are drawn with depth writes, each fur surface is drawn again as N layers,
 // one instanced draw, layer n at h = (n + 1) / N displaced by Eq. 1 (the quadratic Bézier of the
 // strand's particle plus the curl of Eq. 4) in the vertex shader; the fragment shader clumps by

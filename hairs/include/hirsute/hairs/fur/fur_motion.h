@@ -1,8 +1,8 @@
-// Fur that moves (Silva et al. 2010, Sec. 3.2.1; DESIGN.md, "Fur"): the strands' particles stepped
-// in time under the view file's force, a gust of wind and the motion of the surface they grow on,
-// and the wetness drying off; and the point of a fur surface under a ray, where a click drops a
-// droplet. `hirsute view` runs it every frame; it changes only the Scene's fur surfaces (their
-// particles and masks), which the renderer then uploads again.
+// Fur that moves (Silva et al. 2010, Sec. 3.2.1; docs/design.md, "Fur in motion"): the strands'
+// particles stepped in time under the view file's force, a gust of wind and the motion of the
+// surface they grow on, and the wetness drying off; and the point of a fur surface under a ray,
+// where a click drops a droplet. `hirsute view` runs it every frame; it changes only the Scene's
+// fur surfaces (their particles and masks), which the renderer then uploads again.
 #pragma once
 
 #include <cstdint>

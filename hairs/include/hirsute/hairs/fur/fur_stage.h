@@ -1,4 +1,4 @@
-// The fur stage of the pipeline (DESIGN.md, "Fur"): after interpretation, every run of
+// The fur stage of the pipeline (docs/design.md, "Fur"): after interpretation, every run of
 // generalized-cylinder segments the turtle covered with fur (@Uf(1)) becomes a fur surface in the
 // Scene, with its (u, v) around the girth and along the axis, its fur texture, its strands at
 // rest under the view file's `fur force:`, and its wetness mask with the view file's droplets

@@ -1,4 +1,4 @@
-// Fur as explicit strands (DESIGN.md, "Fur": POV-Ray and OBJ cannot draw shells): one strand per
+// Fur as explicit strands (docs/design.md, "Fur": POV-Ray and OBJ draw no shells): one strand per
 // strand texel of the fur texture where the tiled texture covers a fur surface, bent by the
 // strands' particles, curled by Eq. 4 and gathered into the wetness mask's clumps by Eq. 5,
 // evaluated exactly where the shells evaluate them.

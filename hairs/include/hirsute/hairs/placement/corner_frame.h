@@ -1,5 +1,5 @@
 // The frames organs are oriented by at the corners of a segment's faces (Fuhrer, Jensen &
-// Prusinkiewicz 2004, Sec. 4.4; DESIGN.md, "Plant hairs"): the frame (d, d × h, d × (d × h)) of
+// Prusinkiewicz 2004, Sec. 4.4; docs/design.md, "Placement"): the frame (d, d × h, d × (d × h)) of
 // a direction d (the shading normal, or the edge vector h × n on an edge) and the face's height
 // vector h, reoriented by incline and wrap.
 #pragma once

@@ -1,5 +1,5 @@
-// Mitchell's point diffusion generated along a closed tube instead of tiled over it (DESIGN.md,
-// "Plant hairs"; Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.1). A square tile wraps around a
+// Mitchell's point diffusion made along a closed tube instead of tiled over it (docs/design.md,
+// "Placement"; Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.1). A square tile wraps around a
 // closed girth only when the girth is a whole number of tile widths, so a tiled tube must
 // stretch the tile (anisotropic: ρ measured on the surface falls to about 0.61 on a tube of
 // radius one tile width, far lower on thin ones) and thin it where the tube tapers. The strip

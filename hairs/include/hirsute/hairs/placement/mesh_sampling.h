@@ -1,4 +1,4 @@
-// Points over a mesh surface's area (DESIGN.md, "Meshes as surfaces"): a mesh from another tool
+// Points over a mesh surface's area (docs/design.md, "Meshes"): a mesh from another tool
 // has a texture atlas whose islands are cut, stretched and scaled at will, so a tile laid over
 // its (u, v) would seam at the cuts and crowd where the atlas shrinks. Its points are chosen on
 // the surface itself instead, by weighted sample elimination (Yuksel 2015): uniform candidates,

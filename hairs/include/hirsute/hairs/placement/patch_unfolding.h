@@ -1,8 +1,8 @@
 // A `~` surface patch or a `{ }` polygon (scene.h, OrganSurface) laid out for the placement
-// engine (DESIGN.md, "Organs"): its triangles in its own (u, v), scaled to a plane (U, V) = (u·Lu,
-// v·Lv) in which lengths are the surface's own on average (a polygon's (u, v) are world
-// distances already: Lu = Lv = 1; a mesh's are the root mean squares of ∂P/∂u and ∂P/∂v over its
-// atlas), with the ratio of each triangle's surface area to its (U, V)
+// engine (docs/design.md, "Placement"): its triangles in its own (u, v), scaled to a plane
+// (U, V) = (u·Lu, v·Lv) in which lengths are the surface's own on average (a polygon's (u, v)
+// are world distances already: Lu = Lv = 1; a mesh's are the root mean squares of ∂P/∂u and
+// ∂P/∂v over its atlas), with the ratio of each triangle's surface area to its (U, V)
 // area, by which an organ thins a tile laid over (U, V) so that the count follows the surface.
 #pragma once
 

@@ -1,6 +1,6 @@
-// Counter-based randomness for placement (DESIGN.md, "Organs"): every number an instance draws is
-// a hash of the seed and where the instance is, so placement is reproducible and independent of
-// the order segments are visited in.
+// Counter-based randomness for placement (docs/design.md, "Placement"): every number an instance
+// draws is a hash of the seed and where the instance is, so placement is reproducible and
+// independent of the order segments are visited in.
 #pragma once
 
 #include <cstdint>

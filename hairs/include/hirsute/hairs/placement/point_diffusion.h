@@ -1,5 +1,5 @@
 // Mitchell's point-diffusion texture τ(u,v) → {0,1}: the attachment points of hairs
-// (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.1; DESIGN.md, "Plant hairs").
+// (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.1; docs/design.md, "Placement").
 //
 // An error-diffusion pass over a width × height grid whose input is the fill (points per cell)
 // everywhere. Each cell gathers diffusion values from one left and three upper neighbours, all
@@ -25,7 +25,7 @@ namespace pointDiffusionRule {
 // upper-right. Floyd & Steinberg 1976 scatter 7/16 right, 3/16 lower-left, 5/16 down and 1/16
 // lower-right; gathered, those are left 7/16, upper-right 3/16, upper 5/16, upper-left 1/16.
 // Mitchell 1987 ("Generating antialiased images at low sampling densities", SIGGRAPH) found that
-// plain Floyd–Steinberg leaves low densities in strings and clumps (DESIGN.md: ρ ≈ 0.27 at a
+// plain Floyd–Steinberg leaves low densities in strings and clumps (docs/design.md: ρ ≈ 0.27 at a
 // fill of 0.02) and modified the diffusion and randomised the threshold. This implementation
 // keeps the Floyd–Steinberg weights and does the low-density correction with the randomised
 // threshold below plus the minimum-spacing test (kSpacing); the constants were chosen by

@@ -1,5 +1,5 @@
 // Spacing measures of point sets on the unit torus [0,1)², used to measure the quality of the
-// point-diffusion texture rather than assume it (DESIGN.md, "Plant hairs").
+// point-diffusion texture rather than assume it (docs/design.md, "Placement").
 #pragma once
 
 #include <span>

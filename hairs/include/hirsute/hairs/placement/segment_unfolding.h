@@ -1,5 +1,5 @@
 // A generalized-cylinder segment unfolded into (u, v) (Fuhrer, Jensen & Prusinkiewicz 2004,
-// Sec. 3.1 and Figure 2; DESIGN.md, "Plant hairs"): u is arc length around the contour at each
+// Sec. 3.1 and Figure 2; docs/design.md, "Placement"): u is arc length around the contour at each
 // ring (across the leaf, edge to edge, for an open contour), v is arc length along the cylinder
 // axis accumulated from `@Gs`, so that patterns continue from segment to segment.
 #pragma once

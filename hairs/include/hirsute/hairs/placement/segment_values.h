@@ -1,5 +1,5 @@
 // Organ attributes along a segment and around its girth (Fuhrer, Jensen & Prusinkiewicz 2004,
-// Table 1; DESIGN.md, "Plant hairs"): the values of one side at the segment's two ends, mixed
+// Table 1; docs/design.md, "Placement"): the values of one side at the segment's two ends, mixed
 // linearly along it (`hair interpolation: on`; without it both ends are the end's), each times
 // its function of the model's function set at the girth position s.
 #pragma once

@@ -1,4 +1,4 @@
-// The shared placement engine (DESIGN.md, "Organs: one placement engine"): candidate attachment
+// The shared placement engine (docs/design.md, "Placement"): candidate attachment
 // points on generalized-cylinder segments, for every organ placed on them (plant hairs, feather
 // follicles, …). The sampler tiles a point pattern (Mitchell's point-diffusion texture,
 // or any tile in scan-line order) over each segment unfolded into (u, v), maps every point to its

@@ -1,4 +1,4 @@
-// Plant hairs in the GL renderer (DESIGN.md, "Plant hairs"): instances of their template's
+// Plant hairs in the GL renderer (docs/design.md, "Plant hairs"): instances of their template's
 // segments, drawn as antialiased (multisampled) GL lines in the template material's colour,
 // unlit, one instanced draw per template (organ_drawing.h: the renderer makes one by
 // plantHairDrawing()).

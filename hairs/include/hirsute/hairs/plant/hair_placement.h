@@ -1,5 +1,5 @@
 // Placing plant hairs on generalized-cylinder segments, `~` surfaces and polygons (Fuhrer, Jensen
-// & Prusinkiewicz 2004, Sec. 3 and 4; DESIGN.md, "Plant hairs") at the attachment points of the
+// & Prusinkiewicz 2004, Sec. 3 and 4; docs/design.md, "Plant hairs") at the attachment points of
 // shared placement engine (hairs/placement/surface_sampler.h). Reads the Scene's cylinder
 // segments and organ surfaces, their hair attributes and the templates; appends to HairPart::hairs.
 #pragma once

@@ -1,4 +1,4 @@
-// Template hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.2; DESIGN.md): small L-systems
+// Template hairs (Fuhrer, Jensen & Prusinkiewicz 2004, Sec. 3.2; docs/design.md): small L-systems
 // named by the view file's `hair:` lines, derived and interpreted by the plant's own turtle, kept
 // once as polylines in the hair's frame.
 #pragma once

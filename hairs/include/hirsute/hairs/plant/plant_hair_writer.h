@@ -19,7 +19,7 @@ class PlantHairWriter : public OrganWriter {
   std::size_t items(const Scene& scene) const override {
     return scene.organ<HairPart>().hairs.size();
   }
-  // Hairs as instances (DESIGN.md, "Plant hairs"): a tube of the hair radius around each
+  // Hairs as instances (docs/design.md, "Plant hairs"): a tube of the hair radius around each
   // template is declared once per template and bucket of radius/length (the tube is in the
   // template's frame, which length scales), and each hair is an `object` of it with its matrix;
   // the hairs of a material are one union carrying the material's texture. docs/export.md has

@@ -1,4 +1,4 @@
-// The hair stage of the pipeline (DESIGN.md): after interpretation, the templates the view file
+// The hair stage (docs/design.md, "Plant hairs"): after interpretation, the templates the view file
 // names are derived and the hairs placed on every hairy generalized-cylinder segment, with the
 // view file's texture, seed and interpolation and the model's function set.
 #pragma once

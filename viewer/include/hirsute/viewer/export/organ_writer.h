@@ -1,4 +1,4 @@
-// An organ's part in the file formats (DESIGN.md, "Organs as plug-ins"): printScene() visits the
+// An organ's part in the file formats (docs/design.md, "Organs"): printScene() visits the
 // organs of organWriters() after the scene's own elements, and each printer hands itself to the
 // organ's writer for its format. The writers live in the organs' folders (hairs/NAME/export/) and
 // use the printers' public drawing calls; a printer never names an organ.

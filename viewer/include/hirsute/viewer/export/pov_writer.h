@@ -28,6 +28,7 @@ namespace hirsute {
 struct PovOptions {
   ViewSettings view;          // camera and lights (cpfg's view file)
   bool materialMode = false;  // the background is material 0's emission, else colour 0
+  bool colorMapFile = false;  // the colours are a colour map file's (litPaletteOffset)
   // The image the camera is fitted for (as the PNG of the same size) and the size of a pixel for
   // pixel-wide lines. Rendered at another aspect, the image shows at least the same window.
   int width = 800, height = 600;
@@ -132,6 +133,10 @@ class PovWriter : public ScenePrinter {
     float radiusA, radiusB;
   };
   void emit(int material, const Primitive& primitive);
+  // The palette entry a surface of colour `material` is written with: a `lit` one (a mesh,
+  // sphere or disc) the entry GL gives it in full light (litPaletteEntry, view_lighting.h), as
+  // the path tracer does; lines and hairs, unlit in GL, their own.
+  int shownMaterial(int material, bool lit) const;
   void closeRun();
   void writePrimitive(const Primitive& primitive, const std::string* texture);
   void vector(const glm::vec3& v, NumberFormat format);

@@ -11,7 +11,11 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
+
+#include "hirsute/core/progress.h"
 
 namespace hirsute {
 
@@ -36,9 +40,20 @@ bool povrayAvailable();
 
 // Renders `scene` to the PNG `image` at width × height, anti-aliased when asked, in at most
 // `timeLimit`. POV-Ray runs in the scene's folder, so that the texture images written beside it
-// are found. The image is written only when POV-Ray succeeded.
+// are found. The image is written only when POV-Ray succeeded. With `progress`, the line shows
+// the share of the pixels POV-Ray reports rendered, and the time elapsed before it reports any.
 PovrayRun runPovray(const std::filesystem::path& scene, const std::filesystem::path& image,
                     int width, int height, bool antialias,
-                    std::chrono::seconds timeLimit = std::chrono::seconds(3600));
+                    std::chrono::seconds timeLimit = std::chrono::seconds(3600),
+                    Progress* progress = nullptr);
+
+// POV-Ray's last report of its render in `output`, "Rendered 1024 of 307200 pixels (0%)" (it
+// writes one on its standard error every few rows, each ended by a carriage return); none
+// before the first whole one.
+struct PixelsRendered {
+  long long done = 0;
+  long long total = 0;
+};
+std::optional<PixelsRendered> lastPixelsRendered(std::string_view output);
 
 }  // namespace hirsute

@@ -1,5 +1,5 @@
 // Every export format is one printer class driven by the same walk over the Scene (PlantGL's
-// lesson, STYLE.md): printScene() visits the elements in one fixed order and a printer turns
+// lesson): printScene() visits the elements in one fixed order and a printer turns
 // each into its format's text. Adding a format is adding a printer; it reads the Scene and
 // nothing else (and, for formats that carry a camera, the view it is given).
 #pragma once

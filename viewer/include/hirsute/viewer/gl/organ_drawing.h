@@ -1,4 +1,4 @@
-// An organ's drawing in the GL renderer (DESIGN.md, "Organs as plug-ins"): each renderer makes one
+// An organ's drawing in the GL renderer (docs/design.md, "Organs"): each renderer makes one
 // of every organ of organDrawings(), uploads the scene to it, and draws it after the lines and
 // before the transparent surfaces, with the light the surfaces have. The drawings live in the
 // organs' folders (hairs/NAME/gl/), over the GL helpers of gl_objects.h; the renderer never names

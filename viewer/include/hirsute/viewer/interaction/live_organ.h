@@ -1,4 +1,4 @@
-// An organ in the interactive viewer (DESIGN.md, "Organs as plug-ins"): the name it is shown,
+// An organ in the interactive viewer (docs/design.md, "Organs"): the name it is shown,
 // hidden and counted by (its drawing's, organ_drawing.h), the key that shows and hides it, what
 // moves between frames (strands, a simulation), its actions (keys of the
 // window and commands of the view script) and its words on the status line. The live model

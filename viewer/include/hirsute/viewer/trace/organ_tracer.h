@@ -1,4 +1,4 @@
-// An organ's part in the path tracer (DESIGN.md, "Organs as plug-ins": the ray tracer's
+// An organ's part in the path tracer (docs/design.md, "Organs": the ray tracer's
 // geometry and materials): addSceneGeometry() (trace_scene.h) visits organTracers() after the
 // Scene's own elements, and each organ adds its shapes and materials from its own folder
 // (hairs/NAME/trace/). The tracer never names an organ; adding one adds a class derived from

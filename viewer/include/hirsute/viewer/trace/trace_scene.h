@@ -1,4 +1,4 @@
-// The path tracer's geometry (DESIGN.md, "Stills: the ray tracer"): the Scene as Intel Embree 3
+// The path tracer's geometry (docs/design.md, "The path tracer"): the Scene as Intel Embree 3
 // holds it, with a material for each shape. The Scene's own elements go in as they are drawn in
 // GL: triangles for meshes (cylinders, surfaces, polygons), spheres and discs as Embree's point
 // primitives, lines as round curves. Each organ adds its own part through its OrganTracer

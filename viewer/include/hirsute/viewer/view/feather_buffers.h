@@ -86,7 +86,7 @@ FeatherBuffers buildFeatherBuffers(const Scene& scene, const std::vector<std::ui
 // POV-Ray) draw.
 std::vector<glm::vec4> texturedBarbColours(const Scene& scene, const FeatherBuffers& buffers);
 
-// A Scene's feathers as instances of templates (DESIGN.md, "Performance"; STYLE.md: hairs as
+// A Scene's feathers as instances of templates (docs/design.md, "Feathers"; hot data laid out as
 // instances of templates): feathers that share their key types, blend weights, age and level of
 // detail are built once, in their own frame (feather_geometry.h), and placed by a transform
 // each, so that a coat's memory follows the types and sizes in the picture, not its feather

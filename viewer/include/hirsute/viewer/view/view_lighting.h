@@ -33,6 +33,17 @@ ViewLighting viewLighting(const ViewSettings& view, bool materialMode, const glm
 // first `light:` line's.
 glm::vec3 organLight(const ViewLighting& lighting, const glm::vec3& towardsEye);
 
+// With a colour map, GL's flat and shaded modes shade a surface of colour c along the palette,
+// from c - d facing away from the light to c + d facing it (d: `diffuse reflection:`). A
+// renderer whose own light does that shading (the path tracer, POV-Ray) draws a lit surface in
+// the colour GL gives it in full light: entry c + d of c's bank. The offset d, or 0 where GL
+// draws entry c itself (material mode, an unlit render mode) and where the palette is not a
+// colour map file's (`colorMapFile` false): the default palette's neighbours are other colours,
+// not the same colour lit, so its entry c is kept.
+int litPaletteOffset(const ViewSettings& view, bool materialMode, bool colorMapFile);
+// Entry `index` moved by `offset`, kept within its bank of 256 and the palette's `count` entries.
+int litPaletteEntry(int index, int offset, int count);
+
 // The path tracer's spherical light (docs/trace.md, "Lights"), which the POV-Ray export's
 // `--trace-lights` places too: far off (fifty times the plant's size) towards the view file's
 // `trace light: D:`, sized to subtend its angle and bright enough to give its irradiance.
