@@ -2,7 +2,8 @@
 # The oriental poppy through `hirsute export --blender` and the add-on blender/hirsute_import.py,
 # in Debian's Blender run headless: the add-on's command line imports, saves and renders it in
 # Cycles at 96x72, and check_import.py counts its hair curves against the hairs' table, checks
-# the camera frames the plant and finds the hairs in the render; a file cut short is refused.
+# the camera frames the plant and finds the hairs in the render; installed from the preferences
+# the add-on's operator imports it too; a file cut short is refused.
 # Skipped (exit 77) where Blender is not installed: `apt-get install --no-install-recommends
 # blender` (Debian 12: Blender 3.4).
 #
@@ -31,6 +32,12 @@ test -s "$work/poppy.blend"
 "${blender[@]}" --python "$source/tests/blender/check_import.py" -- \
   "$source/blender/hirsute_import.py" "$work/poppy.hirsute" "$hairs" "$work/poppy.png" 2>&1 |
   grep -v '^Fra:'
+
+# Installed as Blender's preferences install an add-on (into a scratch user folder), its import
+# operator builds the scene too.
+BLENDER_USER_SCRIPTS=$work/scripts BLENDER_USER_CONFIG=$work/config "${blender[@]}" \
+  --python "$source/tests/blender/check_addon_install.py" -- \
+  "$source/blender/hirsute_import.py" "$work/poppy.hirsute" 2>&1 | grep -E '^(ok|FAILED)|Error'
 
 # A file cut short is refused with a message and exit code 2, not read past its end.
 head -c 100000 "$work/poppy.hirsute" > "$work/cut.hirsute"
