@@ -112,7 +112,7 @@ class BlenderWriter : public ScenePrinter {
   const Scene* scene_ = nullptr;
   Camera camera_;
   float worldPerPixel_ = 0;
-  std::string index_;  // the JSON entries of meshes and curve groups, written as they end
+  // The index's entries of meshes and curve groups, written as each ends.
   std::string meshEntries_, curveEntries_;
   std::vector<MaterialEntry> materials_;
   std::map<std::pair<int, int>, int> sceneMaterials_;  // (material, shading) → entry
