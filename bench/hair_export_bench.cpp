@@ -4,8 +4,9 @@
 // POV-Ray scene of instances (pov_writer.h: a tube per template and radius/length bucket, an
 // `object` per hair): the seconds the writer takes and the bytes it writes, and, when povray is
 // installed, the seconds POV-Ray takes to parse it and its peak memory; with --render, POV-Ray's
-// whole run at 640×480 (parse, bounding, trace). Beside it: the same hairs as OBJ polylines and as
-// CSV rows. Figures are printed, never asserted.
+// whole run at 640×480 (parse, bounding, trace). Beside it: the same hairs as OBJ polylines, as
+// curves of the scene for Blender (blender_writer.h) and as CSV rows. Figures are printed, never
+// asserted.
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -18,6 +19,7 @@
 
 #include "hirsute/hairs/plant/hair_csv_writer.h"
 #include "hirsute/interpreter/hair_part.h"
+#include "hirsute/viewer/export/blender_writer.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
@@ -49,7 +51,9 @@ double childPeakMegabytes() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Hair export figures: a million hairs as POV-Ray instances, OBJ polylines, CSV"};
+  CLI::App app{
+      "Hair export figures: a million hairs as POV-Ray instances, OBJ polylines, Blender "
+      "curves, CSV"};
   std::size_t hairCount = 1'000'000;
   int runs = 3, width = 640, height = 480;
   bool parse = true, render = false;
@@ -95,10 +99,22 @@ int main(int argc, char** argv) {
     hirsute::ObjExportStats obj;
     double objSeconds =
         bestSeconds(runs, [&] { obj = hirsute::writeObj(scene, folder / "hairs.obj"); });
-    std::printf("OBJ export:     %.3f s  %llu bytes  (%llu polylines, %llu vertices)\n", objSeconds,
-                static_cast<unsigned long long>(obj.bytes),
-                static_cast<unsigned long long>(obj.lineElements),
-                static_cast<unsigned long long>(obj.vertices));
+    std::printf(
+        "OBJ export:     %.3f s  %llu bytes  (%llu polylines of %llu `l` segments, %llu "
+        "vertices)\n",
+        objSeconds, static_cast<unsigned long long>(obj.bytes),
+        static_cast<unsigned long long>(obj.polylines),
+        static_cast<unsigned long long>(obj.lineElements),
+        static_cast<unsigned long long>(obj.vertices));
+
+    hirsute::BlenderExportStats blender;
+    double blenderSeconds = bestSeconds(runs, [&] {
+      blender = hirsute::writeBlender(scene, hirsute::BlenderOptions{}, folder / "hairs.hirsute");
+    });
+    std::printf("Blender export: %.3f s  %llu bytes  (%llu curves, %llu points)\n", blenderSeconds,
+                static_cast<unsigned long long>(blender.bytes),
+                static_cast<unsigned long long>(blender.curves),
+                static_cast<unsigned long long>(blender.points));
 
     hirsute::HairCsvStats csv;
     double csvSeconds =

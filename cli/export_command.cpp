@@ -14,6 +14,7 @@
 #include "command.h"
 #include "hirsute/core/diagnostic.h"
 #include "hirsute/core/output_target.h"
+#include "hirsute/viewer/export/blender_writer.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/organ_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
@@ -28,6 +29,7 @@ struct ExportOptions {
   ModelOptions model;
   std::string pov;
   std::string obj;
+  std::string blender;  // the scene file for Blender (blender_writer.h)
   // The organs' tables (organ_writer.h), one file name a writer of organWriters() (empty: none).
   std::vector<std::string> tables = std::vector<std::string>(organWriters().size());
   bool render = false;
@@ -62,6 +64,15 @@ int runExport(ExportOptions o) {
       ObjOptions options;
       options.group = &outputs;
       writeObj(built->scene, o.obj, options, &progress);
+    }
+    if (!o.blender.empty()) {
+      BlenderOptions options;
+      options.group = &outputs;
+      options.view = built->resources.view;
+      options.materialMode = built->resources.materialMode;
+      options.width = o.width;
+      options.height = o.height;
+      writeBlender(built->scene, options, o.blender, &progress);
     }
     for (std::size_t k = 0; k < o.tables.size(); ++k) {
       if (o.tables[k].empty()) continue;
@@ -138,13 +149,16 @@ void registerExportCommand(CLI::App& app, Action& action) {
   CLI::App* command = app.add_subcommand(
       "export",
       "Write the model as a POV-Ray 3.7 scene (--pov), a Wavefront OBJ with its .mtl "
-      "(--obj) and/or its organs as CSV tables (" +
+      "(--obj), a scene file for Blender (--blender) and/or its organs as CSV tables (" +
           tableOptions + ")");
   addModelOptions(*command, options->model);
   command->add_option("--pov", options->pov, "Write a POV-Ray 3.7 scene to FILE (.pov)");
   command->add_option(
       "--obj", options->obj,
       "Write a Wavefront OBJ to FILE (.obj) and its material library beside it (.mtl)");
+  command->add_option("--blender", options->blender,
+                      "Write a scene file for Blender to FILE: meshes, hairs, fur and barbs as "
+                      "curves, the camera and lights; blender/hirsute_import.py reads it");
   for (std::size_t k = 0; k < organWriters().size(); ++k) {
     if (const std::optional<OrganTable> table = organWriters()[k]->table())
       command->add_option(table->option, options->tables[k], table->help);
@@ -179,9 +193,10 @@ void registerExportCommand(CLI::App& app, Action& action) {
   command->callback([options, &action, tableFiles] {
     const bool noTable = std::all_of(options->tables.begin(), options->tables.end(),
                                      [](const std::string& file) { return file.empty(); });
-    if (options->pov.empty() && options->obj.empty() && noTable) {
-      throw CLI::RequiredError("export needs an output: --pov FILE or --obj FILE" + tableFiles +
-                               " (or several)");
+    if (options->pov.empty() && options->obj.empty() && options->blender.empty() && noTable) {
+      throw CLI::RequiredError(
+          "export needs an output: --pov FILE or --obj FILE or --blender FILE" + tableFiles +
+          " (or several)");
     }
     action = [options] { return runExport(*options); };
   });

@@ -27,6 +27,7 @@
 #include "hirsute/interpreter/fur_part.h"
 #include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/viewer/export/obj_writer.h"
+#include "hirsute/viewer/export/point_cache.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/interaction/animation_file.h"
 #include "hirsute/viewer/interaction/define_editor.h"
@@ -418,6 +419,20 @@ int runSimulate(SimulateOptions o) {
   } catch (const DiagnosticError& e) {
     return badInput(progress, o.model.lsystemFile + ": " + e.diagnostic().text());
   }
+  // --pc2: the frames as one point cache, committed with its base mesh after the last frame.
+  OutputGroup cacheFiles;
+  std::optional<PointCacheWriter> cache;
+  if (!o.pc2.empty()) {
+    try {
+      cache.emplace(o.pc2, frames, o.maxOutputBytes, &cacheFiles);
+    } catch (const std::invalid_argument& e) {
+      return badInput(progress, std::string("hirsute: error: --pc2 ") + e.what());
+    } catch (const std::runtime_error& e) {
+      progress.clear();
+      std::cerr << e.what() << '\n';
+      return kExitIoError;
+    }
+  }
   progress.begin("simulating", Progress::Unit::Steps, frames, "frames");
   for (int frame = 1; frame <= frames; ++frame) {
     progress.update(frame - 1);  // the frames done
@@ -507,6 +522,18 @@ int runSimulate(SimulateOptions o) {
         return kExitIoError;
       }
     }
+    if (cache) {
+      try {
+        if (motion && o.noFrames) motion->pose(drawn);
+        cache->addFrame(drawn);
+      } catch (const std::invalid_argument& e) {
+        return badInput(progress, std::string("hirsute: error: ") + e.what());
+      } catch (const std::runtime_error& e) {
+        progress.clear();
+        std::cerr << e.what() << '\n';
+        return kExitIoError;
+      }
+    }
     const double frameSeconds = std::chrono::duration<double>(Clock::now() - frameStarted).count();
     if (fur) furTable += fur->row(frame, (frame - 1) * frameTime, drawn, frameSeconds);
     if (!motion) continue;
@@ -532,6 +559,16 @@ int runSimulate(SimulateOptions o) {
     before = c;
   }
   if (const int failed = writeTables(); failed != 0) return failed;
+  if (cache) {
+    try {
+      cache->finish();
+      cacheFiles.commit();
+    } catch (const std::runtime_error& e) {
+      progress.clear();
+      std::cerr << e.what() << '\n';
+      return kExitIoError;
+    }
+  }
   progress.clear();
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
   // The closing line: what was simulated, for how long of motion, in what time, and where it

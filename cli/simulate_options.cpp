@@ -84,6 +84,9 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
       ->check(finiteRange(0.0, 1e6));
   command.add_option("--drop-seed", options.dropSeed, "The seed of the random droplets (default 1)");
   command.add_flag("--obj", options.obj, "Write a Wavefront OBJ of every frame too");
+  command.add_option("--pc2", options.pc2,
+                     "Write every frame as a PC2 point cache to FILE, over a base mesh beside it "
+                     "(FILE's name with .obj), for Blender's Mesh Cache modifier");
   command
       .add_option("--max-output-bytes", options.maxOutputBytes,
                   "Bytes the frames' files may take, all frames together; a run that would write "

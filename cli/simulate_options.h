@@ -24,6 +24,7 @@ struct SimulateOptions {
   std::optional<int> frames;
   double fps = 24;
   bool obj = false;
+  std::string pc2;  // a point cache of every frame, over its base mesh (point_cache.h)
   bool noFrames = false;  // only the table: for measuring the simulation alone
   bool vaneCollisions = false;    // the vanes collide (as `dynamics vanes: on`)
   bool noVaneCollisions = false;  // the vanes follow their stems and may pass through

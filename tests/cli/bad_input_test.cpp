@@ -449,8 +449,8 @@ TEST(OutputFile, ExportWithoutAnOutputNamesEachOrgansTable) {
   const RunResult run =
       runHirsute({"export", (herb / "herb.l").string(), (herb / "herb.v").string()});
   EXPECT_EQ(run.exitCode, 2) << run.err;
-  EXPECT_NE(run.err.find("export needs an output: --pov FILE or --obj FILE or --hairs FILE or "
-                         "--feathers FILE (or several)"),
+  EXPECT_NE(run.err.find("export needs an output: --pov FILE or --obj FILE or --blender FILE or "
+                         "--hairs FILE or --feathers FILE (or several)"),
             std::string::npos)
       << run.err;
 }

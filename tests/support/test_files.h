@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -52,6 +53,25 @@ inline std::size_t countLinesStarting(const std::string& text, const std::string
   std::size_t n = 0;
   for (const std::string& line : linesOf(text)) n += line.rfind(prefix, 0) == 0;
   return n;
+}
+
+// The polylines of an OBJ's `l` elements, each its vertex numbers: an element that starts where
+// the one before it ended continues its polyline (the OBJ export writes one `l` a segment).
+inline std::vector<std::vector<std::uint64_t>> objPolylines(const std::string& text) {
+  std::vector<std::vector<std::uint64_t>> polylines;
+  for (const std::string& line : linesOf(text)) {
+    if (line.rfind("l ", 0) != 0) continue;
+    std::istringstream in(line.substr(2));
+    std::vector<std::uint64_t> element;
+    for (std::uint64_t v; in >> v;) element.push_back(v);
+    if (element.empty()) continue;
+    if (!polylines.empty() && polylines.back().back() == element.front()) {
+      polylines.back().insert(polylines.back().end(), element.begin() + 1, element.end());
+    } else {
+      polylines.push_back(element);
+    }
+  }
+  return polylines;
 }
 
 inline std::size_t countOccurrences(const std::string& text, const std::string& what) {

@@ -147,7 +147,9 @@ TEST_F(ExportTest, ObjCountsVerticesFacesLinesAndMaterials) {
   EXPECT_EQ(countLinesStarting(obj, "vt "), 0u);
   EXPECT_EQ(countLinesStarting(obj, "f "),
             2 + 1 + sphereFaces + static_cast<std::size_t>(o.discSegments));
-  EXPECT_EQ(countLinesStarting(obj, "l "), 2u);
+  // The polylines of 3 and 2 vertices: one `l` element a segment.
+  EXPECT_EQ(countLinesStarting(obj, "l "), 3u);
+  EXPECT_EQ(testing::objPolylines(obj).size(), 2u);
   EXPECT_EQ(countLinesStarting(obj, "mtllib plant.mtl"), 1u);
   EXPECT_EQ(countLinesStarting(obj, "usemtl "), 5u);  // m1 m2 m3 m4 m1
   EXPECT_EQ(countLinesStarting(mtl, "newmtl "), 4u);
@@ -157,7 +159,8 @@ TEST_F(ExportTest, ObjCountsVerticesFacesLinesAndMaterials) {
       << mtl;
   EXPECT_EQ(stats.vertices, countLinesStarting(obj, "v "));
   EXPECT_EQ(stats.faces, countLinesStarting(obj, "f "));
-  EXPECT_EQ(stats.lineElements, 2u);
+  EXPECT_EQ(stats.lineElements, 3u);
+  EXPECT_EQ(stats.polylines, 2u);
   EXPECT_EQ(stats.materials, 4u);
   EXPECT_EQ(stats.bytes, obj.size());
   EXPECT_EQ(stats.mtlBytes, mtl.size());
@@ -166,8 +169,7 @@ TEST_F(ExportTest, ObjCountsVerticesFacesLinesAndMaterials) {
 TEST_F(ExportTest, ObjElementsReferToWrittenVertices) {
   Scene scene = mixedScene();
   writeObj(scene, file("plant.obj"));
-  std::size_t vertices = 0, normals = 0, faces = 0, polylines = 0;
-  std::vector<std::size_t> firstPolyline;
+  std::size_t vertices = 0, normals = 0, faces = 0, segments = 0;
   for (const std::string& line : linesOf(readText(file("plant.obj")))) {
     std::istringstream in(line);
     std::string key;
@@ -189,15 +191,18 @@ TEST_F(ExportTest, ObjElementsReferToWrittenVertices) {
       EXPECT_EQ(corners, 3) << line;
     }
     if (key == "l") {
-      std::vector<std::size_t> indices;
-      for (std::size_t v; in >> v;) {
-        EXPECT_LE(v, vertices);
-        indices.push_back(v);
-      }
-      if (polylines++ == 0) firstPolyline = indices;
+      std::size_t ends = 0;
+      for (std::size_t v; in >> v; ++ends) EXPECT_LE(v, vertices);
+      // Blender's default OBJ importer keeps only the first segment of a longer element.
+      EXPECT_EQ(ends, 2u) << line;
+      ++segments;
     }
   }
   EXPECT_GT(faces, 0u);
+  EXPECT_EQ(segments, 3u);
+  const auto polylines = testing::objPolylines(readText(file("plant.obj")));
+  ASSERT_FALSE(polylines.empty());
+  const std::vector<std::uint64_t>& firstPolyline = polylines.front();
   ASSERT_EQ(firstPolyline.size(), 3u) << "two segments that continue each other are one polyline";
   EXPECT_EQ(firstPolyline[1], firstPolyline[0] + 1);
 }

@@ -35,8 +35,8 @@
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
-#include "hirsute/viewer/gl/organ_drawing.h"
 #include "hirsute/viewer/gl/offscreen.h"
+#include "hirsute/viewer/gl/organ_drawing.h"
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/view/feather_buffers.h"
 #include "hirsute/viewer/view/png_image.h"
@@ -457,7 +457,8 @@ TEST_F(HairExportTest, ObjHasOnePolylinePerPlacedTemplatePolyline) {
   std::string text = readText(file("hairs.obj"));
   // Template 0: one polyline of 3 vertices, 4 hairs (its radius does not matter to OBJ);
   // template 1: 3 + 2 vertices, 2 hairs; the hair of template 7 is left out.
-  EXPECT_EQ(countLinesStarting(text, "l "), 4u * 1 + 2u * 2) << text;
+  EXPECT_EQ(testing::objPolylines(text).size(), 4u * 1 + 2u * 2) << text;
+  EXPECT_EQ(countLinesStarting(text, "l "), 4u * 2 + 2u * (2 + 1));  // one a segment
   EXPECT_EQ(countLinesStarting(text, "v "), 4u * 3 + 2u * 5);
   EXPECT_EQ(stats.organ("hairs"), 6u);
   EXPECT_EQ(countLinesStarting(text, "o hairs"), 1u);
@@ -688,14 +689,16 @@ TEST_F(HairExportTest, AFilledTemplateGivesEachHairItsFaces) {
       << readText(file("log"));
   std::istringstream lines(readText(file("hairs.obj")));
   bool hairs = false;
-  int faces = 0, polylines = 0;
+  std::size_t faces = 0;
+  std::string hairLines;
   for (std::string line; std::getline(lines, line);) {
     if (line.rfind("o ", 0) == 0) hairs = line == "o hairs";
     if (!hairs) continue;
     if (line.rfind("f ", 0) == 0) ++faces;
-    if (line.rfind("l ", 0) == 0) ++polylines;
+    if (line.rfind("l ", 0) == 0) hairLines += line + "\n";
   }
-  EXPECT_GT(polylines, 100);
+  const std::size_t polylines = testing::objPolylines(hairLines).size();
+  EXPECT_GT(polylines, 100u);
   EXPECT_EQ(faces, 3 * polylines);
 }
 
@@ -792,9 +795,9 @@ TEST_F(HairExportTest, CrossFadedFeathersGiveTheObjVertexColours) {
 TEST(FeatherTextures, BlendedTexturesCrossFadeAlongARow) {
   const fs::path folder = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "feather-types";
   Diagnostics diagnostics;
-  const ModelResources resources =
-      loadModelResources(folder / "feather-types.v", {}, diagnostics);
-  const Model model = loadModel(folder / "hawk-to-budgie.l", folder / "feather-types.v", diagnostics);
+  const ModelResources resources = loadModelResources(folder / "feather-types.v", {}, diagnostics);
+  const Model model =
+      loadModel(folder / "hawk-to-budgie.l", folder / "feather-types.v", diagnostics);
   std::ostringstream printed;
   Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, printed);
   Derivation derivation(model.program, evaluator, diagnostics);
@@ -808,15 +811,15 @@ TEST(FeatherTextures, BlendedTexturesCrossFadeAlongARow) {
   ASSERT_EQ(count, 9u);
   ASSERT_EQ(scene.textures.size(), 2u);
 
-  const FeatherBuffers buffers =
-      buildFeatherBuffers(scene, std::vector<std::uint8_t>(count, 5));
+  const FeatherBuffers buffers = buildFeatherBuffers(scene, std::vector<std::uint8_t>(count, 5));
   const std::vector<glm::vec4> colours = texturedBarbColours(scene, buffers);
   ASSERT_EQ(buffers.parts.size(), count);  // neither type has an afterfeather
   std::vector<glm::vec3> means;
   for (const FeatherBuffers::Part& part : buffers.parts) {
     std::set<std::uint32_t> vertices;
     for (const FeatherBuffers::Vane& vane : part.vanes) {
-      for (std::uint32_t k = 0; k < vane.count; ++k) vertices.insert(buffers.vaneIndices[vane.first + k]);
+      for (std::uint32_t k = 0; k < vane.count; ++k)
+        vertices.insert(buffers.vaneIndices[vane.first + k]);
     }
     glm::vec3 sum(0.0f);
     float weight = 0;

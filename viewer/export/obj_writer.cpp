@@ -91,7 +91,7 @@ void ObjWriter::beginScene(const Scene& scene, std::span<const OrganWriter* cons
 }
 
 void ObjWriter::group(std::string_view name) {
-  if (currentGroup_ == name) return;
+  if (currentGroup_ == name || options_.oneObject) return;
   out_.put("o ");
   out_.put(name);
   out_.put('\n');
@@ -125,8 +125,7 @@ const OutputFolder& ObjWriter::sideFolder() {
   return *sideFolder_;
 }
 
-void ObjWriter::useOrganMaterial(const std::string& name, const glm::vec3& diffuse,
-                                 int texture) {
+void ObjWriter::useOrganMaterial(const std::string& name, const glm::vec3& diffuse, int texture) {
   if (current_ == std::pair<int, int>{-1, -1} && currentOrganMaterial_ == name) return;
   const auto known = std::find_if(organMaterials_.begin(), organMaterials_.end(),
                                   [&](const OrganMaterial& m) { return m.name == name; });
@@ -151,6 +150,7 @@ void ObjWriter::texcoord(const glm::vec2& t) {
 }
 
 void ObjWriter::putVertexPosition(const glm::vec3& p) {
+  if (options_.positions != nullptr) options_.positions->push_back(p);
   out_.put("v ");
   out_.putFixed(p.x, position_);
   out_.put(' ');
@@ -198,9 +198,12 @@ void ObjWriter::mesh(const TriangleMesh& mesh) {
   // OBJ numbers vertices, normals and texture coordinates from 1 across the whole file.
   std::uint64_t firstVertex = stats_.vertices + 1, firstNormal = stats_.normals + 1,
                 firstTexcoord = stats_.texcoords + 1;
-  out_.put("o mesh");
-  out_.putInteger(meshNumber_++);
-  out_.put('\n');
+  if (!options_.oneObject) {
+    out_.put("o mesh");
+    out_.putInteger(meshNumber_);
+    out_.put('\n');
+  }
+  ++meshNumber_;
   currentGroup_ = {};
   useMaterial(mesh.material, textured ? mesh.texture : -1);
   for (const glm::vec3& p : mesh.positions) vertex(p);
@@ -249,25 +252,22 @@ void ObjWriter::line(const LineSegment& line, LineStyle) {
   polylineEnd_ = line.to;
 }
 
+// Each segment of the polyline is an `l` element of its two vertices, consecutive segments
+// sharing their vertex: Blender's default OBJ importer (3.4's, in C++) keeps only the first
+// segment of a longer `l` element and misreads `l v/vt`, its legacy importer reads both forms,
+// and a reader that joins `l` elements into polylines finds the chain. Edges have no texture
+// coordinates in either importer, so none are written.
 void ObjWriter::finishPolyline() {
-  if (polyline_.empty()) {
-    polylineTexcoords_.clear();
-    return;
-  }
-  const bool textured = polylineTexcoords_.size() == polyline_.size();
-  out_.put('l');
-  for (std::size_t i = 0; i < polyline_.size(); ++i) {
-    out_.put(' ');
+  for (std::size_t i = 0; i + 1 < polyline_.size(); ++i) {
+    out_.put("l ");
     out_.putInteger(static_cast<std::int64_t>(polyline_[i]));
-    if (textured) {
-      out_.put('/');
-      out_.putInteger(static_cast<std::int64_t>(polylineTexcoords_[i]));
-    }
+    out_.put(' ');
+    out_.putInteger(static_cast<std::int64_t>(polyline_[i + 1]));
+    out_.put('\n');
+    ++stats_.lineElements;
   }
-  out_.put('\n');
+  if (polyline_.size() > 1) ++stats_.polylines;
   polyline_.clear();
-  polylineTexcoords_.clear();
-  ++stats_.lineElements;
 }
 
 void ObjWriter::sphere(const Sphere& sphere) {

@@ -1,6 +1,7 @@
 // The walk over the Scene that every format shares (scene_writer.h), with the organs' writers of
 // organWriters(), and the formats' entry points that take it. Apart from the printers' library,
 // since the organs' writers are built over the printers.
+#include "hirsute/viewer/export/blender_writer.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/organ_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
@@ -61,6 +62,13 @@ ObjExportStats writeObj(const Scene& scene, const std::filesystem::path& target,
                         Progress* progress) {
   ObjWriter writer(target, options);
   printScene(scene, writer, progress, "writing OBJ");
+  return writer.stats();
+}
+
+BlenderExportStats writeBlender(const Scene& scene, const BlenderOptions& options,
+                                const std::filesystem::path& target, Progress* progress) {
+  BlenderWriter writer(target, options);
+  printScene(scene, writer, progress, "writing Blender");
   return writer.stats();
 }
 

@@ -1,15 +1,15 @@
 // Feathers in the OBJ file (docs/design.md, "Feathers"): built at a still's level of detail
-// (feather_buffers.h), the shafts as triangles with their normals, the barbs as `l` polylines
-// (`drawing: lines`) or as the triangles of their two strips (`drawing: strips`), under
+// (feather_buffers.h), the shafts as triangles with their normals, the barbs as polylines of `l`
+// segments (`drawing: lines`) or as the triangles of their two strips (`drawing: strips`), under
 // `o feathers`. OBJ has no per-vertex transparency: the barbs' fading is left out. The shafts take
 // the scene's material 0; each vane's barbs a material of its type's colour (the .fea file's) and
-// texture (map_Kd, with the barbs' texture coordinates of the type's mapping), as GL multiplies
-// them. A blended type's cross-fade of textures is written as vertex colours (`v x y z r g b`)
-// under a white material.
+// texture (map_Kd, with the strips' texture coordinates of the type's mapping; OBJ readers give
+// `l` edges none), as GL multiplies them. A blended type's cross-fade of textures is written as
+// vertex colours (`v x y z r g b`) under a white material.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "hirsute/hairs/feathers/feather_writer.h"
 #include "hirsute/interpreter/feather_part.h"
@@ -83,13 +83,16 @@ void FeatherWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
                                   static_cast<std::size_t>(vane.texture) < scene.textures.size()
                               ? vane.texture
                               : -1;
-      const auto byte = [](float c) { return static_cast<int>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255)); };
-      obj.useOrganMaterial(fmt::format("feather_{:02x}{:02x}{:02x}{}", byte(colour.r), byte(colour.g),
-                                       byte(colour.b), texture >= 0 ? fmt::format("_T{}", texture + 1) : ""),
-                           colour, texture);
+      const auto byte = [](float c) {
+        return static_cast<int>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255));
+      };
+      obj.useOrganMaterial(
+          fmt::format("feather_{:02x}{:02x}{:02x}{}", byte(colour.r), byte(colour.g),
+                      byte(colour.b), texture >= 0 ? fmt::format("_T{}", texture + 1) : ""),
+          colour, texture);
       if (vane.primitiveSize == 3) {
-        for (std::size_t t = vane.first; t + 3 <= vane.first + vane.count && t + 3 <= b.vaneIndices.size();
-             t += 3) {
+        for (std::size_t t = vane.first;
+             t + 3 <= vane.first + vane.count && t + 3 <= b.vaneIndices.size(); t += 3) {
           std::array<std::uint64_t, 3> vertices{}, texcoords{};
           for (std::size_t k = 0; k < 3; ++k) {
             vertices[k] = barbFirst + b.vaneIndices[t + k];
@@ -107,10 +110,8 @@ void FeatherWriter::writeObj(const Scene& scene, ObjWriter& obj) const {
         if (polyline.empty() || polyline.back() != barbFirst + i) {
           obj.finishPolyline();
           obj.polyline().push_back(barbFirst + i);
-          if (texture >= 0) obj.polylineTexcoords().push_back(texcoordFirst + i);
         }
         obj.polyline().push_back(barbFirst + j);
-        if (texture >= 0) obj.polylineTexcoords().push_back(texcoordFirst + j);
       }
       obj.finishPolyline();
     }

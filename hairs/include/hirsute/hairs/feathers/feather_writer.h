@@ -18,6 +18,8 @@ class FeatherWriter : public OrganWriter {
   // `o feathers`: the shafts as faces, the barbs as `l` polylines (drawing: lines) or faces
   // (strips), in material 0. Counts "feathers".
   void writeObj(const Scene& scene, ObjWriter& obj) const override;
+  // The shafts one mesh, the barbs one curve group (blender_feathers.cpp). Counts "feathers".
+  void writeBlender(const Scene& scene, BlenderWriter& blender) const override;
   // Barbs are layers of transparent triangles: a ray may pass many before it is opaque, and
   // POV-Ray's default of 5 would blacken it.
   int povTraceLevel(const Scene&) const override { return 64; }

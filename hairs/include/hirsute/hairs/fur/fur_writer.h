@@ -19,6 +19,8 @@ class FurWriter : public OrganWriter {
   void writePov(const Scene& scene, PovWriter& pov) const override;
   // `o fur`: each fur strand one `l` polyline in its surface's material. Counts "fur strands".
   void writeObj(const Scene& scene, ObjWriter& obj) const override;
+  // Each fur surface's strands one curve group (blender_fur.cpp). Counts "fur strands".
+  void writeBlender(const Scene& scene, BlenderWriter& blender) const override;
 };
 
 const OrganWriter& furWriter();

@@ -29,6 +29,8 @@ class PlantHairWriter : public OrganWriter {
   // Hairs as polylines: each polyline of a hair's template, placed, one `l` element, under
   // `o hairs`, grouped by their template's material (one `usemtl` each). Counts "hairs".
   void writeObj(const Scene& scene, ObjWriter& obj) const override;
+  // Each template's hairs one curve group (blender_hairs.cpp). Counts "hairs".
+  void writeBlender(const Scene& scene, BlenderWriter& blender) const override;
   // "N hairs".
   std::string povSummary(const Scene& scene) const override {
     return std::to_string(scene.organ<HairPart>().hairs.size()) + " hairs";

@@ -1,5 +1,6 @@
 // Wavefront OBJ export for Blender and MeshLab: `plant.obj` with its `plant.mtl` beside it.
-// Meshes keep their normals (and texture coordinates), lines become `l` polylines, spheres and
+// Meshes keep their normals (and texture coordinates), lines become polylines of `l` segments,
+// spheres and
 // discs are tessellated into faces; each material used is one `newmtl` with Ka Kd Ks Ns d.
 // docs/export.md describes the files.
 #pragma once
@@ -33,19 +34,26 @@ struct ObjOptions {
   // are (output_folder.h). None: `target` is the name the user typed (output_target.h), and the
   // side files go into the folder it is in.
   const OutputFolder* folder = nullptr;
+  // Every vertex's position as it is written (`v`), in order: the points of a point cache of
+  // the scene (point_cache.h). None: not kept.
+  std::vector<glm::vec3>* positions = nullptr;
+  // No `o` lines: the file is one object, whose vertices OBJ importers keep in the order written
+  // (a point cache's base mesh, which the cache's points follow one for one).
+  bool oneObject = false;
 };
 
 struct ObjExportStats {
   std::uint64_t bytes = 0, mtlBytes = 0;
   std::uint64_t vertices = 0, normals = 0, texcoords = 0, faces = 0;
-  std::uint64_t lineElements = 0;  // `l` polylines (the organs' included)
+  std::uint64_t lineElements = 0;  // `l` elements, one a segment (the organs' included)
+  std::uint64_t polylines = 0;     // the chains of segments they make
   // What the organs' writers wrote, by the names they count under (ObjWriter::count).
   std::map<std::string, std::uint64_t, std::less<>> organs;
   std::uint64_t organ(std::string_view what) const {
     const auto found = organs.find(what);
     return found == organs.end() ? 0 : found->second;
   }
-  std::size_t materials = 0;       // `newmtl` entries
+  std::size_t materials = 0;  // `newmtl` entries
 };
 
 class ObjWriter : public ScenePrinter {
@@ -88,10 +96,9 @@ class ObjWriter : public ScenePrinter {
   void face(const std::array<std::uint64_t, 3>& vertices,
             const std::optional<std::array<std::uint64_t, 3>>& normals = std::nullopt,
             const std::optional<std::array<std::uint64_t, 3>>& texcoords = std::nullopt);
-  // The polyline being gathered: vertex numbers, written as one `l` by finishPolyline(); when
-  // polylineTexcoords() holds one number a vertex, as `v/vt` pairs.
+  // The polyline being gathered: vertex numbers, written by finishPolyline() as one `l`
+  // element a segment (`l 4 5`, `l 5 6`: obj_writer.cpp says why).
   std::vector<std::uint64_t>& polyline() { return polyline_; }
-  std::vector<std::uint64_t>& polylineTexcoords() { return polylineTexcoords_; }
   void finishPolyline();
   // Adds `count` to what the organ's writers wrote of `what` (ObjExportStats::organs).
   void count(std::string_view what, std::uint64_t count);
@@ -121,7 +128,7 @@ class ObjWriter : public ScenePrinter {
   std::vector<glm::vec3> spherePoints_;
   std::vector<std::uint32_t> sphereTriangles_;
   // The polyline being gathered: its vertex numbers, and where it ends.
-  std::vector<std::uint64_t> polyline_, polylineTexcoords_;
+  std::vector<std::uint64_t> polyline_;
   struct OrganMaterial {
     std::string name;
     glm::vec3 diffuse;

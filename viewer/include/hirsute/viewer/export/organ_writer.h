@@ -23,6 +23,7 @@ namespace hirsute {
 
 class PovWriter;
 class ObjWriter;
+class BlenderWriter;
 
 // A table an organ writes on its own (`hirsute export --NAME FILE`): one row an instance.
 struct OrganTable {
@@ -44,6 +45,9 @@ class OrganWriter {
   virtual std::size_t items(const Scene& scene) const = 0;
   virtual void writePov(const Scene& scene, PovWriter& pov) const = 0;
   virtual void writeObj(const Scene& scene, ObjWriter& obj) const = 0;
+  // The scene file for Blender: the organ's strands as curve groups with a radius and colour at
+  // each point, its surfaces as meshes (blender_writer.h).
+  virtual void writeBlender(const Scene& scene, BlenderWriter& blender) const = 0;
   // POV-Ray: what the file's first comment says of the organ ("12 hairs"; empty: nothing), and
   // the depth of rays its layers of transparency need (max_trace_level; 0: POV-Ray's default).
   virtual std::string povSummary(const Scene& /*scene*/) const { return {}; }
