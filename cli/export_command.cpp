@@ -1,6 +1,7 @@
 // `hirsute export`: the model's Scene written as a POV-Ray 3.7 scene and/or a Wavefront OBJ with
-// its material library and/or its organs as CSV tables (docs/export.md), and, with --render, the
-// POV-Ray scene rendered by the installed povray.
+// its material library and/or a scene file for Blender and/or its surfaces as glTF 2.0 and/or
+// its organs as CSV tables (docs/export.md), and, with --render, the POV-Ray scene rendered by
+// the installed povray.
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "hirsute/core/diagnostic.h"
 #include "hirsute/core/output_target.h"
 #include "hirsute/viewer/export/blender_writer.h"
+#include "hirsute/viewer/export/gltf_writer.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/organ_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"
@@ -30,6 +32,7 @@ struct ExportOptions {
   std::string pov;
   std::string obj;
   std::string blender;  // the scene file for Blender (blender_writer.h)
+  std::string gltf;     // the surfaces as glTF 2.0 (gltf_writer.h)
   // The organs' tables (organ_writer.h), one file name a writer of organWriters() (empty: none).
   std::vector<std::string> tables = std::vector<std::string>(organWriters().size());
   bool render = false;
@@ -73,6 +76,14 @@ int runExport(ExportOptions o) {
       options.width = o.width;
       options.height = o.height;
       writeBlender(built->scene, options, o.blender, &progress);
+    }
+    if (!o.gltf.empty()) {
+      GltfOptions options;
+      options.group = &outputs;
+      options.view = built->resources.view;
+      options.width = o.width;
+      options.height = o.height;
+      writeGltf(built->scene, options, o.gltf, &progress);
     }
     for (std::size_t k = 0; k < o.tables.size(); ++k) {
       if (o.tables[k].empty()) continue;
@@ -149,7 +160,8 @@ void registerExportCommand(CLI::App& app, Action& action) {
   CLI::App* command = app.add_subcommand(
       "export",
       "Write the model as a POV-Ray 3.7 scene (--pov), a Wavefront OBJ with its .mtl "
-      "(--obj), a scene file for Blender (--blender) and/or its organs as CSV tables (" +
+      "(--obj), a scene file for Blender (--blender), its surfaces as glTF (--gltf) and/or its "
+      "organs as CSV tables (" +
           tableOptions + ")");
   addModelOptions(*command, options->model);
   command->add_option("--pov", options->pov, "Write a POV-Ray 3.7 scene to FILE (.pov)");
@@ -159,6 +171,21 @@ void registerExportCommand(CLI::App& app, Action& action) {
   command->add_option("--blender", options->blender,
                       "Write a scene file for Blender to FILE: meshes, hairs, fur and barbs as "
                       "curves, the camera and lights; blender/hirsute_import.py reads it");
+  command
+      ->add_option("--gltf", options->gltf,
+                   "Write the surfaces as glTF 2.0 to FILE.gltf (and its buffer FILE.bin) or "
+                   "FILE.glb: meshes, normals, materials and the camera; no hairs, fur or "
+                   "feathers")
+      ->check(CLI::Validator(
+          [](std::string& name) -> std::string {
+            try {
+              gltfIsBinary(name);
+              return {};
+            } catch (const std::invalid_argument&) {
+              return "'" + name + "': a glTF file's name ends in .gltf or .glb";
+            }
+          },
+          "FILE.gltf|FILE.glb"));
   for (std::size_t k = 0; k < organWriters().size(); ++k) {
     if (const std::optional<OrganTable> table = organWriters()[k]->table())
       command->add_option(table->option, options->tables[k], table->help);
@@ -193,10 +220,11 @@ void registerExportCommand(CLI::App& app, Action& action) {
   command->callback([options, &action, tableFiles] {
     const bool noTable = std::all_of(options->tables.begin(), options->tables.end(),
                                      [](const std::string& file) { return file.empty(); });
-    if (options->pov.empty() && options->obj.empty() && options->blender.empty() && noTable) {
+    if (options->pov.empty() && options->obj.empty() && options->blender.empty() &&
+        options->gltf.empty() && noTable) {
       throw CLI::RequiredError(
-          "export needs an output: --pov FILE or --obj FILE or --blender FILE" + tableFiles +
-          " (or several)");
+          "export needs an output: --pov FILE or --obj FILE or --blender FILE or --gltf FILE" +
+          tableFiles + " (or several)");
     }
     action = [options] { return runExport(*options); };
   });

@@ -11,7 +11,7 @@ packages=(
   libassimp-dev libcgal-dev
   libglfw3-dev libimgui-dev xvfb xauth
   time parallel rsync ccache help2man man-db bash-completion
-  blender
+  blender python3-numpy
 )
 
 missing=()

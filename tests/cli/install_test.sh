@@ -14,7 +14,7 @@ fail() { echo "install test: $*" >&2; exit 1; }
 
 cmake --install "$build" --prefix "$prefix" >/dev/null
 [ -x "$prefix/bin/hirsute" ] || fail "no $prefix/bin/hirsute"
-for module in libhirsute-drawing.so libhirsute-trace.so libhirsute-meshes.so; do
+for module in libhirsute-drawing.so libhirsute-trace.so libhirsute-meshes.so libhirsute-gltf.so; do
   [ -f "$prefix/lib/hirsute/$module" ] || fail "no $prefix/lib/hirsute/$module"
 done
 

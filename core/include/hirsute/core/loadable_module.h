@@ -1,8 +1,9 @@
 // Parts of Hirsute that link large libraries are built as modules that lie beside the program
 // and are loaded when first needed (docs/design.md, "Loadable modules"): the GL drawing
 // (libhirsute-drawing.so), the path tracer with Embree and OpenEXR (libhirsute-trace.so) and
-// the mesh files with Assimp and CGAL (libhirsute-meshes.so). A run that does not draw, trace or
-// read a mesh starts without loading and relocating those libraries.
+// the mesh files with Assimp and CGAL (libhirsute-meshes.so), the glTF export with Assimp
+// (libhirsute-gltf.so). A run that does not draw, trace, read a mesh or write glTF starts without
+// loading and relocating those libraries.
 #pragma once
 
 #include <string>
