@@ -7,7 +7,7 @@
 # Run headless, it imports a file and saves and/or renders it:
 #
 #   blender -b --python hirsute_import.py -- FILE [--save OUT.blend]
-#                                              [--render OUT.png --samples N --size WxH]
+#                                              [--render OUT.png --samples N --seed S --size WxH]
 #
 # Written for Blender 3.4 (Debian 12's), whose Python API cannot size a Curves datablock: each
 # curve group is made a mesh of edge chains carrying the radius and colour as point attributes,
@@ -468,6 +468,9 @@ def main(argv):
     parser.add_argument("--save", metavar="OUT.blend", help="save the scene as a .blend file")
     parser.add_argument("--render", metavar="OUT.png", help="render the camera's view in Cycles")
     parser.add_argument("--samples", type=int, default=64, help="Cycles samples a pixel (64)")
+    parser.add_argument("--seed", type=int, default=0,
+                        help="Cycles' seed of the samples (0); two seeds, two pictures whose "
+                             "difference is the noise (scripts/image-noise.py)")
     parser.add_argument("--size", metavar="WxH",
                         help="the picture's size in pixels (default: the exported --size)")
     options = parser.parse_args(argv)
@@ -498,6 +501,7 @@ def main(argv):
         bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(options.save))
     if options.render:
         scene.cycles.samples = max(1, options.samples)
+        scene.cycles.seed = options.seed
         scene.cycles.device = "CPU"
         # Debian's Blender is built without OpenImageDenoise: the samples alone.
         scene.cycles.use_denoising = False
