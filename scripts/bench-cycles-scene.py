@@ -62,6 +62,9 @@ links.new(colour.outputs[0], ambient.inputs["Color"])
 ambient.inputs["Strength"].default_value = 1.0
 
 scene.cycles.samples = max(1, int(samples))
+# Every pixel takes the samples, as the tracer's do at --noise 0: Cycles' adaptive sampling
+# (on by default, stopping at its noise threshold of 0.01) would make SAMPLES a ceiling.
+scene.cycles.use_adaptive_sampling = False
 scene.cycles.seed = int(seed)
 scene.cycles.device = "CPU"
 scene.cycles.use_denoising = False

@@ -4,8 +4,8 @@
 #   - Cycles: `hirsute export --blender`, then headless Blender 3.4 importing the scene with the
 #     add-on blender/hirsute_import.py (hairs as Curves of their radius with the principled hair
 #     BSDF, surfaces with the principled BSDF, the view file's camera) and rendering it in Cycles
-#     on the CPU at SAMPLES samples a pixel (Cycles' adaptive sampling as Blender sets it, no
-#     denoising), lit as the tracer is: a sun of the view's `trace light:` and a sky of its
+#     on the CPU at SAMPLES samples a pixel (uniform sampling, no denoising), lit as the tracer
+#     is: a sun of the view's `trace light:` and a sky of its
 #     `trace sky:` (scripts/bench-cycles-scene.py);
 #   - the tracer: `hirsute render --trace` at the same size, uniform sampling (--noise 0) with
 #     the samples a pixel that give Cycles' noise: a first run at PROBE samples measures the
@@ -18,7 +18,7 @@
 #   scripts/bench-cycles.sh            (builds build/release first)
 #
 # HIRSUTE=PATH skips the build; MODEL (default nankin-cherry/nankin-cherry), VIEW (default
-# closeup.v in the model's folder), SIZE (default 320x240), SAMPLES (default 32), PROBE (default
+# closeup.v in the model's folder), SIZE (default 320x240), SAMPLES (default 64), PROBE (default
 # 16) and BLENDER (default blender) choose what is run; KEEP=DIR keeps the four pictures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -37,7 +37,7 @@ folder="$root/models/$(dirname "$model")"
 lsystem="$folder/$(basename "$model").l"
 view="$folder/${VIEW:-closeup.v}"
 size="${SIZE:-320x240}"
-samples="${SAMPLES:-32}"
+samples="${SAMPLES:-64}"
 probe="${PROBE:-16}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -76,6 +76,9 @@ read -r es em < <(timed "$program" export "$lsystem" "$view" --blender "$work/sc
 [[ -n "${es:-}" ]] || exit 1
 read -r cs cm < <(timed "${cycles[@]}" "$work/cycles.png" 0 "$light" "$sky")
 [[ -n "${cs:-}" ]] || exit 1
+# Of which Cycles' render itself (Blender's "Time: MM:SS.ss"), from synchronising the scene on.
+rendering="$(sed -n 's/^ *Time: \([0-9:.]*\) (Saving.*/\1/p' "$work/out.txt" | tail -1 |
+  awk -F: '{ s = 0; for (i = 1; i <= NF; ++i) s = s * 60 + $i; printf "%.2f", s }')"
 "${cycles[@]}" "$work/cycles-2.png" 1 "$light" "$sky" > /dev/null 2>&1
 cycles_noise="$(noise "$work/cycles.png" "$work/cycles-2.png")"
 
@@ -94,6 +97,7 @@ printf '%-44s %10s %9s %6s\n' "process" "wall s" "peak MiB" "noise"
 printf '%-44s %10s %9s %6s\n' "hirsute export --blender" "$es" "$em" ""
 printf '%-44s %10s %9s %6s\n' "blender: import + Cycles, $samples samples" "$cs" "$cm" \
   "$cycles_noise"
+printf '%-44s %10s\n' "  of which Cycles' render" "$rendering"
 printf '%-44s %10s %9s %6s\n' "Cycles in all (export + Blender)" \
   "$(awk -v a="$es" -v b="$cs" 'BEGIN { printf "%.2f", a + b }')" \
   "$(( em > cm ? em : cm ))" "$cycles_noise"
