@@ -2,7 +2,8 @@
 # its point cache (docs/export.md, "Point caches"). Run inside Blender:
 #   blender -b --python scripts/point-cache-doc-image.py -- COAT.pc2 FRAME OUT.png
 # The add-on blender/hirsute_import.py sets the cache up (its base mesh and a Mesh Cache
-# modifier); a cache has no camera or lights, so this script frames the played mesh at FRAME
+# modifier); a cache has no camera or lights, so this script frames the played mesh as it is at
+# the first and last frames (every frame alike, so that the pictures of two frames compare),
 # from the front (Hirsute's +z, cpfg's default viewpoint) with a sun over the camera's shoulder
 # and a grey sky, and renders it in Cycles.
 import math
@@ -20,18 +21,21 @@ cache, frame, out = sys.argv[sys.argv.index("--") + 1:]
 bpy.ops.wm.read_factory_settings(use_empty=True)
 played = hirsute_import.import_point_cache(cache)
 scene = bpy.context.scene
-scene.frame_set(int(frame))
-evaluated = played.evaluated_get(bpy.context.evaluated_depsgraph_get())
-corners = [played.matrix_world @ Vector(c) for c in evaluated.bound_box]
+corners = []
+for shown in (scene.frame_start, scene.frame_end):
+    scene.frame_set(shown)
+    evaluated = played.evaluated_get(bpy.context.evaluated_depsgraph_get())
+    corners += [played.matrix_world @ Vector(c) for c in evaluated.bound_box]
 low = Vector(min(c[i] for c in corners) for i in range(3))
 high = Vector(max(c[i] for c in corners) for i in range(3))
 centre, extent = (low + high) / 2, high - low
+scene.frame_set(int(frame))
 
 # Hirsute's +z is Blender's -y: the camera stands there and looks along +y.
 camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
 camera.data.type = "ORTHO"
 scene.render.resolution_x, scene.render.resolution_y = 480, 360
-camera.data.ortho_scale = 1.1 * max(extent.x, extent.z * 480 / 360)
+camera.data.ortho_scale = 1.15 * max(extent.x, extent.z * 480 / 360)
 camera.location = centre - Vector((0, extent.length * 2, 0))
 camera.rotation_euler = (math.pi / 2, 0, 0)
 camera.data.clip_end = extent.length * 5
