@@ -69,11 +69,6 @@ aiMesh* mesh(const GltfMesh& m) {
     for (unsigned i = 0; i < count; ++i)
       out->mNormals[i] = {m.normals[i].x, m.normals[i].y, m.normals[i].z};
   }
-  if (m.colours.size() == count) {
-    out->mColors[0] = new aiColor4D[count];
-    for (unsigned i = 0; i < count; ++i)
-      out->mColors[0][i] = {m.colours[i].r, m.colours[i].g, m.colours[i].b, m.colours[i].a};
-  }
   const auto faces = static_cast<unsigned>(m.indices.size() / 3);
   out->mNumFaces = faces;
   out->mFaces = new aiFace[faces];

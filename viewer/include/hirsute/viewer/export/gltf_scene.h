@@ -23,8 +23,9 @@ struct GltfMaterial {
 struct GltfMesh {
   std::string name;
   int material = 0;  // index into GltfScene::materials
+  // Normals: empty, or one per position. (A Scene's meshes carry no vertex colours: a mesh's
+  // colour is its material's.)
   std::vector<glm::vec3> positions, normals;
-  std::vector<glm::vec4> colours;  // empty, or one linear RGBA per position
   std::vector<std::uint32_t> indices;
 };
 
