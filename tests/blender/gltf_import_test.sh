@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The herb's surfaces as glTF (.gltf with its buffer, and .glb) opened by Blender's own glTF
-# importer, headless: its meshes, their triangles and colours, and the view file's camera
+# importer, headless: its meshes and spheres, their triangles and colours, and the view file's camera
 # looking at them (check_gltf_import.py). Skipped (exit 77) where Blender, or the numpy its glTF
 # importer needs, is not installed.
 #
@@ -23,12 +23,16 @@ trap 'rm -rf "$work"' EXIT
 herb=$source/models/herb
 "$hirsute" export "$herb/herb.l" "$herb/herb.v" --size 64x48 --gltf "$work/herb.gltf" \
   --obj "$work/herb.obj"
-# The OBJ's meshes, before its spheres (glTF writes no spheres): objects, and triangles whose
-# corners are three different points (Blender's importer drops the others, which have no area).
-read -r meshes triangles < <(awk '/^o spheres$/ { exit } /^o / { o++ } /^v / { v[++n] = $2 " " $3 " " $4 }
-  /^f / { split($2, a, "/"); split($3, b, "/"); split($4, c, "/")
+# The OBJ's meshes before its spheres: objects, and triangles whose corners are three different
+# points (Blender's importer drops the others, which have no area); then its spheres, which the
+# glTF has as one mesh a colour, each sphere 120 triangles (the OBJ's 224).
+read -r meshes triangles < <(awk '/^o / { spheres = ($2 == "spheres") }
+  /^o / && !spheres { o++ } /^v / { v[++n] = $2 " " $3 " " $4 }
+  spheres && /^usemtl / && !($2 in colours) { colours[$2] = 1; o++ }
+  spheres && /^f / { s++ }
+  !spheres && /^f / { split($2, a, "/"); split($3, b, "/"); split($4, c, "/")
           if (v[a[1]] != v[b[1]] && v[b[1]] != v[c[1]] && v[a[1]] != v[c[1]]) f++ }
-  END { print o, f }' "$work/herb.obj")
+  END { print o, f + s / 224 * 120 }' "$work/herb.obj")
 test "$triangles" -gt 1000
 "$hirsute" export "$herb/herb.l" "$herb/herb.v" --size 64x48 --gltf "$work/herb.glb"
 for file in "$work/herb.gltf" "$work/herb.glb"; do

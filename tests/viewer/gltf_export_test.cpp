@@ -33,8 +33,8 @@ Material colour(float r, float g, float b) {
   return m;
 }
 
-// A quad in material 1, a half-transparent triangle in material 2, and a sphere and a line,
-// which glTF leaves out.
+// A quad in material 1, a half-transparent triangle in material 2, a sphere in material 1 (a
+// mesh of its own after them) and a line, which glTF leaves out.
 Scene handBuiltScene() {
   Scene scene;
   scene.materials = {colour(0.1f, 0.2f, 0.4f), colour(0.9f, 0.1f, 0.5f), colour(1, 1, 1)};
@@ -71,14 +71,14 @@ void expectReadsBack(const fs::path& file) {
   options.width = 400;
   options.height = 300;
   const GltfExportStats stats = writeGltf(scene, options, file);
-  EXPECT_EQ(stats.meshes, 2u);
-  EXPECT_EQ(stats.vertices, 7u);
-  EXPECT_EQ(stats.triangles, 3u);
+  EXPECT_EQ(stats.meshes, 3u);
+  EXPECT_EQ(stats.vertices, 7u + 62u);  // the sphere: two poles and 5 rings of 12
+  EXPECT_EQ(stats.triangles, 3u + 120u);
 
   Assimp::Importer importer;
   const aiScene* read = importer.ReadFile(file.string(), 0);
   ASSERT_NE(read, nullptr) << importer.GetErrorString();
-  ASSERT_EQ(read->mNumMeshes, 2u);
+  ASSERT_EQ(read->mNumMeshes, 3u);
   EXPECT_EQ(read->mMeshes[0]->mNumVertices, 4u);
   EXPECT_EQ(read->mMeshes[0]->mNumFaces, 2u);
   ASSERT_TRUE(read->mMeshes[0]->HasNormals());
@@ -86,6 +86,10 @@ void expectReadsBack(const fs::path& file) {
   EXPECT_EQ(read->mMeshes[1]->mNumVertices, 3u);
   EXPECT_EQ(read->mMeshes[1]->mNumFaces, 1u);
   EXPECT_FLOAT_EQ(read->mMeshes[1]->mVertices[2].z, -1.0f);
+  EXPECT_EQ(read->mMeshes[2]->mNumVertices, 62u);
+  EXPECT_EQ(read->mMeshes[2]->mNumFaces, 120u);
+  ASSERT_TRUE(read->mMeshes[2]->HasNormals());
+  EXPECT_NEAR(read->mMeshes[2]->mVertices[0].y, 3.5f, 1e-6);  // the north pole
 
   // Base colours in linear light, the transparent material's alpha 1 - its transparency.
   const aiMaterial* pink = materialNamed(*read, "m1");
@@ -103,6 +107,7 @@ void expectReadsBack(const fs::path& file) {
   EXPECT_NEAR(base.a, 0.5f, 1e-6);
   EXPECT_EQ(read->mMaterials[read->mMeshes[0]->mMaterialIndex], pink);
   EXPECT_EQ(read->mMaterials[read->mMeshes[1]->mMaterialIndex], white);
+  EXPECT_EQ(read->mMaterials[read->mMeshes[2]->mMaterialIndex], pink);
 
   // The camera: on the fitted camera's line of sight, looking along it.
   ASSERT_EQ(read->mNumCameras, 1u);
@@ -155,7 +160,7 @@ int run(const std::string& arguments, const fs::path& log) {
 }
 
 // The herb through the command line, with an OBJ in the same run: every file in place, no
-// temporary one left, and Assimp reads from the glTF the OBJ's meshes (its spheres left out).
+// temporary one left, and Assimp reads from the glTF the OBJ's meshes and spheres.
 TEST_F(GltfExportTest, TheHerbExportsAsGltfAndGlb) {
   const std::string herb = std::string(HIRSUTE_SOURCE_DIR) + "/models/herb/herb";
   ASSERT_EQ(run("export '" + herb + ".l' '" + herb + ".v' --size 64x48 --gltf '" +
@@ -179,16 +184,22 @@ TEST_F(GltfExportTest, TheHerbExportsAsGltfAndGlb) {
     Assimp::Importer importer;
     const aiScene* read = importer.ReadFile(file(name).string(), 0);
     ASSERT_NE(read, nullptr) << name << ": " << importer.GetErrorString();
-    EXPECT_EQ(read->mNumMeshes, 2u) << name;
+    // The OBJ's two meshes and its spheres, all of one colour: one mesh more.
+    EXPECT_EQ(read->mNumMeshes, 3u) << name;
     EXPECT_EQ(read->mNumCameras, 1u) << name;
     // Assimp's exporter joins identical vertices (its glTF exporter asks for that step), so
-    // the triangles are counted: the OBJ's of its meshes, those before its spheres.
+    // the triangles are counted: the OBJ's of its meshes, those before its spheres, and 120 for
+    // each of its spheres of 224 (16 slices and 8 stacks in the OBJ, 12 and 6 in the glTF).
     unsigned triangles = 0;
     for (unsigned i = 0; i < read->mNumMeshes; ++i) triangles += read->mMeshes[i]->mNumFaces;
     const std::string obj = readText(file("herb.obj"));
     const std::size_t spheres = obj.find("\no spheres\n");
     ASSERT_NE(spheres, std::string::npos);
-    EXPECT_EQ(triangles, testing::countLinesStarting(obj.substr(0, spheres), "f ")) << name;
+    const std::size_t meshTriangles = testing::countLinesStarting(obj.substr(0, spheres), "f ");
+    const std::size_t sphereTriangles = testing::countLinesStarting(obj.substr(spheres), "f ");
+    EXPECT_EQ(sphereTriangles % 224, 0u);
+    EXPECT_GT(sphereTriangles, 0u);
+    EXPECT_EQ(triangles, meshTriangles + sphereTriangles / 224 * 120) << name;
   }
 }
 

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "hirsute/viewer/export/primitive_mesh.h"
 #include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute {
@@ -18,10 +19,8 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "the Blender file's arrays are little-endian, written as the machine holds them");
 
-constexpr double kPi = 3.14159265358979323846;
 // GL's default global ambient light (glLightModel GL_LIGHT_MODEL_AMBIENT), which cpfg leaves as is.
 constexpr float kGlobalAmbient = 0.2f;
-constexpr int kSphereSlices = 12, kSphereStacks = 6, kDiscSegments = 16;
 constexpr std::size_t kFooterBytes = 24;  // index offset, index length, magic
 
 // Blender's colours are linear; ours are display (sRGB) values, as the screen shows them.
@@ -264,58 +263,14 @@ void BlenderWriter::line(const LineSegment& line, LineStyle style) {
 
 void BlenderWriter::sphere(const Sphere& sphere) {
   endCurves();
-  Gathered& g = spheres_[sphere.material];
-  const auto first = static_cast<std::uint32_t>(g.positions.size());
-  // A UV sphere: a point at each pole and stacks - 1 rings of `slices` points between.
-  auto add = [&](const glm::vec3& n) {
-    g.positions.push_back(sphere.center + sphere.radius * n);
-    g.normals.push_back(n);
-  };
-  add({0, 1, 0});
-  for (int i = 1; i < kSphereStacks; ++i) {
-    const double polar = kPi * i / kSphereStacks;
-    for (int j = 0; j < kSphereSlices; ++j) {
-      const double azimuth = 2 * kPi * j / kSphereSlices;
-      add(glm::vec3(std::sin(polar) * std::cos(azimuth), std::cos(polar),
-                    -std::sin(polar) * std::sin(azimuth)));
-    }
-  }
-  add({0, -1, 0});
-  auto ring = [&](int i, int j) {
-    return first + static_cast<std::uint32_t>(1 + (i - 1) * kSphereSlices + (j % kSphereSlices));
-  };
-  const auto bottom = static_cast<std::uint32_t>(g.positions.size() - 1);
-  for (int j = 0; j < kSphereSlices; ++j) {
-    g.indices.insert(g.indices.end(), {first, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i + 1 < kSphereStacks; ++i) {
-      g.indices.insert(g.indices.end(), {ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-      g.indices.insert(g.indices.end(), {ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-    }
-    g.indices.insert(g.indices.end(),
-                     {ring(kSphereStacks - 1, j), bottom, ring(kSphereStacks - 1, j + 1)});
-  }
+  appendSphere(spheres_[sphere.material], sphere.center, sphere.radius);
 }
 
 void BlenderWriter::disc(const Disc& disc) {
   endCurves();
-  Gathered& g = discs_[disc.material];
   // A screen-aligned disc (cpfg's @o) faces the camera.
   const glm::vec3 n = glm::length(disc.normal) > 0 ? glm::normalize(disc.normal) : -camera_.forward;
-  const glm::vec3 helper = std::fabs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  const glm::vec3 u = glm::normalize(glm::cross(n, helper));
-  const glm::vec3 v = glm::cross(n, u);
-  const auto centre = static_cast<std::uint32_t>(g.positions.size());
-  g.positions.push_back(disc.center);
-  g.normals.push_back(n);
-  for (int i = 0; i < kDiscSegments; ++i) {
-    const double angle = 2 * kPi * i / kDiscSegments;
-    g.positions.push_back(disc.center + disc.radius * (static_cast<float>(std::cos(angle)) * u +
-                                                       static_cast<float>(std::sin(angle)) * v));
-    g.normals.push_back(n);
-    g.indices.insert(g.indices.end(),
-                     {centre, centre + 1 + static_cast<std::uint32_t>(i),
-                      centre + 1 + static_cast<std::uint32_t>((i + 1) % kDiscSegments)});
-  }
+  appendDisc(discs_[disc.material], disc.center, disc.radius, n);
 }
 
 void BlenderWriter::label(const Label&) {

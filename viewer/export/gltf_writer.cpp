@@ -112,31 +112,57 @@ int GltfWriter::material(int sceneMaterial) {
   return index;
 }
 
+void GltfWriter::addMesh(int sceneMaterial, std::vector<glm::vec3> positions,
+                         std::vector<glm::vec3> normals, std::vector<std::uint32_t> indices) {
+  for (const glm::vec3& p : positions) requireFinite(p);
+  GltfMesh out;
+  out.name = fmt::format("mesh{}", gltf_.meshes.size());
+  out.material = material(sceneMaterial);
+  stats_.vertices += positions.size();
+  stats_.triangles += indices.size() / 3;
+  out.positions = std::move(positions);
+  out.normals = std::move(normals);
+  out.indices = std::move(indices);
+  gltf_.meshes.push_back(std::move(out));
+}
+
 void GltfWriter::mesh(const TriangleMesh& mesh) {
   const std::size_t count = mesh.positions.size();
   if (count == 0 || mesh.indices.size() < 3) return;
-  for (const glm::vec3& p : mesh.positions) requireFinite(p);
   for (std::uint32_t index : mesh.indices) {
     if (index >= count)
       throw std::invalid_argument("a mesh's triangle refers to a vertex it does not have");
   }
-  GltfMesh out;
-  out.name = fmt::format("mesh{}", gltf_.meshes.size());
-  out.material = material(mesh.material);
-  out.positions = mesh.positions;
+  std::vector<glm::vec3> normals;
   if (mesh.normals.size() == count) {
     VertexNormals unit(mesh);
-    out.normals.reserve(count);
-    for (std::size_t i = 0; i < count; ++i) out.normals.push_back(unit[i]);
+    normals.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) normals.push_back(unit[i]);
   }
-  out.indices.assign(mesh.indices.begin(),
-                     mesh.indices.begin() + static_cast<std::ptrdiff_t>(mesh.triangleCount() * 3));
-  stats_.vertices += count;
-  stats_.triangles += mesh.triangleCount();
-  gltf_.meshes.push_back(std::move(out));
+  addMesh(mesh.material, mesh.positions, std::move(normals),
+          std::vector<std::uint32_t>(
+              mesh.indices.begin(),
+              mesh.indices.begin() + static_cast<std::ptrdiff_t>(mesh.triangleCount() * 3)));
+}
+
+void GltfWriter::sphere(const Sphere& sphere) {
+  appendSphere(spheres_[sphere.material], sphere.center, sphere.radius);
+}
+
+void GltfWriter::disc(const Disc& disc) {
+  // A screen-aligned disc (cpfg's @o) faces the camera.
+  const glm::vec3 n =
+      glm::length(disc.normal) > 0 ? glm::normalize(disc.normal) : -gltf_.camera.forward;
+  appendDisc(discs_[disc.material], disc.center, disc.radius, n);
 }
 
 void GltfWriter::endScene() {
+  // The spheres and discs, one mesh a material each, after the scene's meshes.
+  for (auto* gathered : {&spheres_, &discs_}) {
+    for (auto& [sceneMaterial, g] : *gathered)
+      addMesh(sceneMaterial, std::move(g.positions), std::move(g.normals), std::move(g.indices));
+    gathered->clear();
+  }
   const bool binary = gltfIsBinary(target_);
   const fs::path buffer = gltfBufferFile(target_);
   const GltfBytes bytes = gltfModule(target_).encode(gltf_, binary, buffer.filename().string());

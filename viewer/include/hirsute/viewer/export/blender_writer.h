@@ -21,6 +21,7 @@
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/export/export_file.h"
+#include "hirsute/viewer/export/primitive_mesh.h"
 #include "hirsute/viewer/export/scene_writer.h"
 #include "hirsute/viewer/view/camera.h"
 
@@ -128,11 +129,7 @@ class BlenderWriter : public ScenePrinter {
   int lineMaterial_ = -1;
   glm::vec3 lineEnd_{0.0f};
   // Spheres and discs, gathered by material into one mesh each.
-  struct Gathered {
-    std::vector<glm::vec3> positions, normals;
-    std::vector<std::uint32_t> indices;
-  };
-  std::map<int, Gathered> spheres_, discs_;
+  std::map<int, PrimitiveMesh> spheres_, discs_;
   BlenderExportStats stats_;
 };
 

@@ -5,8 +5,9 @@
 //
 // The writer gathers the scene into a GltfScene (gltf_scene.h); Assimp's exporter, in the glTF
 // module loaded on first use, makes the bytes, which are written through OutputTarget (a
-// temporary file renamed on commit, with the run's other outputs). Lines, spheres, discs,
-// labels and the organs (hairs, fur, feathers) are not written: docs/export.md.
+// temporary file renamed on commit, with the run's other outputs). Spheres and discs are
+// triangle meshes, one a material (primitive_mesh.h); lines, labels and the organs (hairs, fur,
+// feathers) are not written: docs/export.md.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +17,7 @@
 #include "hirsute/core/output_target.h"
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/export/gltf_scene.h"
+#include "hirsute/viewer/export/primitive_mesh.h"
 #include "hirsute/viewer/export/scene_writer.h"
 #include "hirsute/viewer/view/camera.h"
 
@@ -46,8 +48,8 @@ class GltfWriter : public ScenePrinter {
   void beginScene(const Scene& scene, std::span<const OrganWriter* const> organs) override;
   void mesh(const TriangleMesh& mesh) override;
   void line(const LineSegment&, LineStyle) override {}
-  void sphere(const Sphere&) override {}
-  void disc(const Disc&) override {}
+  void sphere(const Sphere& sphere) override;
+  void disc(const Disc& disc) override;
   void label(const Label&) override {}
   void organ(const OrganWriter&, const Scene&) override {}
   void endScene() override;
@@ -56,12 +58,15 @@ class GltfWriter : public ScenePrinter {
 
  private:
   int material(int sceneMaterial);
+  void addMesh(int sceneMaterial, std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
+               std::vector<std::uint32_t> indices);
 
   std::filesystem::path target_;
   GltfOptions options_;
   const Scene* scene_ = nullptr;
   GltfScene gltf_;
-  std::map<int, int> materials_;  // the Scene's material → GltfScene::materials
+  std::map<int, int> materials_;                  // the Scene's material → GltfScene::materials
+  std::map<int, PrimitiveMesh> spheres_, discs_;  // by the Scene's material
   GltfExportStats stats_;
 };
 
