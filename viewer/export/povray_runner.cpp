@@ -54,8 +54,8 @@ std::string lastLinesOf(const std::string& output) {
   while (std::getline(lines, line)) {
     // POV-Ray rewrites its progress in place: the part after the last carriage return shows.
     if (const std::size_t cr = line.rfind('\r'); cr != std::string::npos) line.erase(0, cr + 1);
-    if (line.empty() || (line.find("Rendered ") != std::string::npos &&
-                         line.find(" pixels") != std::string::npos))
+    if (line.empty() ||
+        (line.find("Rendered ") != std::string::npos && line.find(" pixels") != std::string::npos))
       continue;
     kept.push_back(line);
   }
