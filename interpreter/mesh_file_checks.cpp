@@ -652,7 +652,12 @@ void checkMeshFileBytes(const std::string& bytes, const fs::path& file, std::siz
   std::size_t first = bytes.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
   while (first < bytes.size() && std::strchr(" \t\r\n", bytes[first]) != nullptr) ++first;
   const std::string_view content = std::string_view(bytes).substr(first);
-  if (bytes.rfind("ply", 0) == 0 && bytes.size() > 3 && (bytes[3] == '\n' || bytes[3] == '\r')) {
+  // Assimp reads any file that begins with "ply" as PLY (`plyply` too, and past a header line it
+  // cannot read, out of bounds): such a file, and every .ply, must have PLY's header whole.
+  std::string start = bytes.substr(0, 3);
+  std::transform(start.begin(), start.end(), start.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".ply" || start == "ply") {
     checkPly(bytes, file, maxTriangles);
   } else if (bytes.rfind("glTF", 0) == 0) {
     checkGlb(bytes, file);

@@ -1,0 +1,1 @@
+surface: B mesh_ply_doubled_magic.ply 1
