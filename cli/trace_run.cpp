@@ -8,6 +8,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "command.h"
 #include "drawing_commands.h"
@@ -76,6 +77,12 @@ int runTrace(const RenderOptions& o) {
   options.denoise = o.traceDenoise;
   options.background = backgroundColor(scene, built->resources.materialMode);
   options.progress = &progress;
+  // The 16-bit PNG is exposed but not tone-mapped (linear light); OpenEXR is neither.
+  if (o.bits == 16) options.display.exposure = o.exposure;
+  if (o.bits == 8) {
+    options.display.exposure = o.exposure;
+    options.display.tone = trace::toneCurveNamed(o.tone).value_or(trace::ToneCurve::None);
+  }
   trace::TraceImage image;
   try {
     const Clock::time_point started = Clock::now();
@@ -131,9 +138,13 @@ int runTrace(const RenderOptions& o) {
     if (format == ImageFormat::Exr) {
       trace::writeExr(o.output, image.width, image.height, image.radiance, &outputs);
     } else if (o.bits == 16) {
-      writeLinearPng16(o.output, image.width, image.height, image.radiance, &outputs);
+      // Linear light: the exposure chooses what is white, no curve bends it.
+      std::vector<glm::vec3> exposed = image.radiance;
+      const float scale = std::exp2(o.exposure);
+      for (glm::vec3& c : exposed) c *= scale;
+      writeLinearPng16(o.output, image.width, image.height, exposed, &outputs);
     } else {
-      writeImage(o.output, trace::displayImage(image), format, &outputs);
+      writeImage(o.output, trace::displayImage(image, options.display), format, &outputs);
     }
     if (!o.sampleCountImage.empty()) {
       writeImage(o.sampleCountImage, trace::sampleCountImage(image, o.traceSamples),

@@ -474,7 +474,7 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   image.radiance.assign(pixels, glm::vec3(0.0f));
   TraceOptions linear = options;
-  linear.background = linearColour(options.background);
+  linear.background = radianceShownAs(linearColour(options.background), options.display);
   Tracer tracer(scene, lights, linear);
   const float aspect = static_cast<float>(image.width) / static_cast<float>(image.height);
   const bool perspective = camera.projection == Projection::Perspective;
@@ -515,7 +515,9 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
         const std::size_t index =
             static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
             static_cast<std::size_t>(x);
-        if (pixelNoise(sum[index], squares[index], count) > options.noise) return false;
+        if (pixelNoise(sum[index], squares[index], count, options.display) > options.noise) {
+          return false;
+        }
       }
     }
     return true;
@@ -674,16 +676,19 @@ float displayLevel(float linear) {
   return 255 * (v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f);
 }
 
-float pixelNoise(const glm::vec3& sum, const glm::dvec3& squares, std::uint32_t count) {
+float pixelNoise(const glm::vec3& sum, const glm::dvec3& squares, std::uint32_t count,
+                 const DisplayTransform& display) {
   if (count < 2) return 0;
+  const double scale = std::exp2(display.exposure);
   const glm::dvec3 variance = varianceOfMean(glm::dvec3(sum), squares, count);
   float noise = 0;
   for (int c = 0; c < 3; ++c) {
     if (variance[c] == 0) continue;  // every sample alike: the background
     const double mean = sum[c] / static_cast<double>(count);
     const double error = std::sqrt(variance[c]);
-    const float levels = displayLevel(static_cast<float>(mean + error)) -
-                         displayLevel(static_cast<float>(mean - error));
+    const float levels =
+        displayLevel(toneMap(static_cast<float>(scale * (mean + error)), display.tone)) -
+        displayLevel(toneMap(static_cast<float>(scale * (mean - error)), display.tone));
     noise = std::max(noise, levels / 2);
   }
   return noise;
@@ -701,11 +706,11 @@ RgbaImage sampleCountImage(const TraceImage& image, int maximum) {
   return out;
 }
 
-RgbaImage displayImage(const TraceImage& image) {
+RgbaImage displayImage(const TraceImage& image, const DisplayTransform& transform) {
   RgbaImage out(image.width, image.height);
   auto encode = [](float v) { return static_cast<std::uint8_t>(std::lround(displayLevel(v))); };
   for (std::size_t i = 0; i < image.radiance.size(); ++i) {
-    const glm::vec3 c = image.radiance[i];
+    const glm::vec3 c = displayLight(image.radiance[i], transform);
     out.rgba[4 * i] = encode(c.r);
     out.rgba[4 * i + 1] = encode(c.g);
     out.rgba[4 * i + 2] = encode(c.b);
