@@ -31,6 +31,7 @@ struct RenderOptions {
   int bits = 8;  // --bits: 8 (sRGB) or 16 (linear light, with --trace)
   float exposure = 0;         // --exposure: stops, with --trace (tone_curve.h)
   std::string tone = "none";  // --tone: none or filmic, with --trace
+  std::string filter = "box";  // --filter: box, gaussian or mitchell, with --trace
 };
 
 struct ViewOptions {

@@ -78,6 +78,13 @@ void registerRenderCommand(CLI::App& app, Action& action) {
                    "default) or filmic (highlights roll off towards white)")
       ->type_name("CURVE")
       ->check(CLI::IsMember({"none", "filmic"}));
+  render
+      ->add_option("--filter", options->filter,
+                   "With --trace: the pixel filter: box (each pixel its own samples, the "
+                   "default), gaussian (radius 1.5 pixels) or mitchell (Mitchell-Netravali, "
+                   "radius 2: sharper)")
+      ->type_name("FILTER")
+      ->check(CLI::IsMember({"box", "gaussian", "mitchell"}));
   render->callback([options, &action] {
     const std::optional<ImageFormat> format = imageFormatOf(options->output);
     if (!format) {
@@ -105,6 +112,9 @@ void registerRenderCommand(CLI::App& app, Action& action) {
                                                       "extension: " +
                                                       kImageExtensions);
       }
+    }
+    if (!options->trace && options->filter != "box") {
+      throw CLI::ValidationError("--filter", "pixel filters are for traced pictures (--trace)");
     }
     if (!options->trace && (options->exposure != 0 || options->tone != "none")) {
       throw CLI::ValidationError(options->exposure != 0 ? "--exposure" : "--tone",

@@ -77,6 +77,7 @@ int runTrace(const RenderOptions& o) {
   options.denoise = o.traceDenoise;
   options.background = backgroundColor(scene, built->resources.materialMode);
   options.progress = &progress;
+  options.filter = trace::pixelFilterNamed(o.filter).value_or(trace::PixelFilterKind::Box);
   // The 16-bit PNG is exposed but not tone-mapped (linear light); OpenEXR is neither.
   if (o.bits == 16) options.display.exposure = o.exposure;
   if (o.bits == 8) {

@@ -165,6 +165,30 @@ TEST(TraceCommand, ExposureBrightensAndTheFilmicCurveKeepsHighlightsOffWhite) {
   EXPECT_FALSE(fs::exists(folder.path() / "refused.exr"));
 }
 
+TEST(TraceCommand, APixelFilterSpreadsTheSamplesAndTheGlRenderRefusesIt) {
+  TemporaryFolder folder;
+  const std::string model = (kCrocus / "wild-crocus.l").string();
+  const std::string view = (kCrocus / "closeup.v").string();
+  const fs::path box = folder.path() / "box.png", gaussian = folder.path() / "gaussian.png";
+  RunResult run = runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24",
+                              "--filter", "box", "-o", box.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "--filter",
+                    "gaussian", "-o", gaussian.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const hirsute::RgbaImage a = hirsute::readPng(box), b = hirsute::readPng(gaussian);
+  ASSERT_EQ(a.width, b.width);
+  EXPECT_NE(a.rgba, b.rgba);
+  const fs::path refused = folder.path() / "refused.png";
+  run = runHirsute({"render", model, view, "--filter", "gaussian", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("pixel filters are for traced pictures"), std::string::npos) << run.err;
+  run =
+      runHirsute({"render", model, view, "--trace", "--filter", "lanczos", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_FALSE(fs::exists(refused));
+}
+
 TEST(TraceCommand, ExportTakesTheTracersLights) {
   TemporaryFolder folder;
   const fs::path pov = folder.path() / "crocus.pov";

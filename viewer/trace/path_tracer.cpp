@@ -476,6 +476,8 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
   TraceOptions linear = options;
   linear.background = radianceShownAs(linearColour(options.background), options.display);
   Tracer tracer(scene, lights, linear);
+  const PixelFilter filter(options.filter);
+  const bool box = options.filter == PixelFilterKind::Box;
   const float aspect = static_cast<float>(image.width) / static_cast<float>(image.height);
   const bool perspective = camera.projection == Projection::Perspective;
   const float tanHalf = std::tan(glm::radians(camera.fieldOfViewY) / 2);
@@ -548,7 +550,10 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
                 static_cast<std::size_t>(x);
             Random random =
                 Random::stratified(options.seed, index, static_cast<std::uint32_t>(pass));
-            const glm::vec2 jitter = random.uniform2();
+            // The point in the pixel, or about it by the filter's density (pixel_filter.h).
+            const glm::vec2 u = random.uniform2();
+            const PixelFilter::Sample filtered = filter.sample(u);
+            const glm::vec2 jitter = box ? u : filtered.offset + 0.5f;
             const float sx =
                 (static_cast<float>(x) + jitter.x) / static_cast<float>(image.width) * 2 - 1;
             const float sy =
@@ -575,6 +580,7 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
                                               options.denoise ? &first : nullptr);
             // A path that found no number is dropped rather than spoiling the pixel.
             if (!std::isfinite(value.x + value.y + value.z)) value = glm::vec3(0.0f);
+            value *= filtered.weight;
             sum[index] += value;
             if (!squares.empty()) squares[index] += glm::dvec3(value) * glm::dvec3(value);
             if (options.denoise) {

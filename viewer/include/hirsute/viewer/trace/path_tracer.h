@@ -27,6 +27,7 @@
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/view/png_image.h"
+#include "hirsute/viewer/trace/pixel_filter.h"
 #include "hirsute/viewer/trace/sampling.h"
 #include "hirsute/viewer/trace/tone_curve.h"
 #include "hirsute/viewer/trace/trace_scene.h"
@@ -68,6 +69,8 @@ struct TraceOptions {
   // How the picture will be shown (displayImage): the background is traced as the radiance it
   // shows as `background`, so that exposure and tone curve leave it as the view asks.
   DisplayTransform display;
+  // How a pixel's samples spread about it (pixel_filter.h).
+  PixelFilterKind filter = PixelFilterKind::Box;
   Progress* progress = nullptr;
 };
 
