@@ -15,6 +15,7 @@
 #include "hirsute/viewer/trace/denoise.h"
 #include "hirsute/viewer/trace/hair_bsdf.h"
 #include "hirsute/viewer/trace/surface_bsdf.h"
+#include "hirsute/viewer/trace/texture_lookup.h"
 #include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute::trace {
@@ -387,7 +388,7 @@ class Tracer {
               shape.triangleIndices + 3 * static_cast<std::size_t>(hit.primitive);
           const glm::vec2 uv = (1 - hit.u - hit.v) * shape.texcoords[t[0]] +
                                hit.u * shape.texcoords[t[1]] + hit.v * shape.texcoords[t[2]];
-          const glm::vec3 texel = linearColour(scene_.texture(shape.texture).colourAt(uv));
+          const glm::vec3 texel = linearColour(bilinearColourAt(scene_.texture(shape.texture), uv));
           surface.reflectance *= texel;
           surface.transmittance *= texel;
         }
