@@ -32,6 +32,8 @@ struct RenderOptions {
   float exposure = 0;         // --exposure: stops, with --trace (tone_curve.h)
   std::string tone = "none";  // --tone: none or filmic, with --trace
   std::string filter = "box";  // --filter: box, gaussian or mitchell, with --trace
+  double aperture = 0;         // --aperture: the lens's diameter, with --trace
+  double focus = 0;            // --focus: the distance in focus (0: the point looked at)
 };
 
 struct ViewOptions {

@@ -85,6 +85,18 @@ void registerRenderCommand(CLI::App& app, Action& action) {
                    "radius 2: sharper)")
       ->type_name("FILTER")
       ->check(CLI::IsMember({"box", "gaussian", "mitchell"}));
+  render
+      ->add_option("--aperture", options->aperture,
+                   "With --trace: depth of field; the lens's diameter in the model's units "
+                   "(default 0: a pinhole, everything sharp)")
+      ->type_name("D")
+      ->check(finiteRange(0, 1e9));
+  render
+      ->add_option("--focus", options->focus,
+                   "With --trace and --aperture: the distance from the eye, along the line of "
+                   "sight, of the plane in focus (default: the point the view looks at)")
+      ->type_name("DIST")
+      ->check(finiteRange(1e-9, 1e12));
   render->callback([options, &action] {
     const std::optional<ImageFormat> format = imageFormatOf(options->output);
     if (!format) {
@@ -112,6 +124,14 @@ void registerRenderCommand(CLI::App& app, Action& action) {
                                                       "extension: " +
                                                       kImageExtensions);
       }
+    }
+    if (!options->trace && (options->aperture != 0 || options->focus != 0)) {
+      throw CLI::ValidationError(options->aperture != 0 ? "--aperture" : "--focus",
+                                 "depth of field is for traced pictures (--trace)");
+    }
+    if (options->focus != 0 && options->aperture == 0) {
+      throw CLI::ValidationError("--focus",
+                                 "a pinhole has everything in focus: give the lens an --aperture");
     }
     if (!options->trace && options->filter != "box") {
       throw CLI::ValidationError("--filter", "pixel filters are for traced pictures (--trace)");

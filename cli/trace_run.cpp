@@ -77,6 +77,8 @@ int runTrace(const RenderOptions& o) {
   options.denoise = o.traceDenoise;
   options.background = backgroundColor(scene, built->resources.materialMode);
   options.progress = &progress;
+  options.aperture = static_cast<float>(o.aperture);
+  options.focusDistance = static_cast<float>(o.focus);
   options.filter = trace::pixelFilterNamed(o.filter).value_or(trace::PixelFilterKind::Box);
   // The 16-bit PNG is exposed but not tone-mapped (linear light); OpenEXR is neither.
   if (o.bits == 16) options.display.exposure = o.exposure;

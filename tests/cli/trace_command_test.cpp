@@ -189,6 +189,35 @@ TEST(TraceCommand, APixelFilterSpreadsTheSamplesAndTheGlRenderRefusesIt) {
   EXPECT_FALSE(fs::exists(refused));
 }
 
+TEST(TraceCommand, ALensBlursWhatIsOutOfFocusAndTheGlRenderRefusesIt) {
+  TemporaryFolder folder;
+  const std::string model = (kCrocus / "wild-crocus.l").string();
+  const std::string view = (kCrocus / "closeup.v").string();
+  const fs::path sharp = folder.path() / "sharp.png", blurred = folder.path() / "blurred.png";
+  RunResult run = runHirsute(
+      {"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "-o", sharp.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "--aperture",
+                    "0.5", "--focus", "100", "-o", blurred.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const hirsute::RgbaImage a = hirsute::readPng(sharp), b = hirsute::readPng(blurred);
+  ASSERT_EQ(a.width, b.width);
+  EXPECT_NE(a.rgba, b.rgba);
+  const fs::path refused = folder.path() / "refused.png";
+  run = runHirsute({"render", model, view, "--aperture", "1", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("depth of field is for traced pictures"), std::string::npos) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--focus", "3", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("give the lens an --aperture"), std::string::npos) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--aperture", "-1", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  run = runHirsute({"render", model, view, "--trace", "--aperture", "1", "--focus", "0", "-o",
+                    refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_FALSE(fs::exists(refused));
+}
+
 TEST(TraceCommand, ExportTakesTheTracersLights) {
   TemporaryFolder folder;
   const fs::path pov = folder.path() / "crocus.pov";

@@ -231,13 +231,16 @@ TEST(PathTracer, AdaptiveSamplingStopsOnTheFlatBackgroundAndGoesOnWhereItIsNoisy
 
 // The width in pixels over which the middle rows of the sky-lit sphere rise from 10% to 90% of
 // their inside at the disc's left edge (which falls on a pixel boundary), by linear interpolation.
-float edgeWidth(PixelFilterKind filter, int threads = 0, TraceImage* out = nullptr) {
+float edgeWidth(PixelFilterKind filter, int threads = 0, TraceImage* out = nullptr,
+                float aperture = 0, float focus = 0) {
   SkyLitSphere sky;
   TraceOptions options;
   options.samples = 64;
   options.seed = 5;
   options.filter = filter;
   options.threads = threads;
+  options.aperture = aperture;
+  options.focusDistance = focus;
   const TraceImage image = traceImage(
       sky.scene, frontCamera(SkyLitSphere::kSide, SkyLitSphere::kSide, 1.5f), sky.lights, options);
   if (out) *out = image;
@@ -277,6 +280,24 @@ TEST(PathTracer, AGaussianFilterSoftensAnEdgeThatTheBoxKeepsSharp) {
     edgeWidth(kind, 3, &three);
     EXPECT_EQ(one.radiance, three.radiance);
   }
+}
+
+TEST(PathTracer, AThinLensKeepsThePlaneInFocusSharpAndBlursTheRest) {
+  // The camera looks at the sphere's centre from 10 away: its silhouette lies in that plane.
+  const float pinhole = edgeWidth(PixelFilterKind::Box);
+  const float inFocus = edgeWidth(PixelFilterKind::Box, 0, nullptr, 0.5f);
+  const float nearer = edgeWidth(PixelFilterKind::Box, 0, nullptr, 0.5f, 5);
+  std::printf(
+      "edge 10-90%% widths: pinhole %.3f, in focus %.3f, focused at half the distance "
+      "%.3f pixels\n",
+      pinhole, inFocus, nearer);
+  EXPECT_LT(inFocus, pinhole + 0.3f);
+  // Focused at 5, a lens 0.5 across spreads the silhouette over a disc 0.5 across, 8 pixels.
+  EXPECT_GT(nearer, 3.0f);
+  TraceImage one, three;
+  edgeWidth(PixelFilterKind::Box, 1, &one, 0.5f, 5);
+  edgeWidth(PixelFilterKind::Box, 3, &three, 0.5f, 5);
+  EXPECT_EQ(one.radiance, three.radiance);
 }
 
 TEST(PathTracer, AdaptiveSamplingLeavesTheSkyLitSphereUnbiased) {

@@ -479,6 +479,9 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
   Tracer tracer(scene, lights, linear);
   const PixelFilter filter(options.filter);
   const bool box = options.filter == PixelFilterKind::Box;
+  const float focus = options.focusDistance > 0
+                          ? options.focusDistance
+                          : std::max(glm::dot(camera.target - camera.eye, camera.forward), 1e-6f);
   const float aspect = static_cast<float>(image.width) / static_cast<float>(image.height);
   const bool perspective = camera.projection == Projection::Perspective;
   const float tanHalf = std::tan(glm::radians(camera.fieldOfViewY) / 2);
@@ -575,6 +578,24 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
               direction = camera.forward;
               near = 0;
               far = camera.farPlane - camera.nearPlane;
+            }
+            if (options.aperture > 0) {
+              // A thin lens (pbrt-v4, Sec. 5.2.3): the ray leaves a point of the lens disc
+              // (about the eye, or the ray's start on the near plane) towards where the pinhole
+              // ray meets the plane in focus, so that plane stays sharp and the rest blurs.
+              const float start = glm::dot(origin - camera.eye, camera.forward);
+              const glm::vec3 focused =
+                  origin + direction * ((focus - start) / glm::dot(direction, camera.forward));
+              const glm::vec2 lens = sampleUniformDisk(random.uniform2()) * (options.aperture / 2);
+              origin += lens.x * camera.right + lens.y * camera.up;
+              direction = glm::normalize(focused - origin);
+              const float along = glm::dot(direction, camera.forward);
+              if (perspective) {
+                near = std::max(0.0f, camera.nearPlane / along);
+                far = camera.farPlane / along;
+              } else {
+                far = (camera.farPlane - camera.nearPlane) / along;
+              }
             }
             FirstHit first;
             glm::vec3 value = tracer.radiance(origin, direction, near, far, random,

@@ -71,6 +71,10 @@ struct TraceOptions {
   DisplayTransform display;
   // How a pixel's samples spread about it (pixel_filter.h).
   PixelFilterKind filter = PixelFilterKind::Box;
+  // A thin lens (depth of field): its diameter in world units (0: a pinhole, all sharp) and the
+  // distance from the eye along the line of sight of the plane in focus (0: the point looked at).
+  float aperture = 0;
+  float focusDistance = 0;
   Progress* progress = nullptr;
 };
 
