@@ -145,6 +145,17 @@ TEST(TraceCommand, ExposureBrightensAndTheFilmicCurveKeepsHighlightsOffWhite) {
   EXPECT_GT(sum(bright), sum(plain));
   EXPECT_GT(white(bright), 20);                 // eight times brighter: the petals clip
   EXPECT_LT(white(filmic), white(bright) / 2);  // the filmic curve keeps most of them off white
+  // The 16-bit PNG of linear light takes the exposure.
+  const fs::path linear = folder.path() / "linear.png", exposed = folder.path() / "exposed.png";
+  ASSERT_EQ(runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "--bits",
+                        "16", "-o", linear.string()})
+                .exitCode,
+            0);
+  ASSERT_EQ(runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "--bits",
+                        "16", "--exposure", "1", "-o", exposed.string()})
+                .exitCode,
+            0);
+  EXPECT_NE(bytesOf(linear), bytesOf(exposed));
 
   const fs::path refused = folder.path() / "refused.png";
   RunResult run = runHirsute({"render", model, view, "--exposure", "1", "-o", refused.string()});
