@@ -8,7 +8,6 @@
 #include <new>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "command.h"
 #include "drawing_commands.h"
@@ -141,11 +140,11 @@ int runTrace(const RenderOptions& o) {
     if (format == ImageFormat::Exr) {
       trace::writeExr(o.output, image.width, image.height, image.radiance, &outputs);
     } else if (o.bits == 16) {
-      // Linear light: the exposure chooses what is white, no curve bends it.
-      std::vector<glm::vec3> exposed = image.radiance;
+      // Linear light: the exposure chooses what is white, no curve bends it. In place: the
+      // picture's buffers hold no second copy.
       const float scale = std::exp2(o.exposure);
-      for (glm::vec3& c : exposed) c *= scale;
-      writeLinearPng16(o.output, image.width, image.height, exposed, &outputs);
+      for (glm::vec3& c : image.radiance) c *= scale;
+      writeLinearPng16(o.output, image.width, image.height, image.radiance, &outputs);
     } else {
       writeImage(o.output, trace::displayImage(image, options.display), format, &outputs);
     }
