@@ -29,6 +29,11 @@ struct RenderOptions {
   std::uint64_t traceSeed = 1;
   bool traceDenoise = false;    // --denoise: filter the traced picture (denoise.h)
   int bits = 8;  // --bits: 8 (sRGB) or 16 (linear light, with --trace)
+  float exposure = 0;         // --exposure: stops, with --trace (tone_curve.h)
+  std::string tone = "none";  // --tone: none or filmic, with --trace
+  std::string filter = "box";  // --filter: box, gaussian or mitchell, with --trace
+  double aperture = 0;         // --aperture: the lens's diameter, with --trace
+  double focus = 0;            // --focus: the distance in focus (0: the point looked at)
 };
 
 struct ViewOptions {

@@ -66,6 +66,37 @@ void registerRenderCommand(CLI::App& app, Action& action) {
       ->add_option("--bits", options->bits,
                    "With --trace: 8 (sRGB, default) or 16 bits a channel (linear light) in the PNG")
       ->check(CLI::IsMember({8, 16}));
+  render
+      ->add_option("--exposure", options->exposure,
+                   "With --trace: brighten (or darken, below 0) the picture by EV stops, a factor "
+                   "of 2^EV on its linear light (default 0; -20 to 20; not in .exr files)")
+      ->type_name("EV")
+      ->check(finiteRange(-20, 20));
+  render
+      ->add_option("--tone", options->tone,
+                   "With --trace: the tone curve of the 8-bit picture: none (clip at white, the "
+                   "default) or filmic (highlights roll off towards white)")
+      ->type_name("CURVE")
+      ->check(CLI::IsMember({"none", "filmic"}));
+  render
+      ->add_option("--filter", options->filter,
+                   "With --trace: the pixel filter: box (each pixel its own samples, the "
+                   "default), gaussian (radius 1.5 pixels) or mitchell (Mitchell-Netravali, "
+                   "radius 2: sharper)")
+      ->type_name("FILTER")
+      ->check(CLI::IsMember({"box", "gaussian", "mitchell"}));
+  render
+      ->add_option("--aperture", options->aperture,
+                   "With --trace: depth of field; the lens's diameter in the model's units "
+                   "(default 0: a pinhole, everything sharp)")
+      ->type_name("D")
+      ->check(finiteRange(0, 1e9));
+  render
+      ->add_option("--focus", options->focus,
+                   "With --trace and --aperture: the distance from the eye, along the line of "
+                   "sight, of the plane in focus (default: the point the view looks at)")
+      ->type_name("DIST")
+      ->check(finiteRange(1e-9, 1e12));
   render->callback([options, &action] {
     const std::optional<ImageFormat> format = imageFormatOf(options->output);
     if (!format) {
@@ -93,6 +124,32 @@ void registerRenderCommand(CLI::App& app, Action& action) {
                                                       "extension: " +
                                                       kImageExtensions);
       }
+    }
+    if (!options->trace && (options->aperture != 0 || options->focus != 0)) {
+      throw CLI::ValidationError(options->aperture != 0 ? "--aperture" : "--focus",
+                                 "depth of field is for traced pictures (--trace)");
+    }
+    if (options->focus != 0 && options->aperture == 0) {
+      throw CLI::ValidationError("--focus",
+                                 "a pinhole has everything in focus: give the lens an --aperture");
+    }
+    if (!options->trace && options->filter != "box") {
+      throw CLI::ValidationError("--filter", "pixel filters are for traced pictures (--trace)");
+    }
+    if (!options->trace && (options->exposure != 0 || options->tone != "none")) {
+      throw CLI::ValidationError(options->exposure != 0 ? "--exposure" : "--tone",
+                                 "exposure and tone curves are for traced pictures (--trace)");
+    }
+    if (options->trace && (exr || options->bits == 16) && options->tone != "none") {
+      throw CLI::ValidationError("--tone", exr ? "an OpenEXR file holds linear radiance; a tone "
+                                                 "curve is for 8-bit pictures"
+                                               : "a 16-bit PNG holds linear light; a tone curve "
+                                                 "is for 8-bit pictures");
+    }
+    if (exr && options->exposure != 0) {
+      throw CLI::ValidationError("--exposure",
+                                 "an OpenEXR file holds the radiance as traced; expose it when "
+                                 "grading, or write a PNG");
     }
     if (!options->trace && options->traceDenoise) {
       throw CLI::ValidationError("--denoise", "only a traced picture (--trace) is denoised");

@@ -76,6 +76,15 @@ int runTrace(const RenderOptions& o) {
   options.denoise = o.traceDenoise;
   options.background = backgroundColor(scene, built->resources.materialMode);
   options.progress = &progress;
+  options.aperture = static_cast<float>(o.aperture);
+  options.focusDistance = static_cast<float>(o.focus);
+  options.filter = trace::pixelFilterNamed(o.filter).value_or(trace::PixelFilterKind::Box);
+  // The 16-bit PNG is exposed but not tone-mapped (linear light); OpenEXR is neither.
+  if (o.bits == 16) options.display.exposure = o.exposure;
+  if (o.bits == 8) {
+    options.display.exposure = o.exposure;
+    options.display.tone = trace::toneCurveNamed(o.tone).value_or(trace::ToneCurve::None);
+  }
   trace::TraceImage image;
   try {
     const Clock::time_point started = Clock::now();
@@ -131,9 +140,13 @@ int runTrace(const RenderOptions& o) {
     if (format == ImageFormat::Exr) {
       trace::writeExr(o.output, image.width, image.height, image.radiance, &outputs);
     } else if (o.bits == 16) {
+      // Linear light: the exposure chooses what is white, no curve bends it. In place: the
+      // picture's buffers hold no second copy.
+      const float scale = std::exp2(o.exposure);
+      for (glm::vec3& c : image.radiance) c *= scale;
       writeLinearPng16(o.output, image.width, image.height, image.radiance, &outputs);
     } else {
-      writeImage(o.output, trace::displayImage(image), format, &outputs);
+      writeImage(o.output, trace::displayImage(image, options.display), format, &outputs);
     }
     if (!o.sampleCountImage.empty()) {
       writeImage(o.sampleCountImage, trace::sampleCountImage(image, o.traceSamples),

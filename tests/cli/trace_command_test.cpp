@@ -112,6 +112,123 @@ TEST(TraceCommand, DenoisesATracedPictureOnlyAndSaysHowLongItTook) {
   EXPECT_FALSE(fs::exists(refused));
 }
 
+TEST(TraceCommand, ExposureBrightensAndTheFilmicCurveKeepsHighlightsOffWhite) {
+  TemporaryFolder folder;
+  const std::string model = (kCrocus / "wild-crocus.l").string();
+  const std::string view = (kCrocus / "closeup.v").string();
+  auto render = [&](const std::string& name, std::vector<std::string> extra) {
+    const fs::path png = folder.path() / name;
+    std::vector<std::string> args = {"render", model,    view,    "--trace", "--spp",
+                                     "2",      "--size", "32x24", "-o",      png.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult run = runHirsute(args);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    return hirsute::readPng(png);
+  };
+  auto sum = [](const hirsute::RgbaImage& image) {
+    long total = 0;
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4) total += image.rgba[i + 1];
+    return total;
+  };
+  auto white = [](const hirsute::RgbaImage& image) {
+    int count = 0;
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+      count += image.rgba[i] == 255 || image.rgba[i + 1] == 255 || image.rgba[i + 2] == 255;
+    }
+    return count;
+  };
+  const hirsute::RgbaImage plain = render("plain.png", {});
+  const hirsute::RgbaImage same = render("same.png", {"--exposure", "0", "--tone", "none"});
+  EXPECT_EQ(plain.rgba, same.rgba);  // the defaults leave the picture as it was
+  const hirsute::RgbaImage bright = render("bright.png", {"--exposure", "3"});
+  const hirsute::RgbaImage filmic = render("filmic.png", {"--exposure", "3", "--tone", "filmic"});
+  EXPECT_GT(sum(bright), sum(plain));
+  EXPECT_GT(white(bright), 20);                 // eight times brighter: the petals clip
+  EXPECT_LT(white(filmic), white(bright) / 2);  // the filmic curve keeps most of them off white
+  // The 16-bit PNG of linear light takes the exposure.
+  const fs::path linear = folder.path() / "linear.png", exposed = folder.path() / "exposed.png";
+  ASSERT_EQ(runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "--bits",
+                        "16", "-o", linear.string()})
+                .exitCode,
+            0);
+  ASSERT_EQ(runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "--bits",
+                        "16", "--exposure", "1", "-o", exposed.string()})
+                .exitCode,
+            0);
+  EXPECT_NE(bytesOf(linear), bytesOf(exposed));
+
+  const fs::path refused = folder.path() / "refused.png";
+  RunResult run = runHirsute({"render", model, view, "--exposure", "1", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("for traced pictures"), std::string::npos) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--tone", "aces", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  run = runHirsute({"render", model, view, "--trace", "--tone", "filmic", "--bits", "16", "-o",
+                    refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("a tone curve is for 8-bit pictures"), std::string::npos) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--exposure", "inf", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  run = runHirsute({"render", model, view, "--trace", "--exposure", "1", "-o",
+                    (folder.path() / "refused.exr").string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_FALSE(fs::exists(refused));
+  EXPECT_FALSE(fs::exists(folder.path() / "refused.exr"));
+}
+
+TEST(TraceCommand, APixelFilterSpreadsTheSamplesAndTheGlRenderRefusesIt) {
+  TemporaryFolder folder;
+  const std::string model = (kCrocus / "wild-crocus.l").string();
+  const std::string view = (kCrocus / "closeup.v").string();
+  const fs::path box = folder.path() / "box.png", gaussian = folder.path() / "gaussian.png";
+  RunResult run = runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24",
+                              "--filter", "box", "-o", box.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "--filter",
+                    "gaussian", "-o", gaussian.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const hirsute::RgbaImage a = hirsute::readPng(box), b = hirsute::readPng(gaussian);
+  ASSERT_EQ(a.width, b.width);
+  EXPECT_NE(a.rgba, b.rgba);
+  const fs::path refused = folder.path() / "refused.png";
+  run = runHirsute({"render", model, view, "--filter", "gaussian", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("pixel filters are for traced pictures"), std::string::npos) << run.err;
+  run =
+      runHirsute({"render", model, view, "--trace", "--filter", "lanczos", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_FALSE(fs::exists(refused));
+}
+
+TEST(TraceCommand, ALensBlursWhatIsOutOfFocusAndTheGlRenderRefusesIt) {
+  TemporaryFolder folder;
+  const std::string model = (kCrocus / "wild-crocus.l").string();
+  const std::string view = (kCrocus / "closeup.v").string();
+  const fs::path sharp = folder.path() / "sharp.png", blurred = folder.path() / "blurred.png";
+  RunResult run = runHirsute(
+      {"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "-o", sharp.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--spp", "2", "--size", "32x24", "--aperture",
+                    "0.5", "--focus", "100", "-o", blurred.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const hirsute::RgbaImage a = hirsute::readPng(sharp), b = hirsute::readPng(blurred);
+  ASSERT_EQ(a.width, b.width);
+  EXPECT_NE(a.rgba, b.rgba);
+  const fs::path refused = folder.path() / "refused.png";
+  run = runHirsute({"render", model, view, "--aperture", "1", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("depth of field is for traced pictures"), std::string::npos) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--focus", "3", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("give the lens an --aperture"), std::string::npos) << run.err;
+  run = runHirsute({"render", model, view, "--trace", "--aperture", "-1", "-o", refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  run = runHirsute({"render", model, view, "--trace", "--aperture", "1", "--focus", "0", "-o",
+                    refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_FALSE(fs::exists(refused));
+}
+
 TEST(TraceCommand, ExportTakesTheTracersLights) {
   TemporaryFolder folder;
   const fs::path pov = folder.path() / "crocus.pov";

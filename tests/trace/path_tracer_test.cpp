@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <vector>
 
 #include "hirsute/viewer/trace/path_tracer.h"
 #include "hirsute/viewer/trace/trace_scene.h"
@@ -225,6 +227,77 @@ TEST(PathTracer, AdaptiveSamplingStopsOnTheFlatBackgroundAndGoesOnWhereItIsNoisy
   EXPECT_GT(background, 500);
   EXPECT_GT(noisy, 200);
   EXPECT_LT(image.meanSamples(), 48);
+}
+
+// The width in pixels over which the middle rows of the sky-lit sphere rise from 10% to 90% of
+// their inside at the disc's left edge (which falls on a pixel boundary), by linear interpolation.
+float edgeWidth(PixelFilterKind filter, int threads = 0, TraceImage* out = nullptr,
+                float aperture = 0, float focus = 0) {
+  SkyLitSphere sky;
+  TraceOptions options;
+  options.samples = 64;
+  options.seed = 5;
+  options.filter = filter;
+  options.threads = threads;
+  options.aperture = aperture;
+  options.focusDistance = focus;
+  const TraceImage image = traceImage(
+      sky.scene, frontCamera(SkyLitSphere::kSide, SkyLitSphere::kSide, 1.5f), sky.lights, options);
+  if (out) *out = image;
+  const int side = SkyLitSphere::kSide;
+  std::vector<float> row(side / 2);
+  for (int x = 0; x < side / 2; ++x) {
+    for (int y = side / 2 - 2; y < side / 2 + 2; ++y) {
+      row[x] += image.at(x, y).g + image.at(side - 1 - x, y).g;
+    }
+  }
+  float inside = 0;
+  for (int x = 14; x < 20; ++x) inside += row[x] / 6;
+  auto crossing = [&](float level) {
+    for (int x = 1; x < side / 2; ++x) {
+      if (row[x] >= level * inside) {
+        return static_cast<float>(x - 1) + (level * inside - row[x - 1]) / (row[x] - row[x - 1]);
+      }
+    }
+    return static_cast<float>(side);
+  };
+  return crossing(0.9f) - crossing(0.1f);
+}
+
+TEST(PathTracer, AGaussianFilterSoftensAnEdgeThatTheBoxKeepsSharp) {
+  const float box = edgeWidth(PixelFilterKind::Box);
+  const float gaussian = edgeWidth(PixelFilterKind::Gaussian);
+  const float mitchell = edgeWidth(PixelFilterKind::Mitchell);
+  std::printf("edge 10-90%% widths: box %.3f, gaussian %.3f, mitchell %.3f pixels\n", box, gaussian,
+              mitchell);
+  EXPECT_LT(box, 1.0f);
+  EXPECT_GT(gaussian, box + 0.4f);
+  EXPECT_GT(mitchell, box + 0.4f);  // its main lobe reaches past the pixel too
+  // The filters keep one picture a seed on any number of threads.
+  for (const PixelFilterKind kind : {PixelFilterKind::Gaussian, PixelFilterKind::Mitchell}) {
+    TraceImage one, three;
+    edgeWidth(kind, 1, &one);
+    edgeWidth(kind, 3, &three);
+    EXPECT_EQ(one.radiance, three.radiance);
+  }
+}
+
+TEST(PathTracer, AThinLensKeepsThePlaneInFocusSharpAndBlursTheRest) {
+  // The camera looks at the sphere's centre from 10 away: its silhouette lies in that plane.
+  const float pinhole = edgeWidth(PixelFilterKind::Box);
+  const float inFocus = edgeWidth(PixelFilterKind::Box, 0, nullptr, 0.5f);
+  const float nearer = edgeWidth(PixelFilterKind::Box, 0, nullptr, 0.5f, 5);
+  std::printf(
+      "edge 10-90%% widths: pinhole %.3f, in focus %.3f, focused at half the distance "
+      "%.3f pixels\n",
+      pinhole, inFocus, nearer);
+  EXPECT_LT(inFocus, pinhole + 0.3f);
+  // Focused at 5, a lens 0.5 across spreads the silhouette over a disc 0.5 across, 8 pixels.
+  EXPECT_GT(nearer, 3.0f);
+  TraceImage one, three;
+  edgeWidth(PixelFilterKind::Box, 1, &one, 0.5f, 5);
+  edgeWidth(PixelFilterKind::Box, 3, &three, 0.5f, 5);
+  EXPECT_EQ(one.radiance, three.radiance);
 }
 
 TEST(PathTracer, AdaptiveSamplingLeavesTheSkyLitSphereUnbiased) {

@@ -15,6 +15,7 @@
 #include "hirsute/viewer/trace/denoise.h"
 #include "hirsute/viewer/trace/hair_bsdf.h"
 #include "hirsute/viewer/trace/surface_bsdf.h"
+#include "hirsute/viewer/trace/texture_lookup.h"
 #include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute::trace {
@@ -387,7 +388,7 @@ class Tracer {
               shape.triangleIndices + 3 * static_cast<std::size_t>(hit.primitive);
           const glm::vec2 uv = (1 - hit.u - hit.v) * shape.texcoords[t[0]] +
                                hit.u * shape.texcoords[t[1]] + hit.v * shape.texcoords[t[2]];
-          const glm::vec3 texel = linearColour(scene_.texture(shape.texture).colourAt(uv));
+          const glm::vec3 texel = linearColour(bilinearColourAt(scene_.texture(shape.texture), uv));
           surface.reflectance *= texel;
           surface.transmittance *= texel;
         }
@@ -474,8 +475,13 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   image.radiance.assign(pixels, glm::vec3(0.0f));
   TraceOptions linear = options;
-  linear.background = linearColour(options.background);
+  linear.background = radianceShownAs(linearColour(options.background), options.display);
   Tracer tracer(scene, lights, linear);
+  const PixelFilter filter(options.filter);
+  const bool box = options.filter == PixelFilterKind::Box;
+  const float focus = options.focusDistance > 0
+                          ? options.focusDistance
+                          : std::max(glm::dot(camera.target - camera.eye, camera.forward), 1e-6f);
   const float aspect = static_cast<float>(image.width) / static_cast<float>(image.height);
   const bool perspective = camera.projection == Projection::Perspective;
   const float tanHalf = std::tan(glm::radians(camera.fieldOfViewY) / 2);
@@ -515,7 +521,9 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
         const std::size_t index =
             static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
             static_cast<std::size_t>(x);
-        if (pixelNoise(sum[index], squares[index], count) > options.noise) return false;
+        if (pixelNoise(sum[index], squares[index], count, options.display) > options.noise) {
+          return false;
+        }
       }
     }
     return true;
@@ -546,7 +554,10 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
                 static_cast<std::size_t>(x);
             Random random =
                 Random::stratified(options.seed, index, static_cast<std::uint32_t>(pass));
-            const glm::vec2 jitter = random.uniform2();
+            // The point in the pixel, or about it by the filter's density (pixel_filter.h).
+            const glm::vec2 u = random.uniform2();
+            const PixelFilter::Sample filtered = filter.sample(u);
+            const glm::vec2 jitter = box ? u : filtered.offset + 0.5f;
             const float sx =
                 (static_cast<float>(x) + jitter.x) / static_cast<float>(image.width) * 2 - 1;
             const float sy =
@@ -568,11 +579,30 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
               near = 0;
               far = camera.farPlane - camera.nearPlane;
             }
+            if (options.aperture > 0) {
+              // A thin lens (pbrt-v4, Sec. 5.2.3): the ray leaves a point of the lens disc
+              // (about the eye, or the ray's start on the near plane) towards where the pinhole
+              // ray meets the plane in focus, so that plane stays sharp and the rest blurs.
+              const float start = glm::dot(origin - camera.eye, camera.forward);
+              const glm::vec3 focused =
+                  origin + direction * ((focus - start) / glm::dot(direction, camera.forward));
+              const glm::vec2 lens = sampleUniformDisk(random.uniform2()) * (options.aperture / 2);
+              origin += lens.x * camera.right + lens.y * camera.up;
+              direction = glm::normalize(focused - origin);
+              const float along = glm::dot(direction, camera.forward);
+              if (perspective) {
+                near = std::max(0.0f, camera.nearPlane / along);
+                far = camera.farPlane / along;
+              } else {
+                far = (camera.farPlane - camera.nearPlane) / along;
+              }
+            }
             FirstHit first;
             glm::vec3 value = tracer.radiance(origin, direction, near, far, random,
                                               options.denoise ? &first : nullptr);
             // A path that found no number is dropped rather than spoiling the pixel.
             if (!std::isfinite(value.x + value.y + value.z)) value = glm::vec3(0.0f);
+            value *= filtered.weight;
             sum[index] += value;
             if (!squares.empty()) squares[index] += glm::dvec3(value) * glm::dvec3(value);
             if (options.denoise) {
@@ -674,16 +704,19 @@ float displayLevel(float linear) {
   return 255 * (v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f);
 }
 
-float pixelNoise(const glm::vec3& sum, const glm::dvec3& squares, std::uint32_t count) {
+float pixelNoise(const glm::vec3& sum, const glm::dvec3& squares, std::uint32_t count,
+                 const DisplayTransform& display) {
   if (count < 2) return 0;
+  const double scale = std::exp2(display.exposure);
   const glm::dvec3 variance = varianceOfMean(glm::dvec3(sum), squares, count);
   float noise = 0;
   for (int c = 0; c < 3; ++c) {
     if (variance[c] == 0) continue;  // every sample alike: the background
     const double mean = sum[c] / static_cast<double>(count);
     const double error = std::sqrt(variance[c]);
-    const float levels = displayLevel(static_cast<float>(mean + error)) -
-                         displayLevel(static_cast<float>(mean - error));
+    const float levels =
+        displayLevel(toneMap(static_cast<float>(scale * (mean + error)), display.tone)) -
+        displayLevel(toneMap(static_cast<float>(scale * (mean - error)), display.tone));
     noise = std::max(noise, levels / 2);
   }
   return noise;
@@ -701,11 +734,11 @@ RgbaImage sampleCountImage(const TraceImage& image, int maximum) {
   return out;
 }
 
-RgbaImage displayImage(const TraceImage& image) {
+RgbaImage displayImage(const TraceImage& image, const DisplayTransform& transform) {
   RgbaImage out(image.width, image.height);
   auto encode = [](float v) { return static_cast<std::uint8_t>(std::lround(displayLevel(v))); };
   for (std::size_t i = 0; i < image.radiance.size(); ++i) {
-    const glm::vec3 c = image.radiance[i];
+    const glm::vec3 c = displayLight(image.radiance[i], transform);
     out.rgba[4 * i] = encode(c.r);
     out.rgba[4 * i + 1] = encode(c.g);
     out.rgba[4 * i + 2] = encode(c.b);

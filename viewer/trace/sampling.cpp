@@ -134,6 +134,12 @@ glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
   return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u.x))};
 }
 
+glm::vec2 sampleUniformDisk(glm::vec2 u) {
+  const float r = std::sqrt(u.x);
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi)};
+}
+
 glm::vec3 sampleUniformCone(glm::vec2 u, float cosMax) {
   const float z = 1.0f - u.x * (1.0f - cosMax);
   const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));

@@ -27,7 +27,9 @@
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/view/png_image.h"
+#include "hirsute/viewer/trace/pixel_filter.h"
 #include "hirsute/viewer/trace/sampling.h"
+#include "hirsute/viewer/trace/tone_curve.h"
 #include "hirsute/viewer/trace/trace_scene.h"
 
 namespace hirsute::trace {
@@ -64,6 +66,15 @@ struct TraceOptions {
   // a pixel or more.
   bool denoise = false;
   glm::vec3 background{0.0f};  // what camera rays that hit nothing see (a display colour)
+  // How the picture will be shown (displayImage): the background is traced as the radiance it
+  // shows as `background`, so that exposure and tone curve leave it as the view asks.
+  DisplayTransform display;
+  // How a pixel's samples spread about it (pixel_filter.h).
+  PixelFilterKind filter = PixelFilterKind::Box;
+  // A thin lens (depth of field): its diameter in world units (0: a pinhole, all sharp) and the
+  // distance from the eye along the line of sight of the plane in focus (0: the point looked at).
+  float aperture = 0;
+  float focusDistance = 0;
   Progress* progress = nullptr;
 };
 
@@ -95,8 +106,9 @@ struct TraceImage {
 TraceImage traceImage(const TraceScene& scene, const Camera& camera, const TraceLights& lights,
                       const TraceOptions& options);
 
-// The picture as a display shows it: sRGB, clamped, 8 bits.
-RgbaImage displayImage(const TraceImage& image);
+// The picture as a display shows it: exposed and tone-mapped by `transform` (tone_curve.h), then
+// sRGB, 8 bits.
+RgbaImage displayImage(const TraceImage& image, const DisplayTransform& transform = {});
 
 // A linear value (1 = white) as 8-bit sRGB display levels, clamped to [0, 255], unrounded.
 float displayLevel(float linear);
@@ -104,8 +116,9 @@ float displayLevel(float linear);
 // The standard error of the mean of `count` samples of sum `sum` and sum of squares `squares`,
 // in display levels: half the distance in display levels between the mean less and the mean
 // plus its standard error in linear light (so that it follows sRGB's slope and its clamp),
-// the most of the three channels. 0 for a single sample.
-float pixelNoise(const glm::vec3& sum, const glm::dvec3& squares, std::uint32_t count);
+// the most of the three channels, as `display` shows them. 0 for a single sample.
+float pixelNoise(const glm::vec3& sum, const glm::dvec3& squares, std::uint32_t count,
+                 const DisplayTransform& display = {});
 
 // Each pixel's sample count as grey, white for `maximum` and black for none.
 RgbaImage sampleCountImage(const TraceImage& image, int maximum);

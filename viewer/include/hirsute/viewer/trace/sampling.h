@@ -68,6 +68,7 @@ inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
 glm::vec3 sampleUniformHemisphere(glm::vec2 u);
 inline constexpr float kUniformHemispherePdf = 1.0f / (2.0f * kPi);
 glm::vec3 sampleCosineHemisphere(glm::vec2 u);  // density cos θ / π
+glm::vec2 sampleUniformDisk(glm::vec2 u);       // the unit disc, density 1 / π
 // Uniform within the cone of half-angle acos(cosMax); density 1 / (2π (1 − cosMax)).
 glm::vec3 sampleUniformCone(glm::vec2 u, float cosMax);
 
