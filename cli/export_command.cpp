@@ -222,7 +222,7 @@ void registerExportCommand(CLI::App& app, Action& action) {
                                      [](const std::string& file) { return file.empty(); });
     if (options->pov.empty() && options->obj.empty() && options->blender.empty() &&
         options->gltf.empty() && noTable) {
-      throw CLI::RequiredError(
+      throw CLI::ValidationError(
           "export needs an output: --pov FILE or --obj FILE or --blender FILE or --gltf FILE" +
           tableFiles + " (or several)");
     }

@@ -449,9 +449,11 @@ TEST(OutputFile, ExportWithoutAnOutputNamesEachOrgansTable) {
   const RunResult run =
       runHirsute({"export", (herb / "herb.l").string(), (herb / "herb.v").string()});
   EXPECT_EQ(run.exitCode, 2) << run.err;
-  EXPECT_NE(run.err.find("export needs an output: --pov FILE or --obj FILE or --blender FILE or "
-                         "--hairs FILE or --feathers FILE (or several)"),
-            std::string::npos)
+  EXPECT_EQ(run.err.rfind("hirsute: error: export needs an output: --pov FILE or --obj FILE or "
+                          "--blender FILE or --gltf FILE or --hairs FILE or --feathers FILE (or "
+                          "several)\n",
+                          0),
+            0u)
       << run.err;
 }
 

@@ -68,23 +68,6 @@ std::string offset(std::uint64_t value, bool present) {
   return present ? std::to_string(value) : "null";
 }
 
-const Material& materialAt(const Scene& scene, int index) {
-  static const Material kDefault{};
-  if (index < 0 || static_cast<std::size_t>(index) >= scene.materials.size()) return kDefault;
-  return scene.materials[static_cast<std::size_t>(index)];
-}
-
-// The lights of the view, by the rule the POV-Ray scene follows (docs/export.md, "Lights").
-std::vector<LightSource> lightsOf(const ViewSettings& view, bool materialMode,
-                                  const Camera& camera) {
-  if (materialMode) return viewLighting(view, true, -camera.forward).lights;
-  if (!view.lights.empty()) return view.lights;
-  LightSource light;
-  light.directional = true;
-  light.vector = view.lightDirection;
-  return {light};
-}
-
 }  // namespace
 
 BlenderWriter::BlenderWriter(std::filesystem::path target, BlenderOptions options)
@@ -116,7 +99,7 @@ int BlenderWriter::sceneMaterial(int material, Shading shading) {
   const std::pair<int, int> key{material, static_cast<int>(shading)};
   if (const auto known = sceneMaterials_.find(key); known != sceneMaterials_.end())
     return known->second;
-  const Material& m = materialAt(*scene_, material);
+  const Material& m = materialOrDefault(*scene_, material);
   std::string name = fmt::format("{}{}", material < 0 ? "mn" : "m", std::abs(material));
   if (shading == Shading::Hair) name += "_hair";
   materials_.push_back({name, m.diffuse, m.specular, m.emission, m.shininess,
@@ -245,7 +228,7 @@ void BlenderWriter::mesh(const TriangleMesh& mesh) {
 void BlenderWriter::line(const LineSegment& line, LineStyle style) {
   // Pixel-wide lines take the fitted picture's pixel; the others are world widths.
   const float scale = style == LineStyle::Pixel ? worldPerPixel_ : 1.0f;
-  const glm::vec3 colour = materialAt(*scene_, line.material).diffuse;
+  const glm::vec3 colour = materialOrDefault(*scene_, line.material).diffuse;
   const bool continues = inGroup_ && groupOrgan_ == "lines" && lineMaterial_ == line.material &&
                          !curve_.empty() && line.from == lineEnd_;
   if (!continues) {
@@ -335,7 +318,8 @@ void BlenderWriter::endScene() {
   const Bounds bounds = scene_->bounds();
   const glm::vec3 centre = bounds.empty() ? options_.view.viewReference : bounds.center();
   json += "\n\"centre\":" + vec(centre) + ",\"size\":" + number(bounds.diagonal()) + ",";
-  const std::vector<LightSource> lights = lightsOf(options_.view, options_.materialMode, camera_);
+  const std::vector<LightSource> lights =
+      exportedLights(options_.view, options_.materialMode, -camera_.forward);
   // GL adds each light's ambient times the material's ambient colour: their sum lights the
   // plant from everywhere (the importer's world, to rays other than the camera's).
   glm::vec3 ambient(kGlobalAmbient);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "hirsute/viewer/export/texture_file.h"
+#include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute {
 namespace {
@@ -20,12 +21,6 @@ std::string materialName(int material, int texture) {
     name += std::to_string(texture + 1);
   }
   return name;
-}
-
-const Material& materialAt(const Scene& scene, int index) {
-  static const Material kDefault{};
-  if (index < 0 || static_cast<std::size_t>(index) >= scene.materials.size()) return kDefault;
-  return scene.materials[static_cast<std::size_t>(index)];
 }
 
 // A UV sphere of radius 1: a point at each pole and stacks - 1 rings of `slices` points between.
@@ -355,7 +350,7 @@ void ObjWriter::writeMaterialLibrary() {
   mtl.put(target_.filename().string());
   mtl.put('\n');
   for (const auto& [index, texture] : materialsUsed_) {
-    const Material& m = materialAt(*scene_, index);
+    const Material& m = materialOrDefault(*scene_, index);
     mtl.put("newmtl ");
     mtl.put(materialName(index, texture));
     mtl.put('\n');

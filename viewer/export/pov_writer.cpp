@@ -31,26 +31,6 @@ glm::vec3 srgbToLinear(const glm::vec3& c) {
   return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)};
 }
 
-const Material& materialAt(const Scene& scene, int index) {
-  static const Material kDefault{};
-  if (index < 0 || static_cast<std::size_t>(index) >= scene.materials.size()) return kDefault;
-  return scene.materials[static_cast<std::size_t>(index)];
-}
-
-// The lights a view lights the plant with. In material mode, by the rule the GL renderer follows
-// (view_lighting.h): its `light:` lines or, without any, OpenGL's light 0 from the eye. In
-// colour-map mode, where the preview shades along the palette instead of lighting, POV-Ray gets
-// the view's `light:` lines when it has any, or else one white light from `light direction:`.
-std::vector<LightSource> lightsOf(const ViewSettings& view, bool materialMode,
-                                  const Camera& camera) {
-  if (materialMode) return viewLighting(view, true, -camera.forward).lights;
-  if (!view.lights.empty()) return view.lights;
-  LightSource light;
-  light.directional = true;
-  light.vector = view.lightDirection;
-  return {light};
-}
-
 std::string materialName(int material) {
   std::string name(material < 0 ? "Mn" : "M");
   name += std::to_string(material < 0 ? -static_cast<long>(material) : material);
@@ -123,7 +103,7 @@ const std::string& PovWriter::useTexture(int material, int texture) {
   if (material == lastMaterial_ && texture == lastTexture_) return lastName_;
   std::string name = textureName(material, texture);
   if (declaredTextures_.insert({material, texture}).second) {
-    writeMaterial(name, material, materialAt(*scene_, material), texture);
+    writeMaterial(name, material, materialOrDefault(*scene_, material), texture);
   }
   lastMaterial_ = material;
   lastTexture_ = texture;
@@ -239,7 +219,8 @@ void PovWriter::writeHeader(const Scene& scene, std::span<const OrganWriter* con
   // GL adds each light's ambient times the material's ambient colour; POV-Ray has one ambient
   // light, their sum (attenuation of point lights aside).
   glm::vec3 ambient(kGlobalAmbient);
-  for (const LightSource& light : lightsOf(options_.view, options_.materialMode, camera_))
+  for (const LightSource& light :
+       exportedLights(options_.view, options_.materialMode, -camera_.forward))
     ambient += light.ambient;
   if (options_.traceLights) {
     // The tracer's sky lights the plant through radiosity, and there is no ambient term.
@@ -359,7 +340,8 @@ void PovWriter::writeLights(const Bounds& bounds) {
     writeTraceLights(bounds);
     return;
   }
-  std::vector<LightSource> lights = lightsOf(options_.view, options_.materialMode, camera_);
+  std::vector<LightSource> lights =
+      exportedLights(options_.view, options_.materialMode, -camera_.forward);
   glm::vec3 centre = bounds.empty() ? options_.view.viewReference : bounds.center();
   float far = 10 * std::max(bounds.diagonal(), 1.0f);
   for (const LightSource& light : lights) {

@@ -89,4 +89,20 @@ int litPaletteEntry(int index, int offset, int count) {
   return std::clamp(index + offset, bank, std::min(bank + 255, last));
 }
 
+std::vector<LightSource> exportedLights(const ViewSettings& view, bool materialMode,
+                                        const glm::vec3& towardsEye) {
+  if (materialMode) return viewLighting(view, true, towardsEye).lights;
+  if (!view.lights.empty()) return view.lights;
+  LightSource light;
+  light.directional = true;
+  light.vector = view.lightDirection;
+  return {light};
+}
+
+const Material& materialOrDefault(const Scene& scene, int index) {
+  static const Material kDefault{};
+  if (index < 0 || static_cast<std::size_t>(index) >= scene.materials.size()) return kDefault;
+  return scene.materials[static_cast<std::size_t>(index)];
+}
+
 }  // namespace hirsute

@@ -65,4 +65,15 @@ glm::vec3 traceLightFallback(const ViewLighting& lighting, const Bounds& plant,
 // emission of a material file.
 glm::vec3 backgroundColor(const Scene& scene, bool materialMode);
 
+// The lights an exported scene (POV-Ray, Blender) lights the plant with. In material mode, by the
+// rule the GL renderer follows: the view's `light:` lines or, without any, OpenGL's light 0 from
+// the eye (`towardsEye`). In colour-map mode, where the preview shades along the palette instead
+// of lighting, the view's `light:` lines when it has any, or else one white light from
+// `light direction:`.
+std::vector<LightSource> exportedLights(const ViewSettings& view, bool materialMode,
+                                        const glm::vec3& towardsEye);
+
+// The Scene's material `index`, or OpenGL's default material for an index it does not have.
+const Material& materialOrDefault(const Scene& scene, int index);
+
 }  // namespace hirsute
