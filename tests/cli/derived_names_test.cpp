@@ -125,6 +125,17 @@ TEST_F(DerivedNames, ExportReplacesALinkedMaterialLibraryBesideTheObj) {
   expectWrittenInPlace("side.obj", "# Hirsute");
 }
 
+// A .gltf's buffer, FILE.bin beside it, is a name Hirsute derives too.
+TEST_F(DerivedNames, ExportReplacesALinkedGltfBufferBesideTheGltf) {
+  plantLink("side.bin");
+  const RunResult run = exportCoat({"--gltf", (out_ / "side.gltf").string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(profile(), "# the user's own file\n");
+  EXPECT_FALSE(fs::is_symlink(out_ / "side.bin"));
+  EXPECT_TRUE(fs::is_regular_file(out_ / "side.bin"));
+  expectWrittenInPlace("side.gltf", "{");
+}
+
 TEST_F(DerivedNames, ExportRefusesAFifoAtTheMaterialLibraryAndWritesNothing) {
   ASSERT_EQ(mkfifo((out_ / "side.mtl").c_str(), 0600), 0);
   const RunResult run = exportCoat({"--obj", (out_ / "side.obj").string()});

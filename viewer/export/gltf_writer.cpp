@@ -173,7 +173,10 @@ void GltfWriter::endScene() {
   file.commit();
   stats_.bytes = bytes.file.size();
   if (!binary && !bytes.buffer.empty()) {
-    ExportFile side(buffer, options_.group);
+    // A name derived from the typed one: created beside it without following a link planted at
+    // the name (output_folder.h).
+    const fs::path folder = buffer.has_parent_path() ? buffer.parent_path() : fs::path(".");
+    ExportFile side(OutputFolder(folder), buffer.filename().string(), options_.group);
     side.putBytes(bytes.buffer.data(), bytes.buffer.size());
     side.commit();
     stats_.bytes += bytes.buffer.size();
