@@ -256,6 +256,9 @@ TEST_F(InputCosts, FurStrandsPointsHaveALimit) {
                           "--size", "80x60", "-o", picture.string(), "--max-vertices", "200000"}),
               "curls.l: error:", message);
   EXPECT_FALSE(fs::exists(picture));
+  // The whole export within the limit takes some 30 s under AddressSanitizer on a busy machine,
+  // past the runs' kill limit: the release build checks it.
+  if (kAddressSanitizer) return;
   const RunResult within = exportPov(model, view);
   EXPECT_EQ(within.exitCode, 0) << within.err;
 }
