@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "hirsute/viewer/trace/sampling.h"
@@ -113,7 +114,8 @@ glm::vec3 rgbOfxyY(const glm::vec3& c) {
 }
 
 SunSky makeSunSky(const SunSkySettings& settings, const glm::vec3& upIn,
-                  const glm::vec3& towardsEye, const glm::vec3& right, int width) {
+                  const glm::vec3& towardsEye, const glm::vec3& right, int width,
+                  std::optional<glm::vec3> groundAlbedo) {
   const glm::vec3 up = glm::normalize(upIn);
   auto across = [&](const glm::vec3& v, const glm::vec3& fallback) {
     const glm::vec3 flat = v - glm::dot(v, up) * up;
@@ -152,8 +154,8 @@ SunSky makeSunSky(const SunSkySettings& settings, const glm::vec3& upIn,
     }
   }
   // The ground below the horizon: Lambertian, lit by the sun and the sky.
-  const glm::vec3 ground =
-      settings.groundAlbedo * (out.sunIrradiance * std::sin(elevation) + skyIrradiance) / kPi;
+  const glm::vec3 ground = groundAlbedo.value_or(glm::vec3(settings.groundAlbedo)) *
+                           (out.sunIrradiance * std::sin(elevation) + skyIrradiance) / kPi;
   for (int y = height / 2; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
@@ -178,7 +180,10 @@ void addViewSky(const TraceSettings& look, const Bounds& plant, const Camera& ca
     return;
   }
   if (!look.sun) return;
-  const SunSky sunSky = makeSunSky(*look.sun, lights.up, -camera.forward, camera.right);
+  // A ground plane's colour is the ground the sky's lower half shows, so that the two meet.
+  const SunSky sunSky =
+      makeSunSky(*look.sun, lights.up, -camera.forward, camera.right, 512,
+                 look.ground ? linearColour(*look.ground) : glm::vec3(look.sun->groundAlbedo));
   lights.environment = sunSky.sky;
   lights.sky = glm::vec3(0.0f);
   lights.skySeen = look.skySeen;

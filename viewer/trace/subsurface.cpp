@@ -39,10 +39,14 @@ void walkIntoSheet(const SubsurfaceMaterial& material, const SurfaceMaterial& ba
   const float entering =
       1 - std::clamp(std::max(surface.specular.r, std::max(surface.specular.g, surface.specular.b)),
                      0.0f, 1.0f);
-  const SlabWalk walk = walkThroughSlab(material, random);
-  const glm::vec3 weight = glm::clamp(walk.weight * modulation * entering, 0.0f, 1.0f);
-  surface.reflectance = walk.transmitted ? glm::vec3(0.0f) : weight;
-  surface.transmittance = walk.transmitted ? weight : glm::vec3(0.0f);
+  glm::vec3 reflected(0.0f), passed(0.0f);
+  for (int k = 0; k < kWalksPerHit; ++k) {
+    const SlabWalk walk = walkThroughSlab(material, random);
+    (walk.transmitted ? passed : reflected) += walk.weight;
+  }
+  const float share = entering / static_cast<float>(kWalksPerHit);
+  surface.reflectance = glm::clamp(reflected * modulation * share, 0.0f, 1.0f);
+  surface.transmittance = glm::clamp(passed * modulation * share, 0.0f, 1.0f);
 }
 
 glm::vec3 singleScatteringAlbedo(const glm::vec3& colour) {

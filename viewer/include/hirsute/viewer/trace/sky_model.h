@@ -24,6 +24,7 @@
 
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/trace/environment_map.h"
@@ -62,15 +63,16 @@ glm::vec3 rgbOfxyY(const glm::vec3& xyY);
 
 // The sun and the sky of `settings` about `up`: the sun's direction, with azimuth 0 towards
 // `towardsEye` and 90 towards `right` (both across `up`), its irradiance in the tracer's units
-// and the sky (and the ground below the horizon) as an environment map of `width` × width/2
-// texels.
+// and the sky (and the ground below the horizon, of `groundAlbedo` when given, else of the
+// settings' grey albedo) as an environment map of `width` × width/2 texels.
 struct SunSky {
   glm::vec3 sunDirection{0, 1, 0};
   glm::vec3 sunIrradiance{0.0f};
   std::shared_ptr<const EnvironmentMap> sky;
 };
 SunSky makeSunSky(const SunSkySettings& settings, const glm::vec3& up, const glm::vec3& towardsEye,
-                  const glm::vec3& right, int width = 512);
+                  const glm::vec3& right, int width = 512,
+                  std::optional<glm::vec3> groundAlbedo = std::nullopt);
 
 // The view file's sky for a plant in `plant` seen with `camera`, into `lights`: with
 // `trace environment:`, its map in place of the hemispherical sky (read beneath the view file's

@@ -50,11 +50,15 @@ struct SlabWalk {
 // A walk from the near face into the slab.
 SlabWalk walkThroughSlab(const SubsurfaceMaterial& material, Random& random);
 
-// A hit on a sheet with subsurface scattering: one walk decides the face the light leaves by, and
-// `surface` (the material `base` as tinted, textured and veined at the hit) becomes a Lambertian
-// lobe on that side of the walk's weight, times what the hit's colour makes of the base's (the
-// veins' and textures' ratio), so that the integrator samples the lights from the exit as from
-// any diffuse surface. What the specular lobe reflects does not enter.
+// A hit on a sheet with subsurface scattering: kWalksPerHit walks estimate the shares that
+// leave by the near face and by the far one, and `surface` (the material `base` as tinted,
+// textured and veined at the hit) becomes two Lambertian lobes of those shares, times what the
+// hit's colour makes of the base's (the veins' and textures' ratio), so that the integrator
+// samples the lights on both sides of the sheet as for its diffuse transmission. The estimates
+// are unbiased and the light is linear in them, so the picture is too; several walks a hit,
+// rather than one that picks a side, keep a backlit petal from the noise of that choice (the
+// walks cost little beside the rays). What the specular lobe reflects does not enter.
+inline constexpr int kWalksPerHit = 8;
 void walkIntoSheet(const SubsurfaceMaterial& material, const SurfaceMaterial& base,
                    SurfaceMaterial& surface, Random& random);
 
