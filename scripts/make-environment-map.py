@@ -5,7 +5,7 @@ OpenEXR file of half floats, made by the OpenEXR layout alone (magic, header, li
 scanlines) so that it needs no library.
 
 The map (docs/trace.md, "Environment map"): a sky from a pale warm horizon to a deeper blue
-zenith, a low sun 12 degrees up, 4 degrees across and some 400 times the sky's radiance, a
+zenith, a low sun 12 degrees up, 4 degrees across and some 3000 times the sky's radiance, a
 brighter glow about it, and below the horizon a dim green ground. Its middle column looks along
 +z; the sun stands at a quarter of the width, towards -x.
 
@@ -41,7 +41,7 @@ def radiance(u, v):
     glow = 1.6 * math.exp(-gamma / 0.25)
     sky = (sky[0] + glow, sky[1] + 0.7 * glow, sky[2] + 0.35 * glow)
     if gamma < math.radians(2.0):
-        return (300.0, 230.0, 160.0)
+        return (2000.0, 1500.0, 1000.0)
     return sky
 
 
