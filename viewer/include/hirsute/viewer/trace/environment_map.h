@@ -78,8 +78,8 @@ class EnvironmentMap {
 };
 
 // What an environment map file may hold: a side of at most kMaxEnvironmentSide texels,
-// kMaxEnvironmentTexels in all (200 MB as floats, as much again for the sampling), and a file
-// of at most kMaxEnvironmentBytes.
+// kMaxEnvironmentTexels in all (some 600 MB while it is decoded, its floats and its sampling
+// tables), and a file of at most kMaxEnvironmentBytes.
 inline constexpr int kMaxEnvironmentSide = 16384;
 inline constexpr std::size_t kMaxEnvironmentTexels = std::size_t{1} << 24;
 inline constexpr std::size_t kMaxEnvironmentBytes = std::size_t{512} << 20;
