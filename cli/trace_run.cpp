@@ -68,6 +68,12 @@ int runTrace(const RenderOptions& o) {
   trace::TraceLights lights =
       trace::traceLights(view.trace, bounds, traceLightFallback(lighting, bounds, -camera.forward));
   try {
+    // A large map takes seconds to decode and to make its sampling tables.
+    std::optional<ProgressHeartbeat> heartbeat;
+    if (!view.trace.environment.empty()) {
+      progress.begin("reading the environment map", Progress::Unit::None);
+      heartbeat.emplace(progress);
+    }
     trace::addViewSky(view.trace, bounds, camera, lights);
   } catch (const DiagnosticError& e) {
     progress.clear();
