@@ -337,6 +337,7 @@ std::string LiveModel::createEditorFile(const std::string& what) {
 
 std::string LiveModel::runEditorCommand(const ViewCommand& c) {
   const int index = c.numbers.empty() ? 0 : static_cast<int>(c.numbers[0]);
+  if (c.kind == Kind::Color || c.kind == Kind::Material) scriptedEntry_ = index;
   auto fileFor = [&](PaletteDocument::Kind kind) -> std::optional<std::size_t> {
     const auto file = palette_->fileOf(index);
     if (!file || palette_->files()[*file].history.current().kind != kind) return std::nullopt;

@@ -132,9 +132,11 @@ void drawControlPanels(LiveModel& live) {
         (title.empty() ? fileName : title + " (" + fileName + ")") + "###panel" + fileName;
     ImGui::SetNextWindowPos(ImVec2(right - 8, 40 + 30.0f * static_cast<float>(p)),
                             ImGuiCond_FirstUseEver, ImVec2(1, 0));
-    ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.85f);
-    if (ImGui::Begin(windowName.c_str(), nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+    if (ImGui::Begin(windowName.c_str(), nullptr,
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize)) {
+      // Sliders of a fixed width, the window as wide as their names need.
+      ImGui::PushItemWidth(180);
       if (!entry.error.empty()) {
         ImGui::PushTextWrapPos(0);
         ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", entry.error.c_str());
@@ -145,6 +147,7 @@ void drawControlPanels(LiveModel& live) {
                                                              : "Edit the panel###edit"))
           drawEditor(live, p);
       }
+      ImGui::PopItemWidth();
     }
     ImGui::End();
   }

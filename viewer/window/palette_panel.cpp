@@ -30,13 +30,18 @@ void drawGrid(const PaletteDocument& document, PaletteUiState& state) {
       if (column > 0) ImGui::SameLine();
       ImGui::PushID(index);
       const bool selected = index == state.selected;
-      if (selected) ImGui::PushStyleVar(ImGuiStyleVar_FrameBorderSize, 2.0f);
       const std::string label = "colour " + std::to_string(index);
       if (ImGui::ColorButton(label.c_str(), colorOf(colorAt(document, index)),
                              ImGuiColorEditFlags_NoAlpha | ImGuiColorEditFlags_NoDragDrop,
                              ImVec2(cell, cell)))
         state.selected = index;
-      if (selected) ImGui::PopStyleVar();
+      if (selected) {
+        // Outlined in white, as vlab's palette outlines the selected colour.
+        const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
+        ImGui::GetWindowDrawList()->AddRect(ImVec2(low.x - 1, low.y - 1),
+                                            ImVec2(high.x + 1, high.y + 1),
+                                            IM_COL32(255, 255, 255, 255), 0, 0, 2);
+      }
       ImGui::PopID();
     }
   }
@@ -61,6 +66,12 @@ void drawPalettePanel(LiveModel& live, PaletteUiState& state, bool* open) {
     if (ImGui::Button("Create a material file (.mat)")) live.createEditorFile("materials");
     ImGui::End();
     return;
+  }
+  // The entry a script edited is the one shown.
+  if (live.scriptedEntry() >= 0 && live.scriptedEntry() != state.scripted) {
+    state.scripted = live.scriptedEntry();
+    state.selected = state.scripted % 256;
+    if (const auto file = palette.fileOf(state.scripted)) state.file = *file;
   }
   state.file = std::min(state.file, palette.files().size() - 1);
   if (palette.files().size() > 1) {

@@ -153,6 +153,9 @@ class LiveModel {
   std::string undoEdit(const std::string& editor, bool redo = false);
   std::string saveEditor(const std::string& editor);
   std::string createEditorFile(const std::string& what);
+  // The colour index the script's last `color` or `material` command edited (-1: none), which
+  // the editor's window selects.
+  int scriptedEntry() const { return scriptedEntry_; }
 
   // Animation: Run plays the frames of the .a to the last one, Step shows the next frame.
   bool animating() const { return animating_; }
@@ -237,6 +240,7 @@ class LiveModel {
   std::unique_ptr<PaletteEditor> palette_;
   std::unique_ptr<PanelEditor> panels_;
   std::string lastEditor_;  // "colors" or "panel": what undo and redo act on
+  int scriptedEntry_ = -1;
 
   // Script state
   std::size_t scriptIndex_ = 0;

@@ -15,6 +15,7 @@ struct PaletteUiState {
   std::size_t file = 0;  // of PaletteEditor::files()
   int selected = 1;      // the entry edited, 0..255
   bool editing = false;  // a widget is being dragged: its changes are one edit
+  int scripted = -1;     // the script's entry last selected (LiveModel::scriptedEntry)
 };
 
 void drawPalettePanel(LiveModel& live, PaletteUiState& state, bool* open);
