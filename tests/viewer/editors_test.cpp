@@ -187,6 +187,45 @@ TEST(PaletteEditorTest, EditsAreUndoneAndSavedAtomicallyInTheModelsFolder) {
   EXPECT_EQ(saved.substr(0, 36), original.substr(0, 36));
   // Nothing is left beside it (the temporary file was renamed over it).
   EXPECT_EQ(std::distance(fs::directory_iterator(folder.path), fs::directory_iterator()), 1);
+  // The viewer reads its own save back (its watcher sees the change): the history stays.
+  editor.reload();
+  EXPECT_TRUE(editor.undo(0)) << "undo reaches past the save";
+  // Another program's change starts the history anew.
+  ASSERT_TRUE(editor.redo(0));
+  writeBytes(map, original);
+  editor.reload();
+  EXPECT_FALSE(editor.files()[0].history.canUndo());
+  EXPECT_EQ(paletteBytes(editor.files()[0].history.current()), original);
+}
+
+TEST(PanelEditorTest, APanelMadeSavedAndReadBackKeepsItsHistory) {
+  TempFolder folder("panel_history");
+  fs::copy_file(kFixtures / "plant.l", folder.path / "plant.l");
+  PanelEditor editor(folder.path, "plant");
+  EXPECT_TRUE(editor.panels().empty());
+  const auto constants = findDefineConstants(readBytes(kFixtures / "plant.l"));
+  std::size_t created = 99;
+  ASSERT_EQ(editor.create(constants, &created), "");
+  ASSERT_EQ(created, 0u);
+  const std::string made = readBytes(folder.path / "plant.pnl");
+  EXPECT_EQ(made, controlPanelText(makeControlPanel(constants, "plant", "plant.l")));
+  EXPECT_NE(editor.create(constants), "") << "an existing panel is not replaced";
+
+  ControlPanel next = editor.panels()[0].history.current();
+  setPanelRange(next, 0, 1, 40, "plant.pnl");
+  ASSERT_TRUE(editor.edit(0, next));
+  ASSERT_EQ(editor.save(0), "");
+  editor.reload();
+  ASSERT_EQ(editor.panels().size(), 1u);
+  EXPECT_EQ(editor.lastEdited(), std::optional<std::size_t>(0));
+  ASSERT_TRUE(editor.undo(0));
+  ASSERT_EQ(editor.save(0), "");
+  EXPECT_EQ(readBytes(folder.path / "plant.pnl"), made);
+  // A control's #define, as awkped sets it: the value over the message's scale.
+  const auto define = editor.activate(0, 1, 305, constants);
+  ASSERT_TRUE(define);
+  EXPECT_EQ(define->first, "ANGLE");
+  EXPECT_EQ(define->second, "30.5");
 }
 
 TEST(PaletteEditorTest, AFileOutsideTheModelsFolderIsNotWritten) {
@@ -242,6 +281,11 @@ TEST(PaletteEditorTest, AModelWithoutAColourFileCreatesOneOfItsColours) {
     EXPECT_LT(glm::length(read[i].diffuse - shown[i].diffuse), 0.003f) << i;
   EXPECT_NE(editor.create(PaletteDocument::Kind::Materials, shown), "")
       << "bank 1 has its file now";
+  // A second colour file in the folder would leave the builder without one (docs/files.md).
+  PaletteEditor another(folder.path, "other", ColorFiles{});
+  const std::string refused = another.create(PaletteDocument::Kind::Materials, shown);
+  EXPECT_NE(refused.find("has the colour file plant.map already"), std::string::npos) << refused;
+  EXPECT_FALSE(fs::exists(folder.path / "other.mat"));
 }
 
 TEST(ControlPanelTest, ItemsAndTheirDefineMessagesAreRead) {

@@ -122,7 +122,17 @@ std::string PaletteEditor::save(std::size_t file) {
 
 void PaletteEditor::reload() {
   for (File& f : files_) {
-    if (!f.history.modified()) read(f);
+    if (f.history.modified()) continue;
+    // A file that still holds what the editor saved keeps its history (a save is read back by
+    // the viewer's watcher as any change is); another program's change starts a new one.
+    if (f.error.empty()) {
+      try {
+        if (readPaletteDocument(f.path, f.history.current().kind) == f.history.current()) continue;
+      } catch (const DiagnosticError&) {
+        // read() keeps the message.
+      }
+    }
+    read(f);
   }
 }
 
@@ -136,6 +146,13 @@ std::string PaletteEditor::create(PaletteDocument::Kind kind, const std::vector<
   std::error_code error;
   if (std::filesystem::exists(std::filesystem::symlink_status(folder_ / name, error)))
     return (folder_ / name).string() + ": exists already; not replaced";
+  // The builder takes a folder's colour file only when it is the only one (docs/files.md).
+  for (const auto& entry : std::filesystem::directory_iterator(folder_, error)) {
+    if (paletteKindOf(entry.path())) {
+      return "the model's folder has the colour file " + entry.path().filename().string() +
+             " already; name it with -m or -M to edit it";
+    }
+  }
   const PaletteDocument document = paletteFromMaterials(
       std::vector<Material>(
           shown.begin(),

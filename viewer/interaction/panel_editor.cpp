@@ -40,6 +40,8 @@ void PanelEditor::reload() {
   }
   std::sort(found.begin(), found.end());
   if (found.size() > kMaxPanels) found.resize(kMaxPanels);
+  const std::filesystem::path lastPath =
+      lastEdited_ && *lastEdited_ < panels_.size() ? panels_[*lastEdited_].path : "";
   std::vector<Panel> panels;
   const ModelFolder model(folder_);
   for (const std::filesystem::path& path : found) {
@@ -54,7 +56,14 @@ void PanelEditor::reload() {
     if (kept != panels_.end()) panel.state = kept->state;
     std::string text, failure;
     const std::string name = path.filename().string();
-    if (!model.read(name, text, failure, kMaxPanelBytes + 1)) {
+    const bool read = model.read(name, text, failure, kMaxPanelBytes + 1);
+    // A panel that still holds what the editor saved keeps its history and its controls.
+    if (read && kept != panels_.end() && kept->error.empty() &&
+        text == controlPanelText(kept->history.current())) {
+      panels.push_back(std::move(*kept));
+      continue;
+    }
+    if (!read) {
       panel.error = path.string() + ": cannot read the panel: " + failure;
     } else {
       try {
@@ -65,8 +74,13 @@ void PanelEditor::reload() {
     }
     panels.push_back(std::move(panel));
   }
+  // The panel edited last keeps its place in undo's reach when it is still there.
+  std::optional<std::size_t> last;
+  for (std::size_t p = 0; p < panels.size() && !lastPath.empty(); ++p) {
+    if (panels[p].path == lastPath) last = p;
+  }
   panels_ = std::move(panels);
-  lastEdited_.reset();
+  lastEdited_ = last;
 }
 
 int PanelEditor::shownValue(std::size_t panel, std::size_t item,
