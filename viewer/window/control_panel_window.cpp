@@ -84,6 +84,8 @@ void drawEditor(LiveModel& live, std::size_t p) {
       ControlPanel next = panel;
       setPanelRange(next, i, range[0], range[1], file);
       live.editPanel(p, std::move(next));
+      ImGui::PopID();
+      return;  // `panel` was the history's present state, which has moved on
     }
     ImGui::SameLine();
     if (ImGui::SmallButton("remove")) {
@@ -96,13 +98,15 @@ void drawEditor(LiveModel& live, std::size_t p) {
     ImGui::PopID();
   }
   // A slider for a constant no slider sets yet.
-  if (ImGui::BeginCombo("add slider", "a constant…")) {
+  if (ImGui::BeginCombo("add slider", "for a constant")) {
     for (const DefineConstant& c : live.constants()) {
       if (findPanelItem(panel, PanelItem::Type::Slider, c.name)) continue;
       if (ImGui::Selectable(c.name.c_str())) {
         ControlPanel next = panel;
         addConstantSlider(next, c, file);
         live.editPanel(p, std::move(next));
+        ImGui::EndCombo();
+        return;  // the panel has moved on
       }
     }
     ImGui::EndCombo();
