@@ -63,6 +63,7 @@ LiveModel::LiveModel(const LiveModelOptions& options, ModelBuilder builder, Live
   const std::string stem = options_.lsystemFile.stem().string();
   palette_ = std::make_unique<PaletteEditor>(folder, stem, options_.colorFiles);
   panels_ = std::make_unique<PanelEditor>(folder, stem);
+  reportEditorFiles();
   readAnimation();
   readConstants();
   if (options_.watch) {
@@ -177,6 +178,7 @@ void LiveModel::reloadFiles() {
   readConstants();
   palette_->reload();
   panels_->reload();
+  reportEditorFiles();
   reloadSerial_ = worker_->request(wanted_);
   changed_ = true;
 }
@@ -232,6 +234,14 @@ void LiveModel::revertDefines() {
 }
 
 // ---- editors ----
+
+void LiveModel::reportEditorFiles() {
+  // A panel the viewer cannot read is shown with its message; the terminal has it too (a
+  // colour file's error is the build's).
+  for (const PanelEditor::Panel& panel : panels_->panels()) {
+    if (!panel.error.empty()) std::cerr << panel.error << '\n';
+  }
+}
 
 void LiveModel::showPalette() {
   changed_ = true;

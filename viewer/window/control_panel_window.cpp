@@ -142,7 +142,7 @@ void drawControlPanels(LiveModel& live) {
       // Sliders of a fixed width, the window as wide as their names need.
       ImGui::PushItemWidth(180);
       if (!entry.error.empty()) {
-        ImGui::PushTextWrapPos(0);
+        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 360);
         ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", entry.error.c_str());
         ImGui::PopTextWrapPos();
       } else {

@@ -195,6 +195,7 @@ class LiveModel {
   void readConstants();
   void advanceAnimation();
   void showPalette();
+  void reportEditorFiles();
   std::string editorFailure(const std::string& message);
   std::string runEditorCommand(const ViewCommand& command);
   class OrganHost;
