@@ -92,11 +92,17 @@ int runView(const ViewOptions& o) {
     options.extraFiles.push_back(o.model.environmentFile);
     try {
       Diagnostics quiet;
-      const ProgramCommand command = parseProgramCommand(readCommunicationFile(o.model.environmentFile, quiet));
+      const ProgramCommand command =
+          parseProgramCommand(readCommunicationFile(o.model.environmentFile, quiet));
       if (command.specification) options.extraFiles.push_back(*command.specification);
     } catch (const DiagnosticError&) {
       // The build reports what is wrong with the .e file.
     }
+  }
+  // The colour files the builder will read (-m, -M, or the folder's one), for the editors.
+  {
+    Diagnostics quiet;
+    options.colorFiles = colorFilesFor(model, quiet);
   }
   const glm::ivec2 size = imageSize(o.size);
   options.width = size.x;

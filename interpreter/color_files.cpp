@@ -37,10 +37,6 @@ std::vector<std::uint8_t> readBytes(const std::filesystem::path& file, const std
                                    std::istreambuf_iterator<char>());
 }
 
-glm::vec3 colorAt(const std::vector<std::uint8_t>& bytes, std::size_t offset) {
-  return glm::vec3(bytes[offset], bytes[offset + 1], bytes[offset + 2]) / 255.0f;
-}
-
 // A colour of a colour map as a Material: cpfg's colour-map mode draws the colour itself, so it
 // is both the ambient and the diffuse colour; nothing is specular or emitted.
 Material flatMaterial(const glm::vec3& color) {
@@ -84,21 +80,20 @@ glm::vec3 fromHsv(float hueDegrees, float saturation, float value) {
 
 }  // namespace
 
-std::vector<Material> loadColorMap(const std::filesystem::path& file) {
+ColorMapColors readColorMapFile(const std::filesystem::path& file) {
   const std::vector<std::uint8_t> bytes = readBytes(file, "colour map");
   if (bytes.size() != kColorMapBytes) {
     throw DiagnosticError(fileLocation(file),
                           "a colour map has exactly 768 bytes (256 RGB colours), this file has " +
                               std::to_string(bytes.size()));
   }
-  std::vector<Material> palette;
-  palette.reserve(kColorsPerBank);
+  ColorMapColors colors;
   for (std::size_t i = 0; i < kColorsPerBank; ++i)
-    palette.push_back(flatMaterial(colorAt(bytes, 3 * i)));
-  return palette;
+    colors[i] = {bytes[3 * i], bytes[3 * i + 1], bytes[3 * i + 2]};
+  return colors;
 }
 
-std::vector<Material> loadMaterials(const std::filesystem::path& file) {
+std::vector<MaterialRecord> readMaterialFile(const std::filesystem::path& file) {
   const std::vector<std::uint8_t> bytes = readBytes(file, "material");
   if (bytes.empty() || bytes.size() % kMaterialRecordBytes != 0) {
     throw DiagnosticError(fileLocation(file),
@@ -107,20 +102,81 @@ std::vector<Material> loadMaterials(const std::filesystem::path& file) {
                               std::to_string(bytes.size() % kMaterialRecordBytes) +
                               " left over after the last whole record)");
   }
-  // Indices without a record keep OpenGL's default material, which Material{} is.
-  std::vector<Material> palette(kColorsPerBank);
+  std::vector<MaterialRecord> records;
   for (std::size_t offset = 0; offset < bytes.size(); offset += kMaterialRecordBytes) {
     // {u8 index; u8 transparency; u8 ambient[3]; u8 diffuse[3]; u8 emission[3];
-    //  u8 specular[3]; u8 shininess}; a later record for the same index replaces an earlier one.
-    Material& material = palette[bytes[offset]];
-    material.transparency = bytes[offset + 1] / 255.0f;
-    material.ambient = colorAt(bytes, offset + 2);
-    material.diffuse = colorAt(bytes, offset + 5);
-    material.emission = colorAt(bytes, offset + 8);
-    material.specular = colorAt(bytes, offset + 11);
-    // OpenGL accepts shininess up to 128; cpfg hands larger bytes to it, which refuses them.
-    material.shininess = std::min<float>(bytes[offset + 14], 128.0f);
+    //  u8 specular[3]; u8 shininess}
+    const std::uint8_t* b = &bytes[offset];
+    MaterialRecord record;
+    record.index = b[0];
+    record.transparency = b[1];
+    record.ambient = {b[2], b[3], b[4]};
+    record.diffuse = {b[5], b[6], b[7]};
+    record.emission = {b[8], b[9], b[10]};
+    record.specular = {b[11], b[12], b[13]};
+    record.shininess = b[14];
+    records.push_back(record);
   }
+  return records;
+}
+
+std::string colorMapFileBytes(const ColorMapColors& colors) {
+  std::string bytes;
+  bytes.reserve(kColorMapBytes);
+  for (const auto& color : colors) {
+    for (std::uint8_t c : color) bytes.push_back(static_cast<char>(c));
+  }
+  return bytes;
+}
+
+std::string materialFileBytes(const std::vector<MaterialRecord>& records) {
+  std::string bytes;
+  bytes.reserve(records.size() * kMaterialRecordBytes);
+  auto put = [&bytes](std::uint8_t b) { bytes.push_back(static_cast<char>(b)); };
+  for (const MaterialRecord& r : records) {
+    put(r.index);
+    put(r.transparency);
+    for (const auto* field : {&r.ambient, &r.diffuse, &r.emission, &r.specular}) {
+      for (std::uint8_t c : *field) put(c);
+    }
+    put(r.shininess);
+  }
+  return bytes;
+}
+
+Material colorMapMaterial(const std::array<std::uint8_t, 3>& color) {
+  return flatMaterial(glm::vec3(color[0], color[1], color[2]) / 255.0f);
+}
+
+Material recordMaterial(const MaterialRecord& record) {
+  auto color = [](const std::array<std::uint8_t, 3>& c) {
+    return glm::vec3(c[0], c[1], c[2]) / 255.0f;
+  };
+  Material material;
+  material.transparency = record.transparency / 255.0f;
+  material.ambient = color(record.ambient);
+  material.diffuse = color(record.diffuse);
+  material.emission = color(record.emission);
+  material.specular = color(record.specular);
+  // OpenGL accepts shininess up to 128; cpfg hands larger bytes to it, which refuses them.
+  material.shininess = std::min<float>(record.shininess, 128.0f);
+  return material;
+}
+
+std::vector<Material> loadColorMap(const std::filesystem::path& file) {
+  const ColorMapColors colors = readColorMapFile(file);
+  std::vector<Material> palette;
+  palette.reserve(kColorsPerBank);
+  for (const auto& color : colors) palette.push_back(colorMapMaterial(color));
+  return palette;
+}
+
+std::vector<Material> loadMaterials(const std::filesystem::path& file) {
+  // Indices without a record keep OpenGL's default material, which Material{} is; a later record
+  // for the same index replaces an earlier one.
+  std::vector<Material> palette(kColorsPerBank);
+  for (const MaterialRecord& record : readMaterialFile(file))
+    palette[record.index] = recordMaterial(record);
   return palette;
 }
 

@@ -362,6 +362,92 @@ TEST_F(ViewCommandTest, EveryShippedModelOpens) {
   }
 }
 
+// ---- the editors (docs/viewer.md, "Editors") ----
+
+TEST_F(ViewCommandTest, AMaterialEditIsDrawnAtOnceAndSavedInCpfgsFormat) {
+  fs::path herb = copyModel("herb");
+  const std::string shippedMat = readText(herb / "herb.mat");
+  std::string model = (herb / "herb.l").string() + " " + (herb / "herb.v").string();
+  ASSERT_EQ(view(model,
+                 "screenshot before.png; material 2 diffuse 1 0 0; screenshot edited.png; "
+                 "save colors; wait-reload 30; screenshot saved.png; quit"),
+            0)
+      << stderr_;
+  EXPECT_GT(differentPixels(shot("before.png"), shot("edited.png")), kPixels / 100)
+      << "the internodes are drawn red";
+  EXPECT_LT(differentPixels(shot("edited.png"), shot("saved.png")), kPixels / 200)
+      << "derived again from the saved file, the same plant";
+  // Material 2's record: index, transparency, ambient, then the diffuse colour.
+  const std::string saved = readText(herb / "herb.mat");
+  ASSERT_EQ(saved.size(), shippedMat.size());
+  std::size_t record = 0;
+  while (record < saved.size() && saved[record] != 2) record += 15;
+  ASSERT_LT(record, saved.size());
+  EXPECT_EQ(saved.substr(record + 5, 3), std::string("\xff\0\0", 3));
+  std::string expected = shippedMat;
+  expected.replace(record + 5, 3, std::string("\xff\0\0", 3));
+  EXPECT_EQ(saved, expected) << "only the three bytes edited changed";
+}
+
+TEST_F(ViewCommandTest, AModelWithoutColoursCreatesAColourMapAndEditsIt) {
+  fs::path herb = copyModel("herb");
+  fs::remove(herb / "herb.mat");
+  std::string model = (herb / "herb.l").string() + " " + (herb / "herb.v").string();
+  ASSERT_EQ(view(model,
+                 "create colors; wait-reload 30; screenshot created.png; color 2 1 0 0; "
+                 "screenshot red.png; save colors; quit"),
+            0)
+      << stderr_;
+  EXPECT_NE(stdout_.find("herb.map (the model's folder's one colour file"), std::string::npos)
+      << stdout_;
+  const std::string map = readText(herb / "herb.map");
+  ASSERT_EQ(map.size(), 768u);
+  EXPECT_EQ(map.substr(6, 3), std::string("\xff\0\0", 3));
+  EXPECT_GT(differentPixels(shot("created.png"), shot("red.png")), kPixels / 100);
+}
+
+TEST_F(ViewCommandTest, APanelsSliderDerivesThePlantAgainAndItsRangeIsSaved) {
+  fs::path herb = copyModel("herb");
+  const std::string lsystem = readText(herb / "herb.l");
+  std::string model = (herb / "herb.l").string() + " " + (herb / "herb.v").string();
+  ASSERT_EQ(view(model,
+                 "screenshot before.png; panel slider BRANCH_ANGLE 80; screenshot wide.png; "
+                 "panel range BRANCH_ANGLE 0 120; save panel; quit"),
+            0)
+      << stderr_;
+  EXPECT_GT(differentPixels(shot("before.png"), shot("wide.png")), kPixels / 100);
+  const std::string panel = readText(herb / "herb.pnl");
+  EXPECT_NE(panel.find("min/max: 0 120\nvalue: 40\nmessage: d BRANCH_ANGLE %d"), std::string::npos)
+      << panel;
+  EXPECT_EQ(readText(herb / "herb.l"), lsystem) << "the .l is written only by 'save'";
+}
+
+TEST_F(ViewCommandTest, EachEditorIsDrawnInTheWindow) {
+  fs::path herb = shipped("herb");
+  std::string model = (herb / "herb.l").string() + " " + (herb / "herb.v").string();
+  ASSERT_EQ(view(model,
+                 "panel off; controls off; screenshot plain.png ui; colors on; "
+                 "screenshot colors.png ui; colors off; controls on; screenshot panel.png ui; "
+                 "quit"),
+            0)
+      << stderr_;
+  RgbaImage plain = shot("plain.png");
+  // Each window covers a good part of the picture's right half, where the plant alone was.
+  auto rightHalfChanged = [&](const RgbaImage& image) {
+    std::size_t count = 0;
+    for (int y = 0; y < kHeight; ++y) {
+      for (int x = kWidth / 2; x < kWidth; ++x) {
+        glm::ivec4 d = glm::ivec4(image.pixel(x, y)) - glm::ivec4(plain.pixel(x, y));
+        if (std::abs(d.r) + std::abs(d.g) + std::abs(d.b) > 24) ++count;
+      }
+    }
+    return count;
+  };
+  EXPECT_GT(rightHalfChanged(shot("colors.png")), kPixels / 8) << "the colours editor";
+  EXPECT_GT(rightHalfChanged(shot("panel.png")), kPixels / 20) << "the herb's panel";
+  EXPECT_EQ(differentPixels(plain, shot("plain.png")), 0u);
+}
+
 TEST_F(ViewCommandTest, AScriptMistakeIsBadInput) {
   fs::path herb = shipped("herb");
   EXPECT_EQ(view((herb / "herb.l").string(), "rotate 30; spin"), 2);

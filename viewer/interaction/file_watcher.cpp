@@ -16,8 +16,8 @@ std::filesystem::path normal(const std::filesystem::path& p) {
 
 bool FileWatcher::isModelFile(const std::filesystem::path& file) {
   static const std::set<std::string> kExtensions = {
-      ".l", ".v",   ".a",   ".map", ".mat",  ".con",    ".s",   ".func", ".fset", ".crv", ".inc",
-      ".h", ".txt", ".dat", ".e",   ".cset", ".csetng", ".srf", ".bsp",  ".tga",  ".rgb"};
+      ".l",   ".v", ".a",   ".map", ".mat", ".con",  ".s",      ".func", ".fset", ".crv", ".inc",
+      ".pnl", ".h", ".txt", ".dat", ".e",   ".cset", ".csetng", ".srf",  ".bsp",  ".tga", ".rgb"};
   std::string name = file.filename().string();
   if (name.empty() || name[0] == '.') return false;
   std::string extension = file.extension().string();

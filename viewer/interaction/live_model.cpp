@@ -59,6 +59,11 @@ LiveModel::LiveModel(const LiveModelOptions& options, ModelBuilder builder, Live
     organs_.push_back(type->make(*hosts_.back()));
   }
   worker_ = std::make_unique<ModelWorker>(std::move(builder), std::move(wake));
+  const std::filesystem::path folder = options_.lsystemFile.parent_path();
+  const std::string stem = options_.lsystemFile.stem().string();
+  palette_ = std::make_unique<PaletteEditor>(folder, stem, options_.colorFiles);
+  panels_ = std::make_unique<PanelEditor>(folder, stem);
+  reportEditorFiles();
   readAnimation();
   readConstants();
   if (options_.watch) {
@@ -126,6 +131,12 @@ void LiveModel::applyBuild(ModelBuild build) {
   }
   error_ = animationError_;  // a broken .a stays reported until it is fixed
   model_ = build.model;
+  // Unsaved palette edits stay on the plant through every build.
+  if (palette_->modified()) {
+    auto edited = std::make_shared<ViewerModel>(*model_);
+    palette_->apply(edited->scene.materials);
+    model_ = std::move(edited);
+  }
   // Texture images are read by the model without a model file's extension: watched by name.
   if (watcher_) {
     for (const TextureDeclaration& texture : model_->view.textures) watcher_->watch(texture.file);
@@ -165,6 +176,9 @@ void LiveModel::reloadFiles() {
   for (const auto& organ : organs_) organ->filesChanged();
   readAnimation();
   readConstants();
+  palette_->reload();
+  panels_->reload();
+  reportEditorFiles();
   reloadSerial_ = worker_->request(wanted_);
   changed_ = true;
 }
@@ -217,6 +231,184 @@ void LiveModel::revertDefines() {
   changedDefines_.clear();
   wanted_.defines.clear();
   request();
+}
+
+// ---- editors ----
+
+void LiveModel::reportEditorFiles() {
+  // A panel the viewer cannot read is shown with its message; the terminal has it too (a
+  // colour file's error is the build's).
+  for (const PanelEditor::Panel& panel : panels_->panels()) {
+    if (!panel.error.empty()) std::cerr << panel.error << '\n';
+  }
+}
+
+void LiveModel::showPalette() {
+  changed_ = true;
+  if (!model_) return;
+  auto edited = std::make_shared<ViewerModel>(*model_);
+  palette_->apply(edited->scene.materials);
+  model_ = std::move(edited);
+  view_.upload(*model_);
+}
+
+void LiveModel::editPalette(std::size_t file, PaletteDocument next, bool continuing) {
+  if (!palette_->edit(file, std::move(next), continuing)) return;
+  lastEditor_ = "colors";
+  showPalette();
+}
+
+void LiveModel::editPanel(std::size_t panel, ControlPanel next) {
+  changed_ = true;
+  if (panels_->edit(panel, std::move(next))) lastEditor_ = "panel";
+}
+
+void LiveModel::activatePanelItem(std::size_t panel, std::size_t item, int value) {
+  changed_ = true;
+  if (auto define = panels_->activate(panel, item, value, constants_)) {
+    setDefine(define->first, define->second);
+    if (options_.saveDefines) saveDefines();
+  }
+}
+
+std::string LiveModel::editorFailure(const std::string& message) {
+  if (!message.empty()) {
+    error_ = "hirsute: error: " + message;
+    // A script's failure is reported at its command.
+    if (!options_.script) std::cerr << error_ << '\n';
+    changed_ = true;
+  }
+  return message;
+}
+
+std::string LiveModel::undoEdit(const std::string& editor, bool redo) {
+  const std::string which = editor.empty()          ? lastEditor_
+                            : editor == "materials" ? "colors"
+                                                    : editor;
+  const char* verb = redo ? "redo" : "undo";
+  if (which == "colors") {
+    const auto file = palette_->lastEdited();
+    if (!file || !(redo ? palette_->redo(*file) : palette_->undo(*file)))
+      return editorFailure(std::string("nothing to ") + verb + " in the colours");
+    showPalette();
+  } else if (which == "panel") {
+    const auto panel = panels_->lastEdited();
+    if (!panel || !(redo ? panels_->redo(*panel) : panels_->undo(*panel)))
+      return editorFailure(std::string("nothing to ") + verb + " in the panels");
+    changed_ = true;
+  } else {
+    return editorFailure(std::string("nothing to ") + verb + ": no editor has been used");
+  }
+  return {};
+}
+
+std::string LiveModel::saveEditor(const std::string& editor) {
+  changed_ = true;
+  if (editor == "colors" || editor == "materials") {
+    if (palette_->empty())
+      return editorFailure("the model has no colour file to save; 'create colors' makes one");
+    for (std::size_t f = 0; f < palette_->files().size(); ++f) {
+      if (!palette_->files()[f].history.modified()) continue;
+      if (std::string failure = palette_->save(f); !failure.empty()) return editorFailure(failure);
+      std::cout << "wrote " << palette_->files()[f].path.string() << '\n';
+    }
+    return {};
+  }
+  if (panels_->panels().empty())
+    return editorFailure("the model's folder has no panel (.pnl) to save");
+  for (std::size_t p = 0; p < panels_->panels().size(); ++p) {
+    if (!panels_->panels()[p].history.modified()) continue;
+    if (std::string failure = panels_->save(p); !failure.empty()) return editorFailure(failure);
+    std::cout << "wrote " << panels_->panels()[p].path.string() << '\n';
+  }
+  return {};
+}
+
+std::string LiveModel::createEditorFile(const std::string& what) {
+  changed_ = true;
+  if (what == "panel") {
+    std::size_t created = 0;
+    if (std::string failure = panels_->create(constants_, &created); !failure.empty())
+      return editorFailure(failure);
+    std::cout << "wrote " << panels_->panels()[created].path.string() << '\n';
+    return {};
+  }
+  const auto kind =
+      what == "materials" ? PaletteDocument::Kind::Materials : PaletteDocument::Kind::ColorMap;
+  const std::vector<Material> shown = model_ ? model_->scene.materials : defaultPalette();
+  if (std::string failure = palette_->create(kind, shown); !failure.empty())
+    return editorFailure(failure);
+  // The builder takes the one colour file of the model's folder (docs/files.md), so the next
+  // build reads it; nothing else needs to name it.
+  std::cout << "wrote " << palette_->files().front().path.string()
+            << " (the model's folder's one colour file: used without -m or -M)\n";
+  return {};
+}
+
+std::string LiveModel::runEditorCommand(const ViewCommand& c) {
+  const int index = c.numbers.empty() ? 0 : static_cast<int>(c.numbers[0]);
+  if (c.kind == Kind::Color || c.kind == Kind::Material) scriptedEntry_ = index;
+  auto fileFor = [&](PaletteDocument::Kind kind) -> std::optional<std::size_t> {
+    const auto file = palette_->fileOf(index);
+    if (!file || palette_->files()[*file].history.current().kind != kind) return std::nullopt;
+    if (!palette_->files()[*file].error.empty()) return std::nullopt;
+    return file;
+  };
+  switch (c.kind) {
+    case Kind::Color: {
+      const auto file = fileFor(PaletteDocument::Kind::ColorMap);
+      if (!file) {
+        return "no colour map (.map) holds colour " + std::to_string(index) +
+               "; 'create colors' makes one for a model without colour files";
+      }
+      PaletteDocument next = palette_->files()[*file].history.current();
+      setColor(next, index % 256, glm::vec3(c.numbers[1], c.numbers[2], c.numbers[3]));
+      editPalette(*file, std::move(next));
+      return {};
+    }
+    case Kind::Material: {
+      const auto file = fileFor(PaletteDocument::Kind::Materials);
+      if (!file) {
+        return "no material file (.mat) holds material " + std::to_string(index) +
+               "; 'create materials' makes one for a model without colour files";
+      }
+      PaletteDocument next = palette_->files()[*file].history.current();
+      const MaterialField field = *materialFieldNamed(c.words[0]);
+      glm::vec3 values(static_cast<float>(c.numbers[1]));
+      if (isColorField(field)) values = glm::vec3(c.numbers[1], c.numbers[2], c.numbers[3]);
+      setMaterialField(next, index % 256, field, values);
+      editPalette(*file, std::move(next));
+      return {};
+    }
+    case Kind::Undo:
+    case Kind::Redo:
+      return undoEdit(c.words.empty() ? "" : c.words[0], c.kind == Kind::Redo);
+    case Kind::Create:
+      return createEditorFile(c.words[0]);
+    case Kind::Panel: {
+      const std::string& what = c.words[0];
+      for (std::size_t p = 0; p < panels_->panels().size(); ++p) {
+        const ControlPanel& panel = panels_->panels()[p].history.current();
+        const auto type = what == "button" ? PanelItem::Type::Button : PanelItem::Type::Slider;
+        const auto item = findPanelItem(panel, type, c.words[1]);
+        if (!item) continue;
+        if (what == "range") {
+          ControlPanel next = panel;
+          setPanelRange(next, *item, std::stoi(c.words[2]), std::stoi(c.words[3]),
+                        panels_->panels()[p].path.string());
+          editPanel(p, std::move(next));
+        } else {
+          const int value = what == "button" ? (c.words[2] == "on" ? 1 : 0) : std::stoi(c.words[2]);
+          activatePanelItem(p, *item, value);
+        }
+        return {};
+      }
+      return "no " + what + (what == "range" ? " of a slider" : "") + " named '" + c.words[1] +
+             "' in the model's panels (.pnl)";
+    }
+    default:
+      return {};
+  }
 }
 
 // ---- animation ----
@@ -402,14 +594,38 @@ void LiveModel::runScript() {
         shown_.help = c.words[0] == "on";
         break;
       case Kind::Panel:
-        shown_.panel = c.words[0] == "on";
+        if (c.words[0] == "on" || c.words[0] == "off") {
+          shown_.panel = c.words[0] == "on";
+          break;
+        }
+        [[fallthrough]];
+      case Kind::Color:
+      case Kind::Material:
+      case Kind::Undo:
+      case Kind::Redo:
+      case Kind::Create:
+        if (std::string failure = runEditorCommand(c); !failure.empty()) {
+          scriptFailure(c, failure);
+          return;
+        }
+        break;
+      case Kind::Colors:
+        shown_.colors = c.words[0] == "on";
+        break;
+      case Kind::Controls:
+        shown_.controls = c.words[0] == "on";
         break;
       case Kind::Define:
         setDefine(c.words[0], c.words[1]);
         if (options_.saveDefines) saveDefines();
         break;
       case Kind::Save:
-        saveDefines();
+        if (c.words.empty() || c.words[0] == "constants") {
+          saveDefines();
+        } else if (std::string failure = saveEditor(c.words[0]); !failure.empty()) {
+          scriptFailure(c, failure);
+          return;
+        }
         break;
       case Kind::WaitReload:
         waitingForReloadsAbove_ = reloadsApplied_;

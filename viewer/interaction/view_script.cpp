@@ -1,8 +1,10 @@
 #include "hirsute/viewer/interaction/view_script.h"
 
 #include <cctype>
+#include <charconv>
 #include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -40,13 +42,20 @@ std::map<std::string, Signature, std::less<>> makeSignatures() {
       {"wireframe", {Kind::Wireframe, "o"}},
       {"define", {Kind::Define, "ww"}},
       {"help", {Kind::Help, "o"}},
-      {"panel", {Kind::Panel, "o"}},
-      {"save", {Kind::Save, ""}},
+      {"panel", {Kind::Panel, "wWWW"}},
+      {"save", {Kind::Save, "W"}},
       {"wait-reload", {Kind::WaitReload, "N"}},
       {"sleep", {Kind::Sleep, "n"}},
       {"measure", {Kind::Measure, "N"}},
       {"screenshot", {Kind::Screenshot, "wW"}},
       {"quit", {Kind::Quit, ""}},
+      {"color", {Kind::Color, "nnnn"}},
+      {"material", {Kind::Material, "nwnNN"}},
+      {"undo", {Kind::Undo, "W"}},
+      {"redo", {Kind::Redo, "W"}},
+      {"create", {Kind::Create, "w"}},
+      {"colors", {Kind::Colors, "o"}},
+      {"controls", {Kind::Controls, "o"}},
   };
   const auto organs = liveOrgans();
   auto add = [&table](std::string_view name, const Signature& signature) {
@@ -73,6 +82,75 @@ struct Token {
   std::string text;
   int line, column;
 };
+
+// The editors' commands' arguments beyond their pattern (docs/viewer.md, "Editors"); throws at
+// the token that is wrong.
+void checkEditorCommand(const ViewCommand& command, const std::vector<Token>& tokens,
+                        const std::shared_ptr<const std::string>& name) {
+  auto at = [&](std::size_t token) {
+    return SourceLocation{name, tokens[token].line, tokens[token].column};
+  };
+  auto oneOf = [&](std::size_t token, std::initializer_list<std::string_view> allowed) {
+    for (std::string_view a : allowed) {
+      if (tokens[token].text == a) return;
+    }
+    std::string list;
+    for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+    throw DiagnosticError(at(token),
+                          "expected one of " + list + ", found '" + tokens[token].text + "'");
+  };
+  // Colour indices of cpfg's twelve banks of 256.
+  auto colorIndex = [&](double index) {
+    if (index < 0 || index >= 12 * 256 || index != static_cast<int>(index))
+      throw DiagnosticError(at(1), "a colour index is a whole number from 0 to 3071");
+  };
+  switch (command.kind) {
+    case Kind::Color:
+      colorIndex(command.numbers[0]);
+      break;
+    case Kind::Material: {
+      colorIndex(command.numbers[0]);
+      oneOf(2, {"ambient", "diffuse", "specular", "emission", "shininess", "transparency"});
+      const bool color = command.words[0] != "shininess" && command.words[0] != "transparency";
+      if (command.numbers.size() != (color ? 4u : 2u)) {
+        throw DiagnosticError(at(2), "'" + command.words[0] + "' takes " +
+                                         (color ? "three values (R G B)" : "one value"));
+      }
+      break;
+    }
+    case Kind::Undo:
+    case Kind::Redo:
+      if (tokens.size() > 1) oneOf(1, {"colors", "materials", "panel"});
+      break;
+    case Kind::Save:
+      if (tokens.size() > 1) oneOf(1, {"constants", "colors", "materials", "panel"});
+      break;
+    case Kind::Create:
+      oneOf(1, {"colors", "materials", "panel"});
+      break;
+    case Kind::Panel: {
+      oneOf(1, {"on", "off", "slider", "button", "range"});
+      const std::string& what = command.words[0];
+      const std::size_t wanted = what == "on" || what == "off" ? 1 : what == "range" ? 4 : 3;
+      if (tokens.size() - 1 != wanted) {
+        throw DiagnosticError(at(1), "'panel " + what + "' takes " + std::to_string(wanted - 1) +
+                                         " argument" + (wanted == 2 ? "" : "s"));
+      }
+      if (what == "button") oneOf(3, {"on", "off"});
+      for (std::size_t t = 3; what != "button" && t < tokens.size(); ++t) {
+        int value = 0;
+        const char* end = tokens[t].text.data() + tokens[t].text.size();
+        auto [ptr, error] = std::from_chars(tokens[t].text.data(), end, value);
+        if (error != std::errc() || ptr != end)
+          throw DiagnosticError(
+              at(t), "expected a whole number (a slider's value), found '" + tokens[t].text + "'");
+      }
+      break;
+    }
+    default:
+      break;
+  }
+}
 
 }  // namespace
 
@@ -155,6 +233,7 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
         command.words.push_back(t.text);
       }
     }
+    checkEditorCommand(command, tokens, name);
     if (command.kind == Kind::Screenshot) {
       // The picture's format is its name's extension's, as for `hirsute render -o`.
       std::string extension = std::filesystem::path(command.words[0]).extension().string();

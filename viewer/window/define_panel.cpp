@@ -50,7 +50,9 @@ DefinePanel drawDefinePanel(const std::vector<DefineConstant>& constants,
       ImGui::SameLine();
       panel.revert = ImGui::Button("Revert");
       ImGui::EndDisabled();
+      ImGui::SameLine();
     }
+    panel.makePanel = ImGui::Button("Make a .pnl");
   }
   ImGui::End();
   return panel;

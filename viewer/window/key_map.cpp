@@ -12,7 +12,7 @@ namespace {
 using KeyLines = std::vector<std::pair<std::string, std::string>>;
 
 // The letters the window keeps for itself (viewer_window.cpp's onKey): no organ may take one.
-constexpr std::string_view kWindowLetters = "NPFARWSCQ";
+constexpr std::string_view kWindowLetters = "NPFARWSCMKQ";
 
 // Each organ's lines (live_organ.h): its key, its ctrl + click, its actions' keys.
 void addOrganKeys(KeyLines& keys) {
@@ -56,6 +56,8 @@ KeyLines makeKeyMap() {
       {"W", "wireframe on / off"},
       {"S", "save a PNG screenshot (MODEL-N.png in the current folder)"},
       {"C", "show / hide the constants panel"},
+      {"M", "show / hide the colours and materials editor"},
+      {"K", "show / hide the model's control panels (.pnl)"},
       {"F1, ?", "show / hide this help"},
       {"Q, Escape", "quit"},
   };

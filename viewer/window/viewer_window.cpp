@@ -20,10 +20,12 @@
 #include "hirsute/viewer/gl/gl_functions.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/interaction/live_organ.h"
+#include "hirsute/viewer/window/control_panel_window.h"
 #include "hirsute/viewer/window/define_panel.h"
 #include "hirsute/viewer/window/glfw_window.h"
 #include "hirsute/viewer/window/multisample_target.h"
 #include "hirsute/viewer/window/overlays.h"
+#include "hirsute/viewer/window/palette_panel.h"
 
 namespace hirsute {
 
@@ -113,6 +115,7 @@ class Viewer final : public LiveModelView {
   bool keepShown_ = false;
   RgbaImage shown_;
   int screenshots_ = 0;
+  PaletteUiState paletteUi_;
 };
 
 bool Viewer::open() {
@@ -233,7 +236,10 @@ void Viewer::drawUi() {
     }
     if (panel.save) live_->saveDefines();
     if (panel.revert) live_->revertDefines();
+    if (panel.makePanel) live_->createEditorFile("panel");
   }
+  if (live_->shown().colors) drawPalettePanel(*live_, paletteUi_, &live_->shown().colors);
+  if (live_->shown().controls) drawControlPanels(*live_);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
@@ -351,6 +357,8 @@ void Viewer::onKey(int key, int mods) {
     case GLFW_KEY_W: shown.wireframe = !shown.wireframe; break;
     case GLFW_KEY_S: ++screenshots_; screenshotHere(screenshotFile); break;
     case GLFW_KEY_C: shown.panel = !shown.panel; break;
+    case GLFW_KEY_M: shown.colors = !shown.colors; break;
+    case GLFW_KEY_K: shown.controls = !shown.controls; break;
     case GLFW_KEY_F1: shown.help = !shown.help; break;
     case GLFW_KEY_SLASH: if (mods & GLFW_MOD_SHIFT) shown.help = !shown.help; break;
     case GLFW_KEY_Q: case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, GLFW_TRUE); break;

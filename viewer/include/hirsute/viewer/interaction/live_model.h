@@ -24,6 +24,8 @@
 #include "hirsute/viewer/interaction/live_organ.h"
 #include "hirsute/viewer/interaction/model_worker.h"
 #include "hirsute/viewer/interaction/mouse_camera.h"
+#include "hirsute/viewer/interaction/palette_editor.h"
+#include "hirsute/viewer/interaction/panel_editor.h"
 #include "hirsute/viewer/interaction/view_script.h"
 #include "hirsute/viewer/view/camera.h"
 
@@ -41,12 +43,16 @@ struct LiveModelOptions {
   // Constants changed in the panel are written back into the .l at once (`--save`).
   bool saveDefines = false;
   bool watch = true;  // live reloading
+  // The model's colour files, as the builder finds them (-m, -M or the folder's one), for the
+  // palette and material editors.
+  ColorFiles colorFiles;
 };
 
 // What is drawn, as the keys and the script switch it.
 struct ShownParts {
   bool wireframe = false;
-  bool help = false, panel = true;  // the key map overlay and the constants panel
+  bool help = false, panel = true;       // the key map overlay and the constants panel
+  bool colors = false, controls = true;  // the palette editor and the .pnl panels
   // The organs hidden, by name (live_organ.h); every other one is shown.
   std::set<std::string, std::less<>> hiddenOrgans;
 
@@ -130,6 +136,27 @@ class LiveModel {
   void saveDefines();
   void revertDefines();
 
+  // The editors (docs/viewer.md, "Editors"): the palette and material editor, whose edits show
+  // on the plant at once without a build, and the model's control panels (.pnl).
+  PaletteEditor& palette() { return *palette_; }
+  const PaletteEditor& palette() const { return *palette_; }
+  PanelEditor& panels() { return *panels_; }
+  const PanelEditor& panels() const { return *panels_; }
+  // A palette file edited (palette_editor.h): the plant is drawn with its present state.
+  void editPalette(std::size_t file, PaletteDocument next, bool continuing = false);
+  // A panel file edited (panel_editor.h).
+  void editPanel(std::size_t panel, ControlPanel next);
+  // Control `item` of panel `panel` set to `value`: the #define it is bound to changes.
+  void activatePanelItem(std::size_t panel, std::size_t item, int value);
+  // Editor actions, by the view script's names ("colors" or "materials", "panel"): each returns
+  // its failure's message (empty on success), which also shows on the error line.
+  std::string undoEdit(const std::string& editor, bool redo = false);
+  std::string saveEditor(const std::string& editor);
+  std::string createEditorFile(const std::string& what);
+  // The colour index the script's last `color` or `material` command edited (-1: none), which
+  // the editor's window selects.
+  int scriptedEntry() const { return scriptedEntry_; }
+
   // Animation: Run plays the frames of the .a to the last one, Step shows the next frame.
   bool animating() const { return animating_; }
   void runAnimation();
@@ -167,6 +194,10 @@ class LiveModel {
   void readAnimation();
   void readConstants();
   void advanceAnimation();
+  void showPalette();
+  void reportEditorFiles();
+  std::string editorFailure(const std::string& message);
+  std::string runEditorCommand(const ViewCommand& command);
   class OrganHost;
   void runScript();
   void scriptFailure(const ViewCommand& command, const std::string& message);
@@ -205,6 +236,12 @@ class LiveModel {
   // Constants of the .l (the panel)
   std::vector<DefineConstant> constants_;
   std::map<std::string, std::string> changedDefines_;
+
+  // The editors
+  std::unique_ptr<PaletteEditor> palette_;
+  std::unique_ptr<PanelEditor> panels_;
+  std::string lastEditor_;  // "colors" or "panel": what undo and redo act on
+  int scriptedEntry_ = -1;
 
   // Script state
   std::size_t scriptIndex_ = 0;

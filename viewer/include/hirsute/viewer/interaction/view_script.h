@@ -14,6 +14,12 @@
 //   wireframe on|off polygons as their edges
 //   help on|off      the key map overlay;  panel on|off  the constants panel
 //   define NAME VAL  set a #define constant and re-derive;  save  write the constants to the .l
+//   color I R G B    colour I of the colour map (0..1 each); material I FIELD V…  a material's
+//                    ambient|diffuse|specular|emission R G B, shininess S or transparency T
+//   panel slider|button|range NAME …  a control of the model's .pnl panels, or a slider's range
+//   undo [E], redo [E]  the last edit of the editor E (colors, panel; default the last edited)
+//   save colors|panel  write the editor's file;  create colors|materials|panel  make one
+//   colors on|off, controls on|off  the palette editor and the .pnl panels
 //   wait-reload [S]  wait (up to S seconds, default 10) until a model file changes and is re-read
 //   sleep S          wait S seconds, drawing
 //   NAME on|off      show or hide the organ NAME (live_organ.h: hairs, feathers …), as its key
@@ -53,7 +59,15 @@ struct ViewCommand {
     Sleep,
     Measure,
     Screenshot,
-    Quit
+    Quit,
+    // The editors (docs/viewer.md, "Editors")
+    Color,
+    Material,
+    Undo,
+    Redo,
+    Create,
+    Colors,
+    Controls
   };
   Kind kind;
   std::vector<double> numbers;

@@ -17,8 +17,9 @@ struct DefinePanel {
     bool finished = false;    // the slider was let go (or a typed value entered)
   };
   std::vector<Edit> edits;
-  bool save = false;    // "Save into the .l"
-  bool revert = false;  // "Revert": back to the file's values
+  bool save = false;       // "Save into the .l"
+  bool revert = false;     // "Revert": back to the file's values
+  bool makePanel = false;  // "Make a .pnl": a vlab control panel of these constants
 };
 
 // Draws the panel for this frame: `constants` as the file has them, `changed` the values set
