@@ -56,6 +56,8 @@ ModelBuild buildForViewer(const ModelOptions& base, const ModelRequest& request,
     model->bounds = model->scene.bounds();
     model->view = built.resources.view;
     model->materialMode = built.resources.materialMode;
+    model->functionFiles = built.model.functions.functionFiles;
+    model->curveFiles = built.model.functions.curveFiles;
     build.model = std::move(model);
   } catch (const DiagnosticError& e) {
     build.error = e.diagnostic().text();

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "hirsute/viewer/interaction/live_organ.h"
+#include "hirsute/viewer/interaction/shape_workbench.h"
 
 namespace hirsute {
 namespace {
@@ -47,6 +48,9 @@ std::map<std::string, Signature, std::less<>> makeSignatures() {
       {"measure", {Kind::Measure, "N"}},
       {"screenshot", {Kind::Screenshot, "wW"}},
       {"quit", {Kind::Quit, ""}},
+      {"function", {Kind::Shape, "wwNNNN"}},
+      {"contour", {Kind::Shape, "wwNNNN"}},
+      {"surface", {Kind::Shape, "wwNNNN"}},
   };
   const auto organs = liveOrgans();
   auto add = [&table](std::string_view name, const Signature& signature) {
@@ -170,6 +174,10 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
         command.words[1] != "shown") {
       throw DiagnosticError(SourceLocation{name, tokens[2].line, tokens[2].column},
                             "expected 'ui', 'shown' or nothing after the file name");
+    }
+    if (command.kind == Kind::Shape) {
+      command.words.insert(command.words.begin(), head.text);
+      checkShapeCommand(command);
     }
     script.push_back(std::move(command));
   }

@@ -57,6 +57,7 @@ KeyLines makeKeyMap() {
       {"S", "save a PNG screenshot (MODEL-N.png in the current folder)"},
       {"C", "show / hide the constants panel"},
       {"F1, ?", "show / hide this help"},
+      {"F6, F7, F8", "show / hide the function, contour and surface editors"},
       {"Q, Escape", "quit"},
   };
   keys.insert(keys.end(), after.begin(), after.end());

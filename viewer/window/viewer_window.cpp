@@ -21,6 +21,7 @@
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/interaction/live_organ.h"
 #include "hirsute/viewer/window/define_panel.h"
+#include "hirsute/viewer/window/shape_panels.h"
 #include "hirsute/viewer/window/glfw_window.h"
 #include "hirsute/viewer/window/multisample_target.h"
 #include "hirsute/viewer/window/overlays.h"
@@ -113,6 +114,7 @@ class Viewer final : public LiveModelView {
   bool keepShown_ = false;
   RgbaImage shown_;
   int screenshots_ = 0;
+  ShapePanels shapePanels_;
 };
 
 bool Viewer::open() {
@@ -234,6 +236,10 @@ void Viewer::drawUi() {
     if (panel.save) live_->saveDefines();
     if (panel.revert) live_->revertDefines();
   }
+  drawFunctionPanel(live_->shapes(), shapePanels_.function);
+  drawContourPanel(live_->shapes(), shapePanels_.contour);
+  drawSurfacePanel(live_->shapes(), shapePanels_.surface);
+  live_->shapesEdited();
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
@@ -337,6 +343,7 @@ void Viewer::onKey(int key, int mods) {
   ShownParts& shown = live_->shown();
   std::string screenshotFile =
       options_.lsystemFile.stem().string() + "-" + std::to_string(screenshots_ + 1) + ".png";
+  const auto toggle = [](bool& open) { open = !open; };
   // One line a key, in the order of the key map (key_map.cpp).
   // clang-format off
   switch (key) {
@@ -352,6 +359,9 @@ void Viewer::onKey(int key, int mods) {
     case GLFW_KEY_S: ++screenshots_; screenshotHere(screenshotFile); break;
     case GLFW_KEY_C: shown.panel = !shown.panel; break;
     case GLFW_KEY_F1: shown.help = !shown.help; break;
+    case GLFW_KEY_F6: toggle(live_->shapes().functionView.open); break;
+    case GLFW_KEY_F7: toggle(live_->shapes().contourView.open); break;
+    case GLFW_KEY_F8: toggle(live_->shapes().surfaceView.open); break;
     case GLFW_KEY_SLASH: if (mods & GLFW_MOD_SHIFT) shown.help = !shown.help; break;
     case GLFW_KEY_Q: case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, GLFW_TRUE); break;
     default: organKey(key); break;

@@ -24,6 +24,7 @@
 #include "hirsute/viewer/interaction/live_organ.h"
 #include "hirsute/viewer/interaction/model_worker.h"
 #include "hirsute/viewer/interaction/mouse_camera.h"
+#include "hirsute/viewer/interaction/shape_workbench.h"
 #include "hirsute/viewer/interaction/view_script.h"
 #include "hirsute/viewer/view/camera.h"
 
@@ -130,6 +131,11 @@ class LiveModel {
   void saveDefines();
   void revertDefines();
 
+  // The shape editors' files (shape_workbench.h); after an edit, shapesEdited() re-derives from
+  // the files written.
+  ShapeWorkbench& shapes() { return shapes_; }
+  void shapesEdited();
+
   // Animation: Run plays the frames of the .a to the last one, Step shows the next frame.
   bool animating() const { return animating_; }
   void runAnimation();
@@ -205,6 +211,8 @@ class LiveModel {
   // Constants of the .l (the panel)
   std::vector<DefineConstant> constants_;
   std::map<std::string, std::string> changedDefines_;
+
+  ShapeWorkbench shapes_;
 
   // Script state
   std::size_t scriptIndex_ = 0;
