@@ -134,5 +134,17 @@ TEST_F(ShapeWorkbenchTest, AFileChangedElsewhereIsReadAgain) {
   EXPECT_FALSE(document.history.canUndo()) << "its history starts anew";
 }
 
+// A file beneath another folder than the model's is never written, whatever names it.
+TEST_F(ShapeWorkbenchTest, NothingIsWrittenOutsideTheModelsFolder) {
+  fs::create_directories(folder_ / "model");
+  workbench_.follow(model_, folder_ / "model");
+  const std::string function = readText(folder_ / "herb.fset");
+  const std::string refused = run("function leafsize point 2 0.25 0.5");
+  EXPECT_NE(refused.find("cannot write"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("leaves the model's folder"), std::string::npos) << refused;
+  EXPECT_EQ(readText(folder_ / "herb.fset"), function);
+  EXPECT_TRUE(workbench_.takeWritten().empty());
+}
+
 }  // namespace
 }  // namespace hirsute
