@@ -58,6 +58,7 @@ ModelBuild buildForViewer(const ModelOptions& base, const ModelRequest& request,
     model->materialMode = built.resources.materialMode;
     model->functionFiles = built.model.functions.functionFiles;
     model->curveFiles = built.model.functions.curveFiles;
+    model->functionSamples = built.model.functions.functionSamples;
     build.model = std::move(model);
   } catch (const DiagnosticError& e) {
     build.error = e.diagnostic().text();

@@ -950,6 +950,7 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
       try {
         out.functions.push_back(FunctionCurve::load(path, samples.value_or(0)));
         out.functionFiles.push_back(path);
+        out.functionSamples.push_back(samples.value_or(0));
       } catch (const DiagnosticError& error) {
         rethrowAtViewLine(fileAt, "function", fileName, error);
       }
@@ -958,6 +959,7 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
       try {
         out.functions = FunctionCurve::loadSet(path);
         out.functionFiles = {path};
+        out.functionSamples = {0};
       } catch (const DiagnosticError& error) {
         rethrowAtViewLine(fileAt, "function set", fileName, error);
       }

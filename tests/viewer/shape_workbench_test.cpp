@@ -146,5 +146,22 @@ TEST_F(ShapeWorkbenchTest, NothingIsWrittenOutsideTheModelsFolder) {
   EXPECT_TRUE(workbench_.takeWritten().empty());
 }
 
+// A version 0 function takes its table's size from the view file's `function:` line: the editor
+// draws it through the same table.
+TEST_F(ShapeWorkbenchTest, AVersion0FunctionKeepsTheViewsSampleCount) {
+  const std::string text = "range: 0.0 1.0\npoints: 4\n0.0 0.0\n0.2 0.9\n0.5 0.1\n1.0 1.0\n";
+  std::ofstream(folder_ / "wave.func", std::ios::binary) << text;
+  model_.functionFiles = {folder_ / "wave.func"};
+  model_.functionSamples = {4};
+  workbench_.follow(model_, folder_);
+  ASSERT_EQ(workbench_.functions().size(), 1u);
+  const CurveDocument& document = workbench_.functions().front();
+  EXPECT_EQ(document.viewSamples, 4);
+  const FunctionCurve shown = document.history.current().function(0, document.viewSamples);
+  const FunctionCurve derived = FunctionCurve::parse(text, "wave.func", 4);
+  for (double x : {0.1, 0.4, 0.55, 0.9}) EXPECT_EQ(shown.evaluate(x), derived.evaluate(x));
+  EXPECT_NE(shown.evaluate(0.55), FunctionCurve::parse(text, "wave.func", 0).evaluate(0.55));
+}
+
 }  // namespace
 }  // namespace hirsute

@@ -98,6 +98,11 @@ void ShapeWorkbench::follow(const ViewerModel& model, const std::filesystem::pat
                             set ? CurveFile::Kind::FunctionSet : CurveFile::Kind::Function);
   });
   for (CurveDocument& document : functions_) {
+    for (std::size_t i = 0; i < model.functionFiles.size() && i < model.functionSamples.size();
+         ++i) {
+      if (normal(model.functionFiles[i]) == document.path)
+        document.viewSamples = model.functionSamples[i];
+    }
     // A function is named by its `name:` too (a function set's items only by theirs).
     for (const CurveFileBlock& block : document.history.current().blocks()) {
       if (!block.name.empty() && !named(functions_, block.name))

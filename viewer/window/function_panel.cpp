@@ -95,9 +95,8 @@ void drawFunctionPanel(ShapeWorkbench& workbench, ShapePanelState& state) {
     draw->AddLine(canvas.toScreen(rows[i].point[0], rows[i].point[1]),
                   canvas.toScreen(rows[i + 1].point[0], rows[i + 1].point[1]), kPolygonColour);
   }
-  // The view file's sample count matters only for version 0 files, whose curve is then drawn
-  // exactly rather than through cpfg's table.
-  const FunctionCurve curve = file.function(view.block, 0);
+  // With the view file's sample count, which a version 0 file's table takes.
+  const FunctionCurve curve = file.function(view.block, shown.viewSamples);
   std::vector<ImVec2> line;
   for (int i = 0; i <= kCurveSamples; ++i) {
     const double x = static_cast<double>(i) / kCurveSamples;

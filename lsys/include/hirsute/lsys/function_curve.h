@@ -174,6 +174,8 @@ struct ViewFunctions {
   // The files read, for the viewer's editors: the `function:` files in order, or the
   // `function set:` file; the `curve:` files in order.
   std::vector<std::filesystem::path> functionFiles, curveFiles;
+  // The sample count on each `function:` line (0: none given, or a `function set:`).
+  std::vector<int> functionSamples;
 };
 
 // Reads the `function:`, `function set:` and `curve:` lines of a preprocessed view file and loads

@@ -48,6 +48,7 @@ struct ViewerModel {
   int derivationLength = 0;  // the file's
   // The `function:`/`function set:` and `curve:` files the derivation read (the editors').
   std::vector<std::filesystem::path> functionFiles, curveFiles;
+  std::vector<int> functionSamples;  // the count on each `function:` line (0: none)
 };
 
 struct ModelBuild {

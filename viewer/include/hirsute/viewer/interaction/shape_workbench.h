@@ -28,6 +28,9 @@ struct ShapeDocument {
   std::vector<std::string> names;  // what the view script calls it: file name, stem, its names
   EditHistory<File> history;
   std::string written;  // the text last read or written, to tell an edit made elsewhere
+  // A version 0 `.func`'s samples come from its `function:` line (0: none); cpfg evaluates it
+  // through a table of that many.
+  int viewSamples = 0;
 };
 
 using CurveDocument = ShapeDocument<CurveFile>;
