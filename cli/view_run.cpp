@@ -56,6 +56,9 @@ ModelBuild buildForViewer(const ModelOptions& base, const ModelRequest& request,
     model->bounds = model->scene.bounds();
     model->view = built.resources.view;
     model->materialMode = built.resources.materialMode;
+    model->functionFiles = built.model.functions.functionFiles;
+    model->curveFiles = built.model.functions.curveFiles;
+    model->functionSamples = built.model.functions.functionSamples;
     build.model = std::move(model);
   } catch (const DiagnosticError& e) {
     build.error = e.diagnostic().text();

@@ -181,7 +181,10 @@ const ContourSamples& ContourLibrary::samples(int id, int sides) const {
 Contour loadContour(const std::string& file) {
   // The reader is the one curveX/Y/Z use (lsys): every cuspy version, cver 1.0 to 1.3 and the
   // older `version: 1.4` curve format.
-  const ContourCurve curve = ContourCurve::load(file);
+  return contourOfCurve(ContourCurve::load(file), file);
+}
+
+Contour contourOfCurve(const ContourCurve& curve, const std::string& file) {
   Contour contour;
   contour.name = curve.name();
   contour.closed = curve.closed();

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/core/edited_text.h"
 #include "hirsute/core/line_reader.h"
 
 namespace hirsute {
@@ -76,7 +77,7 @@ glm::dvec3 asPoint(const std::vector<double>& v) {
   return glm::dvec3(v[0], v[1], v[2]);
 }
 
-BezierPatch readPatch(SurfaceReader& reader) {
+BezierPatch readPatch(SurfaceReader& reader, std::array<int, 4>& rowLines) {
   BezierPatch patch;
   patch.name = std::string(reader.take("a patch name").text);
 
@@ -116,9 +117,9 @@ BezierPatch readPatch(SurfaceReader& reader) {
   }
 
   for (int row = 0; row < 4; ++row) {
-    const TextLine& line =
-        reader.take("row " + std::to_string(row + 1) + " of the control points of patch " +
-                    inQuotes(patch.name));
+    const TextLine& line = reader.take("row " + std::to_string(row + 1) +
+                                       " of the control points of patch " + inQuotes(patch.name));
+    rowLines[static_cast<std::size_t>(row)] = line.number;
     if (line.words.size() != 12) {
       reader.fail(line.number, "expected 4 control points 'x y z' (12 numbers) in row " +
                                    std::to_string(row + 1) + " of patch " + inQuotes(patch.name) +
@@ -136,7 +137,9 @@ BezierPatch readPatch(SurfaceReader& reader) {
   return patch;
 }
 
-Surface parseSurface(std::string_view text, const std::string& file) {
+// `rowLines` receives the lines of each patch's 4 rows of control points.
+Surface parseSurface(std::string_view text, const std::string& file,
+                     std::vector<std::array<int, 4>>& rowLines) {
   SurfaceReader reader(text, file);
   Surface surface;
   surface.file = file;
@@ -178,7 +181,10 @@ Surface parseSurface(std::string_view text, const std::string& file) {
   surface.fileSize = reader.labelled(sizeLine, {"SIZE:", "#"}, "SIZE: s")[0];
   if (!(surface.fileSize > 0)) reader.fail(sizeLine.number, "SIZE must be positive");
 
-  while (!reader.atEnd()) surface.patches.push_back(readPatch(reader));
+  while (!reader.atEnd()) {
+    rowLines.emplace_back();
+    surface.patches.push_back(readPatch(reader, rowLines.back()));
+  }
   if (surface.patches.empty()) {
     reader.fail(sizeLine.number, "the surface has no patches after 'SIZE:'");
   }
@@ -195,7 +201,52 @@ Surface loadSurface(const std::string& file) {
   }
   std::ostringstream text;
   text << in.rdbuf();
-  return parseSurface(text.str(), file);
+  std::vector<std::array<int, 4>> rowLines;
+  return parseSurface(text.str(), file, rowLines);
+}
+
+SurfaceFile SurfaceFile::parse(std::string_view text, const std::string& fileName) {
+  SurfaceFile file;
+  file.fileName_ = fileName;
+  file.text_ = EditedText::split(text);
+  file.surface_ = parseSurface(text, fileName, file.rowLines_);
+  return file;
+}
+
+SurfaceFile SurfaceFile::load(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    throw DiagnosticError(SourceLocation{std::make_shared<const std::string>(file), 0, 0},
+                          "cannot open surface file");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse(text.str(), file);
+}
+
+std::string SurfaceFile::setPoint(std::size_t patch, std::size_t index, glm::dvec3 point) {
+  if (patch >= surface_.patches.size() || index >= 16) return "no such control point";
+  const std::size_t row = index / 4;
+  std::array<glm::dvec3, 16> points = surface_.patches[patch].points;
+  points[index] = point;
+  // bezieredit's row: four points "x y z" with two blanks after each, in "%.2f" where that
+  // reads back as the value (edited_text.h).
+  std::string line;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const glm::dvec3& p = points[row * 4 + k];
+    line += formatFixed(p.x, 2) + ' ' + formatFixed(p.y, 2) + ' ' + formatFixed(p.z, 2) + "  ";
+  }
+  EditedText edited = text_;
+  edited.lines[static_cast<std::size_t>(rowLines_[patch][row] - 1)] = line;
+  std::vector<std::array<int, 4>> rowLines;
+  try {
+    surface_ = parseSurface(edited.joined(), fileName_, rowLines);
+  } catch (const DiagnosticError& error) {
+    return error.diagnostic().text();
+  }
+  text_ = std::move(edited);
+  rowLines_ = std::move(rowLines);
+  return std::string();
 }
 
 }  // namespace hirsute

@@ -1,7 +1,5 @@
 #include "hirsute/lsys/function_curve.h"
 
-#include "hirsute/core/model_folder.h"
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -15,6 +13,7 @@
 
 #include "hirsute/core/diagnostic.h"
 #include "hirsute/core/line_reader.h"
+#include "hirsute/core/model_folder.h"
 #include "hirsute/lsys/view_file_lines.h"
 
 namespace hirsute {
@@ -108,6 +107,7 @@ struct FunctionData {
   std::string name;
   int samples = 0;
   std::vector<std::array<double, 2>> points;
+  CurveFileBlock block;  // the rows as written, for the editors
 };
 
 // `points: n` and the n rows `x y [multiplicity]` after it.
@@ -135,7 +135,11 @@ void readFunctionPoints(CurveFileReader& reader, const TextLine& pointsLine, Fun
     for (int k = 0; k < multiplicity; ++k) {
       data.points.push_back({asStoredByCpfg(*x), asStoredByCpfg(*y)});
     }
+    data.block.rows.push_back({{*x, *y, 0.0}, multiplicity, row.words.size() == 3, row.number});
   }
+  data.block.form = CurveFileBlock::Form::Function;
+  data.block.countLine = pointsLine.number;
+  data.block.name = data.name;
   if (data.points.size() < 4) {
     reader.fail(pointsLine.number,
                 "a function needs at least 4 control points (counting multiplicities), found " +
@@ -214,6 +218,41 @@ void expectEnd(const CurveFileReader& reader, const std::string& what) {
   }
 }
 
+FunctionData readFunctionText(std::string_view text, const std::string& fileName, int viewSamples) {
+  CurveFileReader reader(text, fileName);
+  FunctionData data = readFunction(reader, viewSamples);
+  expectEnd(reader, "the last control point");
+  return data;
+}
+
+std::vector<FunctionData> readFunctionSetText(std::string_view text, const std::string& fileName) {
+  CurveFileReader reader(text, fileName);
+  const TextLine& header = reader.take("'funcgalleryver 1 1'");
+  if (header.words.size() != 3 || header.words[0] != "funcgalleryver" || header.words[1] != "1") {
+    reader.fail(header.number, "expected 'funcgalleryver 1 1' at the start of a function set");
+  }
+  const int count = reader.countAfter(reader.take("'items:'"), "items:", "a count");
+  std::vector<FunctionData> functions;
+  for (int i = 0; i < count; ++i) {
+    if (reader.atEnd()) {
+      reader.take("function " + std::to_string(i + 1) + " of " + std::to_string(count));
+    }
+    // Each item is a complete v1.01 function with its own sample count, or (cpfg accepts it) a
+    // version 0 function, which gets a table of 100 samples.
+    const std::string_view first = reader.peek().words[0];
+    if (first != "fver" && first != "range:") {
+      reader.fail(reader.peek().number,
+                  "expected 'fver 1 1' or 'range:' at the start of function " +
+                      std::to_string(i + 1) + " of " + std::to_string(count));
+    }
+    constexpr int kVersion0ItemSamples = 100;
+    functions.push_back(first == "fver" ? readVersion1Function(reader)
+                                        : readVersion0Function(reader, kVersion0ItemSamples));
+  }
+  expectEnd(reader, "the last of the " + std::to_string(count) + " functions");
+  return functions;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Contour files.
 
@@ -221,6 +260,7 @@ struct ContourData {
   std::string name;
   bool closed = false;
   std::vector<std::array<double, 3>> points;
+  CurveFileBlock block;  // the rows as written, for the editors
 };
 
 bool contourTypeIsClosed(const CurveFileReader& reader, const TextLine& line) {
@@ -258,6 +298,8 @@ void readContourRow(const CurveFileReader& reader, const TextLine& row, std::siz
     multiplicity = *m;
   }
   for (int k = 0; k < multiplicity; ++k) data.points.push_back(point);
+  data.block.columns = static_cast<int>(dimension);
+  data.block.rows.push_back({point, multiplicity, dimension == 4, row.number});
 }
 
 bool startsWithNumber(const TextLine& line) {
@@ -333,6 +375,8 @@ ContourData readCverContour(CurveFileReader& reader) {
                                        std::to_string(data.points.size()));
   }
   if (!hasType) reader.fail(header.number, "missing 'type:' in the contour");
+  data.block.form = CurveFileBlock::Form::Cver;
+  data.block.countLine = *pointsLineNumber;
   return data;
 }
 
@@ -389,6 +433,8 @@ ContourData readVersion14Curve(CurveFileReader& reader) {
     reader.fail(*pointsLineNumber, "'points:' announces " + std::to_string(count) +
                                        " control points, the file has " + std::to_string(rows));
   }
+  data.block.form = CurveFileBlock::Form::Version14;
+  data.block.countLine = *pointsLineNumber;
   return data;
 }
 
@@ -414,6 +460,8 @@ ContourData readVersion10Contour(CurveFileReader& reader) {
                    static_cast<std::size_t>(*dimension), data);
   }
   expectEnd(reader, "the last control point");
+  data.block.form = CurveFileBlock::Form::Version10;
+  data.block.countLine = header.number;
   return data;
 }
 
@@ -435,6 +483,8 @@ ContourData readContour(CurveFileReader& reader) {
                        " control points (counting multiplicities), found " +
                        std::to_string(data.points.size()));
   }
+  data.block.name = data.name;
+  data.block.closed = data.closed;
   return data;
 }
 
@@ -493,39 +543,16 @@ FunctionCurve::FunctionCurve(std::string name, int samples,
 
 FunctionCurve FunctionCurve::parse(std::string_view text, const std::string& fileName,
                                    int viewSamples) {
-  CurveFileReader reader(text, fileName);
-  FunctionData data = readFunction(reader, viewSamples);
-  expectEnd(reader, "the last control point");
+  FunctionData data = readFunctionText(text, fileName, viewSamples);
   return FunctionCurve(std::move(data.name), data.samples, std::move(data.points));
 }
 
 std::vector<FunctionCurve> FunctionCurve::parseSet(std::string_view text,
                                                    const std::string& fileName) {
-  CurveFileReader reader(text, fileName);
-  const TextLine& header = reader.take("'funcgalleryver 1 1'");
-  if (header.words.size() != 3 || header.words[0] != "funcgalleryver" || header.words[1] != "1") {
-    reader.fail(header.number, "expected 'funcgalleryver 1 1' at the start of a function set");
-  }
-  const int count = reader.countAfter(reader.take("'items:'"), "items:", "a count");
   std::vector<FunctionCurve> functions;
-  for (int i = 0; i < count; ++i) {
-    if (reader.atEnd()) {
-      reader.take("function " + std::to_string(i + 1) + " of " + std::to_string(count));
-    }
-    // Each item is a complete v1.01 function with its own sample count, or (cpfg accepts it) a
-    // version 0 function, which gets a table of 100 samples.
-    const std::string_view first = reader.peek().words[0];
-    if (first != "fver" && first != "range:") {
-      reader.fail(reader.peek().number,
-                  "expected 'fver 1 1' or 'range:' at the start of function " +
-                      std::to_string(i + 1) + " of " + std::to_string(count));
-    }
-    constexpr int kVersion0ItemSamples = 100;
-    FunctionData data = first == "fver" ? readVersion1Function(reader)
-                                        : readVersion0Function(reader, kVersion0ItemSamples);
+  for (FunctionData& data : readFunctionSetText(text, fileName)) {
     functions.push_back(FunctionCurve(std::move(data.name), data.samples, std::move(data.points)));
   }
-  expectEnd(reader, "the last of the " + std::to_string(count) + " functions");
   return functions;
 }
 
@@ -706,6 +733,172 @@ std::array<double, 3> ContourCurve::point(double t) const {
 }
 
 // ---------------------------------------------------------------------------------------------
+// CurveFile
+
+namespace {
+
+// The line with word `index` (0-based, blank-separated) replaced by `value`, the blanks kept.
+std::string withWord(const std::string& line, std::size_t index, const std::string& value) {
+  std::size_t position = 0;
+  for (std::size_t word = 0;; ++word) {
+    position = line.find_first_not_of(" \t\r", position);
+    if (position == std::string::npos) return line;
+    const std::size_t end = std::min(line.find_first_of(" \t\r", position), line.size());
+    if (word == index) return line.substr(0, position) + value + line.substr(end);
+    position = end;
+  }
+}
+
+}  // namespace
+
+CurveFile CurveFile::parse(std::string_view text, const std::string& fileName, Kind kind) {
+  CurveFile file(kind, fileName);
+  file.reread(EditedText::split(text));  // with no text yet, a broken one throws
+  return file;
+}
+
+CurveFile CurveFile::load(const std::filesystem::path& file, Kind kind) {
+  return parse(readFile(file, kind == Kind::Contour ? "contour" : "function"), file.string(), kind);
+}
+
+// Reads `edited` with the readers; on success it becomes the file's text. A broken text throws
+// the first time (no text yet) and is refused with its message afterwards.
+std::string CurveFile::reread(EditedText edited) {
+  const std::string text = edited.joined();
+  std::vector<CurveFileBlock> blocks;
+  try {
+    if (kind_ == Kind::Function) {
+      blocks.push_back(readFunctionText(text, fileName_, 0).block);
+    } else if (kind_ == Kind::FunctionSet) {
+      for (FunctionData& data : readFunctionSetText(text, fileName_))
+        blocks.push_back(std::move(data.block));
+    } else {
+      CurveFileReader reader(text, fileName_);
+      blocks.push_back(readContour(reader).block);
+    }
+  } catch (const DiagnosticError& error) {
+    if (text_.lines.empty()) throw;
+    return error.diagnostic().text();
+  }
+  text_ = std::move(edited);
+  blocks_ = std::move(blocks);
+  return std::string();
+}
+
+std::string CurveFile::rowText(const CurveFileBlock& block, const CurveFileRow& row) const {
+  // funcedit and cuspy write "%f"; a value with more digits keeps them (edited_text.h).
+  const int coordinates =
+      block.form == CurveFileBlock::Form::Function ? 2 : std::min(block.columns, 3);
+  std::string text;
+  for (int i = 0; i < coordinates; ++i) {
+    if (i > 0) text += ' ';
+    text += formatFixed(row.point[static_cast<std::size_t>(i)], 6);
+  }
+  if (row.multiplicityWritten) text += ' ' + std::to_string(row.multiplicity);
+  return text;
+}
+
+std::string CurveFile::functionRule(std::size_t block, std::size_t row, double x,
+                                    bool inserting) const {
+  if (kind_ == Kind::Contour) return std::string();
+  const std::vector<CurveFileRow>& rows = blocks_[block].rows;
+  if (!(x >= 0.0 && x <= 1.0)) return "a function's x lies in [0, 1]";
+  if (!inserting && (row == 0 || row + 1 == rows.size()) && x != rows[row].point[0]) {
+    return "the first and last points of a function keep their x (the curve spans [0, 1])";
+  }
+  const double low = row == 0 ? 0.0 : rows[row - 1].point[0];
+  const std::size_t next = inserting ? row : row + 1;
+  const double high = next < rows.size() ? rows[next].point[0] : 1.0;
+  if (inserting && (row == 0 || row == rows.size()))
+    return "a new point goes between two points of the function";
+  if (x < low || x > high) {
+    return "x must stay between its neighbours' (" + formatFixed(low, 1) + " to " +
+           formatFixed(high, 1) + "), so that y(x) stays a function";
+  }
+  return std::string();
+}
+
+std::string CurveFile::setPoint(std::size_t block, std::size_t row, std::array<double, 3> point) {
+  if (block >= blocks_.size() || row >= blocks_[block].rows.size()) return "no such point";
+  if (std::string rule = functionRule(block, row, point[0], false); !rule.empty()) return rule;
+  const CurveFileBlock& edited = blocks_[block];
+  CurveFileRow changed = edited.rows[row];
+  if (edited.form == CurveFileBlock::Form::Function || edited.columns == 2) point[2] = 0.0;
+  changed.point = point;
+  EditedText text = text_;
+  text.lines[static_cast<std::size_t>(changed.line - 1)] = rowText(edited, changed);
+  return reread(std::move(text));
+}
+
+namespace {
+
+// The count line of `block` with `rows` rows of `total` multiplicity.
+std::string countLineText(const CurveFileBlock& block, const std::string& line, int rows,
+                          int total) {
+  switch (block.form) {
+    case CurveFileBlock::Form::Cver:
+      return withWord(withWord(line, 1, std::to_string(rows)), 2, std::to_string(total));
+    case CurveFileBlock::Form::Version10:
+      return withWord(line, 0, std::to_string(rows));
+    default:
+      return withWord(line, 1, std::to_string(rows));
+  }
+}
+
+int totalMultiplicity(const CurveFileBlock& block) {
+  int total = 0;
+  for (const CurveFileRow& row : block.rows) total += row.multiplicity;
+  return total;
+}
+
+}  // namespace
+
+std::string CurveFile::insertPoint(std::size_t block, std::size_t row,
+                                   std::array<double, 3> point) {
+  if (block >= blocks_.size() || row > blocks_[block].rows.size()) return "no such point";
+  if (std::string rule = functionRule(block, row, point[0], true); !rule.empty()) return rule;
+  const CurveFileBlock& edited = blocks_[block];
+  const int rows = static_cast<int>(edited.rows.size());
+  CurveFileRow added;
+  added.point = point;
+  if (edited.form == CurveFileBlock::Form::Function || edited.columns == 2) added.point[2] = 0.0;
+  // The new row takes the multiplicity column its neighbour has.
+  const CurveFileRow& neighbour = edited.rows[std::min<std::size_t>(row, edited.rows.size() - 1)];
+  added.multiplicityWritten = neighbour.multiplicityWritten;
+  // Inserted after the line of the row before it, or before the first row's line.
+  const std::size_t at = row == 0 ? static_cast<std::size_t>(edited.rows[0].line - 1)
+                                  : static_cast<std::size_t>(edited.rows[row - 1].line);
+  EditedText text = text_;
+  std::string& count = text.lines[static_cast<std::size_t>(edited.countLine - 1)];
+  count = countLineText(edited, count, rows + 1, totalMultiplicity(edited) + 1);
+  text.lines.insert(text.lines.begin() + static_cast<std::ptrdiff_t>(at), rowText(edited, added));
+  return reread(std::move(text));
+}
+
+std::string CurveFile::removePoint(std::size_t block, std::size_t row) {
+  if (block >= blocks_.size() || row >= blocks_[block].rows.size()) return "no such point";
+  const CurveFileBlock& edited = blocks_[block];
+  if (kind_ != Kind::Contour && (row == 0 || row + 1 == edited.rows.size()))
+    return "the first and last points of a function stay (the curve spans [0, 1])";
+  const int rows = static_cast<int>(edited.rows.size());
+  EditedText text = text_;
+  std::string& count = text.lines[static_cast<std::size_t>(edited.countLine - 1)];
+  count = countLineText(edited, count, rows - 1,
+                        totalMultiplicity(edited) - edited.rows[row].multiplicity);
+  text.lines.erase(text.lines.begin() + edited.rows[row].line - 1);
+  return reread(std::move(text));
+}
+
+FunctionCurve CurveFile::function(std::size_t block, int viewSamples) const {
+  if (kind_ == Kind::FunctionSet) return FunctionCurve::parseSet(text(), fileName_).at(block);
+  return FunctionCurve::parse(text(), fileName_, viewSamples);
+}
+
+ContourCurve CurveFile::contour(int samples) const {
+  return ContourCurve::parse(text(), fileName_, samples);
+}
+
+// ---------------------------------------------------------------------------------------------
 // readViewFunctions
 
 ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
@@ -756,6 +949,8 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
     if (isFunction) {
       try {
         out.functions.push_back(FunctionCurve::load(path, samples.value_or(0)));
+        out.functionFiles.push_back(path);
+        out.functionSamples.push_back(samples.value_or(0));
       } catch (const DiagnosticError& error) {
         rethrowAtViewLine(fileAt, "function", fileName, error);
       }
@@ -763,6 +958,8 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
       // cpfg: `function set:` replaces the function list; its names become preprocessor macros.
       try {
         out.functions = FunctionCurve::loadSet(path);
+        out.functionFiles = {path};
+        out.functionSamples = {0};
       } catch (const DiagnosticError& error) {
         rethrowAtViewLine(fileAt, "function set", fileName, error);
       }
@@ -782,6 +979,7 @@ ViewFunctions readViewFunctions(const std::string& preprocessedViewText,
       }
       try {
         out.curves.push_back(ContourCurve::load(path, curveSamples));
+        out.curveFiles.push_back(path);
       } catch (const DiagnosticError& error) {
         rethrowAtViewLine(fileAt, "curve", fileName, error);
       }

@@ -57,6 +57,15 @@ void FileWatcher::ignore(const std::filesystem::path& file) {
   stamps_.erase(n);
 }
 
+void FileWatcher::acknowledge(const std::filesystem::path& file) {
+  const std::filesystem::path n = normal(file);
+  std::error_code ec;
+  Stamp s;
+  s.time = std::filesystem::last_write_time(n, ec);
+  if (!ec) s.size = std::filesystem::file_size(n, ec);
+  if (!ec && !ignored_.count(n)) stamps_[n] = s;
+}
+
 std::map<std::filesystem::path, FileWatcher::Stamp> FileWatcher::scan() const {
   std::map<std::filesystem::path, Stamp> stamps;
   auto add = [&](const std::filesystem::path& p) {

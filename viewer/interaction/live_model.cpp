@@ -142,6 +142,9 @@ void LiveModel::applyBuild(ModelBuild build) {
     for (const TextureDeclaration& texture : model_->view.textures) watcher_->watch(texture.file);
   }
   view_.upload(*model_);
+  shapes_.follow(
+      *model_,
+      (options_.viewFile.empty() ? options_.lsystemFile : options_.viewFile).parent_path());
   for (const auto& organ : organs_) organ->take(model_->scene, model_->view);
   bool newLength = derivationLength_ != model_->derivationLength;
   derivationLength_ = model_->derivationLength;
@@ -225,6 +228,16 @@ void LiveModel::saveDefines() {
   wanted_.defines.clear();
   readConstants();
   reloadSerial_ = worker_->request(wanted_);
+}
+
+void LiveModel::shapesEdited() {
+  const std::vector<std::filesystem::path> written = shapes_.takeWritten();
+  if (written.empty()) return;
+  // Re-derived now rather than when the watcher sees the files settle.
+  if (watcher_) {
+    for (const std::filesystem::path& file : written) watcher_->acknowledge(file);
+  }
+  reloadFiles();
 }
 
 void LiveModel::revertDefines() {
@@ -646,6 +659,13 @@ void LiveModel::runScript() {
           scriptFailure(c, "cannot write the screenshot " + c.words[0]);
           return;
         }
+        break;
+      case Kind::Shape:
+        if (const std::string refused = shapes_.run(c); !refused.empty()) {
+          scriptFailure(c, refused);
+          return;
+        }
+        shapesEdited();
         break;
       case Kind::Quit:
         closed_ = true;

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "hirsute/viewer/interaction/live_organ.h"
+#include "hirsute/viewer/interaction/shape_workbench.h"
 
 namespace hirsute {
 namespace {
@@ -56,6 +57,9 @@ std::map<std::string, Signature, std::less<>> makeSignatures() {
       {"create", {Kind::Create, "w"}},
       {"colors", {Kind::Colors, "o"}},
       {"controls", {Kind::Controls, "o"}},
+      {"function", {Kind::Shape, "wwNNNN"}},
+      {"contour", {Kind::Shape, "wwNNNN"}},
+      {"surface", {Kind::Shape, "wwNNNN"}},
   };
   const auto organs = liveOrgans();
   auto add = [&table](std::string_view name, const Signature& signature) {
@@ -249,6 +253,10 @@ std::vector<ViewCommand> parseViewScript(const std::string& text, const std::str
         command.words[1] != "shown") {
       throw DiagnosticError(SourceLocation{name, tokens[2].line, tokens[2].column},
                             "expected 'ui', 'shown' or nothing after the file name");
+    }
+    if (command.kind == Kind::Shape) {
+      command.words.insert(command.words.begin(), head.text);
+      checkShapeCommand(command);
     }
     script.push_back(std::move(command));
   }

@@ -59,6 +59,7 @@ KeyLines makeKeyMap() {
       {"M", "show / hide the colours and materials editor"},
       {"K", "show / hide the model's control panels (.pnl)"},
       {"F1, ?", "show / hide this help"},
+      {"F6, F7, F8", "show / hide the function, contour and surface editors"},
       {"Q, Escape", "quit"},
   };
   keys.insert(keys.end(), after.begin(), after.end());

@@ -22,6 +22,7 @@
 #include "hirsute/viewer/interaction/live_organ.h"
 #include "hirsute/viewer/window/control_panel_window.h"
 #include "hirsute/viewer/window/define_panel.h"
+#include "hirsute/viewer/window/shape_panels.h"
 #include "hirsute/viewer/window/glfw_window.h"
 #include "hirsute/viewer/window/multisample_target.h"
 #include "hirsute/viewer/window/overlays.h"
@@ -116,6 +117,7 @@ class Viewer final : public LiveModelView {
   RgbaImage shown_;
   int screenshots_ = 0;
   PaletteUiState paletteUi_;
+  ShapePanels shapePanels_;
 };
 
 bool Viewer::open() {
@@ -240,6 +242,10 @@ void Viewer::drawUi() {
   }
   if (live_->shown().colors) drawPalettePanel(*live_, paletteUi_, &live_->shown().colors);
   if (live_->shown().controls) drawControlPanels(*live_);
+  drawFunctionPanel(live_->shapes(), shapePanels_.function);
+  drawContourPanel(live_->shapes(), shapePanels_.contour);
+  drawSurfacePanel(live_->shapes(), shapePanels_.surface);
+  live_->shapesEdited();
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
@@ -343,6 +349,7 @@ void Viewer::onKey(int key, int mods) {
   ShownParts& shown = live_->shown();
   std::string screenshotFile =
       options_.lsystemFile.stem().string() + "-" + std::to_string(screenshots_ + 1) + ".png";
+  const auto toggle = [](bool& open) { open = !open; };
   // One line a key, in the order of the key map (key_map.cpp).
   // clang-format off
   switch (key) {
@@ -360,6 +367,9 @@ void Viewer::onKey(int key, int mods) {
     case GLFW_KEY_M: shown.colors = !shown.colors; break;
     case GLFW_KEY_K: shown.controls = !shown.controls; break;
     case GLFW_KEY_F1: shown.help = !shown.help; break;
+    case GLFW_KEY_F6: toggle(live_->shapes().functionView.open); break;
+    case GLFW_KEY_F7: toggle(live_->shapes().contourView.open); break;
+    case GLFW_KEY_F8: toggle(live_->shapes().surfaceView.open); break;
     case GLFW_KEY_SLASH: if (mods & GLFW_MOD_SHIFT) shown.help = !shown.help; break;
     case GLFW_KEY_Q: case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, GLFW_TRUE); break;
     default: organKey(key); break;

@@ -3,11 +3,12 @@
 // (cpfg-generalized-cylinders.md §3).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <map>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
+#include "hirsute/lsys/function_curve.h"
 
 namespace hirsute {
 
@@ -52,5 +53,7 @@ class ContourLibrary {
 
 // Reads a `.con` file (versions 1.0 to 1.4). Throws DiagnosticError at the broken line.
 Contour loadContour(const std::string& file);
+// The same from a curve already read (the contour editor's); `file` names it in messages.
+Contour contourOfCurve(const ContourCurve& curve, const std::string& file);
 
 }  // namespace hirsute

@@ -3,13 +3,14 @@
 #pragma once
 
 #include <array>
+#include <glm/glm.hpp>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include <glm/glm.hpp>
-
+#include "hirsute/core/edited_text.h"
 #include "hirsute/interpreter/mesh_file.h"
 
 namespace hirsute {
@@ -36,12 +37,12 @@ struct Surface {
   std::string file;
   glm::dvec3 contact{0.0}, endPoint{0.0}, heading{0, 1, 0}, up{0, 0, 1};  // as in the file
   glm::dvec3 boundsMin{0.0}, boundsMax{0.0};  // the first line: xmin xmax ymin ymax zmin zmax
-  double fileSize = 1;   // SIZE: in the file
-  double viewSize = 1;   // size: in the view file's `surface:` line
+  double fileSize = 1;                        // SIZE: in the file
+  double viewSize = 1;                        // size: in the view file's `surface:` line
   // Quads per patch along s and t: the view's `surface:` line, else the file's PRECISION, else
   // kDefaultSurfacePrecision. Never 0 once loaded.
   int sPrecision = kDefaultSurfacePrecision, tPrecision = kDefaultSurfacePrecision;
-  int texture = 0;       // 1-based, 0 none (the view's `surface:` line)
+  int texture = 0;  // 1-based, 0 none (the view's `surface:` line)
   std::vector<BezierPatch> patches;
   // A mesh file's triangles instead of patches (mesh_file.h): its contact and end points are the
   // file's origin, its heading +y and its up +z, SIZE 1.
@@ -51,5 +52,34 @@ struct Surface {
 
 // Reads a `.s` file. Throws DiagnosticError at the broken line.
 Surface loadSurface(const std::string& file);
+
+}  // namespace hirsute
+
+namespace hirsute {
+
+// A `.s` file as the viewer's surface editor changes it (docs/viewer.md, "Surfaces"): its lines
+// as written and the lines of each patch's rows of control points. Moving a point rewrites its
+// row and reads the whole text again with the reader above, so that the editor shows and saves
+// exactly what cpfg will read; every other byte stays as it was.
+class SurfaceFile {
+ public:
+  // Throws DiagnosticError at the broken line.
+  static SurfaceFile parse(std::string_view text, const std::string& fileName);
+  static SurfaceFile load(const std::string& file);
+
+  const Surface& surface() const { return surface_; }
+  const std::string& fileName() const { return fileName_; }
+  std::string text() const { return text_.joined(); }
+
+  // Point `index` (row-major, 0 to 15) of patch `patch`, in the file's coordinates. Returns an
+  // empty string when made, else why not (the file left as it was).
+  std::string setPoint(std::size_t patch, std::size_t index, glm::dvec3 point);
+
+ private:
+  std::string fileName_;
+  EditedText text_;
+  Surface surface_;
+  std::vector<std::array<int, 4>> rowLines_;  // 1-based lines of each patch's rows
+};
 
 }  // namespace hirsute

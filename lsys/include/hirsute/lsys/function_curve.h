@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "hirsute/core/edited_text.h"
+
 namespace hirsute {
 
 // The most samples a function table or a curve may have: far above any model (cpfg's defaults
@@ -98,12 +100,82 @@ class ContourCurve {
   std::vector<double> lengthFraction_;
 };
 
+// The control-point rows of one function or contour as its file writes them, for the viewer's
+// editors (docs/viewer.md, "Function curves", "Contours").
+struct CurveFileRow {
+  std::array<double, 3> point{};  // x y (z) as written, before cpfg's float rounding
+  int multiplicity = 1;
+  bool multiplicityWritten = false;  // the row has a multiplicity column
+  int line = 0;                      // 1-based line of the file
+};
+
+struct CurveFileBlock {
+  // funcedit (both versions), cuspy `cver 1 n`, the `version: 1.4` curve format, cuspy 1.0's
+  // header `n dim open|closed`.
+  enum class Form { Function, Cver, Version14, Version10 };
+  Form form = Form::Function;
+  std::string name;
+  bool closed = false;  // contours
+  int columns = 2;      // numbers in a contour row: x y, x y z or x y z multiplicity
+  int countLine = 0;    // the line that counts the rows (`points:`, or cuspy 1.0's header)
+  std::vector<CurveFileRow> rows;
+};
+
+// A `.func`, `.fset` or `.con` file as the viewer's editors change it: its lines as written and
+// the rows found in them by the readers above. An edit rewrites the rows it changes (and the
+// count of rows), then reads the whole text again with those readers, so that the editors show,
+// evaluate and save exactly what cpfg will read; every other byte of the file stays as it was.
+class CurveFile {
+ public:
+  enum class Kind { Function, FunctionSet, Contour };
+
+  CurveFile() = default;  // no file (for containers)
+  // Throws DiagnosticError at the line where the file is broken (as the derivation would).
+  static CurveFile parse(std::string_view text, const std::string& fileName, Kind kind);
+  static CurveFile load(const std::filesystem::path& file, Kind kind);
+
+  Kind kind() const { return kind_; }
+  const std::string& fileName() const { return fileName_; }
+  // One block per function (a set has several) or the contour's one.
+  const std::vector<CurveFileBlock>& blocks() const { return blocks_; }
+  std::string text() const { return text_.joined(); }
+
+  // The edits: each returns an empty string when made, else why not ("file:line:col: error: …"
+  // when the result would not read, or the rule it breaks), the file left as it was. Functions
+  // keep x within [0, 1] and in order, and their first and last x where they are (funcedit's
+  // rules; cpfg's bisection needs a curve that spans [0, 1]).
+  std::string setPoint(std::size_t block, std::size_t row, std::array<double, 3> point);
+  // A new row before `row` (the row count: after the last), with multiplicity 1.
+  std::string insertPoint(std::size_t block, std::size_t row, std::array<double, 3> point);
+  std::string removePoint(std::size_t block, std::size_t row);
+
+  // The function of `block` and the curve as the derivation evaluates them.
+  FunctionCurve function(std::size_t block, int viewSamples) const;
+  ContourCurve contour(int samples = ContourCurve::kDefaultSamples) const;
+
+ private:
+  CurveFile(Kind kind, std::string fileName) : kind_(kind), fileName_(std::move(fileName)) {}
+  std::string rowText(const CurveFileBlock& block, const CurveFileRow& row) const;
+  std::string functionRule(std::size_t block, std::size_t row, double x, bool inserting) const;
+  std::string reread(EditedText edited);
+
+  Kind kind_ = Kind::Function;
+  std::string fileName_;
+  EditedText text_;
+  std::vector<CurveFileBlock> blocks_;
+};
+
 // What a view file declares for func() and curveX/Y/Z/GAL().
 struct ViewFunctions {
   std::vector<FunctionCurve> functions;  // func id k is functions[k-1]
   std::vector<ContourCurve> curves;      // curve id k is curves[k-1]
   // `function set:` names with their ids ({"growth", "1"}), to define for the `.l` preprocessor.
   std::vector<std::pair<std::string, std::string>> macroDefinitions;
+  // The files read, for the viewer's editors: the `function:` files in order, or the
+  // `function set:` file; the `curve:` files in order.
+  std::vector<std::filesystem::path> functionFiles, curveFiles;
+  // The sample count on each `function:` line (0: none given, or a `function set:`).
+  std::vector<int> functionSamples;
 };
 
 // Reads the `function:`, `function set:` and `curve:` lines of a preprocessed view file and loads

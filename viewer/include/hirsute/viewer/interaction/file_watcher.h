@@ -32,6 +32,10 @@ class FileWatcher {
   // Files the program writes itself (screenshots) are not changes of the model.
   void ignore(const std::filesystem::path& file);
 
+  // A model file the viewer's editors wrote and re-derived from itself: its new state is not a
+  // change (a change of another file still is).
+  void acknowledge(const std::filesystem::path& file);
+
   // True once when something changed and has since been still for kSettle.
   bool poll(Clock::time_point now = Clock::now());
 

@@ -26,6 +26,7 @@
 #include "hirsute/viewer/interaction/mouse_camera.h"
 #include "hirsute/viewer/interaction/palette_editor.h"
 #include "hirsute/viewer/interaction/panel_editor.h"
+#include "hirsute/viewer/interaction/shape_workbench.h"
 #include "hirsute/viewer/interaction/view_script.h"
 #include "hirsute/viewer/view/camera.h"
 
@@ -156,6 +157,10 @@ class LiveModel {
   // The colour index the script's last `color` or `material` command edited (-1: none), which
   // the editor's window selects.
   int scriptedEntry() const { return scriptedEntry_; }
+  // The shape editors' files (shape_workbench.h); after an edit, shapesEdited() re-derives from
+  // the files written.
+  ShapeWorkbench& shapes() { return shapes_; }
+  void shapesEdited();
 
   // Animation: Run plays the frames of the .a to the last one, Step shows the next frame.
   bool animating() const { return animating_; }
@@ -242,6 +247,7 @@ class LiveModel {
   std::unique_ptr<PanelEditor> panels_;
   std::string lastEditor_;  // "colors" or "panel": what undo and redo act on
   int scriptedEntry_ = -1;
+  ShapeWorkbench shapes_;
 
   // Script state
   std::size_t scriptIndex_ = 0;

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -15,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
@@ -44,6 +46,9 @@ struct ViewerModel {
   bool materialMode = false;
   int steps = 0;             // the derivation step shown
   int derivationLength = 0;  // the file's
+  // The `function:`/`function set:` and `curve:` files the derivation read (the editors').
+  std::vector<std::filesystem::path> functionFiles, curveFiles;
+  std::vector<int> functionSamples;  // the count on each `function:` line (0: none)
 };
 
 struct ModelBuild {

@@ -27,6 +27,10 @@
 //   measure [N]      print the frame time over N frames still and N frames moving
 //   screenshot FILE [ui|shown]  write the window's picture to a PNG (with ui: with the overlays;
 //                    shown: what the window shows now, not drawn again)
+//   function NAME point I X Y | add X Y | remove I | undo | redo | save | open | close
+//   contour NAME point I X Y [Z] | add I X Y [Z] | remove I | undo | redo | save | open | close
+//   surface NAME point I X Y Z | undo | redo | save | open | close
+//                    the shape editors' actions (shape_workbench.h), each written at once
 //   quit             close the window
 #pragma once
 
@@ -67,7 +71,8 @@ struct ViewCommand {
     Redo,
     Create,
     Colors,
-    Controls
+    Controls,
+    Shape  // `function`, `contour` or `surface`: words are the editor, NAME and the action
   };
   Kind kind;
   std::vector<double> numbers;
