@@ -23,7 +23,7 @@ hair interpolation: on
 
 /* hirsute render --trace (docs/trace.md): backlit as in Fig. 5 of the paper, a dim sky, leaves
    that pass light through, hairs that scatter most of it forwards. */
-trace light: D: -0.3,0.6,-1 A: 6 I: 4,3.9,3.6
+trace light: D: -0.15,0.16,-1 A: 6 I: 4,3.9,3.6
 trace sky: 0.06,0.07,0.09
 translucency: 4 0.45
 hair shading: B: 0.25 R: 0.2 S: 0.06
