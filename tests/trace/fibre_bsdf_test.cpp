@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "hirsute/viewer/trace/sampling.h"
+#include "hirsute/viewer/trace/trace_scene.h"
 
 namespace {
 
@@ -49,7 +50,7 @@ TEST(FibreBsdf, WhiteFurnaceReturnsAllTheLightWithoutAbsorption) {
         m.azimuthalRoughness = std::max(0.2f, 1 - roughness);
         const glm::vec3 wo = direction(thetaO, 0.3);
         const FibreBsdf bsdf(m, kTangent, wo, h);
-        const glm::dvec3 e = integral(bsdf, wo, 400);
+        const glm::dvec3 e = integral(bsdf, wo, 300);
         EXPECT_NEAR(e.g, 1.0, 0.01) << "βm " << roughness << " θo " << thetaO << " h " << h;
       }
     }
@@ -259,6 +260,40 @@ TEST(FibreBsdf, ReflectionLeavesAboutTheNormalTheRayMet) {
     }
     EXPECT_NEAR(bestPhi, mirrorPhi, 0.02) << "ψ " << psi;
   }
+}
+
+// A `fibre:` line for one template or fur colour wins over its organ's line, which wins over
+// the default (the fibre model); each organ reads its own lines.
+TEST(FibreBsdf, FibreLinesChooseEachKindOfHairsModel) {
+  hirsute::TraceSettings look;
+  hirsute::FibreSettings all;
+  all.model = hirsute::FibreModel::KajiyaGoldman;
+  hirsute::FibreSettings second;
+  second.index = 2;
+  second.longitudinalRoughness = 0.5f;
+  second.melanin = glm::vec2(1.3f, 0.0f);
+  hirsute::FibreSettings fur;
+  fur.organ = hirsute::FibreOrgan::Fur;
+  fur.index = 7;
+  fur.colour = glm::vec3(1.0f, 0.5f, 0.25f);
+  look.fibres = {second, all, fur};
+  TraceScene scene(look);
+  const glm::vec3 grey(0.4f);
+  using hirsute::FibreOrgan;
+  EXPECT_FALSE(scene.material(scene.hairOfColour(grey, FibreOrgan::Hairs, 1)).chiang);
+  const TraceMaterial& two = scene.material(scene.hairOfColour(grey, FibreOrgan::Hairs, 2));
+  ASSERT_TRUE(two.chiang);
+  EXPECT_FLOAT_EQ(two.chiangFibre.longitudinalRoughness, 0.5f);
+  EXPECT_TRUE(two.absorptionFixed);
+  EXPECT_EQ(two.chiangFibre.absorption, absorptionFromMelanin(1.3f, 0));
+  const TraceMaterial& seven = scene.material(scene.hairOfColour(grey, FibreOrgan::Fur, 7));
+  ASSERT_TRUE(seven.chiang);
+  EXPECT_EQ(seven.fibreColour, linearColour(glm::vec3(1.0f, 0.5f, 0.25f)));
+  const TraceMaterial& other = scene.material(scene.hairOfColour(grey, FibreOrgan::Fur, 3));
+  ASSERT_TRUE(other.chiang);
+  EXPECT_EQ(other.fibreColour, grey);
+  EXPECT_FLOAT_EQ(other.chiangFibre.longitudinalRoughness, 0.3f);
+  EXPECT_TRUE(scene.material(scene.hairOfColour(grey, FibreOrgan::Feathers)).chiang);
 }
 
 }  // namespace
