@@ -34,6 +34,9 @@ struct RenderOptions {
   std::string filter = "box";  // --filter: box, gaussian or mitchell, with --trace
   double aperture = 0;         // --aperture: the lens's diameter, with --trace
   double focus = 0;            // --focus: the distance in focus (0: the point looked at)
+  // Which of the five above the command line gave: they override the view file's lines.
+  bool exposureGiven = false, toneGiven = false, filterGiven = false, apertureGiven = false,
+       focusGiven = false;
 };
 
 struct ViewOptions {

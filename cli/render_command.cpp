@@ -97,7 +97,12 @@ void registerRenderCommand(CLI::App& app, Action& action) {
                    "sight, of the plane in focus (default: the point the view looks at)")
       ->type_name("DIST")
       ->check(finiteRange(1e-9, 1e12));
-  render->callback([options, &action] {
+  render->callback([options, &action, render] {
+    options->exposureGiven = render->count("--exposure") > 0;
+    options->toneGiven = render->count("--tone") > 0;
+    options->filterGiven = render->count("--filter") > 0;
+    options->apertureGiven = render->count("--aperture") > 0;
+    options->focusGiven = render->count("--focus") > 0;
     const std::optional<ImageFormat> format = imageFormatOf(options->output);
     if (!format) {
       throw CLI::ValidationError("--output",
@@ -128,10 +133,6 @@ void registerRenderCommand(CLI::App& app, Action& action) {
     if (!options->trace && (options->aperture != 0 || options->focus != 0)) {
       throw CLI::ValidationError(options->aperture != 0 ? "--aperture" : "--focus",
                                  "depth of field is for traced pictures (--trace)");
-    }
-    if (options->focus != 0 && options->aperture == 0) {
-      throw CLI::ValidationError("--focus",
-                                 "a pinhole has everything in focus: give the lens an --aperture");
     }
     if (!options->trace && options->filter != "box") {
       throw CLI::ValidationError("--filter", "pixel filters are for traced pictures (--trace)");

@@ -16,6 +16,7 @@
 #include "hirsute/viewer/trace/exr_image.h"
 #include "hirsute/viewer/trace/path_tracer.h"
 #include "hirsute/viewer/trace/scene_geometry.h"
+#include "hirsute/viewer/trace/sky_model.h"
 #include "hirsute/viewer/view/view_lighting.h"
 
 namespace hirsute::cli {
@@ -64,8 +65,33 @@ int runTrace(const RenderOptions& o) {
   // Without a `trace light:` line the light comes from where the view's first light shines
   // from, as in the GL render; with none, from the eye.
   const ViewLighting lighting = viewLighting(view, built->resources.materialMode, -camera.forward);
-  const trace::TraceLights lights =
+  trace::TraceLights lights =
       trace::traceLights(view.trace, bounds, traceLightFallback(lighting, bounds, -camera.forward));
+  try {
+    // A large map takes seconds to decode and to make its sampling tables.
+    std::optional<ProgressHeartbeat> heartbeat;
+    if (!view.trace.environment.empty()) {
+      progress.begin("reading the environment map", Progress::Unit::None);
+      heartbeat.emplace(progress);
+    }
+    trace::addViewSky(view.trace, bounds, camera, lights);
+  } catch (const DiagnosticError& e) {
+    progress.clear();
+    std::cerr << e.diagnostic().text() << '\n';
+    return kExitBadInput;
+  }
+  // The view file's camera lines, unless the command line gives the option.
+  const TraceSettings& look = view.trace;
+  const float exposure = o.exposureGiven ? o.exposure : look.exposure.value_or(0.0f);
+  const std::string tone = o.toneGiven ? o.tone : look.tone.value_or("none");
+  const std::string filter = o.filterGiven ? o.filter : look.filter.value_or("box");
+  const double aperture = o.apertureGiven ? o.aperture : look.aperture.value_or(0.0f);
+  const double focus = o.focusGiven ? o.focus : look.focus.value_or(0.0f);
+  if (focus != 0 && aperture == 0) {
+    std::cerr << "hirsute: error: --focus: a pinhole has everything in focus: give the lens an "
+                 "--aperture (or the view file a 'trace aperture:' line)\n";
+    return kExitBadInput;
+  }
 
   trace::TraceOptions options;
   options.samples = o.traceSamples;
@@ -76,14 +102,16 @@ int runTrace(const RenderOptions& o) {
   options.denoise = o.traceDenoise;
   options.background = backgroundColor(scene, built->resources.materialMode);
   options.progress = &progress;
-  options.aperture = static_cast<float>(o.aperture);
-  options.focusDistance = static_cast<float>(o.focus);
-  options.filter = trace::pixelFilterNamed(o.filter).value_or(trace::PixelFilterKind::Box);
-  // The 16-bit PNG is exposed but not tone-mapped (linear light); OpenEXR is neither.
-  if (o.bits == 16) options.display.exposure = o.exposure;
-  if (o.bits == 8) {
-    options.display.exposure = o.exposure;
-    options.display.tone = trace::toneCurveNamed(o.tone).value_or(trace::ToneCurve::None);
+  options.aperture = static_cast<float>(aperture);
+  options.focusDistance = static_cast<float>(focus);
+  options.filter = trace::pixelFilterNamed(filter).value_or(trace::PixelFilterKind::Box);
+  // The 16-bit PNG is exposed but not tone-mapped (linear light); OpenEXR is neither: the view
+  // file's exposure and curve are for the pictures that show them.
+  const bool exr = imageFormatOf(o.output).value_or(ImageFormat::Png) == ImageFormat::Exr;
+  if (o.bits == 16) options.display.exposure = exposure;
+  if (o.bits == 8 && !exr) {
+    options.display.exposure = exposure;
+    options.display.tone = trace::toneCurveNamed(tone).value_or(trace::ToneCurve::None);
   }
   trace::TraceImage image;
   try {
@@ -95,6 +123,8 @@ int runTrace(const RenderOptions& o) {
     traced.setLitPaletteOffset(
         litPaletteOffset(view, built->resources.materialMode, built->resources.colorMapFile));
     trace::addSceneGeometry(scene, camera, traced);
+    if (look.ground)
+      trace::addGroundPlane(traced, bounds, lights.up, trace::linearColour(*look.ground));
     traced.commit();
     heartbeat.reset();
     progress.clear();
@@ -142,7 +172,7 @@ int runTrace(const RenderOptions& o) {
     } else if (o.bits == 16) {
       // Linear light: the exposure chooses what is white, no curve bends it. In place: the
       // picture's buffers hold no second copy.
-      const float scale = std::exp2(o.exposure);
+      const float scale = std::exp2(exposure);
       for (glm::vec3& c : image.radiance) c *= scale;
       writeLinearPng16(o.output, image.width, image.height, image.radiance, &outputs);
     } else {

@@ -521,6 +521,151 @@ void veins(ViewLine& c) {
   all.push_back(v);
 }
 
+// `subsurface: COLOUR M: mean free path H: thickness A: r,g,b`.
+void subsurface(ViewLine& c) {
+  const std::vector<Token> tokens = subcommandTokens(c.line());
+  c.args.skipAll();
+  SubsurfaceSettings s;
+  const auto colour = tokens.empty() ? std::nullopt : integerAtFront(tokens[0].text);
+  if (!colour || colour->first < 0 || colour->first > 4095 ||
+      colour->second != tokens[0].text.size()) {
+    c.fail(tokens.empty() ? c.labelAt() : tokens[0].where,
+           "expected a colour index from 0 to 4095 after " + inQuotes(c.label()));
+  }
+  s.colour = static_cast<int>(colour->first);
+  for (std::size_t i = 1; i < tokens.size(); ++i) {
+    const char key = subcommandKey(tokens[i].text);
+    const std::size_t first = i + 1;
+    if (key == 'M') {
+      s.meanFreePath = static_cast<float>(boundedValue(
+          c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a mean free path")[0], 1e-9, 1e9));
+    } else if (key == 'H') {
+      s.thickness = static_cast<float>(boundedValue(
+          c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a thickness")[0], 1e-9, 1e9));
+    } else if (key == 'A') {
+      s.albedo = boundedColour(c, tokens, i, 1);
+    } else {
+      c.fail(tokens[i].where, "expected 'M: mean free path', 'H: thickness' or 'A: r,g,b' in " +
+                                  inQuotes(c.label()) + ", found " + inQuotes(tokens[i].text));
+    }
+  }
+  if (s.meanFreePath == 0 || s.thickness == 0) {
+    c.fail(c.labelAt(), inQuotes(c.label()) + " needs a mean free path 'M:' and a thickness 'H:'");
+  }
+  // A walk across a sheet thousands of free paths thick would scatter without end: the ratio
+  // is bounded so that kMaxWalkSteps ends few walks.
+  if (s.thickness / s.meanFreePath > 100) {
+    c.fail(c.labelAt(), "the thickness in " + inQuotes(c.label()) +
+                            " is more than 100 mean free paths; such a sheet is opaque: drop the "
+                            "line, or give it a 'translucency:' of 0");
+  }
+  std::vector<SubsurfaceSettings>& all = c.view.trace.subsurface;
+  std::erase_if(all, [&](const SubsurfaceSettings& old) { return old.colour == s.colour; });
+  all.push_back(s);
+}
+
+// `B: on|off` of the sky lines.
+bool seenWord(const ViewLine& c, const std::vector<Token>& tokens, std::size_t& i) {
+  const std::string_view word = subcommandWord(c, tokens, i, "on or off");
+  if (word != "on" && word != "off") {
+    c.fail(tokens[i].where,
+           "expected on or off after 'B:' in " + inQuotes(c.label()) + ", found " + inQuotes(word));
+  }
+  return word == "on";
+}
+
+// `trace environment: FILE S: scale R: degrees B: on|off`.
+void traceEnvironment(ViewLine& c) {
+  const SourceLocation fileAt = c.args.here();
+  const std::string_view file = c.requiredWord("an OpenEXR file name");
+  TraceSettings& t = c.view.trace;
+  c.resolve(file, fileAt);  // refuses a name that leaves the folder, here at the line
+  t.environment = std::string(file);
+  t.environmentFolder = c.folder().string();
+  t.environmentAt = fileAt;
+  t.sun.reset();  // one sky: the later line replaces the earlier
+  const std::vector<Token> all = subcommandTokens(c.line());
+  c.args.skipAll();
+  for (std::size_t i = 1; i < all.size(); ++i) {
+    const char key = subcommandKey(all[i].text);
+    const std::size_t first = i + 1;
+    if (key == 'S') {
+      t.environmentScale = static_cast<float>(
+          boundedValue(c, all[first], subcommandNumbers(c, all, i, 1, "a scale")[0], 0, 1e6));
+    } else if (key == 'R') {
+      t.environmentRotation = static_cast<float>(boundedValue(
+          c, all[first], subcommandNumbers(c, all, i, 1, "an angle in degrees")[0], -360, 360));
+    } else if (key == 'B') {
+      t.skySeen = seenWord(c, all, i);
+    } else {
+      c.fail(all[i].where, "expected 'S: scale', 'R: degrees' or 'B: on|off' in " +
+                               inQuotes(c.label()) + ", found " + inQuotes(all[i].text));
+    }
+  }
+}
+
+// `trace sun: E: elevation A: azimuth T: turbidity G: ground albedo B: on|off`.
+void traceSun(ViewLine& c) {
+  const std::vector<Token> tokens = subcommandTokens(c.line());
+  c.args.skipAll();
+  SunSkySettings s;
+  TraceSettings& t = c.view.trace;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const char key = subcommandKey(tokens[i].text);
+    const std::size_t first = i + 1;
+    // Preetham et al.'s fit holds for turbidities from 2 to 10 and the sun above the horizon.
+    if (key == 'E') {
+      s.elevation = static_cast<float>(
+          boundedValue(c, tokens[first],
+                       subcommandNumbers(c, tokens, i, 1, "an elevation in degrees")[0], 1, 90));
+    } else if (key == 'A') {
+      s.azimuth = static_cast<float>(
+          boundedValue(c, tokens[first],
+                       subcommandNumbers(c, tokens, i, 1, "an azimuth in degrees")[0], -360, 360));
+    } else if (key == 'T') {
+      s.turbidity = static_cast<float>(boundedValue(
+          c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a turbidity")[0], 2, 10));
+    } else if (key == 'G') {
+      s.groundAlbedo = static_cast<float>(boundedValue(
+          c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a ground albedo")[0], 0, 1));
+    } else if (key == 'B') {
+      t.skySeen = seenWord(c, tokens, i);
+    } else {
+      c.fail(tokens[i].where,
+             "expected 'E: elevation', 'A: azimuth', 'T: turbidity', "
+             "'G: ground albedo' or 'B: on|off' in " +
+                 inQuotes(c.label()) + ", found " + inQuotes(tokens[i].text));
+    }
+  }
+  t.sun = s;
+  t.environment.clear();  // one sky: the later line replaces the earlier
+}
+
+// A camera line of one number from `low` to `high`.
+std::optional<float> traceNumber(ViewLine& c, double low, double high) {
+  const SourceLocation at = c.args.here();
+  const std::optional<double> value = c.args.number();
+  if (!value || !(*value >= low && *value <= high)) {
+    c.fail(at, "expected a number from " + fmt::format("{:g}", low) + " to " +
+                   fmt::format("{:g}", high) + " after " + inQuotes(c.label()));
+  }
+  return static_cast<float>(*value);
+}
+
+// A camera line of one word among `words`.
+std::string traceChoice(ViewLine& c, std::initializer_list<std::string_view> words) {
+  const SourceLocation at = c.args.here();
+  const std::optional<std::string_view> word = c.args.word();
+  std::string list;
+  for (const std::string_view w : words) {
+    if (word && *word == w) return std::string(w);
+    list += (list.empty() ? "" : ", ") + std::string(w);
+  }
+  c.fail(at, "expected one of " + list + " after " + inQuotes(c.label()) + ", found " +
+                 (word ? inQuotes(*word) : std::string("nothing")));
+  return {};
+}
+
 void light(ViewLine& c) {
   const std::vector<Token> tokens = subcommandTokens(c.line());
   LightSource light;
@@ -984,6 +1129,31 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
         {"hair shading:", &hairShading},
         {"fibre:", &fibre},
         {"veins:", &veins},
+        {"subsurface:", &subsurface},
+        {"trace environment:", &traceEnvironment},
+        {"trace sun:", &traceSun},
+        {"trace ground:",
+         [](ViewLine& c) {
+           glm::vec3 albedo;
+           const std::array<SourceLocation, 3> at = traceTriple(c, "r,g,b", albedo);
+           for (int k = 0; k < 3; ++k) {
+             if (!(albedo[k] >= 0 && albedo[k] <= 1))
+               c.fail(at[k], "the ground's albedo must be from 0 to 1 a channel, found " +
+                                 fmt::format("{:g}", albedo[k]));
+           }
+           c.view.trace.ground = albedo;
+         }},
+        {"trace exposure:", [](ViewLine& c) { c.view.trace.exposure = traceNumber(c, -20, 20); }},
+        {"trace tone:",
+         [](ViewLine& c) {
+           c.view.trace.tone = traceChoice(c, {"none", "filmic"});
+         }},
+        {"trace filter:",
+         [](ViewLine& c) {
+           c.view.trace.filter = traceChoice(c, {"box", "gaussian", "mitchell"});
+         }},
+        {"trace aperture:", [](ViewLine& c) { c.view.trace.aperture = traceNumber(c, 0, 1e9); }},
+        {"trace focus:", [](ViewLine& c) { c.view.trace.focus = traceNumber(c, 1e-9, 1e12); }},
 
         // Lines, contours and surfaces (§8.1.5).
         {"line style:", &lineStyle},

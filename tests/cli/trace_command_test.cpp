@@ -383,4 +383,43 @@ TEST(TraceCommand, ABacklitLeafPassesLightByDefault) {
   EXPECT_GT(traced.g, traced.b);
 }
 
+// The skies and the camera's lines of the view file: the crocus in its evening garden and the
+// poppy outdoors render; the view's tone curve is overridden by --tone; a broken map is an
+// error at its name on the view file's line, with no picture.
+TEST(TraceCommand, ViewFileSkiesAndCameraLines) {
+  TemporaryFolder folder;
+  const fs::path poppy = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "oriental-poppy";
+  const fs::path garden = folder.path() / "garden.png", outdoors = folder.path() / "outdoors.png",
+                 clipped = folder.path() / "clipped.png";
+  RunResult run = runHirsute({"render", (kCrocus / "wild-crocus.l").string(),
+                              (kCrocus / "garden.v").string(), "--trace", "--spp", "2", "--size",
+                              "32x24", "-o", garden.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  run = runHirsute({"render", (poppy / "oriental-poppy.l").string(),
+                    (poppy / "outdoors.v").string(), "--trace", "--spp", "2", "--size", "32x24",
+                    "-o", outdoors.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  run = runHirsute({"render", (poppy / "oriental-poppy.l").string(),
+                    (poppy / "outdoors.v").string(), "--trace", "--spp", "2", "--size", "32x24",
+                    "--tone", "none", "-o", clipped.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(bytesOf(outdoors), bytesOf(clipped));
+
+  {
+    std::ofstream(folder.path() / "tiny.l") << "Lsystem: 1\nderivation length: 1\nAxiom: F\nendlsystem\n";
+    std::ofstream(folder.path() / "tiny.v") << "/* a sky */\ntrace environment: broken.exr S: 2\n";
+    std::ofstream(folder.path() / "broken.exr") << std::string("\x76\x2f\x31\x01", 4) << "garbage";
+  }
+  const fs::path refused = folder.path() / "refused.png";
+  run = runHirsute({"render", (folder.path() / "tiny.l").string(),
+                    (folder.path() / "tiny.v").string(), "--trace", "--size", "32x24", "-o",
+                    refused.string()});
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("tiny.v:2:20: error: cannot read the environment map 'broken.exr' as "
+                         "OpenEXR"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(refused));
+}
+
 }  // namespace

@@ -528,10 +528,70 @@ TEST(ViewFileTest, TheTracersLinesSetItsLightsAndMaterials) {
       << errorOf("hair shading: B: nan\n");
 }
 
+TEST(ViewFileTest, TheTracersSkyCameraAndSubsurfaceLines) {
+  Diagnostics diagnostics;
+  const ViewSettings view = parseViewFile(
+      "subsurface: 5 M: 0.004 H: 0.03 A: 0.9,0.7,0.95\nsubsurface: 3 M: 0.01 H: 0.02\n"
+      "trace sun: E: 25 A: 160 T: 4 G: 0.3 B: off\ntrace ground: 0.2,0.3,0.1\n"
+      "trace exposure: 1.5\ntrace tone: filmic\ntrace filter: mitchell\ntrace aperture: 0.5\n"
+      "trace focus: 12\n",
+      "trace.v", diagnostics);
+  EXPECT_TRUE(diagnostics.warnings().empty());
+  const TraceSettings& t = view.trace;
+  ASSERT_EQ(t.subsurface.size(), 2u);
+  EXPECT_EQ(t.subsurface[0].colour, 5);
+  EXPECT_FLOAT_EQ(t.subsurface[0].meanFreePath, 0.004f);
+  EXPECT_FLOAT_EQ(t.subsurface[0].thickness, 0.03f);
+  ASSERT_TRUE(t.subsurface[0].albedo.has_value());
+  EXPECT_EQ(*t.subsurface[0].albedo, glm::vec3(0.9f, 0.7f, 0.95f));
+  EXPECT_FALSE(t.subsurface[1].albedo.has_value());
+  ASSERT_TRUE(t.sun.has_value());
+  EXPECT_FLOAT_EQ(t.sun->elevation, 25);
+  EXPECT_FLOAT_EQ(t.sun->azimuth, 160);
+  EXPECT_FLOAT_EQ(t.sun->turbidity, 4);
+  EXPECT_FLOAT_EQ(t.sun->groundAlbedo, 0.3f);
+  EXPECT_FALSE(t.skySeen);
+  EXPECT_EQ(t.ground, glm::vec3(0.2f, 0.3f, 0.1f));
+  EXPECT_EQ(t.exposure, 1.5f);
+  EXPECT_EQ(t.tone, "filmic");
+  EXPECT_EQ(t.filter, "mitchell");
+  EXPECT_EQ(t.aperture, 0.5f);
+  EXPECT_EQ(t.focus, 12.0f);
+
+  const ViewSettings map =
+      parseViewFile("trace environment: sky.exr S: 2 R: -90\n", "trace.v", diagnostics);
+  EXPECT_EQ(map.trace.environment, "sky.exr");
+  EXPECT_FLOAT_EQ(map.trace.environmentScale, 2);
+  EXPECT_FLOAT_EQ(map.trace.environmentRotation, -90);
+  EXPECT_EQ(map.trace.environmentAt.line, 1);
+  EXPECT_EQ(map.trace.environmentAt.column, 20);
+
+  auto errorOf = [](const std::string& text) { return viewFileError(text, "trace.v"); };
+  for (const auto& [text, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"subsurface: 5 M: 0 H: 1\n", "trace.v:1:18: error:"},
+           {"subsurface: 5 M: 0.1\n", "needs a mean free path 'M:' and a thickness 'H:'"},
+           {"subsurface: 5 M: 0.001 H: 1\n", "more than 100 mean free paths"},
+           {"subsurface: 5 M: 0.1 H: 1 A: 1.2,1,1\n", "trace.v:1:30: error:"},
+           {"trace sun: E: 95\n", "trace.v:1:15: error: the value 95"},
+           {"trace sun: T: 1\n", "must be from 2 to 10"},
+           {"trace sun: B: maybe\n", "expected on or off"},
+           {"trace ground: 0.2,2,0.1\n", "trace.v:1:19: error:"},
+           {"trace environment: /etc/passwd\n", "trace.v:1:20: error: cannot open"},
+           {"trace environment: sky.exr Q: 1\n", "expected 'S: scale'"},
+           {"trace exposure: 30\n", "trace.v:1:17: error: expected a number from -20 to 20"},
+           {"trace tone: aces\n", "expected one of none, filmic"},
+           {"trace filter: lanczos\n", "expected one of box, gaussian, mitchell"},
+           {"trace focus: 0\n", "trace.v:1:14: error:"},
+       }) {
+    EXPECT_NE(errorOf(text).find(expected), std::string::npos) << text << errorOf(text);
+  }
+}
+
 // Each colour's veins cost the tracer four maps: a view file may give veins to 64 colours.
 TEST(ViewFileTest, VeinsHaveALimitOfColours) {
   std::string text;
-  for (int colour = 1; colour <= 64; ++colour) text += "veins: " + std::to_string(colour) + " splines\n";
+  for (int colour = 1; colour <= 64; ++colour)
+    text += "veins: " + std::to_string(colour) + " splines\n";
   Diagnostics diagnostics;
   EXPECT_EQ(parseViewFile(text, "veins.v", diagnostics).trace.veins.size(), 64u);
   const std::string error = viewFileError(text + "veins: 65 particles\n", "veins.v");
@@ -568,8 +628,7 @@ TEST(ViewFileTest, VeinsLinesSetEachColoursPattern) {
       << errorOf("veins: 5x splines\n");
   EXPECT_NE(errorOf("veins: 5 splines W: 2\n").find("veins.v:1:21: error:"), std::string::npos)
       << errorOf("veins: 5 splines W: 2\n");
-  EXPECT_NE(errorOf("veins: 5 splines N: 1e9\n").find("must be from 1 to 2000"),
-            std::string::npos);
+  EXPECT_NE(errorOf("veins: 5 splines N: 1e9\n").find("must be from 1 to 2000"), std::string::npos);
   EXPECT_NE(errorOf("veins: 5 splines Q: 1\n").find("found 'Q:'"), std::string::npos)
       << errorOf("veins: 5 splines Q: 1\n");
 }

@@ -14,6 +14,7 @@
 
 #include "hirsute/viewer/trace/denoise.h"
 #include "hirsute/viewer/trace/hair_bsdf.h"
+#include "hirsute/viewer/trace/subsurface.h"
 #include "hirsute/viewer/trace/surface_bsdf.h"
 #include "hirsute/viewer/trace/texture_lookup.h"
 #include "hirsute/viewer/view/view_lighting.h"
@@ -211,6 +212,7 @@ class Tracer {
   }
 
   glm::vec3 skyRadiance(const glm::vec3& direction) const {
+    if (lights_.environment) return lights_.environment->radiance(direction);
     return glm::dot(direction, lights_.up) > 0 ? lights_.sky : glm::vec3(0.0f);
   }
 
@@ -262,7 +264,7 @@ class Tracer {
                         const Hit& hit, Random& random) const {
     glm::vec3 total(0.0f);
     if (lights_.sphere) total += lightSample(bsdf, point, wo, hit, random.uniform2(), true);
-    if (luminance(lights_.sky) > 0) {
+    if (luminance(lights_.sky) > 0 || lights_.environment) {
       total += lightSample(bsdf, point, wo, hit, random.uniform2(), false);
     }
     return total;
@@ -284,6 +286,12 @@ class Tracer {
       pdf = 1 / (2 * kPi * (1 - cosMax));
       radiance = lights_.radiance;
       far = distance - lights_.radius;
+    } else if (lights_.environment) {
+      const EnvironmentSample e = lights_.environment->sample(u);
+      wi = e.direction;
+      pdf = e.pdf;
+      radiance = e.radiance;
+      far = std::numeric_limits<float>::infinity();
     } else {
       wi = Frame::around(lights_.up).toWorld(sampleUniformHemisphere(u));
       pdf = kUniformHemispherePdf;
@@ -322,10 +330,14 @@ class Tracer {
         }
       }
       if (!hit.found) {
-        if (camera) {
+        if (camera && !(lights_.environment && lights_.skySeen)) {
           total += throughput * options_.background;
+        } else if (camera) {
+          total += throughput * skyRadiance(direction);
         } else {
-          const float weight = powerHeuristic(lastPdf, kUniformHemispherePdf);
+          const float skyPdf =
+              lights_.environment ? lights_.environment->pdf(direction) : kUniformHemispherePdf;
+          const float weight = powerHeuristic(lastPdf, skyPdf);
           total += throughput * skyRadiance(direction) * weight;
         }
         break;
@@ -353,8 +365,8 @@ class Tracer {
         glm::vec3 tangent(0, 1, 0);
         if (shape.curve) {
           const std::uint32_t segment = shape.curveSegments[hit.primitive];
-          const glm::vec3 along = glm::vec3(shape.curveVertices[segment + 1]) -
-                                  glm::vec3(shape.curveVertices[segment]);
+          const glm::vec3 along =
+              glm::vec3(shape.curveVertices[segment + 1]) - glm::vec3(shape.curveVertices[segment]);
           if (glm::length(along) > 0) tangent = glm::normalize(along);
         }
         // The lights, then the material's own direction: the lobe, then the direction's two
@@ -413,6 +425,10 @@ class Tracer {
         if (material.veins >= 0 && shape.surface) addVeins(material, shape, hit, surface, normal);
         if (glm::dot(normal, wo) < 0) normal = -normal;
         if (camera && first) *first = {surface.reflectance + surface.transmittance, normal};
+        // Light that walks inside a leaf leaves by one face or the other (subsurface.h).
+        if (material.subsurface.present()) {
+          walkIntoSheet(material.subsurface, material.surface, surface, random);
+        }
         const SurfaceBsdf bsdf(surface, normal);
         total += throughput * directLight(bsdf, point, wo, hit, random);
         const float lobe = random.uniform();
@@ -516,8 +532,8 @@ TraceImage traceImage(const TraceScene& scene, const Camera& camera, const Trace
   std::vector<glm::dvec3> squares(adaptive || options.denoise ? pixels : 0, glm::dvec3(0.0));
   // The denoiser's features: the sums of the first hits' colours and normals and their squares.
   const std::size_t featurePixels = options.denoise ? pixels : 0;
-  std::vector<glm::vec3> albedoSum(featurePixels, glm::vec3(0.0f)), albedoSquares = albedoSum,
-                         normalSum = albedoSum, normalSquares = albedoSum;
+  std::vector<glm::vec3> albedoSum(featurePixels, glm::vec3(0.0f)),
+      albedoSquares = albedoSum, normalSum = albedoSum, normalSquares = albedoSum;
   image.samples.assign(pixels, 0);
 
   // The tiles still sampled, in raster order; the threads take them one at a time.

@@ -102,6 +102,13 @@ int TraceScene::surfaceMaterial(const Scene& scene, int index, bool thin, bool l
   t.surface.specular = linearColour(m.specular);
   t.surface.exponent = m.shininess;
   t.opacity = 1 - std::clamp(m.transparency, 0.0f, 1.0f);
+  // A thin sheet whose colour has a `subsurface:` line walks light inside instead.
+  for (const SubsurfaceSettings& s : look_.subsurface) {
+    if (!thin || s.colour != index) continue;
+    t.subsurface.meanFreePath = s.meanFreePath;
+    t.subsurface.thickness = s.thickness;
+    t.subsurface.albedo = s.albedo ? linearColour(*s.albedo) : singleScatteringAlbedo(colour);
+  }
   return surfaceOf_[key] = addMaterial(t);
 }
 

@@ -250,6 +250,9 @@ class ViewLine {
     return folder.pathOf(std::string(name)).string();
   }
 
+  // The view file's folder, against which its file names are resolved.
+  const std::filesystem::path& folder() const { return folder_; }
+
   ViewArguments args;
   ViewSettings& view;
 

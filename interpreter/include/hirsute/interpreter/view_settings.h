@@ -104,6 +104,23 @@ struct VeinSettings {
   std::uint32_t seed = 1;               // S:
 };
 
+// `subsurface: COLOUR M: mean free path H: thickness A: r,g,b`: light that walks inside the thin
+// surfaces of a colour (subsurface.h in the tracer).
+struct SubsurfaceSettings {
+  int colour = 0;
+  float meanFreePath = 0, thickness = 0;  // in the model's units
+  std::optional<glm::vec3> albedo;        // single-scattering; none: from the colour
+};
+
+// `trace sun: E: elevation A: azimuth T: turbidity G: ground albedo B: on|off`: a physical sun
+// and sky (sky_model.h in the tracer).
+struct SunSkySettings {
+  float elevation = 45;  // degrees above the horizon
+  float azimuth = 0;     // degrees about `trace up:`, 0: behind the eye, 180: facing it
+  float turbidity = 3;
+  float groundAlbedo = 0.2f;
+};
+
 struct TraceSettings {
   // `trace light: D: x,y,z A: degrees I: r,g,b`: towards the light from the plant (none: the
   // first `light:` line's direction, or the eye's), the angle it subtends, and the irradiance it
@@ -121,6 +138,19 @@ struct TraceSettings {
   // `fibre: ORGAN [N] MODEL ...` (fibre_settings.h); a later line for the same hairs replaces it.
   std::vector<FibreSettings> fibres;
   std::vector<VeinSettings> veins;  // one a colour; a later line for a colour replaces it
+  std::vector<SubsurfaceSettings> subsurface;  // one a colour; a later line replaces it
+  // `trace environment: FILE S: scale R: degrees`: an OpenEXR latitude-longitude map of the
+  // sky's radiance, named as written, read beneath the view file's folder (environment_map.h).
+  std::string environment, environmentFolder;
+  SourceLocation environmentAt;  // the file name on its line
+  float environmentScale = 1, environmentRotation = 0;
+  std::optional<SunSkySettings> sun;
+  // `B: on|off` of either: whether camera rays that miss the plant see that sky.
+  bool skySeen = true;
+  std::optional<glm::vec3> ground;  // `trace ground: r,g,b`: a ground plane of that albedo
+  // The camera's lines; the command line's options override them.
+  std::optional<float> exposure, aperture, focus;
+  std::optional<std::string> tone, filter;
 };
 
 struct ViewSettings {

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -27,6 +28,7 @@
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/view/png_image.h"
+#include "hirsute/viewer/trace/environment_map.h"
 #include "hirsute/viewer/trace/pixel_filter.h"
 #include "hirsute/viewer/trace/sampling.h"
 #include "hirsute/viewer/trace/tone_curve.h"
@@ -41,6 +43,10 @@ struct TraceLights {
   glm::vec3 radiance{0.0f};
   glm::vec3 sky{0.0f};  // the sky's radiance over the hemisphere about `up`
   glm::vec3 up{0, 1, 0};
+  // An environment map (environment_map.h: a file's, or the physical sky's) in place of `sky`,
+  // and whether camera rays that miss the plant see it rather than the background.
+  std::shared_ptr<const EnvironmentMap> environment;
+  bool skySeen = false;
 };
 
 // The lights of `look` for a plant in `plant`: the spherical light far off (fifty times the

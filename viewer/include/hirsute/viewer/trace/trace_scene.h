@@ -19,6 +19,7 @@
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/trace/fibre_bsdf.h"
 #include "hirsute/viewer/trace/hair_bsdf.h"
+#include "hirsute/viewer/trace/subsurface.h"
 #include "hirsute/viewer/trace/surface_bsdf.h"
 #include "hirsute/viewer/trace/veins.h"
 
@@ -50,6 +51,7 @@ struct TraceMaterial {
   float veinStrength = 1;
   float veinBump = 0;
   float veinWidth = 0;  // a share of the surface's length
+  SubsurfaceMaterial subsurface;  // light that walks inside a thin sheet (subsurface.h)
 };
 
 enum class CurveShape : std::uint8_t {
