@@ -355,6 +355,96 @@ void hairShading(ViewLine& c) {
   }
 }
 
+// `fibre: hairs|fur|feathers [N] chiang|kajiya C: r,g,b M: eu,pheo L: βm A: βn T: tilt E: eta`
+// (docs/trace.md, "Hairs").
+void fibre(ViewLine& c) {
+  const std::vector<Token> tokens = subcommandTokens(c.line());
+  c.args.skipAll();
+  FibreSettings f;
+  std::size_t i = 0;
+  const std::string_view organ = tokens.empty() ? std::string_view() : tokens[0].text;
+  if (organ != "hairs" && organ != "fur" && organ != "feathers") {
+    c.fail(tokens.empty() ? c.labelAt() : tokens[0].where,
+           "expected 'hairs', 'fur' or 'feathers' after " + inQuotes(c.label()));
+  }
+  f.organ = organ == "hairs" ? FibreOrgan::Hairs
+            : organ == "fur" ? FibreOrgan::Fur
+                             : FibreOrgan::Feathers;
+  ++i;
+  if (i < tokens.size() && f.organ != FibreOrgan::Feathers) {
+    if (const auto n = integerAtFront(tokens[i].text); n && n->second == tokens[i].text.size()) {
+      const long low = f.organ == FibreOrgan::Hairs ? 1 : 0;
+      const long high = f.organ == FibreOrgan::Hairs ? 64 : 4095;
+      if (n->first < low || n->first > high) {
+        c.fail(tokens[i].where, f.organ == FibreOrgan::Hairs
+                                    ? "expected a template hair's number from 1 to 64"
+                                    : "expected a colour index from 0 to 4095");
+      }
+      f.index = static_cast<int>(n->first);
+      ++i;
+    }
+  }
+  if (i >= tokens.size() || (tokens[i].text != "chiang" && tokens[i].text != "kajiya")) {
+    c.fail(i < tokens.size() ? tokens[i].where : tokens.back().where,
+           "expected the model 'chiang' or 'kajiya' in " + inQuotes(c.label()));
+  }
+  f.model = tokens[i].text == "chiang" ? FibreModel::Chiang : FibreModel::KajiyaGoldman;
+  for (++i; i < tokens.size(); ++i) {
+    const char key = subcommandKey(tokens[i].text);
+    const std::size_t first = i + 1;
+    if (f.model == FibreModel::KajiyaGoldman) {
+      c.fail(tokens[i].where, "the 'kajiya' model takes its settings from 'hair shading:', found " +
+                                  inQuotes(tokens[i].text));
+    }
+    switch (key) {
+      case 'C':
+        f.colour = boundedColour(c, tokens, i, 1);
+        break;
+      case 'M': {
+        const std::vector<double> m = subcommandNumbers(c, tokens, i, 2, "eumelanin,pheomelanin");
+        boundedValue(c, tokens[first], m[0], 0, 50);
+        boundedValue(c, tokens[first + 1], m[1], 0, 50);
+        f.melanin = glm::vec2(static_cast<float>(m[0]), static_cast<float>(m[1]));
+        break;
+      }
+      case 'L':
+        f.longitudinalRoughness = static_cast<float>(boundedValue(
+            c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a roughness")[0], 0.01, 1));
+        break;
+      case 'A':
+        f.azimuthalRoughness = static_cast<float>(boundedValue(
+            c, tokens[first], subcommandNumbers(c, tokens, i, 1, "a roughness")[0], 0.01, 1));
+        break;
+      case 'T':
+        f.tiltDegrees = static_cast<float>(
+            boundedValue(c, tokens[first],
+                         subcommandNumbers(c, tokens, i, 1, "an angle in degrees")[0], -10, 10));
+        break;
+      case 'E':
+        f.eta = static_cast<float>(
+            boundedValue(c, tokens[first],
+                         subcommandNumbers(c, tokens, i, 1, "an index of refraction")[0], 1.01, 3));
+        break;
+      default:
+        c.fail(tokens[i].where, "expected 'C: r,g,b', 'M: eumelanin,pheomelanin', "
+                                "'L: roughness', 'A: roughness', 'T: tilt' or 'E: index' in " +
+                                    inQuotes(c.label()) + ", found " + inQuotes(tokens[i].text));
+    }
+  }
+  if (f.colour && f.melanin) {
+    c.fail(c.labelAt(), "give the fibre's absorption by 'C:' or by 'M:', not both");
+  }
+  std::vector<FibreSettings>& all = c.view.trace.fibres;
+  std::erase_if(all, [&](const FibreSettings& old) {
+    return old.organ == f.organ && old.index == f.index;
+  });
+  constexpr std::size_t kMaxFibreLines = 256;
+  if (all.size() >= kMaxFibreLines) {
+    c.fail(c.labelAt(), "more than " + std::to_string(kMaxFibreLines) + " 'fibre:' lines");
+  }
+  all.push_back(f);
+}
+
 void translucency(ViewLine& c) {
   const SourceLocation colourAt = c.args.here();
   const std::optional<long> colour = c.args.integer();
@@ -1037,6 +1127,7 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
          }},
         {"translucency:", &translucency},
         {"hair shading:", &hairShading},
+        {"fibre:", &fibre},
         {"veins:", &veins},
         {"subsurface:", &subsurface},
         {"trace environment:", &traceEnvironment},

@@ -633,5 +633,46 @@ TEST(ViewFileTest, VeinsLinesSetEachColoursPattern) {
       << errorOf("veins: 5 splines Q: 1\n");
 }
 
+// `fibre:` lines choose the hairs' scattering model by template, fur colour or organ.
+TEST(ViewFileTest, FibreLinesChooseTheModelPerKindOfHair) {
+  Diagnostics diagnostics;
+  const ViewSettings view = parseViewFile(
+      "fibre: hairs chiang L: 0.25 A: 0.4 T: 3 E: 1.5\nfibre: hairs 2 kajiya\n"
+      "fibre: fur 7 chiang M: 1.3,0.2\nfibre: feathers chiang C: 0.9,0.8,0.7\n"
+      "fibre: hairs 2 chiang\n",
+      "fibre.v", diagnostics);
+  const std::vector<FibreSettings>& f = view.trace.fibres;
+  ASSERT_EQ(f.size(), 4u);
+  EXPECT_EQ(f[0].organ, FibreOrgan::Hairs);
+  EXPECT_EQ(f[0].index, -1);
+  EXPECT_FLOAT_EQ(f[0].longitudinalRoughness, 0.25f);
+  EXPECT_FLOAT_EQ(f[0].azimuthalRoughness, 0.4f);
+  EXPECT_FLOAT_EQ(f[0].tiltDegrees, 3);
+  EXPECT_FLOAT_EQ(f[0].eta, 1.5f);
+  EXPECT_EQ(f[1].organ, FibreOrgan::Fur);
+  EXPECT_EQ(f[1].index, 7);
+  ASSERT_TRUE(f[1].melanin.has_value());
+  EXPECT_EQ(*f[1].melanin, glm::vec2(1.3f, 0.2f));
+  EXPECT_EQ(f[2].organ, FibreOrgan::Feathers);
+  EXPECT_EQ(*f[2].colour, glm::vec3(0.9f, 0.8f, 0.7f));
+  // The later line for template 2 replaced the earlier.
+  EXPECT_EQ(f[3].index, 2);
+  EXPECT_EQ(f[3].model, FibreModel::Chiang);
+
+  auto errorOf = [](const std::string& text) { return viewFileError(text, "fibre.v"); };
+  EXPECT_NE(errorOf("fibre: hair chiang\n").find("fibre.v:1:8: error: expected 'hairs', 'fur' or"),
+            std::string::npos)
+      << errorOf("fibre: hair chiang\n");
+  EXPECT_NE(errorOf("fibre: hairs 0 chiang\n").find("fibre.v:1:14: error:"), std::string::npos)
+      << errorOf("fibre: hairs 0 chiang\n");
+  EXPECT_NE(errorOf("fibre: fur marschner\n").find("expected the model 'chiang' or 'kajiya'"),
+            std::string::npos);
+  EXPECT_NE(errorOf("fibre: hairs chiang L: 2\n").find("fibre.v:1:24: error:"), std::string::npos)
+      << errorOf("fibre: hairs chiang L: 2\n");
+  EXPECT_NE(errorOf("fibre: hairs kajiya L: 0.2\n").find("from 'hair shading:'"),
+            std::string::npos);
+  EXPECT_NE(errorOf("fibre: hairs chiang C: 1,1,1 M: 1,0\n").find("not both"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace hirsute

@@ -362,8 +362,6 @@ class Tracer {
       glm::vec3 wi, value;
       float pdf;
       if (material.hair) {
-        HairMaterial fibre = material.fibre;
-        fibre.diffuse *= glm::vec3(tint);
         glm::vec3 tangent(0, 1, 0);
         if (shape.curve) {
           const std::uint32_t segment = shape.curveSegments[hit.primitive];
@@ -371,17 +369,37 @@ class Tracer {
               glm::vec3(shape.curveVertices[segment + 1]) - glm::vec3(shape.curveVertices[segment]);
           if (glm::length(along) > 0) tangent = glm::normalize(along);
         }
-        if (camera && first) *first = {fibre.diffuse + fibre.specular, tangent};
-        const HairBsdf bsdf(fibre, tangent);
-        total += throughput * directLight(bsdf, point, wo, hit, random);
-        // The lobe, then the direction's two angles as one point of a square.
-        const float lobe = random.uniform();
-        const glm::vec2 angles = random.uniform2();
-        const glm::vec4 u(lobe, angles.x, random.uniform(), angles.y);
-        const HairSample s = bsdf.sample(wo, u);
-        wi = s.direction;
-        value = s.value;
-        pdf = s.pdf;
+        // The lights, then the material's own direction: the lobe, then the direction's two
+        // angles as one point of a square.
+        auto scatter = [&](const auto& bsdf) {
+          total += throughput * directLight(bsdf, point, wo, hit, random);
+          const float lobe = random.uniform();
+          const glm::vec2 angles = random.uniform2();
+          const glm::vec4 u(lobe, angles.x, random.uniform(), angles.y);
+          const HairSample s = bsdf.sample(wo, u);
+          wi = s.direction;
+          value = s.value;
+          pdf = s.pdf;
+        };
+        if (material.chiang) {
+          FibreMaterial fibre = material.chiangFibre;
+          const glm::vec3 colour = material.fibreColour * glm::vec3(tint);
+          if (!material.absorptionFixed) {
+            fibre.absorption = absorptionFromColour(colour, fibre.azimuthalRoughness);
+          }
+          // Where the ray met the fibre across its width: from the round tube's normal there;
+          // a ribbon turned towards the ray (a barb) has none, so h is drawn over its width.
+          const float offset = shape.curve && !shape.flatCurve
+                                   ? fibreOffset(tangent, hit.normal, wo)
+                                   : 2 * random.uniform() - 1;
+          if (camera && first) *first = {colour, tangent};
+          scatter(FibreBsdf(fibre, tangent, wo, offset));
+        } else {
+          HairMaterial fibre = material.fibre;
+          fibre.diffuse *= glm::vec3(tint);
+          if (camera && first) *first = {fibre.diffuse + fibre.specular, tangent};
+          scatter(HairBsdf(fibre, tangent));
+        }
       } else {
         SurfaceMaterial surface = material.surface;
         surface.reflectance *= glm::vec3(tint);

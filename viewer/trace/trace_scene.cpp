@@ -151,26 +151,48 @@ const VeinMap& TraceScene::veinMap(int veins, float variant) const {
   return maps[k];
 }
 
-int TraceScene::hairMaterial(const Scene& scene, int index) {
-  const auto slot = static_cast<std::size_t>(std::max(0, index));
-  if (slot >= hairOf_.size()) hairOf_.resize(slot + 1, -1);
-  if (hairOf_[slot] >= 0) return hairOf_[slot];
+int TraceScene::hairMaterial(const Scene& scene, int index, int templateNumber) {
+  const glm::ivec2 key(index, templateNumber);
+  for (const auto& [k, hair] : hairOf_) {
+    if (k == key) return hair;
+  }
   const Material& m = sceneMaterial(scene, index);
-  const int hair = hairOfColour(linearColour(m.diffuse));
+  const int hair = hairOfColour(linearColour(m.diffuse), FibreOrgan::Hairs, templateNumber);
   // A transparent hair material (the crocus's silky hairs) lets that share of rays pass, as GL
   // blends it.
   materials_[static_cast<std::size_t>(hair)].opacity = 1 - std::clamp(m.transparency, 0.0f, 1.0f);
   if (m.transparency > 0) transparency_ = true;
-  return hairOf_[slot] = hair;
+  hairOf_.emplace_back(key, hair);
+  return hair;
 }
 
-int TraceScene::hairOfColour(const glm::vec3& colour) {
+int TraceScene::hairOfColour(const glm::vec3& colour, FibreOrgan organ, int index) {
   TraceMaterial t;
   t.hair = true;
   t.fibre.specular = glm::vec3(std::clamp(look_.hairSpecular, 0.0f, 1.0f));
   t.fibre.diffuse = colour * (1 - t.fibre.specular.x);
   t.fibre.backscatter = look_.hairBackscatter;
   t.fibre.roughness = look_.hairRoughness;
+  // The line for these hairs, else the organ's, else the defaults (fibre_settings.h).
+  const FibreSettings* line = nullptr;
+  for (const FibreSettings& f : look_.fibres) {
+    if (f.organ != organ) continue;
+    if (f.index == index && index >= 0) line = &f;
+    if (f.index < 0 && !line) line = &f;
+  }
+  const FibreSettings settings = line ? *line : FibreSettings{};
+  if (settings.model == FibreModel::Chiang) {
+    t.chiang = true;
+    t.chiangFibre.longitudinalRoughness = settings.longitudinalRoughness;
+    t.chiangFibre.azimuthalRoughness = settings.azimuthalRoughness;
+    t.chiangFibre.tilt = glm::radians(settings.tiltDegrees);
+    t.chiangFibre.eta = settings.eta;
+    t.fibreColour = settings.colour ? linearColour(*settings.colour) : colour;
+    if (settings.melanin) {
+      t.absorptionFixed = true;
+      t.chiangFibre.absorption = absorptionFromMelanin(settings.melanin->x, settings.melanin->y);
+    }
+  }
   return addMaterial(t);
 }
 
@@ -211,7 +233,9 @@ CurveBuffers TraceScene::addCurves(CurveShape shape, std::size_t vertices, std::
   failOnError(device_, "making curves");
   curveSegments_ += segments;
   if (tint) transparency_ = true;
-  attach(g, TraceShape{material, true, out.vertices, out.segments, nullptr, nullptr, out.tint});
+  TraceShape traced{material, true, out.vertices, out.segments, nullptr, nullptr, out.tint};
+  traced.flatCurve = shape == CurveShape::Flat;
+  attach(g, traced);
   return out;
 }
 

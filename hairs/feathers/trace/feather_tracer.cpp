@@ -53,7 +53,7 @@ class FeatherTracer : public trace::OrganTracer {
     if (!segments.empty()) {
       const trace::CurveBuffers curves =
           out.addCurves(trace::CurveShape::Flat, barbVertices, segments.size(),
-                        out.hairOfColour(glm::vec3(1.0f)), true);
+                        out.hairOfColour(glm::vec3(1.0f), FibreOrgan::Feathers), true);
       // Each vertex as wide as a share of the longer segment beside it, and at least a pixel,
       // as GL draws a barb.
       std::vector<float> width(barbVertices, 0.0f);

@@ -13,7 +13,16 @@ class FurTracer : public trace::OrganTracer {
  public:
   void addTo(const Scene& scene, const Camera& /*camera*/, trace::TraceScene& out) const override {
     const FurPart& part = scene.organ<FurPart>();
-    const int material = part.surfaces.empty() ? -1 : out.hairOfColour(glm::vec3(1.0f));
+    // Each surface's strands shade as the `fibre:` line for its colour says (one material a
+    // colour).
+    std::vector<std::pair<int, int>> materialOf;
+    auto materialFor = [&](int colour) {
+      for (const auto& [c, m] : materialOf) {
+        if (c == colour) return m;
+      }
+      materialOf.emplace_back(colour, out.hairOfColour(glm::vec3(1.0f), FibreOrgan::Fur, colour));
+      return materialOf.back().second;
+    };
     fur::StrandBudget budget(part);
     for (std::size_t index = 0; index < part.surfaces.size(); ++index) {
       const FurSurface& surface = part.surfaces[index];
@@ -29,8 +38,8 @@ class FurTracer : public trace::OrganTracer {
       // As the exports sample a strand: enough points to follow its curl, within --max-vertices.
       const auto points = static_cast<std::size_t>(budget.charge(scene, surface, index));
       const trace::CurveBuffers b =
-          out.addCurves(trace::CurveShape::Round, strands * points,
-                        strands * (points - 1), material, true);
+          out.addCurves(trace::CurveShape::Round, strands * points, strands * (points - 1),
+                        materialFor(surface.material), true);
       std::uint32_t vertex = 0;
       std::size_t segment = 0, made = 0;
       fur::forEachStrand(scene, surface, static_cast<int>(points),

@@ -83,8 +83,10 @@ class PlantHairTracer : public trace::OrganTracer {
         }
       }
       if (segments == 0) continue;
-      const trace::CurveBuffers b = out.addCurves(trace::CurveShape::Round, vertices, segments,
-                                                  out.hairMaterial(scene, hair.material), false);
+      // The template's number (from 1) chooses its `fibre:` line.
+      const int material = out.hairMaterial(scene, hair.material, static_cast<int>(t) + 1);
+      const trace::CurveBuffers b =
+          out.addCurves(trace::CurveShape::Round, vertices, segments, material, false);
       std::uint32_t vertex = 0;
       std::size_t segment = 0;
       for (std::size_t i = 0; i < part.hairs.size(); ++i) {

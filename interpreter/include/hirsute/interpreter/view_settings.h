@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/interpreter/fibre_settings.h"
 #include "hirsute/interpreter/organ_settings.h"
 #include "hirsute/interpreter/scene.h"
 
@@ -134,6 +135,8 @@ struct TraceSettings {
   std::vector<std::pair<int, float>> translucent;
   // `hair shading: B: backscatter R: roughness S: specular` (hair_bsdf.h).
   float hairBackscatter = 0.4f, hairRoughness = 0.25f, hairSpecular = 0.08f;
+  // `fibre: ORGAN [N] MODEL ...` (fibre_settings.h); a later line for the same hairs replaces it.
+  std::vector<FibreSettings> fibres;
   std::vector<VeinSettings> veins;  // one a colour; a later line for a colour replaces it
   std::vector<SubsurfaceSettings> subsurface;  // one a colour; a later line replaces it
   // `trace environment: FILE S: scale R: degrees`: an OpenEXR latitude-longitude map of the

@@ -17,6 +17,7 @@
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/interpreter/view_settings.h"
 #include "hirsute/viewer/view/camera.h"
+#include "hirsute/viewer/trace/fibre_bsdf.h"
 #include "hirsute/viewer/trace/hair_bsdf.h"
 #include "hirsute/viewer/trace/subsurface.h"
 #include "hirsute/viewer/trace/surface_bsdf.h"
@@ -34,6 +35,12 @@ struct TraceMaterial {
   bool hair = false;
   SurfaceMaterial surface;
   HairMaterial fibre;
+  // A hair shaded by the fibre model (fibre_bsdf.h) rather than by `fibre`: σa fitted to
+  // `fibreColour` times the shape's tint, unless melanin fixed it (`absorptionFixed`).
+  bool chiang = false;
+  FibreMaterial chiangFibre;
+  glm::vec3 fibreColour{1.0f};
+  bool absorptionFixed = false;
   glm::vec3 emission{0.0f};  // radiance the shape gives off
   float opacity = 1;         // below 1: rays pass through that share of the time
   // Veins (veins.h): the index of the material's vein maps (-1: none), the veins' colour as a
@@ -87,6 +94,7 @@ struct TraceShape {
   const SurfacePoint* surface = nullptr;          // triangles: a vertex each, or null
   const glm::vec2* texcoords = nullptr;           // triangles: a vertex each, or null
   int texture = -1;                               // TraceScene::texture, with texcoords
+  bool flatCurve = false;                         // curves: a ribbon turned towards each ray
 };
 
 class TraceScene {
@@ -111,10 +119,12 @@ class TraceScene {
   // patch, an open generalized cylinder) passes light through as a leaf: `translucency:` for
   // its colour, or else kLeafTranslucency of its colour besides what it reflects.
   int surfaceMaterial(const Scene& scene, int index, bool thin = false, bool lit = true);
-  int hairMaterial(const Scene& scene, int index);
+  // `templateNumber`: the plant hairs' template (from 1) whose `fibre:` line applies.
+  int hairMaterial(const Scene& scene, int index, int templateNumber = -1);
   // A hair or a two-sided surface of the linear colour `colour` (white for shapes whose tint
-  // gives their colour), shaded as the view file says hairs are.
-  int hairOfColour(const glm::vec3& colour);
+  // gives their colour), shaded as the view file says hairs are: its `fibre:` line for the
+  // organ and `index` (a template's number, a fur colour), or the organ's line, or the default.
+  int hairOfColour(const glm::vec3& colour, FibreOrgan organ = FibreOrgan::Hairs, int index = -1);
   int surfaceOfColour(const glm::vec3& colour);
   // The view file's veins for the colour `index`, or null.
   const VeinSettings* veinsOf(int index) const;
@@ -162,7 +172,8 @@ class TraceScene {
   RTCSceneTy* scene_ = nullptr;
   std::vector<TraceShape> shapes_;
   std::vector<TraceMaterial> materials_;
-  std::vector<int> surfaceOf_, hairOf_, veinedOf_;  // surfaceOf_, veinedOf_: 4 and 2 a colour
+  std::vector<int> surfaceOf_, veinedOf_;
+  std::vector<std::pair<glm::ivec2, int>> hairOf_;  // (colour, template) and its material  // surfaceOf_, veinedOf_: 4 and 2 a colour
   int litPaletteOffset_ = 0;
   std::vector<std::vector<VeinMap>> veinMaps_;               // kVeinVariants a vein line
   std::vector<std::unique_ptr<SurfacePoint[]>> surfacePoints_;  // the shapes' (not Embree's)

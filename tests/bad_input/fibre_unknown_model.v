@@ -1,0 +1,2 @@
+/* a fibre: line naming no model */
+fibre: hairs 1 marschner
