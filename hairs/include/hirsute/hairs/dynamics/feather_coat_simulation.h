@@ -8,10 +8,14 @@
 //      implicit and gravity, drag and wind explicit: v^{n+1/2};
 //   2. candidate positions x^{n+1} = x^n + h v^{n+1/2}, the anchors at their new frames;
 //   3. strain limiting from the anchor to the tip, its corrections added to v^{n+1/2};
-//   4. repulsion: pairs closer than the thickness at x^n stop approaching (impulses kept apart
-//      from the internal forces);
+//   4. resting contacts (resting_contacts.h): pairs closer than the thickness at x^n join the
+//      contact set kept from step to step and are held at the resting distance by a
+//      position-level solve of x^{n+1}, interleaved with strain limiting (with the stage off:
+//      repulsion, impulses that stop such pairs approaching, kept apart from the internal forces);
 //   5. continuous collisions over x^n -> x^{n+1}: candidates from swept boxes (box_tree.h: a
-//      list kept over several searches, less the pairs a plane keeps apart), the CCD of
+//      list kept over several searches, less the pairs a plane keeps apart; a held pair is
+//      passed over where its contact's normal, or another plane, keeps it apart at both ends
+//      of the step: separatedThroughStep), the CCD of
 //      continuous_collision.h on each, inelastic impulses in time-of-impact order,
 //      repeated a few passes; then rigid impact zones (Provot 1997) until no contact within a
 //      quarter of the minimum separation is left (the CCD's separation is a box, wider than a
