@@ -925,6 +925,20 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // impulses and the zones' rounds move the vertices of their contacts, and most pairs of a
   // layered coat have none of them.
   std::vector<KeptAnswers> kept;  // one per separation
+  // Whether the slab between the pair's primitives along `n` (the first one's lowest vertex
+  // over the second's highest) is no thinner at the end of the step than at its start.
+  const auto opensAlong = [](const MovingPrimitives& m, bool vertexFace, const Vector3d& n) {
+    const int split = vertexFace ? 1 : 2;
+    double slab[2];
+    for (int end = 0; end < 2; ++end) {
+      const auto& x = end == 0 ? m.start : m.end;
+      double low = n.dot(x[0]), high = n.dot(x[split]);
+      for (int k = 1; k < split; ++k) low = std::min(low, n.dot(x[k]));
+      for (int k = split + 1; k < 4; ++k) high = std::max(high, n.dot(x[k]));
+      slab[end] = low - high;
+    }
+    return slab[1] >= slab[0];
+  };
   const auto ccdOf = [&](const std::vector<std::pair<int, int>>& pairs, const CcdOptions& options) {
     auto answers = std::find_if(kept.begin(), kept.end(), [&](const KeptAnswers& k) {
       return k.separation == options.minimumSeparation;
@@ -957,6 +971,13 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
         if (parameters_.restingContacts
                 ? separatedThroughStep(m, vertexFace, options, held ? &held->normal : nullptr)
                 : separatedOverStep(m, vertexFace, options))
+          continue;
+        // A held pair that the solve opens along its normal over the step and that stays beyond
+        // the zones' separation throughout is the solve's: no accepted state can find it nearer
+        // than a quarter of the separation, and the impulses would only open it the way the
+        // next steps' solves do (docs/dynamics.md, "Resting contacts").
+        if (held != nullptr && opensAlong(m, vertexFace, held->normal) &&
+            separatedThroughStep(m, vertexFace, zoneCcd, &held->normal))
           continue;
         asked[k] = 1;
         results[k] = vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
