@@ -116,6 +116,7 @@ dynamics::SimulationParameters parametersFor(const FeatherDynamicsSettings& view
   if (o.segments) p.segmentsPerFeather = *o.segments;
   if (o.vaneCollisions) p.vaneCollisions = true;
   if (o.noVaneCollisions) p.vaneCollisions = false;
+  if (o.noRestingContacts) p.restingContacts = false;
   // The vanes' count leaves out those that overlap where the coat is placed.
   p.findVaneOverlaps = o.countVaneIntersections;
   return p;
@@ -382,7 +383,8 @@ int runSimulate(SimulateOptions o) {
   std::string table =
       "frame,time,steps,substeps,retries,candidates,contacts,impulses,repulsions,"
       "impact_zones,penetrations,kept_near,calami_left,calami_crossed,calami_zoned,"
-      "seconds,vane_candidates,vane_contacts,vane_penetrations,vane_intersections_left\n";
+      "seconds,vane_candidates,vane_contacts,vane_penetrations,vane_intersections_left,"
+      "resting_contacts,searches,searched_pairs,ccd_queries,net_contacts\n";
   std::string furTable =
       "frame,time,droplets,mean_bend,largest_bend,largest_speed,wet_texels,mean_wetness,"
       "seconds\n";
@@ -547,15 +549,18 @@ int runSimulate(SimulateOptions o) {
       vanesLeft = std::to_string(count);
     }
     table += fmt::format(
-        "{},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f},{},{},{},{}\n", frame,
-        motion->simulation().time(), c.steps - before.steps, c.substeps - before.substeps,
+        "{},{:.6g},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f},{},{},{},{},{},{},{},{},{}\n",
+        frame, motion->simulation().time(), c.steps - before.steps, c.substeps - before.substeps,
         c.retries - before.retries, c.candidates - before.candidates, c.contacts - before.contacts,
         c.impulses - before.impulses, c.repulsions - before.repulsions,
         c.impactZones - before.impactZones, c.penetrations - before.penetrations,
         c.keptNear - before.keptNear, c.calamiLeft - before.calamiLeft,
         c.calamiCrossed - before.calamiCrossed, c.calamiZoned - before.calamiZoned, frameSeconds,
         c.vaneCandidates - before.vaneCandidates, c.vaneContacts - before.vaneContacts,
-        c.vanePenetrations - before.vanePenetrations, vanesLeft);
+        c.vanePenetrations - before.vanePenetrations, vanesLeft,
+        c.restingContacts - before.restingContacts, c.searches - before.searches,
+        c.searchedPairs - before.searchedPairs, c.ccdQueries - before.ccdQueries,
+        c.netContacts - before.netContacts);
     before = c;
   }
   if (const int failed = writeTables(); failed != 0) return failed;
@@ -609,13 +614,19 @@ int runSimulate(SimulateOptions o) {
   std::cerr << fmt::format(
       "{} frames of {} feathers ({} rooted on the body) in {:.2f} s, {:.3f} s of it simulating "
       "({:.1f} frames/s): {} steps, {} retried; {} candidates, {} contacts, {} impact zones; "
-      "{} intersections found and undone, {} calamus crossings put into zones at the smallest "
+      "resting contacts {}: {:.0f} held a step, {:.1f} searches a step of {:.0f} pairs each, {} "
+      "CCD queries, {} contacts past the resting stage; {} intersections found and undone, {} "
+      "calamus crossings put into zones at the smallest "
       "step, {} left; vanes {}: {} vane candidates, {} vane contacts{}, {}\n",
       frames, simulation.stems().size(), motion->boundRoots(), seconds, simulating,
       frames > 1 ? (frames - 1) / std::max(simulating, 1e-9) : 0.0, c.substeps, c.retries,
-      c.candidates, c.contacts, c.impactZones, c.penetrations, c.calamiZoned,
-      motion->penetrations(), parameters.vaneCollisions ? "colliding" : "not colliding",
-      c.vaneCandidates, c.vaneContacts, overlaps,
+      c.candidates, c.contacts, c.impactZones, parameters.restingContacts ? "on" : "off",
+      static_cast<double>(c.restingContacts) / std::max<double>(c.substeps + c.retries, 1),
+      static_cast<double>(c.searches) / std::max<double>(c.substeps + c.retries, 1),
+      static_cast<double>(c.searchedPairs) / std::max<double>(c.searches, 1), c.ccdQueries,
+      c.netContacts, c.penetrations, c.calamiZoned, motion->penetrations(),
+      parameters.vaneCollisions ? "colliding" : "not colliding", c.vaneCandidates, c.vaneContacts,
+      overlaps,
       countVanes ? std::to_string(vaneIntersectionsLeft) + " vane intersections left"
                  : std::string("vane intersections not counted"));
   return kExitOk;

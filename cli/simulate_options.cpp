@@ -103,6 +103,10 @@ void addSimulateOptions(CLI::App& command, SimulateOptions& options) {
       .add_flag("--no-vane-collisions", options.noVaneCollisions,
                 "The vanes do not collide, whatever the view file says (their stems still do)")
       ->excludes(vanes);
+  command.add_flag("--no-resting-contacts", options.noRestingContacts,
+                   "No resting stage: pairs within the thickness are pushed apart by repulsion "
+                   "alone, and every contact is the continuous collision detection's "
+                   "(docs/dynamics.md, \"Resting contacts\"; for comparison)");
   command.add_flag("--count-vane-intersections", options.countVaneIntersections,
                    "With the vanes not colliding, count in every frame's state the vanes that "
                    "pass through each other or through stems (counted anyway when they collide)");

@@ -28,6 +28,7 @@ struct SimulateOptions {
   bool noFrames = false;  // only the table: for measuring the simulation alone
   bool vaneCollisions = false;    // the vanes collide (as `dynamics vanes: on`)
   bool noVaneCollisions = false;  // the vanes follow their stems and may pass through
+  bool noRestingContacts = false;  // no resting stage: every contact the CCD's
   // Count, with the vanes not colliding, those that meet in every frame's state (they are
   // counted anyway when they collide: the check that none is left).
   bool countVaneIntersections = false;

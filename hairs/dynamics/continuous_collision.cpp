@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -297,7 +298,14 @@ CcdResult vertexFaceCcd(const MovingPrimitives& motion, const CcdOptions& option
   return detect<Kind::VertexFace>(motion, options);
 }
 
-bool separatedOverStep(const MovingPrimitives& motion, bool vertexFace, const CcdOptions& options) {
+namespace {
+
+// The plane tests of separatedOverStep and separatedThroughStep: along each direction, the two
+// primitives' projections lie farther apart than a contact's reach, over the hulls of both ends
+// of the step (`eachEnd` false) or at each end on its own (`eachEnd` true).
+bool separatedAlongDirections(const MovingPrimitives& motion, bool vertexFace,
+                              const CcdOptions& options, bool eachEnd,
+                              const Vector3d* extraDirection) {
   // The reach of a reported contact: F within eta + 2 err + 3 acceptChange in every coordinate
   // (continuous_collision.h), more where boxes stopped at the smallest width (their spread is
   // under 3 * 8 M 2^-40); err and acceptChange as prepare() finds them, over all axes.
@@ -320,13 +328,13 @@ bool separatedOverStep(const MovingPrimitives& motion, bool vertexFace, const Cc
       options.minimumSeparation + 2 * error + 3 * acceptChange + 1e-9 * largest + kUnderflowError;
   // The first primitive's vertices are [0, split), the second's [split, 4).
   const int split = vertexFace ? 1 : 2;
-  const auto apartAlong = [&](const Vector3d& n) {
-    if (!n.allFinite() || !(n.cwiseAbs().sum() > 0)) return false;
+  // Whether the projections of the vertices in `ends` (start, end or both) lie apart.
+  const auto apartAt = [&](const Vector3d& n, std::initializer_list<bool> ends) {
     double lowA = std::numeric_limits<double>::infinity(), highA = -lowA, lowB = lowA,
            highB = -lowA;
     for (int i = 0; i < 4; ++i)
-      for (const Vector3d* x : {&motion.start[i], &motion.end[i]}) {
-        const double along = n.dot(*x);
+      for (const bool atEnd : ends) {
+        const double along = n.dot(atEnd ? motion.end[i] : motion.start[i]);
         if (i < split) {
           lowA = std::min(lowA, along);
           highA = std::max(highA, along);
@@ -336,11 +344,23 @@ bool separatedOverStep(const MovingPrimitives& motion, bool vertexFace, const Cc
         }
       }
     const double needed = n.cwiseAbs().sum() * reach;
-    return lowB - highA > needed || lowA - highB > needed;
+    return lowB - highA > needed ? 1 : lowA - highB > needed ? -1 : 0;
+  };
+  // Over the step each vertex moves linearly, so along a fixed direction the difference of the
+  // projections of a vertex of each primitive is linear in time: where every such difference
+  // keeps one sign beyond the reach at both ends, it does so throughout, and so do the convex
+  // combinations that are the primitives' points (a condition weaker than the hulls' of both
+  // ends lying apart, and still exact).
+  const auto apartAlong = [&](const Vector3d& n) {
+    if (!n.allFinite() || !(n.cwiseAbs().sum() > 0)) return false;
+    if (!eachEnd) return apartAt(n, {false, true}) != 0;
+    const int atStart = apartAt(n, {false});
+    return atStart != 0 && apartAt(n, {true}) == atStart;
   };
   const auto at = [&](int i, double t) -> Vector3d {
     return motion.start[i] + t * (motion.end[i] - motion.start[i]);
   };
+  if (extraDirection != nullptr && apartAlong(*extraDirection)) return true;
   for (double t : {0.0, 0.5, 1.0}) {
     const Vector3d n = vertexFace ? (at(2, t) - at(1, t)).cross(at(3, t) - at(1, t))
                                   : (at(1, t) - at(0, t)).cross(at(3, t) - at(2, t));
@@ -349,6 +369,17 @@ bool separatedOverStep(const MovingPrimitives& motion, bool vertexFace, const Cc
   Vector3d centreA = Vector3d::Zero(), centreB = Vector3d::Zero();
   for (int i = 0; i < 4; ++i) (i < split ? centreA : centreB) += motion.start[i];
   return apartAlong(centreB / (4 - split) - centreA / split);
+}
+
+}  // namespace
+
+bool separatedOverStep(const MovingPrimitives& motion, bool vertexFace, const CcdOptions& options) {
+  return separatedAlongDirections(motion, vertexFace, options, false, nullptr);
+}
+
+bool separatedThroughStep(const MovingPrimitives& motion, bool vertexFace,
+                          const CcdOptions& options, const Eigen::Vector3d* direction) {
+  return separatedAlongDirections(motion, vertexFace, options, true, direction);
 }
 
 CcdResult edgeEdgeCcd(const MovingPrimitives& motion, const CcdOptions& options) {

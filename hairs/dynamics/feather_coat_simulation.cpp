@@ -17,8 +17,10 @@
 #include "hirsute/hairs/dynamics/box_tree.h"
 #include "hirsute/hairs/dynamics/closest_points.h"
 #include "hirsute/hairs/dynamics/continuous_collision.h"
+#include "hirsute/hairs/dynamics/resting_contacts.h"
 #include "hirsute/hairs/dynamics/static_intersection.h"
 #include "hirsute/hairs/dynamics/stem_vane.h"
+#include "hirsute/hairs/dynamics/step_state.h"
 #include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute::dynamics {
@@ -67,26 +69,6 @@ struct Contact {
   double timeOfImpact = 0;
   bool vertexFace = false;          // a stem node and a body triangle, else two segments
   std::array<int, 2> primitives{};  // the pair, as indices of the primitive list
-};
-
-// The state of a step as one set of vertices: every stem node, then every body vertex, then
-// every vane corner. A vane corner is carried by its node (its owner): whatever moves the node
-// in the collisions moves the corner alike, and an impulse on the corner is the node's.
-struct StepState {
-  std::vector<Vector3d> start, end;
-  std::vector<double> inverseMass;  // 0: kinematic (anchors, the body); a corner: its node's
-  std::vector<int> owner;           // the vertex itself, or a corner's node
-  std::vector<std::array<int, 2>> corners;  // per stem node: its left and right corners, or -1
-
-  // Moves the end of `v` (a node or a body vertex) and the corners it carries.
-  void moveEnd(int v, const Vector3d& by) {
-    end[v] += by;
-    if (v < static_cast<int>(corners.size()))
-      for (int c : corners[v])
-        if (c >= 0) end[c] += by;
-  }
-  // The mass a zone's motion gives `v`: a corner's is its node's.
-  double weight(int v) const { return owner[v] == v ? 1 / inverseMass[v] : 0.0; }
 };
 
 // The CCD's answers of a step's last search at one separation, and where the vertices' ends
@@ -138,8 +120,8 @@ struct Primitives {
   std::vector<Primitive> list;
   std::vector<int> stemOffset;  // global index of each stem's node 0
   int bodyOffset = 0;
-  int vaneOffset = 0;                      // global index of the first vane corner
-  std::vector<std::array<int, 3>> corner;  // per vane corner: its stem, node and side
+  int vaneOffset = 0;                        // global index of the first vane corner
+  std::vector<std::array<int, 3>> corner;    // per vane corner: its stem, node and side
   std::vector<std::array<int, 2>> cornerOf;  // per stem node: its corners' global indices, or -1
 
   const VaneOverlaps* overlaps = nullptr;  // segment pairs whose vanes are left out
@@ -225,13 +207,13 @@ struct Primitives {
     }
     for (int s = 0; s < static_cast<int>(stems.size()); ++s)
       for (const VaneTriangle& t : triangles[s])
-        list.push_back({Kind::VaneTriangle,
-                        {vertexOf(s, t.vertices[0]), vertexOf(s, t.vertices[1]),
-                         vertexOf(s, t.vertices[2])},
-                        s,
-                        t.segment,
-                        t.segment,
-                        t.segment});
+        list.push_back(
+            {Kind::VaneTriangle,
+             {vertexOf(s, t.vertices[0]), vertexOf(s, t.vertices[1]), vertexOf(s, t.vertices[2])},
+             s,
+             t.segment,
+             t.segment,
+             t.segment});
   }
 
   // The primitives' kinds as groups of the broad phase: the stems' move; stem edges meet stem
@@ -484,10 +466,9 @@ ZoneMotion moveRigidly(const std::vector<int>& members, StepState& state) {
   std::vector<int> kinematic;
   for (int v : members)
     if (state.inverseMass[v] == 0) kinematic.push_back(v);
-  const ZoneMotion m =
-      kinematic.empty()
-          ? fittedMotion(members, state, [&](int v) { return state.weight(v); })
-          : fittedMotion(kinematic, state, [](int) { return 1.0; });
+  const ZoneMotion m = kinematic.empty()
+                           ? fittedMotion(members, state, [&](int v) { return state.weight(v); })
+                           : fittedMotion(kinematic, state, [](int) { return 1.0; });
   for (int v : members)
     if (state.inverseMass[v] > 0)
       state.end[v] = state.start[v] + m.shift + m.spin.cross(state.start[v] - m.centre);
@@ -712,12 +693,14 @@ void FeatherCoatSimulation::step(double dt, const std::vector<StemFrame>& anchor
     throw std::invalid_argument("a step needs one position per body vertex");
   if (!(dt > 0)) throw std::invalid_argument("a time step must be positive");
   const std::vector<FeatherStem> before = stems_;
+  const RestingContacts restingBefore = resting_;
   const double timeBefore = time_;
   ++counters_.steps;
   try {
     advanceOrHalve(dt, Kinematics{anchors_, body_.vertices}, Kinematics{anchors, bodyVertices}, 0);
   } catch (const StepFailure&) {
     stems_ = before;
+    resting_ = restingBefore;
     time_ = timeBefore;
     throw;
   }
@@ -735,12 +718,15 @@ std::size_t FeatherCoatSimulation::releaseVaneOverlaps() {
 void FeatherCoatSimulation::advanceOrHalve(double h, const Kinematics& from, const Kinematics& to,
                                            int depth) {
   const std::vector<FeatherStem> saved = stems_;
+  const RestingContacts savedContacts = resting_;
   if (advance(h, from, to, depth >= parameters_.maxHalvings)) {
     time_ += h;
     ++counters_.substeps;
     return;
   }
+  // The halves start from the state before the step, contacts and multipliers included.
   stems_ = saved;
+  resting_ = savedContacts;
   if (depth >= parameters_.maxHalvings)
     throw StepFailure("the step's collisions could not be resolved at the smallest time step (" +
                       failure_ + ")");
@@ -802,7 +788,10 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     list.vertices = &vertices;
     list.boxParts = &parts.first;
     list.vertexParts = &parts.second;
-    return stepTree_.coherentPairs(primitives.boxes(searched, margin), groups, list, wanted);
+    auto pairs = stepTree_.coherentPairs(primitives.boxes(searched, margin), groups, list, wanted);
+    ++counters_.searches;
+    counters_.searchedPairs += pairs.size();
+    return pairs;
   };
   // Where the vanes' corners would be at the end of the step: from the frames of the stems'
   // candidate positions.
@@ -868,13 +857,54 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       for (std::size_t k = begin; k < end; ++k)
         nearest[k] = primitives.contactAt(pairs[k].first, pairs[k].second, still, 0);
     });
-    for (const Contact& c : nearest) {
-      Vector3d gap = Vector3d::Zero();
-      for (int k = 0; k < 4; ++k) gap += c.coefficients[k] * state.start[c.vertices[k]];
-      const double distance = gap.norm();
-      if (!(distance < thickness) || distance == 0) continue;
-      counters_.repulsions += applyImpulse(
-          c, gap / distance, parameters_.repulsionRate * (thickness - distance), state);
+    if (parameters_.restingContacts) {
+      // The resting stage: every pair within the thickness is held at the resting distance
+      // (resting_contacts.h), its multiplier carried from the step before.
+      std::vector<NearPair> near;
+      for (const Contact& c : nearest) {
+        Vector3d gap = Vector3d::Zero();
+        for (int k = 0; k < 4; ++k) gap += c.coefficients[k] * state.start[c.vertices[k]];
+        if (!(gap.norm() < thickness)) continue;
+        NearPair pair;
+        pair.primitives = c.primitives;
+        pair.vertices = c.vertices;
+        pair.coefficients = c.coefficients;
+        const Primitive &p = primitives.list[c.primitives[0]],
+                        &q = primitives.list[c.primitives[1]];
+        // The coat's feathers are placed bottom to top: a later stem lies over an earlier one.
+        if (p.stem >= 0 && q.stem >= 0 && p.stem != q.stem) {
+          pair.layerSign = p.stem > q.stem ? 1 : -1;
+          const Primitive& lower = p.stem < q.stem ? p : q;
+          const FeatherStem& stem = stems_[lower.stem];
+          const int node = std::clamp(lower.segment, 0, static_cast<int>(stem.nodeCount()) - 1);
+          pair.layerNormal = stem.frames[node].axes.col(0);
+        }
+        near.push_back(pair);
+      }
+      RestingOptions options;
+      options.thickness = thickness;
+      options.restDistance = parameters_.restDistance();
+      options.openingRate = parameters_.repulsionRate;
+      options.sweeps = parameters_.restingSweeps;
+      options.strainLimit = parameters_.stem.strainLimit;
+      resting_.update(std::move(near), state, options);
+      counters_.restingContacts += resting_.size();
+      std::vector<StrainSegment> segments;
+      for (std::size_t s = 0; s < stems_.size(); ++s)
+        for (std::size_t i = 0; i < stems_[s].restLengths.size(); ++i)
+          segments.push_back({{primitives.stemOffset[s] + static_cast<int>(i),
+                               primitives.stemOffset[s] + static_cast<int>(i) + 1},
+                              stems_[s].restLengths[i]});
+      counters_.restingMoves += resting_.solve(state, segments, options);
+    } else {
+      for (const Contact& c : nearest) {
+        Vector3d gap = Vector3d::Zero();
+        for (int k = 0; k < 4; ++k) gap += c.coefficients[k] * state.start[c.vertices[k]];
+        const double distance = gap.norm();
+        if (!(distance < thickness) || distance == 0) continue;
+        counters_.repulsions += applyImpulse(
+            c, gap / distance, parameters_.repulsionRate * (thickness - distance), state);
+      }
     }
   }
 
@@ -895,6 +925,20 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
   // impulses and the zones' rounds move the vertices of their contacts, and most pairs of a
   // layered coat have none of them.
   std::vector<KeptAnswers> kept;  // one per separation
+  // Whether the slab between the pair's primitives along `n` (the first one's lowest vertex
+  // over the second's highest) is no thinner at the end of the step than at its start.
+  const auto opensAlong = [](const MovingPrimitives& m, bool vertexFace, const Vector3d& n) {
+    const int split = vertexFace ? 1 : 2;
+    double slab[2];
+    for (int end = 0; end < 2; ++end) {
+      const auto& x = end == 0 ? m.start : m.end;
+      double low = n.dot(x[0]), high = n.dot(x[split]);
+      for (int k = 1; k < split; ++k) low = std::min(low, n.dot(x[k]));
+      for (int k = split + 1; k < 4; ++k) high = std::max(high, n.dot(x[k]));
+      slab[end] = low - high;
+    }
+    return slab[1] >= slab[0];
+  };
   const auto ccdOf = [&](const std::vector<std::pair<int, int>>& pairs, const CcdOptions& options) {
     auto answers = std::find_if(kept.begin(), kept.end(), [&](const KeptAnswers& k) {
       return k.separation == options.minimumSeparation;
@@ -911,6 +955,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
     counters_.keptAnswers += pairs.size() - static_cast<std::size_t>(std::count(
                                                 earlier.begin(), earlier.end(), KeptAnswers::kAsk));
     std::vector<CcdResult> results(pairs.size());
+    std::vector<char> asked(pairs.size(), 0);
     forEach(pool_.get(), pairs.size(), 256, [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         if (earlier[k] != KeptAnswers::kAsk) {
@@ -921,13 +966,28 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
         const auto [a, b] = pairs[k];
         const MovingPrimitives m = primitives.motion(a, b, state);
         const bool vertexFace = isTriangle(primitives.list[b].kind);
-        if (separatedOverStep(m, vertexFace, options)) continue;
+        // A pair the resting stage holds is tried along its contact's normal first.
+        const RestingContact* held = resting_.find(a, b);
+        if (parameters_.restingContacts
+                ? separatedThroughStep(m, vertexFace, options, held ? &held->normal : nullptr)
+                : separatedOverStep(m, vertexFace, options))
+          continue;
+        // A held pair that the solve opens along its normal over the step and that stays beyond
+        // the zones' separation throughout is the solve's: no accepted state can find it nearer
+        // than a quarter of the separation, and the impulses would only open it the way the
+        // next steps' solves do (docs/dynamics.md, "Resting contacts").
+        if (held != nullptr && opensAlong(m, vertexFace, held->normal) &&
+            separatedThroughStep(m, vertexFace, zoneCcd, &held->normal))
+          continue;
+        asked[k] = 1;
         results[k] = vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options);
       }
     });
+    counters_.ccdQueries += static_cast<std::size_t>(std::count(asked.begin(), asked.end(), 1));
     if (parameters_.keepAnswers) answers->keep(pairs, results, state.end);
     return results;
   };
+  bool firstSearch = true;
   auto findContacts = [&](const CcdOptions& options, bool calami) {
     std::vector<Contact> contacts;
     const auto pairs = candidatesOf(state, options.minimumSeparation, [&](int a, int b) {
@@ -945,6 +1005,8 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       }
     }
     counters_.contacts += contacts.size();
+    if (firstSearch) counters_.netContacts += contacts.size();
+    firstSearch = false;
     std::stable_sort(contacts.begin(), contacts.end(), [](const Contact& x, const Contact& y) {
       return x.timeOfImpact < y.timeOfImpact;
     });
@@ -985,6 +1047,7 @@ bool FeatherCoatSimulation::advance(double h, const Kinematics& fromState,
       return true;
     }
     const MovingPrimitives m = primitives.motion(c.primitives[0], c.primitives[1], state);
+    ++counters_.ccdQueries;
     const bool near = (c.vertexFace ? vertexFaceCcd(m, zoneCcd) : edgeEdgeCcd(m, zoneCcd)).contact;
     counters_.keptNear += !near;
     return !near;

@@ -269,7 +269,7 @@ TEST(Ccd, SeparatedMotionsAreNoContacts) {
 TEST(Ccd, SeparatedOverStepNeverHidesAContact) {
   std::mt19937_64 random(78);
   std::uniform_real_distribution<double> coordinate(-1, 1), separation(0, 0.3), shift(-3, 3);
-  int separated = 0, apart = 0;
+  int separated = 0, apart = 0, throughStep = 0;
   for (int i = 0; i < 4000; ++i) {
     MovingPrimitives m;
     const Vector3d offset(shift(random), shift(random), shift(random));
@@ -284,11 +284,19 @@ TEST(Ccd, SeparatedOverStepNeverHidesAContact) {
           (vertexFace ? vertexFaceCcd(m, options) : edgeEdgeCcd(m, options)).contact;
       const bool planeApart = separatedOverStep(m, vertexFace, options);
       EXPECT_FALSE(contact && planeApart) << i << (vertexFace ? " vertex-face" : " edge-edge");
+      // Each end on its own decides at least what the hulls of both do, never a contact.
+      const bool apartAtEachEnd = separatedThroughStep(m, vertexFace, options);
+      EXPECT_FALSE(contact && apartAtEachEnd) << i << (vertexFace ? " vertex-face" : " edge-edge");
+      EXPECT_TRUE(apartAtEachEnd || !planeApart) << i;
+      const Vector3d along = m.start[vertexFace ? 1 : 2] - m.start[0];
+      EXPECT_FALSE(contact && separatedThroughStep(m, vertexFace, options, &along)) << i;
+      throughStep += apartAtEachEnd;
       apart += !contact;
       separated += planeApart;
     }
   }
   EXPECT_GT(separated, apart / 4);
+  EXPECT_GT(throughStep, separated);
 }
 
 std::filesystem::path publicQueries() {
@@ -328,6 +336,10 @@ TEST(PublicCcdQueries, NoCollisionIsMissed) {
       if (separatedOverStep(query.motion, file.kind == CcdQueryKind::VertexFace, options)) {
         ++planeSeparated;
         EXPECT_FALSE(result.contact) << path << ":" << query.line << ": separated, yet a contact";
+      }
+      if (separatedThroughStep(query.motion, file.kind == CcdQueryKind::VertexFace, options)) {
+        EXPECT_FALSE(query.collides) << path << ":" << query.line << ": apart at each end, yet "
+                                     << "a collision";
       }
       if (query.collides) {
         EXPECT_TRUE(result.contact) << path << ":" << query.line << ": a collision missed";

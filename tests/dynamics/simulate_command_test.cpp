@@ -95,19 +95,27 @@ TEST_F(SimulateCommand, TheBendingBodyCarriesItsCoatAndNothingIntersects) {
     // At least the view file's four steps a frame (more for the stiff springs), none halved.
     EXPECT_GE(std::stoi(rows[r][2]), 4) << "frame " << r;
     EXPECT_EQ(rows[r][2], rows[r][3]) << "frame " << r;
-    EXPECT_NE(rows[r][5], "0") << "frame " << r;       // candidates: the coat is dense
+    EXPECT_NE(rows[r][5], "0") << "frame " << r;  // candidates: the coat is dense
   }
   // The body bends from frame to frame, and so the scenes differ.
   EXPECT_NE(readText(folder_ / "frame-0001.pov"), readText(folder_ / "frame-0004.pov"));
   // The vanes collide (docs/dynamics.md, "Vanes"): candidates every frame, none left meeting.
   EXPECT_NE(out.text.find("vanes colliding"), std::string::npos) << out.text;
   EXPECT_NE(out.text.find(" 0 vane intersections left"), std::string::npos) << out.text;
-  ASSERT_EQ(rows[0].size(), 20u);
+  ASSERT_EQ(rows[0].size(), 25u);
   EXPECT_EQ(rows[0][16], "vane_candidates");
   EXPECT_EQ(rows[0][19], "vane_intersections_left");
+  // The resting stage's columns (docs/dynamics.md, "Resting contacts"): the layered coat holds
+  // contacts every step, and the net's searches find fewer contacts than it holds.
+  EXPECT_EQ(rows[0][20], "resting_contacts");
+  EXPECT_EQ(rows[0][23], "ccd_queries");
+  EXPECT_EQ(rows[0][24], "net_contacts");
   for (std::size_t r = 2; r < rows.size(); ++r) {
     EXPECT_NE(rows[r][16], "0") << "frame " << r;
     EXPECT_EQ(rows[r][19], "0") << "frame " << r;
+    EXPECT_GT(std::stoll(rows[r][20]), 0) << "frame " << r;
+    EXPECT_GT(std::stoll(rows[r][21]), 0) << "frame " << r;  // searches
+    EXPECT_LT(std::stoll(rows[r][24]), std::stoll(rows[r][20])) << "frame " << r;
   }
 }
 
@@ -118,8 +126,7 @@ TEST_F(SimulateCommand, WithoutVaneCollisionsTheBendingCoatsVanesPassThrough) {
       "coat-bending", "bending.l bending.v bending.a",
       "--frames 4 --no-frames --no-vane-collisions --count-vane-intersections -v", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
-  EXPECT_NE(out.text.find("vanes not colliding: 0 vane candidates"), std::string::npos)
-      << out.text;
+  EXPECT_NE(out.text.find("vanes not colliding: 0 vane candidates"), std::string::npos) << out.text;
   EXPECT_NE(out.text.find("0 left;"), std::string::npos) << out.text;  // the stems still don't
   // The vanes overlapping where the coat is placed are left out of the count.
   EXPECT_NE(out.text.find("118 pairs of segments whose vanes overlapped at the start left out"),
@@ -142,7 +149,10 @@ TEST_F(SimulateCommand, VanesNotCollidingAreCountedOnlyWhenAsked) {
   EXPECT_EQ(out.text.find("overlapped at the start"), std::string::npos) << out.text;
   const auto rows = table(folder_);
   ASSERT_EQ(rows.size(), 3u);
-  for (std::size_t r = 1; r < rows.size(); ++r) EXPECT_EQ(rows[r].size(), 19u);  // the last empty
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    ASSERT_EQ(rows[r].size(), 25u);
+    EXPECT_EQ(rows[r][19], "");  // vane_intersections_left
+  }
 }
 
 TEST_F(SimulateCommand, WindMovesTheAwnsAndTheSameRunGivesTheSameFrames) {
@@ -162,8 +172,8 @@ TEST_F(SimulateCommand, WindMovesTheAwnsAndTheSameRunGivesTheSameFrames) {
 }
 
 TEST_F(SimulateCommand, AnAnimatedDefineMovesTheBody) {
-  const Output out = simulate("coat-bending", "bending.l bending.v",
-                              "--animate BEND=0:9 --frames 3", folder_);
+  const Output out =
+      simulate("coat-bending", "bending.l bending.v", "--animate BEND=0:9 --frames 3", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(readText(folder_ / "frame-0001.pov"), readText(folder_ / "frame-0003.pov"));
   // The hidden copy that held the frame's value is gone.
@@ -232,8 +242,9 @@ std::vector<std::vector<double>> furTable(const fs::path& folder) {
   std::istringstream in(readText(folder / "fur.csv"));
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "frame,time,droplets,mean_bend,largest_bend,largest_speed,wet_texels,"
-                  "mean_wetness,seconds");
+  EXPECT_EQ(line,
+            "frame,time,droplets,mean_bend,largest_bend,largest_speed,wet_texels,"
+            "mean_wetness,seconds");
   while (std::getline(in, line)) {
     std::vector<double> cells;
     std::istringstream row(line);
@@ -287,8 +298,8 @@ TEST_F(SimulateCommand, FurMovesInTheWindAndDropletsWetItAndItDries) {
 TEST_F(SimulateCommand, RainFallsAtItsRateAndTheSeedPlacesIt) {
   const std::string files = "square.l square.v";
   auto wet = [&](const std::string& options, const std::string& name) {
-    const Output out = simulate("fur-square", files, "--frames 8 --no-frames " + options,
-                                folder_ / name);
+    const Output out =
+        simulate("fur-square", files, "--frames 8 --no-frames " + options, folder_ / name);
     EXPECT_EQ(out.status, 0) << out.text;
     return furTable(folder_ / name);
   };
@@ -307,9 +318,9 @@ TEST_F(SimulateCommand, RainFallsAtItsRateAndTheSeedPlacesIt) {
 // fur: the wet patches of frame 1 stay wet and keep drying, and the roots' jump drags the tips
 // behind them.
 TEST_F(SimulateCommand, AMovingBodyCarriesItsFurAndItsWetness) {
-  const Output out = simulate("fur-square", "square.l square.v",
-                              "--frames 6 --animate SIDE=4:5 --drop 1:4 --dry 1 --no-frames",
-                              folder_);
+  const Output out =
+      simulate("fur-square", "square.l square.v",
+               "--frames 6 --animate SIDE=4:5 --drop 1:4 --dry 1 --no-frames", folder_);
   ASSERT_EQ(out.status, 0) << out.text;
   const auto rows = furTable(folder_);
   ASSERT_EQ(rows.size(), 6u);
@@ -325,9 +336,10 @@ TEST_F(SimulateCommand, AMovingBodyCarriesItsFurAndItsWetness) {
 // Bad droplet and drying options end the run with exit code 2 before any frame, and so do
 // droplets past what a run may blend.
 TEST_F(SimulateCommand, BadFurOptionsAreBadInput) {
-  for (const char* options : {"--drop 2", "--drop 0:5", "--drop 2:-1", "--drop 2:5:0", "--drop 2:5:0.1:2",
-                              "--drop 2.5:1", "--drop 2:nan", "--rain x", "--rain 5:0.1:1:1",
-                              "--dry -1", "--dry-from 0", "--fur-force 1 2", "--fur-drag inf"}) {
+  for (const char* options :
+       {"--drop 2", "--drop 0:5", "--drop 2:-1", "--drop 2:5:0", "--drop 2:5:0.1:2", "--drop 2.5:1",
+        "--drop 2:nan", "--rain x", "--rain 5:0.1:1:1", "--dry -1", "--dry-from 0",
+        "--fur-force 1 2", "--fur-drag inf"}) {
     const Output out =
         simulate("fur-square", "square.l square.v", std::string("--frames 2 ") + options, folder_);
     EXPECT_EQ(out.status, 2) << options << ": " << out.text;
@@ -347,8 +359,9 @@ TEST_F(SimulateCommand, BadFurOptionsAreBadInput) {
 // stoi", exit code 1); reproduced through simulate_options_fuzzer. It is bad input like bank 13.
 TEST_F(SimulateCommand, AColourBankPastIntIsBadInput) {
   for (const char* bank : {"99999999999", "13"}) {
-    const Output out = simulate("coat-bending", "bending.l bending.v",
-                                std::string("--frames 2 -m ") + bank + ":feather-coat.map", folder_);
+    const Output out =
+        simulate("coat-bending", "bending.l bending.v",
+                 std::string("--frames 2 -m ") + bank + ":feather-coat.map", folder_);
     EXPECT_EQ(out.status, 2) << bank << ": " << out.text;
     EXPECT_NE(out.text.find(std::string("feather-coat.map: error: colour bank ") + bank +
                             " is outside 1 to 12"),
@@ -360,8 +373,8 @@ TEST_F(SimulateCommand, AColourBankPastIntIsBadInput) {
 // An animation of more frames than the limit is an error before any frame is listed past it (a
 // billion steps once listed 40 GB of frames); --frames N takes its first N.
 TEST_F(SimulateCommand, AnAnimationOfTooManyFramesIsBadInput) {
-  const Output out =
-      simulate("coat-bending", "bending.l bending.v bending.a", "-n 1000000000 --no-frames", folder_);
+  const Output out = simulate("coat-bending", "bending.l bending.v bending.a",
+                              "-n 1000000000 --no-frames", folder_);
   EXPECT_EQ(out.status, 2) << out.text;
   EXPECT_NE(out.text.find("bending.a: error: the animation has more than 1000000 frames (the "
                           "limit); --frames N draws its first N"),

@@ -80,6 +80,15 @@ CcdResult vertexFaceCcd(const MovingPrimitives& motion, const CcdOptions& option
 // apart with boxes that overlap.
 bool separatedOverStep(const MovingPrimitives& motion, bool vertexFace,
                        const CcdOptions& options = {});
+// The same question answered along the same directions (and `direction`, where given: a resting
+// contact's normal) at each end of the step on its own: each vertex moves linearly, so along a
+// fixed direction the projections of two vertices, one of each primitive, that keep their order
+// beyond the reach at both ends keep it throughout. Decides more than separatedOverStep (a pair
+// held apart while both sides move far over the step), but only of this one step's motion: a
+// list kept over several steps needs the hulls of separatedOverStep.
+bool separatedThroughStep(const MovingPrimitives& motion, bool vertexFace,
+                          const CcdOptions& options = {},
+                          const Eigen::Vector3d* direction = nullptr);
 CcdResult edgeEdgeCcd(const MovingPrimitives& motion, const CcdOptions& options = {});
 
 }  // namespace hirsute::dynamics

@@ -8,10 +8,14 @@
 //      implicit and gravity, drag and wind explicit: v^{n+1/2};
 //   2. candidate positions x^{n+1} = x^n + h v^{n+1/2}, the anchors at their new frames;
 //   3. strain limiting from the anchor to the tip, its corrections added to v^{n+1/2};
-//   4. repulsion: pairs closer than the thickness at x^n stop approaching (impulses kept apart
-//      from the internal forces);
+//   4. resting contacts (resting_contacts.h): pairs closer than the thickness at x^n join the
+//      contact set kept from step to step and are held at the resting distance by a
+//      position-level solve of x^{n+1}, interleaved with strain limiting (with the stage off:
+//      repulsion, impulses that stop such pairs approaching, kept apart from the internal forces);
 //   5. continuous collisions over x^n -> x^{n+1}: candidates from swept boxes (box_tree.h: a
-//      list kept over several searches, less the pairs a plane keeps apart), the CCD of
+//      list kept over several searches, less the pairs a plane keeps apart; a held pair is
+//      passed over where its contact's normal, or another plane, keeps it apart at both ends
+//      of the step: separatedThroughStep), the CCD of
 //      continuous_collision.h on each, inelastic impulses in time-of-impact order,
 //      repeated a few passes; then rigid impact zones (Provot 1997) until no contact within a
 //      quarter of the minimum separation is left (the CCD's separation is a box, wider than a
@@ -37,6 +41,7 @@
 
 #include "hirsute/hairs/dynamics/box_tree.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
+#include "hirsute/hairs/dynamics/resting_contacts.h"
 #include "hirsute/hairs/dynamics/stem_vane.h"
 #include "hirsute/hairs/dynamics/wind_field.h"
 #include "hirsute/hairs/dynamics/worker_pool.h"
@@ -87,30 +92,50 @@ struct SimulationParameters {
   // the same separation where none of the pair's vertices has moved since (the same question):
   // the same results bit for bit, with less work in a coat whose vanes lie in layers.
   bool keepAnswers = true;
+  // The resting stage (resting_contacts.h; docs/dynamics.md, "Resting contacts"): the pairs
+  // within the thickness at the start of a step are kept from step to step and held at
+  // restDistance() by a position-level solve of `restingSweeps` Gauss-Seidel sweeps, in place of
+  // the repulsion's impulses. Off: the repulsion alone, every contact the CCD's. Either way the
+  // continuous collisions and the final check hold every accepted state to the same guarantee.
+  bool restingContacts = true;
+  int restingSweeps = 4;
+  // The gap a resting contact is held at: halfway between the separation and the thickness, so
+  // that the plane test of the collisions' search (farther than the separation times up to
+  // sqrt(3), the CCD's box) passes it over with room for the step's motion.
+  double restDistance() const { return 0.5 * (thickness + minimumSeparation); }
 };
 
 // What the simulation did, summed over all steps since it was built.
 struct SimulationCounters {
-  std::uint64_t steps = 0;         // calls of step()
-  std::uint64_t substeps = 0;      // steps accepted, halves of retried steps included
-  std::uint64_t candidates = 0;    // pairs whose swept boxes overlapped
-  std::uint64_t contacts = 0;      // candidates the CCD found in contact
-  std::uint64_t impulses = 0;      // inelastic impulses applied
-  std::uint64_t repulsions = 0;    // repulsion impulses applied
-  std::uint64_t impactZones = 0;   // rigid impact zones formed
-  std::uint64_t retries = 0;       // steps thrown away and retried as two halves
-  std::uint64_t penetrations = 0;  // intersections found by the final check (then retried)
-  std::uint64_t keptNear = 0;      // pairs the impulses left within the separation, but clear
-                                   // of the zones' over the step
-  std::uint64_t calamiLeft = 0;    // pairs with a calamus the impulses left within the separation
-  std::uint64_t calamiCrossed = 0;  // pairs with a calamus that met or passed through each other
-                                    // in a step tried (retried as halves, or at the smallest
-                                    // step put into impact zones)
-  std::uint64_t calamiZoned = 0;  // of those, put into impact zones at the smallest step
-  std::uint64_t vaneCandidates = 0;    // of the candidates, pairs with a vane's primitive
-  std::uint64_t vaneContacts = 0;      // of the contacts, pairs with a vane's primitive
+  std::uint64_t steps = 0;           // calls of step()
+  std::uint64_t substeps = 0;        // steps accepted, halves of retried steps included
+  std::uint64_t candidates = 0;      // pairs whose swept boxes overlapped
+  std::uint64_t contacts = 0;        // candidates the CCD found in contact
+  std::uint64_t impulses = 0;        // inelastic impulses applied
+  std::uint64_t repulsions = 0;      // repulsion impulses applied
+  std::uint64_t impactZones = 0;     // rigid impact zones formed
+  std::uint64_t retries = 0;         // steps thrown away and retried as two halves
+  std::uint64_t penetrations = 0;    // intersections found by the final check (then retried)
+  std::uint64_t keptNear = 0;        // pairs the impulses left within the separation, but clear
+                                     // of the zones' over the step
+  std::uint64_t calamiLeft = 0;      // pairs with a calamus the impulses left within the separation
+  std::uint64_t calamiCrossed = 0;   // pairs with a calamus that met or passed through each other
+                                     // in a step tried (retried as halves, or at the smallest
+                                     // step put into impact zones)
+  std::uint64_t calamiZoned = 0;     // of those, put into impact zones at the smallest step
+  std::uint64_t vaneCandidates = 0;  // of the candidates, pairs with a vane's primitive
+  std::uint64_t vaneContacts = 0;    // of the contacts, pairs with a vane's primitive
   std::uint64_t vanePenetrations = 0;  // of the penetrations, vanes' (stem_vane.h)
-  std::uint64_t keptAnswers = 0;  // candidates answered as at an earlier search of their step
+  std::uint64_t keptAnswers = 0;       // candidates answered as at an earlier search of their step
+  // The resting stage and the cost of the collisions' net (docs/dynamics.md, "Resting contacts").
+  std::uint64_t restingContacts = 0;  // resting contacts held, summed over the steps tried
+  std::uint64_t restingMoves = 0;     // projections of the resting solve that moved vertices
+  std::uint64_t searches = 0;         // searches for candidate pairs (repulsion's included)
+  std::uint64_t searchedPairs = 0;    // the pairs those searches found
+  std::uint64_t ccdQueries = 0;       // pairs handed to the CCD (the plane tests' and the kept
+                                      // answers' aside)
+  std::uint64_t netContacts = 0;      // contacts the first search of a step still finds: what got
+                                      // past the resting stage (or the repulsion)
 };
 
 // A step that could not be resolved even at the smallest time step: the state is left as it
@@ -167,6 +192,8 @@ class FeatherCoatSimulation {
   // simulation was built, and have not yet come apart (stem_vane.h).
   const VaneOverlaps& vaneOverlaps() const { return vaneOverlaps_; }
   std::size_t vaneOverlapsAtStart() const { return vaneOverlapsAtStart_; }
+  // The resting contacts held in the last step accepted (resting_contacts.h).
+  const RestingContacts& restingContacts() const { return resting_; }
   // Takes back into the collisions the pairs of vanes left out that have come apart by more
   // than the minimum separation (CoatMotion does so after each frame); returns how many.
   std::size_t releaseVaneOverlaps();
@@ -196,7 +223,7 @@ class FeatherCoatSimulation {
   };
   std::vector<std::vector<AirSample>> air_;
   std::vector<StemFrame> anchors_;
-  std::string failure_;  // why the last advance() failed, for the error of a step
+  std::string failure_;               // why the last advance() failed, for the error of a step
   std::unique_ptr<WorkerPool> pool_;  // on the heap: the trees point to it
   // The broad phase of the steps' collisions and of the final checks: each refits its trees
   // to the next search of the same primitives.
@@ -204,6 +231,8 @@ class FeatherCoatSimulation {
   VaneOverlaps vaneOverlaps_;
   std::uint64_t vaneOverlapsVersion_ = 0;  // counts the releases: which pairs are tested
   std::size_t vaneOverlapsAtStart_ = 0;
+  // Kept from step to step; saved and restored with the stems when a step is retried.
+  RestingContacts resting_;
   SimulationCounters counters_;
   double time_ = 0;
 };
