@@ -223,28 +223,31 @@ std::size_t RestingLayer::meeting(const std::vector<Mover>& movers, const std::v
 }
 
 std::size_t RestingLayer::meetingPairs(const FeatherStem& stem) const {
+  // Segment by segment: the rachis segment and its vane quads, gathered once by their box.
+  const std::vector<VaneTriangle> triangles =
+      stem.hasVane() ? vaneTrianglesOf(stem) : std::vector<VaneTriangle>{};
+  std::size_t found = 0;
   std::vector<Mover> movers;
-  for (std::size_t k = 0; k + 1 < stem.nodeCount(); ++k)
+  std::vector<Entry> near;
+  for (std::size_t k = 0; k + 1 < stem.nodeCount(); ++k) {
+    movers.clear();
     movers.push_back(
         {{stem.positions[k], stem.positions[k + 1], stem.positions[k + 1]}, false, k == 0});
-  if (stem.hasVane()) {
-    for (const VaneTriangle& t : vaneTrianglesOf(stem))
+    for (const VaneTriangle& t : triangles) {
+      if (t.segment != static_cast<int>(k)) continue;
       movers.push_back({{positionOf(stem, t.vertices[0]), positionOf(stem, t.vertices[1]),
                          positionOf(stem, t.vertices[2])},
                         true,
                         false});
-  }
-  std::size_t found = 0;
-  std::vector<Entry> near;
-  for (const Mover& m : movers) {
-    const int corners = m.triangle ? 3 : 2;
-    Vector3d low = m.points[0], high = m.points[0];
-    for (int i = 1; i < corners; ++i) {
-      low = low.cwiseMin(m.points[i]);
-      high = high.cwiseMax(m.points[i]);
     }
+    Vector3d low = movers[0].points[0], high = low;
+    for (const Mover& m : movers)
+      for (const Vector3d& p : m.points) {
+        low = low.cwiseMin(p);
+        high = high.cwiseMax(p);
+      }
     gather(low, high, near);
-    for (const Entry& e : near) found += meets(m, obstacles_[e.index]);
+    found += meeting(movers, near, false);
   }
   return found;
 }
