@@ -372,8 +372,9 @@ LaidStem RestingLayer::lay(FeatherStem& stem, const StemFrame& anchor,
   const std::vector<Vector3d> grown = stem.positions;
   // A segment that no turn of its own clears (a neighbour's vane slants across its way) is
   // reached from higher up: the node before it is made to turn by more, doubling, then the one
-  // before that, and the stem laid again from its root, until every segment is clear or the
-  // root has turned by the most a node may.
+  // before that, the stem laid again from that node each time, until every segment is clear,
+  // the root has turned by the most a node may, or the relays allowed are spent (then the stem
+  // is left as first laid, nearest its groom, and what it meets is counted).
   std::vector<double> floors(n - 1, -std::numeric_limits<double>::infinity());
   std::vector<double> turns(n - 1, 0.0), raise(n - 1, 0.0);
   std::vector<LayState> states(n);
