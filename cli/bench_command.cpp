@@ -24,6 +24,7 @@
 #include "hirsute/hairs/dynamics/ccd_query_file.h"
 #include "hirsute/hairs/dynamics/coat_motion.h"
 #include "hirsute/hairs/dynamics/coat_runner.h"
+#include "hirsute/hairs/dynamics/coat_shingling.h"
 #include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/feather_settings.h"
 #include "model_pipeline.h"
@@ -190,6 +191,8 @@ LiveCoatRun runThreaded(const Scene& scene, const dynamics::SimulationParameters
 int runBenchLiveCoat(BenchLiveCoatOptions o) {
   Progress progress = Progress::onTerminal(stderr);
   o.model.terminalProgress = &progress;
+  // The simulation starts from the coat as it grew and settles it by its own collisions.
+  leaveStageOut(o.model, dynamics::coatShinglingStage());
   Diagnostics diagnostics(&std::cerr);
   std::optional<BuiltScene> built = buildSceneOrSay(o.model, diagnostics, progress);
   if (!built) return kExitBadInput;

@@ -66,6 +66,12 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
   addWarningOptions(command, o.warningFlags, o.werror);
 }
 
+void leaveStageOut(ModelOptions& options, const OrganStage& stage) {
+  const std::span<const OrganStage* const> stages = organStages();
+  for (std::size_t k = 0; k < stages.size(); ++k)
+    if (stages[k] == &stage) options.organs[k].enabled = false;
+}
+
 void addWarningOptions(CLI::App& command, std::vector<std::string>& flags, bool& werror) {
   std::vector<std::string> silenced;
   std::string names;
@@ -263,7 +269,8 @@ Scene growScene(const ModelOptions& o, const Model& model, const ModelResources&
                             .lsystemFile = o.lsystemFile,
                             .seed = o.placementSeed,
                             .progress = o.terminalProgress,
-                            .maxVertices = o.maxVertices};
+                            .maxVertices = o.maxVertices,
+                            .threads = o.threads};
     const std::string report = stage.grow(run, o.organs[k]);
     if (o.verbose) say(fmt::format("{} in {:.3f} s\n", report, seconds(started)));
   }

@@ -66,6 +66,10 @@ void applyWarningOptions(const std::vector<std::string>& flags, bool werror,
                          Diagnostics& diagnostics);
 // With --Werror, throws DiagnosticError (at `file`) once `diagnostics` has had a warning.
 void stopOnWarnings(const Diagnostics& diagnostics, const std::string& file);
+// Switches the organ's stage off for the run, whatever the command line said (a command whose
+// own work replaces what the stage would do).
+void leaveStageOut(ModelOptions& options, const OrganStage& stage);
+
 // Adds --threads, the derivation's threads (derive has it too).
 void addThreadsOption(CLI::App& command, int& threads);
 // Adds --max-file-bytes, what the blocks may write through fprintf (derive has it too).

@@ -19,6 +19,7 @@
 #include "command.h"
 #include "hirsute/core/output_target.h"
 #include "hirsute/hairs/dynamics/coat_motion.h"
+#include "hirsute/hairs/dynamics/coat_shingling.h"
 #include "hirsute/hairs/dynamics/wind_field.h"
 #include "hirsute/hairs/fur/fur_motion.h"
 #include "hirsute/hairs/fur/fur_stage.h"
@@ -254,6 +255,8 @@ int runSimulate(SimulateOptions o) {
   const auto started = Clock::now();
   Progress progress = Progress::onTerminal(stderr);
   o.model.terminalProgress = &progress;
+  // The simulation starts from the coat as it grew and settles it by its own collisions.
+  leaveStageOut(o.model, dynamics::coatShinglingStage());
   // cpfg's order is .l .v .a; a lone .a after the .l is the animation file.
   if (o.animation.empty() && fs::path(o.model.viewFile).extension() == ".a")
     std::swap(o.animation, o.model.viewFile);

@@ -68,6 +68,14 @@ const ViewLineCommand kLines[] = {
        feathers(c).follicleLayout =
            word == "hexagonal" ? FollicleLayout::Hexagonal : FollicleLayout::Diffusion;
      }},
+    {"feather shingling:",
+     [](ViewLine& c) {
+       const SourceLocation where = c.args.here();
+       const std::string_view word = c.requiredWord("on or off");
+       if (word != "on" && word != "off")
+         c.fail(where, "expected on or off, found " + inQuotes(word));
+       feathers(c).shingling = word == "on";
+     }},
 
     // Feather-coat dynamics (docs/dynamics.md).
     {"dynamics gravity:",

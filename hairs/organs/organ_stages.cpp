@@ -1,5 +1,6 @@
 // The organs' stages, registered: one line an organ, in the order the pipeline runs them (the
 // feathers' coats and the fur are placed after the hairs, as they always were).
+#include "hirsute/hairs/dynamics/coat_shingling.h"
 #include "hirsute/hairs/feathers/feather_stage.h"
 #include "hirsute/hairs/fur/fur_stage.h"
 #include "hirsute/hairs/organ_stage.h"
@@ -11,6 +12,7 @@ std::span<const OrganStage* const> organStages() {
   static const OrganStage* const stages[] = {
       &plantHairStage(),
       &featherStage(),
+      &dynamics::coatShinglingStage(),
       &furStage(),
   };
   return stages;

@@ -158,6 +158,15 @@ TEST(OrganSettings, TheCoatsDynamicsLinesAreTheFeathers) {
   EXPECT_THROW(parseViewFile("dynamics vanes: sometimes\n", "organs.v", wrong), DiagnosticError);
 }
 
+TEST(OrganSettings, ACoatIsShingledUnlessTheViewFileSaysOff) {
+  Diagnostics diagnostics;
+  EXPECT_TRUE(FeatherSettings{}.shingling);
+  const ViewSettings view = parseViewFile("feather shingling: off\n", "organs.v", diagnostics);
+  EXPECT_FALSE(view.organ<FeatherSettings>().shingling);
+  Diagnostics wrong;
+  EXPECT_THROW(parseViewFile("feather shingling: maybe\n", "organs.v", wrong), DiagnosticError);
+}
+
 TEST(OrganAttributeIndices, EachOrgansRecordHasASlotOfItsOwn) {
   OrganAttributeIndices indices;
   EXPECT_TRUE(indices.none());

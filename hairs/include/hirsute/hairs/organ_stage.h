@@ -57,6 +57,7 @@ struct OrganStageRun {
   std::uint64_t seed = 0;        // of placement (--hair-seed); 0: the view file's
   Progress* progress = nullptr;  // the terminal's progress line (null: nothing shown)
   std::size_t maxVertices = kDefaultMaxVertices;  // --max-vertices, for what outputs build
+  int threads = 0;  // --threads (0: one per core); a stage's result may not depend on it
 };
 
 class OrganStage {

@@ -47,6 +47,8 @@ struct FeatherDynamicsSettings {
 struct FeatherSettings : OrganSettingsOf<FeatherSettings> {
   std::vector<FeatherTypeDeclaration> types;  // in order
   FollicleLayout follicleLayout = FollicleLayout::Diffusion;
+  // `feather shingling: on|off`: a still coat is laid on the layer beneath (docs/feathers.md).
+  bool shingling = true;
   // Feather-coat dynamics (docs/design.md; docs/dynamics.md, "hirsute simulate"): the `dynamics …:`
   // lines. Lengths are the model's units, times seconds.
   FeatherDynamicsSettings dynamics;
