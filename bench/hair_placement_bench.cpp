@@ -21,7 +21,7 @@
 #include <string>
 
 #include "hirsute/hairs/plant/plant_hairs.h"
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"

@@ -27,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/viewer/view/camera.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"

@@ -11,10 +11,10 @@
 #include <tuple>
 #include <vector>
 
-#include "cpfg_numbers.h"
-#include "hirsute/interpreter/feather_attributes.h"
-#include "hirsute/interpreter/fur_attributes.h"
-#include "hirsute/interpreter/hair_attributes.h"
+#include "hirsute/interpreter/cpfg_numbers.h"
+#include "hirsute/hairs/feathers/feather_attributes.h"
+#include "hirsute/hairs/fur/fur_attributes.h"
+#include "hirsute/hairs/plant/hair_attributes.h"
 #include "hirsute/interpreter/view_lines.h"
 
 namespace hirsute {

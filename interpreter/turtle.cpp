@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "cpfg_numbers.h"
+#include "hirsute/interpreter/cpfg_numbers.h"
 #include "cylinder_mesh.h"
 #include "hirsute/core/characters.h"
 #include "hirsute/core/memory_budget.h"

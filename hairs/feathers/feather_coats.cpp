@@ -9,7 +9,7 @@
 #include "hirsute/hairs/placement/placement_random.h"
 #include "hirsute/hairs/placement/segment_unfolding.h"
 #include "hirsute/hairs/placement/surface_sampler.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 
 namespace hirsute {
 namespace {

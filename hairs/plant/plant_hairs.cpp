@@ -10,8 +10,8 @@
 #include <fmt/format.h>
 
 #include "hirsute/hairs/plant/hair_templates.h"
-#include "hirsute/interpreter/hair_part.h"
-#include "hirsute/interpreter/hair_settings.h"
+#include "hirsute/hairs/plant/hair_part.h"
+#include "hirsute/hairs/plant/hair_settings.h"
 
 namespace hirsute {
 

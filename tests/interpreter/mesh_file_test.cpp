@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/interpreter/hair_attributes.h"
+#include "hirsute/hairs/plant/hair_attributes.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "../../interpreter/surface_mesh.h"

@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
-#include "hirsute/interpreter/fur_part.h"
-#include "hirsute/interpreter/fur_settings.h"
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
+#include "hirsute/hairs/fur/fur_part.h"
+#include "hirsute/hairs/fur/fur_settings.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/interpreter/scene.h"

@@ -5,7 +5,7 @@
 
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/fur_writer.h"
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/viewer/export/blender_writer.h"
 
 namespace hirsute {

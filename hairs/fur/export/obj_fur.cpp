@@ -3,7 +3,7 @@
 // polyline, under `o fur`, in the surface's material.
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/fur_writer.h"
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 
 namespace hirsute {

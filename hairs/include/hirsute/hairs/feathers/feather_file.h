@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "hirsute/interpreter/feather_type.h"
+#include "hirsute/hairs/feathers/feather_type.h"
 #include "hirsute/core/diagnostic.h"
 
 namespace hirsute {

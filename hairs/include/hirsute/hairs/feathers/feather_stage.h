@@ -8,7 +8,7 @@
 #include <string>
 
 #include "hirsute/hairs/organ_stage.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "hirsute/hairs/organ_stage.h"
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"

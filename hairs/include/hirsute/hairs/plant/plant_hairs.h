@@ -8,7 +8,7 @@
 #include <string>
 
 #include "hirsute/hairs/plant/hair_placement.h"
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"

@@ -4,8 +4,8 @@
 #include <limits>
 #include <string>
 
-#include "hirsute/interpreter/hair_attributes.h"
-#include "hirsute/interpreter/hair_settings.h"
+#include "hirsute/hairs/plant/hair_attributes.h"
+#include "hirsute/hairs/plant/hair_settings.h"
 #include "hirsute/interpreter/view_lines.h"
 
 namespace hirsute {
