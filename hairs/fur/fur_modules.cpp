@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "hirsute/interpreter/cpfg_numbers.h"
 #include "hirsute/hairs/fur/fur_part.h"
+#include "hirsute/interpreter/cpfg_numbers.h"
 #include "hirsute/interpreter/organ_modules.h"
 
 namespace hirsute {

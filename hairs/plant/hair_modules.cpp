@@ -40,7 +40,7 @@ HairRow templateProbabilities(char letter) {
 
 }  // namespace
 
-const OrganModuleTable& hairModuleTable() {
+const OrganModuleTable& plantHairModuleTable() {
   static const AttributeModuleTable<HairAttributes> table(
       "hair",
       [](Scene& scene) -> std::vector<HairAttributes>& {

@@ -57,7 +57,7 @@ const ViewLineCommand kLines[] = {
 
 }  // namespace
 
-std::span<const ViewLineCommand> hairViewLines() {
+std::span<const ViewLineCommand> plantHairViewLines() {
   return kLines;
 }
 
