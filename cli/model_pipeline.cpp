@@ -58,8 +58,11 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
                      "More vertices in the geometry are an error (default 100000000)");
   command.add_option("--max-mesh-triangles", o.maxMeshTriangles,
                      "A mesh surface of more triangles is an error (default 2000000)");
-  command.add_option("--hair-seed", o.placementSeed,
-                     "Seed of hair placement (default: the view file's `hair texture:` seed)");
+  command.add_option("--placement-seed", o.placementSeed,
+                     "Seed of every organ's placement: hairs and feather follicles (default: the "
+                     "view file's `hair texture:` seed)");
+  // Its name before it placed more than hairs, kept for the scripts that use it.
+  command.add_option("--hair-seed", o.placementSeed)->group("");
   const std::span<const OrganStage* const> stages = organStages();
   for (std::size_t k = 0; k < stages.size(); ++k) stages[k]->addOptions(command, o.organs[k]);
   command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");

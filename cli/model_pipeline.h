@@ -41,7 +41,7 @@ struct ModelOptions {
   int threads = 0;  // --threads: of the derivation (0: one a core)
   std::size_t maxVertices = kDefaultMaxVertices;
   std::size_t maxMeshTriangles = kDefaultMaxMeshTriangles;  // --max-mesh-triangles
-  std::uint64_t placementSeed = 0;       // --hair-seed; 0: the view file's `hair texture:` seed
+  std::uint64_t placementSeed = 0;       // --placement-seed; 0: the view file's `hair texture:` seed
   OrganOptionsSet organs;                // each organ's own options (organ_stage.h)
   bool verbose = false;                  // -v: counts and times on stderr
   std::vector<std::string> warningFlags;  // -W no-NAME: the named warnings silenced
