@@ -205,9 +205,10 @@ ModelResources loadModelResources(const std::optional<std::filesystem::path>& vi
     resources.viewFile = *viewFile;
     diagnostics.addSourceFolder(ModelFolder(resources.folder));  // messages quote its lines
     // cpfg runs the view file through the C preprocessor too: #define, /* */ and // work.
-    resources.view = parseViewFile(
-        viewText != nullptr ? *viewText : preprocessViewFile(*viewFile, maxSourceBytes, diagnostics),
-        *viewFile, diagnostics);
+    resources.view = parseViewFile(viewText != nullptr
+                                       ? *viewText
+                                       : preprocessViewFile(*viewFile, maxSourceBytes, diagnostics),
+                                   *viewFile, diagnostics);
   }
   loadPalette(resources, colors, diagnostics);
   loadTextures(resources, diagnostics);

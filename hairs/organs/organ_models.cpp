@@ -7,7 +7,7 @@
 
 namespace hirsute {
 
-#define HIRSUTE_DECLARE(folder, name)            \
+#define HIRSUTE_DECLARE(folder, name)          \
   const OrganModuleTable& name##ModuleTable(); \
   std::span<const ViewLineCommand> name##ViewLines();
 HIRSUTE_ORGANS(HIRSUTE_DECLARE)

@@ -125,9 +125,9 @@ TEST(ModelResourcesTest, BrokenFilesAreReportedAtTheViewLineWithTheirOwnPlace) {
 TEST(ModelResourcesTest, ThePreprocessedViewTextIsReadInsteadOfTheFile) {
   Diagnostics diagnostics;
   const std::string text = "angle increment: 30\n";
-  const ModelResources resources = loadModelResources(
-      kFixtures / "model.v", ColorFiles{}, diagnostics, kDefaultMaxMeshTriangles,
-      kDefaultMaxSourceBytes, &text);
+  const ModelResources resources =
+      loadModelResources(kFixtures / "model.v", ColorFiles{}, diagnostics, kDefaultMaxMeshTriangles,
+                         kDefaultMaxSourceBytes, &text);
   EXPECT_FLOAT_EQ(resources.view.angleIncrement, 30);
   EXPECT_TRUE(resources.textures.empty());
   EXPECT_FALSE(resources.contours.has(1));
@@ -137,8 +137,8 @@ TEST(ModelResourcesTest, ThePreprocessedViewTextIsReadInsteadOfTheFile) {
   const Diagnostic d =
       diagnosticOf([&] { preprocessViewFile(kFixtures / "model.v", 20, diagnostics); });
   EXPECT_NE(d.message.find("--max-source-bytes"), std::string::npos) << d.message;
-  EXPECT_FALSE(preprocessViewFile(kFixtures / "model.v", kDefaultMaxSourceBytes, diagnostics)
-                   .empty());
+  EXPECT_FALSE(
+      preprocessViewFile(kFixtures / "model.v", kDefaultMaxSourceBytes, diagnostics).empty());
 }
 
 TEST(ModelResourcesTest, WithoutAViewFileEverythingIsDefault) {
