@@ -4,7 +4,7 @@
 //
 // `folder` is its folder under hairs/ (and under hairs/include/hirsute/hairs/); `name` the prefix
 // of its entry points: nameModuleTable(), nameViewLines(), nameStage(), nameWriter(),
-// nameDrawing(), nameLive() and trace::nameTracer(), each defined in the organ's folder. The
+// nameDrawing(), nameLive() and nameTracer(), each defined in the organ's folder. The
 // order of the lines is the order the turtle's tables are searched, the stages run, and the
 // organs are written, drawn, made live and traced.
 //

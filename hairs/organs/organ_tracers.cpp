@@ -2,11 +2,13 @@
 #include "hirsute/viewer/trace/organ_tracer.h"
 #include "organ_list.h"
 
-namespace hirsute::trace {
+namespace hirsute {
 
-#define HIRSUTE_DECLARE(folder, name) const OrganTracer& name##Tracer();
+#define HIRSUTE_DECLARE(folder, name) const trace::OrganTracer& name##Tracer();
 HIRSUTE_ORGANS(HIRSUTE_DECLARE)
 #undef HIRSUTE_DECLARE
+
+namespace trace {
 
 std::span<const OrganTracer* const> organTracers() {
 #define HIRSUTE_TRACER(folder, name) &name##Tracer(),
@@ -15,4 +17,5 @@ std::span<const OrganTracer* const> organTracers() {
   return tracers;
 }
 
-}  // namespace hirsute::trace
+}  // namespace trace
+}  // namespace hirsute

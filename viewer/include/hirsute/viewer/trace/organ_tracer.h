@@ -2,7 +2,7 @@
 // geometry and materials): addSceneGeometry() (trace_scene.h) visits organTracers() after the
 // Scene's own elements, and each organ adds its shapes and materials from its own folder
 // (hairs/NAME/trace/). The tracer never names an organ; adding one adds a class derived from
-// OrganTracer in its folder, returned by its trace::nameTracer() (hairs/organs/organ_list.h).
+// OrganTracer in its folder, returned by its nameTracer() (hairs/organs/organ_list.h).
 #pragma once
 
 #include <span>
