@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/viewer/view/feather_buffers.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
+#include "hirsute/viewer/view/feather_buffers.h"
 #include "model_pipeline.h"
 #include "raw_gl.h"
 

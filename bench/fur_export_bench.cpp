@@ -23,8 +23,8 @@
 #include <sstream>
 #include <string>
 
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/hairs/fur/fur_strands.h"
-#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/export/povray_runner.h"
 #include "model_pipeline.h"

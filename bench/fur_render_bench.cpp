@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
 #include "model_pipeline.h"

@@ -18,7 +18,7 @@
 #include <string>
 
 #include "hirsute/hairs/plant/hair_csv_writer.h"
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/viewer/export/blender_writer.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/export/pov_writer.h"

@@ -20,8 +20,8 @@
 #include <optional>
 #include <string>
 
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/hairs/plant/plant_hairs.h"
-#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"

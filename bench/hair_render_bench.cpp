@@ -27,10 +27,10 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/interpreter/hair_part.h"
-#include "hirsute/viewer/view/camera.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/viewer/gl/gl_renderer.h"
 #include "hirsute/viewer/gl/offscreen.h"
+#include "hirsute/viewer/view/camera.h"
 #include "model_pipeline.h"
 #include "raw_gl.h"
 #include "synthetic_hairs.h"

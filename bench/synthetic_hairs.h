@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::bench {

@@ -25,8 +25,8 @@
 #include "hirsute/hairs/dynamics/coat_motion.h"
 #include "hirsute/hairs/dynamics/coat_runner.h"
 #include "hirsute/hairs/dynamics/coat_shingling.h"
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
 #include "model_pipeline.h"
 
 namespace hirsute::cli {

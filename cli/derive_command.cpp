@@ -20,26 +20,17 @@ namespace hirsute::cli {
 namespace {
 
 struct DeriveOptions {
-  std::string lsystemFile;
-  std::string viewFile;
-  std::optional<int> steps;
+  // The model and what its derivation takes, as every command that derives has them (the
+  // geometry's options are not offered).
+  ModelOptions model;
   bool homomorphism = false;
   bool eachStep = false;
   std::string output;
   std::string format = "cpfg";
-  std::string environmentFile;
-  bool externalEnvironment = false;
-  int environmentTimeout = 60;
-  std::size_t maxModules = 100'000'000;
-  std::uint64_t maxLoopIterations = 10'000'000;
-  std::uint64_t maxFileBytes = EvaluationLimits{}.maxWrittenBytes;
-  std::size_t maxSourceBytes = kDefaultMaxSourceBytes;
-  int threads = 0;
-  std::vector<std::string> warningFlags;
-  bool werror = false;
 };
 
-int runDerive(const DeriveOptions& o) {
+int runDerive(const DeriveOptions& d) {
+  const ModelOptions& o = d.model;
   Progress progress = Progress::onTerminal(stderr);
   Diagnostics diagnostics(&std::cerr);
   diagnostics.setProgress(&progress);
@@ -47,67 +38,56 @@ int runDerive(const DeriveOptions& o) {
     std::optional<std::filesystem::path> view;
     if (!o.viewFile.empty()) view = o.viewFile;
     applyWarningOptions(o.warningFlags, o.werror, diagnostics);
+    // The view file serves the function set and, for queries, the turtle's settings: through
+    // the preprocessor once.
+    std::optional<std::string> viewText;
+    if (view) viewText = preprocessViewFile(*view, o.maxSourceBytes, diagnostics);
     hirsute::ModelOptions loading;
     loading.maxSourceBytes = o.maxSourceBytes;
+    loading.viewText = viewText ? &*viewText : nullptr;
     const ModuleMeanings meanings = turtleModuleMeanings();
     loading.checks = &meanings;
     Model model = loadModel(o.lsystemFile, view, diagnostics, loading);
     stopOnWarnings(diagnostics, o.lsystemFile);
-    EvaluationLimits limits;
-    limits.maxLoopIterations = o.maxLoopIterations;
-    limits.maxWrittenBytes = o.maxFileBytes;
-    Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr,
-                        limits);
-    DerivationOptions options;
-    options.steps = o.steps;
-    options.maxModules = o.maxModules;
-    options.threads = o.threads;
-    options.progress = &progress;
     // ?P ?H ?L ?U take the turtle's values before every step (cpfg manual §6.9), so a model
-    // with queries needs its view file's turtle settings; colours play no part in them. The
+    // with queries needs its view file's turtle settings; colours play no part in them. So does
+    // an environmental program (cpfg -e), which answers the ?E modules in the same pass. The
     // resources outlive the derivation whose query pass reads them.
     ModelResources resources;
-    Derivation derivation(model.program, evaluator, diagnostics, options);
-    // cpfg -e: an environmental program answers the ?E modules in the same pass.
-    std::unique_ptr<Environment> environment;
-    if (!o.environmentFile.empty()) {
-      EnvironmentOptions environmentOptions;
-      environmentOptions.forceExternal = o.externalEnvironment;
-      environmentOptions.timeoutSeconds = o.environmentTimeout;
-      environment = openEnvironment(o.environmentFile, diagnostics, environmentOptions);
-    }
-    if (model.program.usesQueries || environment) {
+    ModelDerivation run(o, model, diagnostics, &progress);
+    Derivation& derivation = run.derivation();
+    if (model.program.usesQueries || run.environment()) {
       resources = loadModelResources(view, {}, diagnostics, kDefaultMaxMeshTriangles,
-                                     o.maxSourceBytes);
-      installQueryPass(derivation, resources, diagnostics, environment.get());
+                                     o.maxSourceBytes, loading.viewText);
+      run.installQueries(resources);
     }
 
     // No file, or "-": standard output. Otherwise the shared rule for output files.
     std::optional<OutputTarget> file;
-    if (!o.output.empty() && o.output != "-") file.emplace(o.output);
+    if (!d.output.empty() && d.output != "-") file.emplace(d.output);
     std::FILE* out = file ? file->stream() : stdout;
-    StringWriter writer(out, o.format == "compact" ? StringFormat::Compact : StringFormat::Cpfg);
+    StringWriter writer(out, d.format == "compact" ? StringFormat::Compact : StringFormat::Cpfg);
     writer.setStrings(&model.program.strings);  // @L("text") is written with its text
     // The string may go to the terminal the progress line is on: the line is cleared first.
     const auto emitString = [&] {
       progress.clear();
-      derivation.emit(writer, o.homomorphism);
+      derivation.emit(writer, d.homomorphism);
     };
     derivation.start();
-    if (o.eachStep) {
+    if (d.eachStep) {
       // Every string from the axiom on; in the cpfg format they are separated by an empty line.
       emitString();
       writer.finish();
       while (derivation.step()) {
         progress.clear();
-        if (o.format != "compact") std::fputc('\n', out);
+        if (d.format != "compact") std::fputc('\n', out);
         emitString();
         writer.finish();
       }
-    } else if (!o.output.empty() && o.output != "-") {
+    } else if (!d.output.empty() && d.output != "-") {
       // Into a file, the last step's string is written while it is derived and never held
       // whole; the file only appears once it is complete (OutputTarget::commit).
-      if (!derivation.runStreamingLastStep(writer, o.homomorphism)) {
+      if (!derivation.runStreamingLastStep(writer, d.homomorphism)) {
         emitString();
       }
     } else {
@@ -117,7 +97,7 @@ int runDerive(const DeriveOptions& o) {
     }
     progress.clear();
     if (!writer.finish() || (!file && std::fflush(stdout) != 0)) {
-      std::cerr << (file ? o.output : std::string("<stdout>"))
+      std::cerr << (file ? d.output : std::string("<stdout>"))
                 << ": error: cannot write: " << std::strerror(errno) << '\n';
       return kExitIoError;
     }
@@ -145,15 +125,15 @@ void registerDeriveCommand(CLI::App& app, Action& action) {
   auto options = std::make_shared<DeriveOptions>();
   CLI::App* derive =
       app.add_subcommand("derive", "Derive the L-system and print the string as cpfg's -str does");
-  derive->add_option("lsystem", options->lsystemFile, "The .l file")
+  derive->add_option("lsystem", options->model.lsystemFile, "The .l file")
       ->required()
       ->check(CLI::ExistingFile);
   derive
-      ->add_option("view", options->viewFile,
+      ->add_option("view", options->model.viewFile,
                    "The .v file (its function: and function set: lines are used)")
       ->check(CLI::ExistingFile);
   derive
-      ->add_option("-n,--steps", options->steps,
+      ->add_option("-n,--steps", options->model.steps,
                    "Derivation steps (default: the file's derivation length)")
       ->check(CLI::Range(0, 1000000000));
   derive->add_flag("--homomorphism", options->homomorphism,
@@ -163,16 +143,16 @@ void registerDeriveCommand(CLI::App& app, Action& action) {
   derive->add_option("-o,--output", options->output, "Write to FILE instead of standard output");
   derive->add_option("--format", options->format, "cpfg (cpfg's -str text) or compact (one line)")
       ->check(CLI::IsMember({"cpfg", "compact"}));
-  addEnvironmentOptions(*derive, options->environmentFile, options->externalEnvironment,
-                        options->environmentTimeout);
-  derive->add_option("--max-modules", options->maxModules,
+  addEnvironmentOptions(*derive, options->model.environmentFile, options->model.externalEnvironment,
+                        options->model.environmentTimeout);
+  derive->add_option("--max-modules", options->model.maxModules,
                      "A longer string is an error (default 100000000)");
-  derive->add_option("--max-loop-iterations", options->maxLoopIterations,
+  derive->add_option("--max-loop-iterations", options->model.maxLoopIterations,
                      "Iterations of while/do loops per block run (default 10000000)");
-  addMaxFileBytesOption(*derive, options->maxFileBytes);
-  addMaxSourceBytesOption(*derive, options->maxSourceBytes);
-  addThreadsOption(*derive, options->threads);
-  addWarningOptions(*derive, options->warningFlags, options->werror);
+  addMaxFileBytesOption(*derive, options->model.maxFileBytes);
+  addMaxSourceBytesOption(*derive, options->model.maxSourceBytes);
+  addThreadsOption(*derive, options->model.threads);
+  addWarningOptions(*derive, options->model.warningFlags, options->model.werror);
   derive->callback([options, &action] { action = [options] { return runDerive(*options); }; });
 }
 

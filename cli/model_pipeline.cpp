@@ -58,8 +58,11 @@ void addModelOptions(CLI::App& command, ModelOptions& o) {
                      "More vertices in the geometry are an error (default 100000000)");
   command.add_option("--max-mesh-triangles", o.maxMeshTriangles,
                      "A mesh surface of more triangles is an error (default 2000000)");
-  command.add_option("--hair-seed", o.placementSeed,
-                     "Seed of hair placement (default: the view file's `hair texture:` seed)");
+  command.add_option("--placement-seed", o.placementSeed,
+                     "Seed of every organ's placement: hairs and feather follicles (default: the "
+                     "view file's `hair texture:` seed)");
+  // Its name before it placed more than hairs, kept for the scripts that use it.
+  command.add_option("--hair-seed", o.placementSeed)->group("");
   const std::span<const OrganStage* const> stages = organStages();
   for (std::size_t k = 0; k < stages.size(); ++k) stages[k]->addOptions(command, o.organs[k]);
   command.add_flag("-v,--verbose", o.verbose, "Print counts and times of each stage on stderr");
@@ -162,21 +165,23 @@ ColorFiles colorFilesFor(const ModelOptions& o, Diagnostics& diagnostics) {
   return files;
 }
 
-ModelResources loadResources(const ModelOptions& o, Diagnostics& diagnostics) {
+ModelResources loadResources(const ModelOptions& o, Diagnostics& diagnostics,
+                             const std::string* viewText) {
   applyWarningOptions(o.warningFlags, o.werror, diagnostics);
   std::optional<std::filesystem::path> view;
   if (!o.viewFile.empty()) view = o.viewFile;
   return loadModelResources(view, colorFilesFor(o, diagnostics), diagnostics,
-                            o.maxMeshTriangles, o.maxSourceBytes);
+                            o.maxMeshTriangles, o.maxSourceBytes, viewText);
 }
 
-Model loadLsystem(const ModelOptions& o, Diagnostics& diagnostics) {
+Model loadLsystem(const ModelOptions& o, Diagnostics& diagnostics, const std::string* viewText) {
   std::optional<std::filesystem::path> view;
   if (!o.viewFile.empty()) view = o.viewFile;
   applyWarningOptions(o.warningFlags, o.werror, diagnostics);
   hirsute::ModelOptions loading;
   loading.lsystemText = o.lsystemText;
   loading.maxSourceBytes = o.maxSourceBytes;
+  loading.viewText = viewText;
   const ModuleMeanings meanings = turtleModuleMeanings();
   loading.checks = &meanings;
   Model model = loadModel(o.lsystemFile, view, diagnostics, loading);
@@ -188,28 +193,54 @@ Model loadLsystem(const ModelOptions& o, Diagnostics& diagnostics) {
 
 BuiltScene buildScene(const ModelOptions& o, Diagnostics& diagnostics) {
   BuiltScene built;
-  built.resources = loadResources(o, diagnostics);
-  built.model = loadLsystem(o, diagnostics);
+  // The view file serves the settings and the function set: through the preprocessor once.
+  std::optional<std::string> viewText;
+  if (!o.viewFile.empty()) {
+    applyWarningOptions(o.warningFlags, o.werror, diagnostics);
+    viewText = preprocessViewFile(o.viewFile, o.maxSourceBytes, diagnostics);
+  }
+  const std::string* view = viewText ? &*viewText : nullptr;
+  built.resources = loadResources(o, diagnostics, view);
+  built.model = loadLsystem(o, diagnostics, view);
   built.scene = growScene(o, built.model, built.resources, diagnostics);
   stopOnWarnings(diagnostics, o.lsystemFile);
   return built;
 }
 
+ModelDerivation::ModelDerivation(const ModelOptions& o, const Model& model,
+                                 Diagnostics& diagnostics, Progress* progress)
+    : diagnostics_(diagnostics),
+      evaluator_(model.program, diagnostics, &model.functions, model.folder, std::cerr,
+                 EvaluationLimits{.maxLoopIterations = o.maxLoopIterations,
+                                  .maxWrittenBytes = o.maxFileBytes}),
+      derivation_(model.program, evaluator_, diagnostics,
+                  DerivationOptions{.steps = o.steps,
+                                    .maxModules = o.maxModules,
+                                    .progress = progress,
+                                    .threads = o.threads}) {
+  // cpfg -e: the environment answers the ?E modules in the query pass before every step.
+  if (!o.environmentFile.empty()) {
+    EnvironmentOptions environmentOptions;
+    environmentOptions.forceExternal = o.externalEnvironment;
+    environmentOptions.timeoutSeconds = o.environmentTimeout;
+    if (o.verbose) {
+      if (progress) progress->clear();
+      environmentOptions.log = &std::cerr;
+    }
+    environment_ = openEnvironment(o.environmentFile, diagnostics, environmentOptions);
+  }
+}
+
+void ModelDerivation::installQueries(const ModelResources& resources) {
+  installQueryPass(derivation_, resources, diagnostics_, environment_.get());
+}
+
 Scene growScene(const ModelOptions& o, const Model& model, const ModelResources& resources,
                 Diagnostics& diagnostics) {
   Scene scene;
-  EvaluationLimits limits;
-  limits.maxLoopIterations = o.maxLoopIterations;
-  limits.maxWrittenBytes = o.maxFileBytes;
-  Evaluator evaluator(model.program, diagnostics, &model.functions, model.folder, std::cerr,
-                      limits);
-  DerivationOptions options;
-  options.steps = o.steps;
-  options.maxModules = o.maxModules;
-  options.threads = o.threads;
-  options.progress = o.terminalProgress;
   diagnostics.setProgress(o.terminalProgress);
-  Derivation derivation(model.program, evaluator, diagnostics, options);
+  ModelDerivation run(o, model, diagnostics, o.terminalProgress);
+  Derivation& derivation = run.derivation();
   // -v's lines go to the terminal the progress line is on: it is cleared first.
   const auto say = [&o](const std::string& text) {
     if (o.terminalProgress) o.terminalProgress->clear();
@@ -220,19 +251,7 @@ Scene growScene(const ModelOptions& o, const Model& model, const ModelResources&
     return std::chrono::duration<double>(Clock::now() - since).count();
   };
   auto started = Clock::now();
-  // cpfg -e: the environment answers the ?E modules in the query pass before every step.
-  std::unique_ptr<Environment> environment;
-  if (!o.environmentFile.empty()) {
-    EnvironmentOptions environmentOptions;
-    environmentOptions.forceExternal = o.externalEnvironment;
-    environmentOptions.timeoutSeconds = o.environmentTimeout;
-    if (o.verbose) {
-      if (o.terminalProgress) o.terminalProgress->clear();
-      environmentOptions.log = &std::cerr;
-    }
-    environment = openEnvironment(o.environmentFile, diagnostics, environmentOptions);
-  }
-  installQueryPass(derivation, resources, diagnostics, environment.get());
+  run.installQueries(resources);
   derivation.start();
   if (o.progress) o.progress(1, 0, derivation.totalSteps());
   while ((!o.stopAfter || derivation.stepsDone() < *o.stopAfter) && derivation.step()) {

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -13,6 +14,8 @@
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/environment/environment.h"
+#include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"
 #include "hirsute/lsys/model.h"
 #include "hirsute/core/progress.h"
@@ -38,7 +41,7 @@ struct ModelOptions {
   int threads = 0;  // --threads: of the derivation (0: one a core)
   std::size_t maxVertices = kDefaultMaxVertices;
   std::size_t maxMeshTriangles = kDefaultMaxMeshTriangles;  // --max-mesh-triangles
-  std::uint64_t placementSeed = 0;       // --hair-seed; 0: the view file's `hair texture:` seed
+  std::uint64_t placementSeed = 0;       // --placement-seed; 0: the view file's `hair texture:` seed
   OrganOptionsSet organs;                // each organ's own options (organ_stage.h)
   bool verbose = false;                  // -v: counts and times on stderr
   std::vector<std::string> warningFlags;  // -W no-NAME: the named warnings silenced
@@ -77,13 +80,35 @@ void addMaxFileBytesOption(CLI::App& command, std::uint64_t& bytes);
 // Adds --max-source-bytes, the preprocessed text's limit (derive has it too).
 void addMaxSourceBytesOption(CLI::App& command, std::size_t& bytes);
 
+// A loaded model's derivation as every command that derives sets it up: the evaluator with the
+// command's limits on loops and written bytes, the derivation with its steps, string limit,
+// threads and progress line, and the environmental program of -e when one is named.
+class ModelDerivation {
+ public:
+  ModelDerivation(const ModelOptions& options, const Model& model, Diagnostics& diagnostics,
+                  Progress* progress);
+  Derivation& derivation() { return derivation_; }
+  Environment* environment() { return environment_.get(); }
+  // Before every step, the turtle's query modules (?P ?H ?L ?U) take their values from an
+  // interpretation with `resources`, and the environment answers the ?E modules; `resources`
+  // must outlive the derivation.
+  void installQueries(const ModelResources& resources);
+
+ private:
+  Diagnostics& diagnostics_;
+  Evaluator evaluator_;
+  Derivation derivation_;
+  std::unique_ptr<Environment> environment_;
+};
+
 struct BuiltScene {
   Model model;
   ModelResources resources;
   Scene scene;
 };
 
-// Loads the model (loadResources, loadLsystem) and grows its Scene (growScene). Throws
+// Loads the model (loadResources, loadLsystem: the view file through the preprocessor once, for
+// both) and grows its Scene (growScene). Throws
 // DiagnosticError on bad input (including an organ's, and past an organ's limits).
 BuiltScene buildScene(const ModelOptions& options, Diagnostics& diagnostics);
 // buildScene for a command: a DiagnosticError is printed on standard error (after `progress`
@@ -91,10 +116,13 @@ BuiltScene buildScene(const ModelOptions& options, Diagnostics& diagnostics);
 std::optional<BuiltScene> buildSceneOrSay(const ModelOptions& options, Diagnostics& diagnostics,
                                           Progress& progress);
 // The view file's resources (colours, contours, surfaces, functions, the organs' files, …).
-ModelResources loadResources(const ModelOptions& options, Diagnostics& diagnostics);
+// `viewText`: the view file already through the preprocessor (preprocessViewFile), if at hand.
+ModelResources loadResources(const ModelOptions& options, Diagnostics& diagnostics,
+                             const std::string* viewText = nullptr);
 // The .l through the preprocessor, parsed and checked for likely mistakes (model_checks.h),
-// compiled; constant organ parameters checked.
-Model loadLsystem(const ModelOptions& options, Diagnostics& diagnostics);
+// compiled; constant organ parameters checked. `viewText` as for loadResources.
+Model loadLsystem(const ModelOptions& options, Diagnostics& diagnostics,
+                  const std::string* viewText = nullptr);
 // Derives `model` (to options.stopAfter steps when set), interprets it and runs the organs'
 // stages (organ_stage.h) that are switched on and have something to do: a model loaded once grows the Scene of each of its animation's frames.
 Scene growScene(const ModelOptions& options, const Model& model, const ModelResources& resources,

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "hirsute/interpreter/texture_image.h"
+#include "hirsute/lsys/model.h"
 #include "hirsute/lsys/preprocessor.h"
 #include "hirsute/lsys/view_file_lines.h"
 
@@ -194,7 +195,8 @@ void loadBackgroundScenes(ModelResources& resources, const PreprocessorOptions& 
 
 ModelResources loadModelResources(const std::optional<std::filesystem::path>& viewFile,
                                   const ColorFiles& colors, Diagnostics& diagnostics,
-                                  std::size_t maxMeshTriangles, std::size_t maxSourceBytes) {
+                                  std::size_t maxMeshTriangles, std::size_t maxSourceBytes,
+                                  const std::string* viewText) {
   ModelResources resources;
   PreprocessorOptions preprocessing;
   preprocessing.maxOutputBytes = maxSourceBytes;
@@ -203,8 +205,10 @@ ModelResources loadModelResources(const std::optional<std::filesystem::path>& vi
     resources.viewFile = *viewFile;
     diagnostics.addSourceFolder(ModelFolder(resources.folder));  // messages quote its lines
     // cpfg runs the view file through the C preprocessor too: #define, /* */ and // work.
-    const std::string text = preprocessFile(*viewFile, preprocessing, diagnostics);
-    resources.view = parseViewFile(text, *viewFile, diagnostics);
+    resources.view = parseViewFile(viewText != nullptr
+                                       ? *viewText
+                                       : preprocessViewFile(*viewFile, maxSourceBytes, diagnostics),
+                                   *viewFile, diagnostics);
   }
   loadPalette(resources, colors, diagnostics);
   loadTextures(resources, diagnostics);

@@ -1,45 +1,18 @@
-// The lists of organ tables and of the organs' view-file lines, and the readers of the parameter
-// forms they share (docs/design.md, "Organs"; the value form is Fuhrer et al. 2004, Table 1).
+// The look-up of organ tables by letter and the readers of the parameter forms they share
+// (docs/design.md, "Organs"; the value form is Fuhrer et al. 2004, Table 1). The tables
+// themselves are registered in hairs/organs/organ_list.h, which defines organModuleTables().
 #include "hirsute/interpreter/organ_modules.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 #include <vector>
 
-#include "cpfg_numbers.h"
-#include "hirsute/interpreter/feather_attributes.h"
-#include "hirsute/interpreter/fur_attributes.h"
-#include "hirsute/interpreter/hair_attributes.h"
-#include "hirsute/interpreter/view_lines.h"
+#include "hirsute/interpreter/cpfg_numbers.h"
 
 namespace hirsute {
-
-std::span<const OrganModuleTable* const> organModuleTables() {
-  // One line per organ.
-  static const std::array<const OrganModuleTable*, 3> tables{
-      &hairModuleTable(),
-      &featherModuleTable(),
-      &furModuleTable(),
-  };
-  static_assert(std::tuple_size_v<decltype(tables)> <= kMaxOrganTypes,
-                "the turtle carries kMaxOrganTypes organs' records (organ_attributes.h)");
-  return tables;
-}
-
-std::span<const std::span<const ViewLineCommand>> organViewLines() {
-  // One entry per organ, in the order of organModuleTables().
-  static const std::array<std::span<const ViewLineCommand>, 3> lines{
-      hairViewLines(),
-      featherViewLines(),
-      furViewLines(),
-  };
-  return lines;
-}
 
 int organModuleTableIndex(char organ) {
   const auto tables = organModuleTables();

@@ -9,10 +9,10 @@
 
 #include <fmt/format.h>
 
-#include "cpfg_numbers.h"
 #include "cylinder_mesh.h"
 #include "hirsute/core/characters.h"
 #include "hirsute/core/memory_budget.h"
+#include "hirsute/interpreter/cpfg_numbers.h"
 #include "hirsute/interpreter/generalized_cylinder.h"
 #include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/lsys/derivation.h"

@@ -932,6 +932,26 @@ void backgroundScene(ViewLine& c) {
   c.args.skipAll();
 }
 
+// The readers of the lines that set one field of the view settings to the line's one value: a
+// number, an integer, x,y,z or on/off (cpfg's sscanf forms, ViewLine), warning and leaving the
+// field as it was when the value does not read.
+template <auto Field>
+void numberSetting(ViewLine& c) {
+  if (const auto v = c.settingNumber()) c.view.*Field = static_cast<float>(*v);
+}
+template <auto Field>
+void integerSetting(ViewLine& c) {
+  if (const auto v = c.settingInteger()) c.view.*Field = *v;
+}
+template <auto Field>
+void tripleSetting(ViewLine& c) {
+  if (const auto v = c.settingTriple()) c.view.*Field = *v;
+}
+template <auto Field>
+void flagSetting(ViewLine& c) {
+  if (const auto on = c.settingFlag()) c.view.*Field = *on;
+}
+
 // A command Hirsute reads and has no use for: the rest of the line is skipped.
 void ignoreArguments(ViewLine& c) {
   c.args.skipAll();
@@ -960,10 +980,7 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
              }
            }
          }},
-        {"angle increment:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.angleIncrement = static_cast<float>(*v);
-         }},
+        {"angle increment:", &numberSetting<&ViewSettings::angleIncrement>},
         {"initial color:",
          [](ViewLine& c) {
            const SourceLocation where = c.args.here();
@@ -994,32 +1011,14 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
            c.view.backColorIncrement = back.value_or(*front);
          }},
         {"initial line width:", &initialLineWidth},
-        {"line width increment:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.lineWidthIncrement = static_cast<float>(*v);
-         }},
-        {"initial scale:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.initialScale = static_cast<float>(*v);
-         }},
-        {"scale multiplier:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.scaleMultiplier = static_cast<float>(*v);
-         }},
-        {"interpretation past %:",
-         [](ViewLine& c) {
-           if (const auto on = c.settingFlag()) c.view.interpretationPastCut = *on;
-         }},
+        {"line width increment:", &numberSetting<&ViewSettings::lineWidthIncrement>},
+        {"initial scale:", &numberSetting<&ViewSettings::initialScale>},
+        {"scale multiplier:", &numberSetting<&ViewSettings::scaleMultiplier>},
+        {"interpretation past %:", &flagSetting<&ViewSettings::interpretationPastCut>},
 
         // View (§8.1.2).
-        {"viewpoint:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingTriple()) c.view.viewpoint = *v;
-         }},
-        {"view reference point:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingTriple()) c.view.viewReference = *v;
-         }},
+        {"viewpoint:", &tripleSetting<&ViewSettings::viewpoint>},
+        {"view reference point:", &tripleSetting<&ViewSettings::viewReference>},
         {"twist:",
          [](ViewLine& c) {
            // Tenths of a degree, read as an integer.
@@ -1032,18 +1031,9 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
              c.view.projection = *w == 0 ? Projection::Parallel : Projection::Perspective;
            }
          }},
-        {"viewing angle:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.viewingAngle = static_cast<float>(*v);
-         }},
-        {"front distance:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.frontDistance = static_cast<float>(*v);
-         }},
-        {"back distance:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.backDistance = static_cast<float>(*v);
-         }},
+        {"viewing angle:", &numberSetting<&ViewSettings::viewingAngle>},
+        {"front distance:", &numberSetting<&ViewSettings::frontDistance>},
+        {"back distance:", &numberSetting<&ViewSettings::backDistance>},
         {"scale factor:",
          [](ViewLine& c) {
            // cpfg: 0 means full size.
@@ -1051,14 +1041,8 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
              c.view.scaleFactor = *v == 0 ? 1.0f : static_cast<float>(*v);
          }},
         {"box:", &box},
-        {"min zoom:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.minZoom = static_cast<float>(*v);
-         }},
-        {"max zoom:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.maxZoom = static_cast<float>(*v);
-         }},
+        {"min zoom:", &numberSetting<&ViewSettings::minZoom>},
+        {"max zoom:", &numberSetting<&ViewSettings::maxZoom>},
         {"generate on view change:",
          [](ViewLine& c) {
            if (c.args.peekWord() == "off") {
@@ -1069,40 +1053,19 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
          }},
 
         // Rendering (§8.1.4).
-        {"z buffer:",
-         [](ViewLine& c) {
-           if (const auto on = c.settingFlag()) c.view.zBuffer = *on;
-         }},
+        {"z buffer:", &flagSetting<&ViewSettings::zBuffer>},
         {"render mode:", &renderMode},
         {"shade mode:", &shadeMode},
         {"shadow map:", &shadowMap},
-        {"antialiasing:",
-         [](ViewLine& c) {
-           if (const auto on = c.settingFlag()) c.view.antialiasing = *on;
-         }},
-        {"concave polygons:",
-         [](ViewLine& c) {
-           if (const auto on = c.settingFlag()) c.view.concavePolygons = *on;
-         }},
+        {"antialiasing:", &flagSetting<&ViewSettings::antialiasing>},
+        {"concave polygons:", &flagSetting<&ViewSettings::concavePolygons>},
         {"background scene:", &backgroundScene},
 
         // Lights (§8.1.3).
-        {"light direction:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingTriple()) c.view.lightDirection = *v;
-         }},
-        {"diffuse reflection:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingInteger()) c.view.diffuseReflection = *v;
-         }},
-        {"surface ambient:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.surfaceAmbient = static_cast<float>(*v);
-         }},
-        {"surface diffuse:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.surfaceDiffuse = static_cast<float>(*v);
-         }},
+        {"light direction:", &tripleSetting<&ViewSettings::lightDirection>},
+        {"diffuse reflection:", &integerSetting<&ViewSettings::diffuseReflection>},
+        {"surface ambient:", &numberSetting<&ViewSettings::surfaceAmbient>},
+        {"surface diffuse:", &numberSetting<&ViewSettings::surfaceDiffuse>},
         {"light:", &light},
         // hirsute render --trace (docs/trace.md).
         {"trace light:", &traceLight},
@@ -1157,10 +1120,7 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
 
         // Lines, contours and surfaces (§8.1.5).
         {"line style:", &lineStyle},
-        {"tapered lines:",
-         [](ViewLine& c) {
-           if (const auto on = c.settingFlag()) c.view.taperedLines = *on;
-         }},
+        {"tapered lines:", &flagSetting<&ViewSettings::taperedLines>},
         {"contour sides:",
          [](ViewLine& c) {
            const SourceLocation where = c.args.here();
@@ -1188,10 +1148,7 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
            c.view.contourSides = std::max(3, 1 << (std::clamp(*level, 0, kMaxLevel) + 1));
          }},
         {"contour:", &contour},
-        {"twist of cylinders:",
-         [](ViewLine& c) {
-           if (const auto on = c.settingFlag()) c.view.twistOfCylinders = *on;
-         }},
+        {"twist of cylinders:", &flagSetting<&ViewSettings::twistOfCylinders>},
         {"surface:", &surface},
         {"mesh flow:", &meshFlow},
         {"tsurface:", [](ViewLine& c) { unsupported(c, "triangle-list surfaces are not drawn"); }},
@@ -1209,19 +1166,9 @@ const std::unordered_map<std::string_view, ViewLineReader>& commandTable() {
         // Tropisms (§8.1.8) and the deprecated single tropism for `_` (§8.1.10).
         {"tropism:", [](ViewLine& c) { tropismOrTorque(c, false); }},
         {"torque:", [](ViewLine& c) { tropismOrTorque(c, true); }},
-        {"tropism direction:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingTriple()) c.view.tropismDirection = *v;
-         }},
-        {"initial elasticity:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber()) c.view.initialElasticity = static_cast<float>(*v);
-         }},
-        {"elasticity increment:",
-         [](ViewLine& c) {
-           if (const auto v = c.settingNumber())
-             c.view.elasticityIncrement = static_cast<float>(*v);
-         }},
+        {"tropism direction:", &tripleSetting<&ViewSettings::tropismDirection>},
+        {"initial elasticity:", &numberSetting<&ViewSettings::initialElasticity>},
+        {"elasticity increment:", &numberSetting<&ViewSettings::elasticityIncrement>},
 
         // Read and without effect, in cpfg too or for Hirsute's outputs.
         {"cue range:", &ignoreArguments},

@@ -5,6 +5,14 @@
 
 namespace hirsute {
 
+std::string preprocessViewFile(const std::filesystem::path& viewFile, std::size_t maxSourceBytes,
+                               Diagnostics& diagnostics) {
+  diagnostics.addSourceFolder(ModelFolder(viewFile.parent_path()));
+  PreprocessorOptions options;
+  options.maxOutputBytes = maxSourceBytes;
+  return preprocessFile(viewFile, options, diagnostics);
+}
+
 Model loadModel(const std::filesystem::path& lsystemFile,
                 const std::optional<std::filesystem::path>& viewFile, Diagnostics& diagnostics,
                 const ModelOptions& modelOptions) {
@@ -18,7 +26,10 @@ Model loadModel(const std::filesystem::path& lsystemFile,
   PreprocessorOptions options;
   options.maxOutputBytes = modelOptions.maxSourceBytes;
   if (viewFile) {
-    std::string viewText = preprocessFile(*viewFile, options, diagnostics);
+    const std::string viewText =
+        modelOptions.viewText != nullptr
+            ? *modelOptions.viewText
+            : preprocessViewFile(*viewFile, modelOptions.maxSourceBytes, diagnostics);
     model.functions = readViewFunctions(viewText, *viewFile);
     // cpfg defines every function-set name for the preprocessor before reading the `.l`.
     if (modelOptions.defineFunctionSetNames) options.defines = model.functions.macroDefinitions;

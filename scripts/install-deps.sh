@@ -8,7 +8,7 @@ packages=(
   libcli11-dev libfmt-dev libxbyak-dev libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev libgmp-dev libnoise-dev
   clang libclang-rt-14-dev
   libglm-dev libosmesa6-dev libpng-dev libstb-dev povray zlib1g-dev pkg-config libembree-dev libopenexr-dev
-  libassimp-dev libcgal-dev
+  libassimp-dev libcgal-dev libboost-dev
   libglfw3-dev libimgui-dev xvfb xauth
   time parallel rsync ccache help2man man-db bash-completion
   blender python3-numpy

@@ -6,7 +6,7 @@
 
 #include "hirsute/hairs/dynamics/feather_stem.h"
 #include "hirsute/hairs/dynamics/stem_vane.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 
 namespace hirsute::dynamics {
 namespace {

@@ -12,8 +12,8 @@
 #include "hirsute/hairs/dynamics/feather_poses.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
 #include "hirsute/hairs/dynamics/worker_pool.h"
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
 
 namespace hirsute::dynamics {
 

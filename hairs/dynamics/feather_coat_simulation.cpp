@@ -21,7 +21,7 @@
 #include "hirsute/hairs/dynamics/static_intersection.h"
 #include "hirsute/hairs/dynamics/stem_vane.h"
 #include "hirsute/hairs/dynamics/step_state.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 
 namespace hirsute::dynamics {
 namespace {

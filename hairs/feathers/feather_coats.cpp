@@ -5,11 +5,11 @@
 #include <numeric>
 #include <string>
 
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/hairs/placement/patch_unfolding.h"
 #include "hirsute/hairs/placement/placement_random.h"
 #include "hirsute/hairs/placement/segment_unfolding.h"
 #include "hirsute/hairs/placement/surface_sampler.h"
-#include "hirsute/interpreter/feather_part.h"
 
 namespace hirsute {
 namespace {

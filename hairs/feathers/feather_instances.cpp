@@ -7,7 +7,7 @@
 #include <glm/matrix.hpp>
 
 #include "hirsute/hairs/feathers/feather_blend.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 
 namespace hirsute {
 

@@ -16,10 +16,10 @@
 #include "hirsute/hairs/feathers/feather_coats.h"
 #include "hirsute/hairs/feathers/feather_file.h"
 #include "hirsute/hairs/feathers/feather_instances.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
 #include "hirsute/hairs/placement/placement_random.h"
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
-#include "hirsute/interpreter/hair_settings.h"
+#include "hirsute/hairs/plant/hair_settings.h"
 #include "hirsute/interpreter/texture_image.h"
 
 namespace hirsute {

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
-#include "hirsute/interpreter/fur_part.h"
 
 namespace hirsute::fur {
 

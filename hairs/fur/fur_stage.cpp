@@ -10,13 +10,13 @@
 #include <fmt/format.h>
 
 #include "hirsute/core/option_checks.h"
+#include "hirsute/hairs/fur/fur_part.h"
+#include "hirsute/hairs/fur/fur_settings.h"
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/fur_texture.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
 #include "hirsute/hairs/placement/patch_unfolding.h"
-#include "hirsute/interpreter/fur_part.h"
-#include "hirsute/interpreter/fur_settings.h"
 
 namespace hirsute {
 namespace {

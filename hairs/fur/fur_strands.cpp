@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
-#include "hirsute/interpreter/fur_part.h"
 
 namespace hirsute::fur {
 namespace {

@@ -1,18 +1,17 @@
-// The organs' drawings in the GL renderer, registered: one line an organ, in the order they are
-// drawn.
-#include "hirsute/hairs/feathers/feather_drawing.h"
-#include "hirsute/hairs/fur/fur_drawing.h"
-#include "hirsute/hairs/plant/hair_drawing.h"
+// The organs' drawings in the GL renderer, registered (organ_list.h), in the order they are drawn.
 #include "hirsute/viewer/gl/organ_drawing.h"
+#include "organ_list.h"
 
 namespace hirsute {
 
+#define HIRSUTE_DECLARE(folder, name) const OrganDrawingType& name##Drawing();
+HIRSUTE_ORGANS(HIRSUTE_DECLARE)
+#undef HIRSUTE_DECLARE
+
 std::span<const OrganDrawingType* const> organDrawings() {
-  static const OrganDrawingType* const drawings[] = {
-      &plantHairDrawing(),
-      &featherDrawing(),
-      &furDrawing(),
-  };
+#define HIRSUTE_DRAWING(folder, name) &name##Drawing(),
+  static const OrganDrawingType* const drawings[] = {HIRSUTE_ORGANS(HIRSUTE_DRAWING)};
+#undef HIRSUTE_DRAWING
   return drawings;
 }
 

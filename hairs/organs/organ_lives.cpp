@@ -1,18 +1,18 @@
-// The organs in the interactive viewer (live_organ.h), registered: one line an organ, in the
-// order of their drawings (organ_drawings.cpp).
-#include "hirsute/hairs/feathers/feather_live.h"
-#include "hirsute/hairs/fur/fur_live.h"
-#include "hirsute/hairs/plant/hair_live.h"
+// The organs in the interactive viewer (live_organ.h), registered (organ_list.h), in the order of
+// their drawings.
 #include "hirsute/viewer/interaction/live_organ.h"
+#include "organ_list.h"
 
 namespace hirsute {
 
+#define HIRSUTE_DECLARE(folder, name) const LiveOrganType& name##Live();
+HIRSUTE_ORGANS(HIRSUTE_DECLARE)
+#undef HIRSUTE_DECLARE
+
 std::span<const LiveOrganType* const> liveOrgans() {
-  static const LiveOrganType* const organs[] = {
-      &hairLive(),
-      &featherLive(),
-      &furLive(),
-  };
+#define HIRSUTE_LIVE(folder, name) &name##Live(),
+  static const LiveOrganType* const organs[] = {HIRSUTE_ORGANS(HIRSUTE_LIVE)};
+#undef HIRSUTE_LIVE
   return organs;
 }
 

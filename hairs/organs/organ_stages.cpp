@@ -1,20 +1,21 @@
-// The organs' stages, registered: one line an organ, in the order the pipeline runs them (the
-// feathers' coats and the fur are placed after the hairs, as they always were).
+// The organs' stages (organ_stage.h), registered (organ_list.h), in the order the pipeline runs
+// them (the feathers' coats and the fur are placed after the hairs, as they always were), then
+// the passes over what they placed: the coats laid shingled (coat_shingling.h).
 #include "hirsute/hairs/dynamics/coat_shingling.h"
-#include "hirsute/hairs/feathers/feather_stage.h"
-#include "hirsute/hairs/fur/fur_stage.h"
 #include "hirsute/hairs/organ_stage.h"
-#include "hirsute/hairs/plant/plant_hairs.h"
+#include "organ_list.h"
 
 namespace hirsute {
 
+#define HIRSUTE_DECLARE(folder, name) const OrganStage& name##Stage();
+HIRSUTE_ORGANS(HIRSUTE_DECLARE)
+#undef HIRSUTE_DECLARE
+
 std::span<const OrganStage* const> organStages() {
-  static const OrganStage* const stages[] = {
-      &plantHairStage(),
-      &featherStage(),
-      &dynamics::coatShinglingStage(),
-      &furStage(),
-  };
+#define HIRSUTE_STAGE(folder, name) &name##Stage(),
+  static const OrganStage* const stages[] = {HIRSUTE_ORGANS(HIRSUTE_STAGE)
+                                                 &dynamics::coatShinglingStage()};
+#undef HIRSUTE_STAGE
   return stages;
 }
 

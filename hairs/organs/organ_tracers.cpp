@@ -1,18 +1,21 @@
-// The organs' tracers, registered: one line an organ (organ_tracer.h).
-#include "hirsute/hairs/feathers/feather_tracer.h"
-#include "hirsute/hairs/fur/fur_tracer.h"
-#include "hirsute/hairs/plant/plant_hair_tracer.h"
+// The organs' tracers (organ_tracer.h), registered (organ_list.h).
 #include "hirsute/viewer/trace/organ_tracer.h"
+#include "organ_list.h"
 
-namespace hirsute::trace {
+namespace hirsute {
+
+#define HIRSUTE_DECLARE(folder, name) const trace::OrganTracer& name##Tracer();
+HIRSUTE_ORGANS(HIRSUTE_DECLARE)
+#undef HIRSUTE_DECLARE
+
+namespace trace {
 
 std::span<const OrganTracer* const> organTracers() {
-  static const OrganTracer* const tracers[] = {
-      &plantHairTracer(),
-      &featherTracer(),
-      &furTracer(),
-  };
+#define HIRSUTE_TRACER(folder, name) &name##Tracer(),
+  static const OrganTracer* const tracers[] = {HIRSUTE_ORGANS(HIRSUTE_TRACER)};
+#undef HIRSUTE_TRACER
   return tracers;
 }
 
-}  // namespace hirsute::trace
+}  // namespace trace
+}  // namespace hirsute

@@ -14,7 +14,7 @@
 #include "hirsute/hairs/placement/segment_unfolding.h"
 #include "hirsute/hairs/placement/segment_values.h"
 #include "hirsute/hairs/placement/surface_sampler.h"
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 
 namespace hirsute {
 namespace {

@@ -9,7 +9,7 @@
 #include <iostream>
 #include <memory>
 
-#include "hirsute/interpreter/hair_settings.h"
+#include "hirsute/hairs/plant/hair_settings.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
 #include "hirsute/lsys/evaluator.h"

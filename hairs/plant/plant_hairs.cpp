@@ -9,9 +9,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "hirsute/hairs/plant/hair_part.h"
+#include "hirsute/hairs/plant/hair_settings.h"
 #include "hirsute/hairs/plant/hair_templates.h"
-#include "hirsute/interpreter/hair_part.h"
-#include "hirsute/interpreter/hair_settings.h"
 
 namespace hirsute {
 

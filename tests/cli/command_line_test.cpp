@@ -252,5 +252,28 @@ TEST(CommandLineDocs, EveryOptionOfEveryCommandIsInTheReference) {
   }
 }
 
+// --placement-seed seeds every organ's placement; --hair-seed, its name from when it placed only
+// hairs, still does the same but is no longer in the help.
+TEST(CommandLine, HairSeedIsAHiddenOldNameOfPlacementSeed) {
+  const fs::path model = fs::path(HIRSUTE_SOURCE_DIR) / "models" / "hairy-cylinder";
+  TemporaryFolder folder;
+  const auto hairsWith = [&](const std::string& option, const std::string& seed) {
+    const fs::path csv = folder.path() / (option.substr(2) + seed + ".csv");
+    const RunResult run =
+        runHirsute({"export", (model / "hairy-cylinder.l").string(),
+                    (model / "hairy-cylinder.v").string(), option, seed, "--hairs", csv.string()});
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    std::ifstream in(csv, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string placed = hairsWith("--placement-seed", "7");
+  EXPECT_GT(placed.size(), 1000u);
+  EXPECT_EQ(hairsWith("--hair-seed", "7"), placed);
+  EXPECT_NE(hairsWith("--placement-seed", "8"), placed);
+  const RunResult help = runHirsute({"export", "--help"});
+  EXPECT_TRUE(mentions(help.out, "--placement-seed")) << help.out;
+  EXPECT_FALSE(mentions(help.out, "--hair-seed")) << help.out;
+}
+
 }  // namespace
 }  // namespace hirsute

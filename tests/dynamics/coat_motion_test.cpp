@@ -11,7 +11,7 @@
 #include "hirsute/hairs/dynamics/coat_motion.h"
 #include "hirsute/hairs/dynamics/feather_poses.h"
 #include "hirsute/hairs/feathers/feather_instances.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 
 namespace hirsute::dynamics {
 namespace {

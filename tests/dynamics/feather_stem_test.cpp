@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "hirsute/hairs/dynamics/feather_coat_simulation.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 
 namespace hirsute::dynamics {
 namespace {

@@ -19,8 +19,8 @@
 #include <utility>
 #include <vector>
 
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/hairs/plant/plant_hairs.h"
-#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"
@@ -1254,7 +1254,7 @@ TEST(HairSeeding, SameSeedPlacesIdenticalHairs) {
 TEST(HairSeeding, AnotherSeedDrawsOtherValues) {
   const PlacedHairs first = place("length_range.l");
   PlantHairOptions reseed;
-  reseed.seed = 2;  // as `--hair-seed 2`
+  reseed.seed = 2;  // as `--placement-seed 2`
   const PlacedHairs reseeded = place("length_range.l", "cylinder.v", reseed);
   // The attachment points are the texture's (same texture seed), the random offsets are not.
   ASSERT_EQ(first.scene.organ<HairPart>().hairs.size(),

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/hairs/plant/plant_hairs.h"
-#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"

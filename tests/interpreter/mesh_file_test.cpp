@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/interpreter/hair_attributes.h"
+#include "../../interpreter/surface_mesh.h"
+#include "hirsute/hairs/plant/hair_attributes.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
-#include "../../interpreter/surface_mesh.h"
 #include "support/test_files.h"
 
 namespace hirsute {

@@ -11,6 +11,7 @@
 
 #include "hirsute/interpreter/texture_image.h"
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/lsys/model.h"
 #include "support/diagnostic_of.h"
 
 namespace hirsute {
@@ -116,6 +117,28 @@ TEST(ModelResourcesTest, BrokenFilesAreReportedAtTheViewLineWithTheirOwnPlace) {
   EXPECT_EQ(d.where.line, 1);
   EXPECT_EQ(d.where.column, 13);
   EXPECT_NE(d.message.find("texture file 'broken.rgb' is broken"), std::string::npos) << d.message;
+}
+
+// A load runs the view file through the preprocessor once (preprocessViewFile) and hands the
+// text to both readers: given it, loadModelResources reads its settings from that text and does
+// not read the file again (model.v names files, some missing, that would be loaded and warned of).
+TEST(ModelResourcesTest, ThePreprocessedViewTextIsReadInsteadOfTheFile) {
+  Diagnostics diagnostics;
+  const std::string text = "angle increment: 30\n";
+  const ModelResources resources =
+      loadModelResources(kFixtures / "model.v", ColorFiles{}, diagnostics, kDefaultMaxMeshTriangles,
+                         kDefaultMaxSourceBytes, &text);
+  EXPECT_FLOAT_EQ(resources.view.angleIncrement, 30);
+  EXPECT_TRUE(resources.textures.empty());
+  EXPECT_FALSE(resources.contours.has(1));
+  EXPECT_TRUE(diagnostics.warnings().empty());
+
+  // The one read takes the command's limit on the preprocessed text (--max-source-bytes).
+  const Diagnostic d =
+      diagnosticOf([&] { preprocessViewFile(kFixtures / "model.v", 20, diagnostics); });
+  EXPECT_NE(d.message.find("--max-source-bytes"), std::string::npos) << d.message;
+  EXPECT_FALSE(
+      preprocessViewFile(kFixtures / "model.v", kDefaultMaxSourceBytes, diagnostics).empty());
 }
 
 TEST(ModelResourcesTest, WithoutAViewFileEverythingIsDefault) {

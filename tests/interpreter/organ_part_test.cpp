@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
-#include "hirsute/interpreter/fur_part.h"
-#include "hirsute/interpreter/fur_settings.h"
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
+#include "hirsute/hairs/fur/fur_part.h"
+#include "hirsute/hairs/fur/fur_settings.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/interpreter/scene.h"
@@ -179,9 +179,21 @@ TEST(OrganAttributeIndices, EachOrgansRecordHasASlotOfItsOwn) {
   EXPECT_EQ(reading.of<FurAttributes>(), 3);
   EXPECT_EQ(reading.of<HairAttributes>(), 1);
 
-  // The slots are the organs' places in the table list, within the room the turtle keeps.
+  // Indices that differ only in organs past the last one set are equal: those have none.
+  OrganAttributeIndices fur;
+  fur.of<FurAttributes>() = 3;
+  fur.of<FurAttributes>() = -1;
+  EXPECT_TRUE(fur.none());
+  EXPECT_EQ(fur, OrganAttributeIndices{});
+  OrganAttributeIndices hairs;
+  hairs.of<HairAttributes>() = 1;
+  EXPECT_FALSE(hairs == OrganAttributeIndices{});
+  OrganAttributeIndices hairsAndNoFur = hairs;
+  hairsAndNoFur.of<FurAttributes>() = -1;
+  EXPECT_EQ(hairsAndNoFur, hairs);
+
+  // The slots are the organs' places in the table list, however many organs there are.
   const auto tables = organModuleTables();
-  ASSERT_LE(tables.size(), kMaxOrganTypes);
   for (std::size_t k = 0; k < tables.size(); ++k) EXPECT_EQ(organSlot(tables[k]->organ()), k);
   EXPECT_THROW(organSlot('Q'), std::logic_error);
 }

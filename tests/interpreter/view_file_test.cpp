@@ -9,7 +9,7 @@
 #include <string>
 
 #include "hirsute/core/diagnostic.h"
-#include "hirsute/interpreter/hair_settings.h"
+#include "hirsute/hairs/plant/hair_settings.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/organ_modules.h"
 #include "hirsute/interpreter/view_lines.h"

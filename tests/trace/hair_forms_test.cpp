@@ -4,8 +4,8 @@
 
 #include <cmath>
 
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/hairs/plant/plant_hair_tracer.h"
-#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/viewer/trace/trace_scene.h"
 

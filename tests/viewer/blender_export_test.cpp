@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/viewer/export/blender_writer.h"
 #include "support/test_files.h"
 

@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/hairs/feathers/feather_stage.h"
 #include "hirsute/hairs/plant/hair_csv_writer.h"
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"

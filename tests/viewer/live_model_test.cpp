@@ -18,10 +18,10 @@
 
 #include "hirsute/hairs/dynamics/coat_runner.h"
 #include "hirsute/hairs/feathers/feather_live.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
 #include "hirsute/hairs/fur/fur_live.h"
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/hairs/fur/fur_part.h"
 #include "model_pipeline.h"
 
 namespace hirsute {

@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "hirsute/hairs/feathers/feather_instances.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 
 namespace hirsute {
 namespace {

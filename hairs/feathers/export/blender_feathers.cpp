@@ -5,8 +5,8 @@
 // POV-Ray scene draws for it (pov_feathers.cpp): the barbs' fading carried as width.
 #include <cmath>
 
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/hairs/feathers/feather_writer.h"
-#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/blender_writer.h"
 #include "hirsute/viewer/view/feather_buffers.h"
 

@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/hairs/feathers/feather_writer.h"
-#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/export_file.h"
 
 namespace hirsute {

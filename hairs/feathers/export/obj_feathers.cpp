@@ -11,8 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/hairs/feathers/feather_writer.h"
-#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 #include "hirsute/viewer/view/feather_buffers.h"
 

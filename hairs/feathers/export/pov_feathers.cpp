@@ -17,8 +17,8 @@
 #include <string>
 #include <tuple>
 
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/hairs/feathers/feather_writer.h"
-#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/view/feather_buffers.h"
 

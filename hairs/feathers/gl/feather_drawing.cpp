@@ -3,7 +3,7 @@
 #include <functional>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/viewer/gl/gl_objects.h"
 
 namespace hirsute {

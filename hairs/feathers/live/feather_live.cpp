@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
 
 namespace hirsute {
 namespace {

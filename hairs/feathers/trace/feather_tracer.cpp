@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/viewer/view/feather_buffers.h"
 
 namespace hirsute {

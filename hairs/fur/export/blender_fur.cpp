@@ -3,9 +3,9 @@
 // radius, coloured at its root by the fur texture (or the surface's colour).
 #include <fmt/format.h>
 
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/fur_writer.h"
-#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/export/blender_writer.h"
 
 namespace hirsute {

@@ -1,9 +1,9 @@
 // Fur in the OBJ file (docs/design.md, "Fur"): every strand of the fur texture on each fur surface,
 // bent, curled and clumped as the shells draw it (hirsute/hairs/fur/fur_strands.h), one `l`
 // polyline, under `o fur`, in the surface's material.
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/fur_writer.h"
-#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 
 namespace hirsute {

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/fur_writer.h"
-#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/viewer/export/pov_writer.h"
 #include "hirsute/viewer/view/view_lighting.h"
 

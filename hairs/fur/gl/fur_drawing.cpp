@@ -2,9 +2,9 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "hirsute/hairs/fur/fur_part.h"
+#include "hirsute/hairs/fur/fur_settings.h"
 #include "hirsute/hairs/fur/fur_strand.h"
-#include "hirsute/interpreter/fur_part.h"
-#include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/viewer/gl/gl_objects.h"
 
 namespace hirsute {

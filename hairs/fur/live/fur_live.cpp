@@ -7,10 +7,10 @@
 
 #include <fmt/format.h>
 
+#include "hirsute/hairs/fur/fur_part.h"
+#include "hirsute/hairs/fur/fur_settings.h"
 #include "hirsute/hairs/fur/fur_stage.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
-#include "hirsute/interpreter/fur_part.h"
-#include "hirsute/interpreter/fur_settings.h"
 
 namespace hirsute {
 namespace {

@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/hairs/fur/fur_strands.h"
-#include "hirsute/interpreter/fur_part.h"
 
 namespace hirsute {
 namespace {

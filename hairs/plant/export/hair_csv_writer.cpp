@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/hairs/plant/plant_hair_writer.h"
-#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/export/export_file.h"
 
 namespace hirsute {

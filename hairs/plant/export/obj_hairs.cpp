@@ -6,8 +6,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <vector>
 
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/hairs/plant/plant_hair_writer.h"
-#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/export/obj_writer.h"
 
 namespace hirsute {

@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/hairs/plant/plant_hair_writer.h"
-#include "hirsute/interpreter/hair_part.h"
 #include "hirsute/viewer/export/pov_writer.h"
 
 namespace hirsute {

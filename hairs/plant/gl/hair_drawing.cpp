@@ -10,7 +10,7 @@
 #include <tuple>
 #include <utility>
 
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/viewer/gl/gl_objects.h"
 #include "hirsute/viewer/gl/gl_shaders.h"
 

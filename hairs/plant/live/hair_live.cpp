@@ -11,7 +11,7 @@ class LiveHairs final : public LiveOrgan {
 
 }  // namespace
 
-const LiveOrganType& hairLive() {
+const LiveOrganType& plantHairLive() {
   static const LiveOrganTypeOf<LiveHairs> type("hairs", 'H');
   return type;
 }

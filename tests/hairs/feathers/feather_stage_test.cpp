@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "hirsute/hairs/feathers/feather_instances.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"

@@ -16,11 +16,11 @@
 #include <sstream>
 #include <utility>
 
+#include "hirsute/hairs/fur/fur_part.h"
+#include "hirsute/hairs/fur/fur_settings.h"
 #include "hirsute/hairs/fur/fur_strand.h"
 #include "hirsute/hairs/fur/fur_strands.h"
 #include "hirsute/hairs/fur/wetness_mask.h"
-#include "hirsute/interpreter/fur_part.h"
-#include "hirsute/interpreter/fur_settings.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/turtle.h"
 #include "hirsute/lsys/derivation.h"

@@ -3,8 +3,8 @@
 // pipeline runs organStages() in order and names no organ; an organ brings its command-line
 // options (its settings), its limits, its warnings and its progress.
 //
-// Adding an organ's stage: a class derived from OrganStageOf in the organ's folder, and one line
-// in organ_stages.cpp's list. The list's order is the order the stages run in.
+// Adding an organ's stage: a class derived from OrganStageOf in the organ's folder, returned by its
+// nameStage() (hairs/organs/organ_list.h). The list's order is the order the stages run in.
 #pragma once
 
 #include <cstddef>
@@ -95,7 +95,7 @@ class OrganStageOf : public OrganStage {
   virtual std::string growFrom(const OrganStageRun& run, const Options& options) const = 0;
 };
 
-// Every organ's stage, in the order they run (organ_stages.cpp).
+// Every organ's stage, in the order they run (hairs/organs/organ_list.h).
 std::span<const OrganStage* const> organStages();
 
 // One options object per stage of organStages(), copied deeply.

@@ -63,12 +63,14 @@ inline constexpr int kMaxColorBanks = 12;
 // Reads the view file (through the preprocessor) and every file it and `colors` name.
 // Without a colour file, a default palette is used; a mesh surface of more than
 // `maxMeshTriangles` triangles is refused; the view file and its background scenes after the
-// preprocessor may be `maxSourceBytes` long each (--max-source-bytes). Throws DiagnosticError
-// (file:line).
+// preprocessor may be `maxSourceBytes` long each (--max-source-bytes). `viewText`, when given,
+// is the view file already through the preprocessor (preprocessViewFile, model.h), as the
+// model's load ran it: it is not run again. Throws DiagnosticError (file:line).
 ModelResources loadModelResources(const std::optional<std::filesystem::path>& viewFile,
                                   const ColorFiles& colors, Diagnostics& diagnostics,
                                   std::size_t maxMeshTriangles = kDefaultMaxMeshTriangles,
-                                  std::size_t maxSourceBytes = kDefaultMaxSourceBytes);
+                                  std::size_t maxSourceBytes = kDefaultMaxSourceBytes,
+                                  const std::string* viewText = nullptr);
 
 // The view settings alone (used by tests and by loadModelResources).
 ViewSettings parseViewFile(const std::string& preprocessedText,

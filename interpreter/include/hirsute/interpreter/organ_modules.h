@@ -4,9 +4,9 @@
 // parameter form and what it sets. The turtle looks `@XY` up by X and hands the module to the
 // table; it knows no organ's modules itself.
 //
-// Adding a module to an organ adds a row to its table; adding an organ adds its record (with its
-// letter, kOrgan), its part of the Scene, a file with its table, and one line to the list in
-// organ_modules.cpp.
+// Adding a module to an organ adds a row to its table; an organ's record (with its letter,
+// kOrgan), its part of the Scene and its table live in its folder, hairs/NAME/, and its one line
+// in hairs/organs/organ_list.h registers the table.
 #pragma once
 
 #include <array>
@@ -77,7 +77,8 @@ class OrganModuleTable {
       char letter, std::span<const std::optional<float>> parameters) const = 0;
 };
 
-// Every organ's table, in the order of the list in organ_modules.cpp.
+// Every organ's table, in the order of hairs/organs/organ_list.h, which defines this at link
+// time (organ_models.cpp): the interpreter names no organ.
 std::span<const OrganModuleTable* const> organModuleTables();
 // The position in organModuleTables() of the organ with letter `organ`, or -1.
 int organModuleTableIndex(char organ);

@@ -1,7 +1,8 @@
 // Reading a line of the view file (view_file.cpp), for the view file's own lines and for the
 // lines each organ adds (docs/design.md, "Organs"): an organ lists its lines as
-// ViewLineCommand in a file of its own (hair_view_lines.cpp and the others) and organViewLines()
-// (organ_modules.cpp) gathers them, so that the view file names no organ.
+// ViewLineCommand in a file of its own in its folder (hairs/plant/hair_view_lines.cpp and the
+// others) and organViewLines() (hairs/organs/organ_models.cpp) gathers them, so that the view file
+// names no organ.
 #pragma once
 
 #include <cstddef>
@@ -272,7 +273,8 @@ struct ViewLineCommand {
   ViewLineReader read;
 };
 
-// Every organ's lines, in the order of the organs' module tables (organ_modules.cpp).
+// Every organ's lines, in the order of the organs' module tables (hairs/organs/organ_list.h),
+// defined at link time by the registry.
 std::span<const std::span<const ViewLineCommand>> organViewLines();
 
 }  // namespace hirsute

@@ -32,10 +32,19 @@ struct ModelOptions {
   std::optional<std::string> lsystemText;
   // The preprocessed text of the view file and of the `.l` each (--max-source-bytes).
   std::size_t maxSourceBytes = kDefaultMaxSourceBytes;
+  // The view file already through the preprocessor (preprocessViewFile), which a caller that
+  // also reads the view's settings (loadModelResources) hands to both: it is not run again.
+  const std::string* viewText = nullptr;
   // When given, the parsed file is checked for likely mistakes (model_checks.h) with what the
   // interpreter makes of modules.
   const ModuleMeanings* checks = nullptr;
 };
+
+// The view file through the C preprocessor, as cpfg reads it (#define, comments), at most
+// `maxSourceBytes` long after it; messages about it quote its lines. Run once per load: its text
+// serves the function set (loadModel) and the settings (loadModelResources).
+std::string preprocessViewFile(const std::filesystem::path& viewFile, std::size_t maxSourceBytes,
+                               Diagnostics& diagnostics);
 
 Model loadModel(const std::filesystem::path& lsystemFile,
                 const std::optional<std::filesystem::path>& viewFile, Diagnostics& diagnostics,

@@ -13,8 +13,8 @@
 
 #include "hirsute/hairs/dynamics/feather_coat_simulation.h"
 #include "hirsute/hairs/dynamics/feather_poses.h"
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::dynamics {

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "hirsute/hairs/dynamics/coat_motion.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::dynamics {

@@ -7,7 +7,7 @@
 
 #include "hirsute/hairs/dynamics/feather_coat_simulation.h"
 #include "hirsute/hairs/dynamics/feather_stem.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::dynamics {

@@ -10,7 +10,7 @@
 #include <array>
 #include <vector>
 
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::dynamics {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "hirsute/hairs/feathers/default_barbs.h"
-#include "hirsute/interpreter/feather_type.h"
+#include "hirsute/hairs/feathers/feather_type.h"
 
 namespace hirsute {
 

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "hirsute/interpreter/feather_type.h"
+#include "hirsute/hairs/feathers/feather_type.h"
 
 namespace hirsute {
 

@@ -3,7 +3,7 @@
 // made as for any other.
 #pragma once
 
-#include "hirsute/interpreter/feather_type.h"
+#include "hirsute/hairs/feathers/feather_type.h"
 
 namespace hirsute {
 

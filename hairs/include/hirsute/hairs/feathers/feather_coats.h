@@ -10,10 +10,10 @@
 #include <stdexcept>
 
 #include "hirsute/core/progress.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
 #include "hirsute/hairs/placement/point_diffusion.h"
 #include "hirsute/hairs/placement/segment_values.h"
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute {

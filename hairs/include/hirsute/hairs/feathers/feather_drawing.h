@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/viewer/gl/gl_functions.h"
 #include "hirsute/viewer/gl/organ_drawing.h"

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <string_view>
 
-#include "hirsute/interpreter/feather_type.h"
 #include "hirsute/core/diagnostic.h"
+#include "hirsute/hairs/feathers/feather_type.h"
 
 namespace hirsute {
 

@@ -20,7 +20,7 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
-#include "hirsute/interpreter/feather_type.h"
+#include "hirsute/hairs/feathers/feather_type.h"
 
 namespace hirsute {
 

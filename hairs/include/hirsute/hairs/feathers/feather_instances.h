@@ -6,7 +6,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "hirsute/hairs/feathers/feather_geometry.h"
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute {

@@ -20,7 +20,7 @@
 
 #include <glm/glm.hpp>
 
-#include "hirsute/interpreter/feather_type.h"
+#include "hirsute/hairs/feathers/feather_type.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute {

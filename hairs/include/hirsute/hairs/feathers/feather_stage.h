@@ -7,11 +7,11 @@
 #include <cstdint>
 #include <string>
 
+#include "hirsute/core/diagnostic.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/hairs/organ_stage.h"
-#include "hirsute/interpreter/feather_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/core/diagnostic.h"
 #include "hirsute/lsys/function_curve.h"
 
 namespace hirsute {

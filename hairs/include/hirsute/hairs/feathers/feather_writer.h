@@ -2,7 +2,7 @@
 // (export/obj_feathers.cpp) and the table of `export --feathers` (export/feather_csv_writer.cpp).
 #pragma once
 
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/viewer/export/organ_writer.h"
 
 namespace hirsute {

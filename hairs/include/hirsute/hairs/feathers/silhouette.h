@@ -3,7 +3,7 @@
 
 #include <span>
 
-#include "hirsute/interpreter/feather_type.h"
+#include "hirsute/hairs/feathers/feather_type.h"
 
 namespace hirsute {
 

@@ -9,11 +9,11 @@
 #include <cstdint>
 #include <string>
 
+#include "hirsute/core/diagnostic.h"
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/hairs/organ_stage.h"
-#include "hirsute/interpreter/fur_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute::fur {

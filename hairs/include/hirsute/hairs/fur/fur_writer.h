@@ -2,7 +2,7 @@
 // both as explicit strands (fur_strands.h), since no format draws shells.
 #pragma once
 
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/hairs/fur/fur_part.h"
 #include "hirsute/viewer/export/organ_writer.h"
 
 namespace hirsute {

@@ -8,7 +8,7 @@
 
 #include "hirsute/core/output_target.h"
 #include "hirsute/core/progress.h"
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/scene.h"
 
 namespace hirsute {

@@ -6,6 +6,6 @@
 
 namespace hirsute {
 
-const LiveOrganType& hairLive();
+const LiveOrganType& plantHairLive();
 
 }  // namespace hirsute

@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "hirsute/core/progress.h"
 #include "hirsute/hairs/placement/point_diffusion.h"
 #include "hirsute/hairs/placement/segment_values.h"
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/core/progress.h"
 
 namespace hirsute {
 

@@ -5,10 +5,10 @@
 
 #include <vector>
 
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/core/diagnostic.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/interpreter/model_resources.h"
 #include "hirsute/interpreter/scene.h"
-#include "hirsute/core/diagnostic.h"
 
 namespace hirsute {
 

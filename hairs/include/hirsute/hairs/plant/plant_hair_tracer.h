@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/viewer/trace/organ_tracer.h"
 
 namespace hirsute {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 #include "hirsute/viewer/export/organ_writer.h"
 
 namespace hirsute {

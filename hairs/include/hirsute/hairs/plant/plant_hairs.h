@@ -7,12 +7,12 @@
 #include <cstdint>
 #include <string>
 
-#include "hirsute/hairs/plant/hair_placement.h"
-#include "hirsute/interpreter/hair_part.h"
-#include "hirsute/interpreter/model_resources.h"
-#include "hirsute/interpreter/scene.h"
 #include "hirsute/core/diagnostic.h"
 #include "hirsute/hairs/organ_stage.h"
+#include "hirsute/hairs/plant/hair_part.h"
+#include "hirsute/hairs/plant/hair_placement.h"
+#include "hirsute/interpreter/model_resources.h"
+#include "hirsute/interpreter/scene.h"
 #include "hirsute/lsys/function_curve.h"
 
 namespace hirsute {

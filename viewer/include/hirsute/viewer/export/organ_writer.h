@@ -4,8 +4,8 @@
 // use the printers' public drawing calls; a printer never names an organ.
 //
 // Adding a format adds a virtual here and a writer in each organ; adding an organ adds a class
-// derived from OrganWriter in its folder and one line in hairs/organs/organ_writers.cpp, whose
-// order is the order the organs are written in.
+// derived from OrganWriter in its folder (its nameWriter(), hairs/organs/organ_list.h), whose
+// line in that list gives the order the organs are written in.
 #pragma once
 
 #include <cstddef>
@@ -56,7 +56,7 @@ class OrganWriter {
   virtual std::optional<OrganTable> table() const { return std::nullopt; }
 };
 
-// Every organ's writers, in the order they are written (hairs/organs/organ_writers.cpp).
+// Every organ's writers, in the order they are written (hairs/organs/organ_list.h).
 std::span<const OrganWriter* const> organWriters();
 
 }  // namespace hirsute

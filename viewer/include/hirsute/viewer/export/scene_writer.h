@@ -1,7 +1,9 @@
 // Every export format is one printer class driven by the same walk over the Scene (PlantGL's
-// lesson): printScene() visits the elements in one fixed order and a printer turns
-// each into its format's text. Adding a format is adding a printer; it reads the Scene and
-// nothing else (and, for formats that carry a camera, the view it is given).
+// lesson): printScene() visits the Scene's own elements in one fixed order and a printer turns
+// each into its format's text, then hands itself to each organ's writer (organ_writer.h), which
+// draws the organ through the printer's public calls. A printer reads the Scene's own elements
+// (and, for formats that carry a camera, the view it is given) and names no organ; adding a
+// format is adding a printer and, in each organ's folder, its writer for the format.
 #pragma once
 
 #include <cstddef>

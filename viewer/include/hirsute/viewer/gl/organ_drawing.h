@@ -5,8 +5,8 @@
 // an organ, and reaches one by the name it registers ("hairs").
 //
 // Adding an organ's drawing: a class derived from OrganDrawing and an OrganDrawingType that makes
-// it (OrganDrawingTypeOf), in the organ's folder, and one line in hairs/organs/organ_drawings.cpp, whose order is the
-// order they are drawn in.
+// it (OrganDrawingTypeOf), in the organ's folder, returned by its nameDrawing(); the organ's line
+// in hairs/organs/organ_list.h registers it, and the list's order is the order they are drawn in.
 #pragma once
 
 #include <cstddef>
@@ -74,7 +74,7 @@ class OrganDrawingTypeOf : public OrganDrawingType {
   const char* name_;
 };
 
-// Every organ's drawing, in the order they are drawn (hairs/organs/organ_drawings.cpp).
+// Every organ's drawing, in the order they are drawn (hairs/organs/organ_list.h).
 std::span<const OrganDrawingType* const> organDrawings();
 
 }  // namespace hirsute

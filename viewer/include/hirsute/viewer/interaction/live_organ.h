@@ -6,8 +6,8 @@
 // names none; the window maps keys and the view script parses commands from the same list.
 //
 // Adding an organ's part in the viewer: a class derived from LiveOrgan and a LiveOrganType that
-// makes it (LiveOrganTypeOf), in the organ's `live/` folder (hairs/NAME/live/), and one line in
-// hairs/organs/organ_lives.cpp. No GL: what must be drawn again goes through the host.
+// makes it (LiveOrganTypeOf), in the organ's `live/` folder (hairs/NAME/live/), returned by its
+// nameLive() (hairs/organs/organ_list.h). No GL: what must be drawn again goes through the host.
 #pragma once
 
 #include <chrono>
@@ -124,7 +124,7 @@ class LiveOrganTypeOf final : public LiveOrganType {
   std::string_view pointHelp_;
 };
 
-// Every organ's type in the viewer, in the order of organDrawings() (hairs/organs/organ_lives.cpp).
+// Every organ's type in the viewer, in the order of organDrawings() (hairs/organs/organ_list.h).
 std::span<const LiveOrganType* const> liveOrgans();
 
 }  // namespace hirsute

@@ -2,7 +2,7 @@
 // geometry and materials): addSceneGeometry() (trace_scene.h) visits organTracers() after the
 // Scene's own elements, and each organ adds its shapes and materials from its own folder
 // (hairs/NAME/trace/). The tracer never names an organ; adding one adds a class derived from
-// OrganTracer in its folder and one line in hairs/organs/organ_tracers.cpp.
+// OrganTracer in its folder, returned by its nameTracer() (hairs/organs/organ_list.h).
 #pragma once
 
 #include <span>
@@ -21,7 +21,7 @@ class OrganTracer {
   virtual void addTo(const Scene& scene, const Camera& camera, TraceScene& out) const = 0;
 };
 
-// Every organ's tracer (hairs/organs/organ_tracers.cpp).
+// Every organ's tracer, in the order of hairs/organs/organ_list.h (organ_tracers.cpp).
 std::span<const OrganTracer* const> organTracers();
 
 }  // namespace hirsute::trace

@@ -16,7 +16,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "hirsute/interpreter/feather_part.h"
+#include "hirsute/hairs/feathers/feather_part.h"
 #include "hirsute/interpreter/scene.h"
 #include "hirsute/viewer/view/camera.h"
 

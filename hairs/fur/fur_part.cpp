@@ -1,5 +1,5 @@
 // The fur's part of the Scene (fur_part.h).
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/hairs/fur/fur_part.h"
 
 namespace hirsute {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "cpfg_numbers.h"
-#include "hirsute/interpreter/fur_part.h"
+#include "hirsute/hairs/fur/fur_part.h"
+#include "hirsute/interpreter/cpfg_numbers.h"
 #include "hirsute/interpreter/organ_modules.h"
 
 namespace hirsute {

@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "hirsute/interpreter/feather_attributes.h"
-#include "hirsute/interpreter/feather_type.h"
+#include "hirsute/hairs/feathers/feather_attributes.h"
+#include "hirsute/hairs/feathers/feather_type.h"
 #include "hirsute/interpreter/organ_part.h"
 #include "hirsute/interpreter/scene.h"
 

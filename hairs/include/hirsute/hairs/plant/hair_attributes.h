@@ -68,7 +68,7 @@ class OrganModuleTable;
 
 // The plant hairs' module table (hair_modules.cpp, organ_modules.h): @Hf @Hb @He @Hd @Hl @Hr @Hi
 // @Ht @Hw @Hp.
-const OrganModuleTable& hairModuleTable();
-std::span<const ViewLineCommand> hairViewLines();
+const OrganModuleTable& plantHairModuleTable();
+std::span<const ViewLineCommand> plantHairViewLines();
 
 }  // namespace hirsute

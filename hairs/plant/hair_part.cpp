@@ -1,5 +1,5 @@
 // The plant hairs' part of the Scene (hair_part.h).
-#include "hirsute/interpreter/hair_part.h"
+#include "hirsute/hairs/plant/hair_part.h"
 
 namespace hirsute {
 

@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "hirsute/interpreter/hair_attributes.h"
+#include "hirsute/hairs/plant/hair_attributes.h"
 #include "hirsute/interpreter/organ_part.h"
 #include "hirsute/interpreter/scene.h"
 

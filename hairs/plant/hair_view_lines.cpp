@@ -4,8 +4,8 @@
 #include <limits>
 #include <string>
 
-#include "hirsute/interpreter/hair_attributes.h"
-#include "hirsute/interpreter/hair_settings.h"
+#include "hirsute/hairs/plant/hair_attributes.h"
+#include "hirsute/hairs/plant/hair_settings.h"
 #include "hirsute/interpreter/view_lines.h"
 
 namespace hirsute {
@@ -57,7 +57,7 @@ const ViewLineCommand kLines[] = {
 
 }  // namespace
 
-std::span<const ViewLineCommand> hairViewLines() {
+std::span<const ViewLineCommand> plantHairViewLines() {
   return kLines;
 }
 

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cpfg_numbers.h"
-#include "hirsute/interpreter/feather_part.h"
-#include "hirsute/interpreter/feather_settings.h"
+#include "hirsute/hairs/feathers/feather_part.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
+#include "hirsute/interpreter/cpfg_numbers.h"
 #include "hirsute/interpreter/organ_modules.h"
 
 namespace hirsute {

@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "hirsute/interpreter/fur_attributes.h"
+#include "hirsute/hairs/fur/fur_attributes.h"
 #include "hirsute/interpreter/organ_part.h"
 #include "hirsute/interpreter/scene.h"
 

@@ -3,8 +3,8 @@
 #include <limits>
 #include <string>
 
-#include "hirsute/interpreter/fur_attributes.h"
-#include "hirsute/interpreter/fur_settings.h"
+#include "hirsute/hairs/fur/fur_attributes.h"
+#include "hirsute/hairs/fur/fur_settings.h"
 #include "hirsute/interpreter/view_lines.h"
 
 namespace hirsute {

@@ -2,8 +2,8 @@
 // "Plant hairs"): one row each, read by the turtle through organ_modules.h.
 #include <algorithm>
 
-#include "hirsute/interpreter/hair_part.h"
-#include "hirsute/interpreter/hair_settings.h"
+#include "hirsute/hairs/plant/hair_part.h"
+#include "hirsute/hairs/plant/hair_settings.h"
 #include "hirsute/interpreter/organ_modules.h"
 
 namespace hirsute {
@@ -40,7 +40,7 @@ HairRow templateProbabilities(char letter) {
 
 }  // namespace
 
-const OrganModuleTable& hairModuleTable() {
+const OrganModuleTable& plantHairModuleTable() {
   static const AttributeModuleTable<HairAttributes> table(
       "hair",
       [](Scene& scene) -> std::vector<HairAttributes>& {

@@ -5,8 +5,8 @@
 #include <limits>
 #include <string>
 
-#include "hirsute/interpreter/feather_attributes.h"
-#include "hirsute/interpreter/feather_settings.h"
+#include "hirsute/hairs/feathers/feather_attributes.h"
+#include "hirsute/hairs/feathers/feather_settings.h"
 #include "hirsute/interpreter/view_lines.h"
 
 namespace hirsute {
