@@ -23,9 +23,10 @@ hair interpolation: on
 
 /* hirsute render --trace (docs/trace.md): backlit as in Fig. 5 of the paper, the light nearly
    behind the bough as the sun in the photograph of Fig. 1, a dim sky, leaves that pass light
-   through; the hairs are fibres that pass most of it on forwards (the default). `hair shading:`
-   is for Kajiya and Goldman's model, which closeup-kajiya.v chooses. */
+   through; the hairs are fibres that pass most of it on forwards (`fibre: hairs chiang`).
+   `hair shading:` is for Kajiya and Goldman's model, which closeup-kajiya.v chooses. */
 trace light: D: -0.15,0.16,-1 A: 6 I: 4,3.9,3.6
+fibre: hairs chiang
 trace sky: 0.06,0.07,0.09
 translucency: 4 0.45
 hair shading: B: 0.25 R: 0.2 S: 0.06

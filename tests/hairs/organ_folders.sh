@@ -29,6 +29,7 @@ pending=(
   viewer/include/hirsute/viewer/view/feather_buffers.h
   hairs/dynamics/CMakeLists.txt
   hairs/dynamics/coat_motion.cpp
+  hairs/dynamics/coat_shingling.cpp
   hairs/dynamics/feather_coat_simulation.cpp
   hairs/dynamics/feather_poses.cpp
   hairs/dynamics/feather_stem.cpp

@@ -14,7 +14,8 @@ namespace {
 
 TEST(OrganStages, EachStageHasItsActivityAndItsSettings) {
   const auto stages = organStages();
-  ASSERT_EQ(stages.size(), 3u);
+  // The three organs', then the passes over what they placed (the coats laid shingled).
+  ASSERT_EQ(stages.size(), 4u);
   std::set<std::string> activities;
   for (const OrganStage* stage : stages) {
     activities.insert(stage->activity());
@@ -23,10 +24,12 @@ TEST(OrganStages, EachStageHasItsActivityAndItsSettings) {
     EXPECT_TRUE(settings->enabled);
   }
   EXPECT_EQ(activities,
-            (std::set<std::string>{"placing hairs", "growing feathers", "growing fur"}));
+            (std::set<std::string>{"placing hairs", "growing feathers", "growing fur",
+                                   "shingling feathers"}));
   // The hairs are placed before the feathers' coats, and the fur last.
   EXPECT_STREQ(stages[0]->activity(), "placing hairs");
   EXPECT_STREQ(stages[2]->activity(), "growing fur");
+  EXPECT_STREQ(stages[3]->activity(), "shingling feathers");
 }
 
 TEST(OrganStages, OptionsSwitchEachOrganOffOnItsOwn) {
