@@ -29,30 +29,12 @@ void drawContourPanel(ShapeWorkbench& workbench, ShapePanelState& state) {
   ShapeWorkbench::EditorView& view = workbench.contourView;
   if (!view.open) return;
   std::vector<CurveDocument>& documents = workbench.contours();
-  // At the window's right, where the plant (in the middle) is least covered.
-  ImGui::SetNextWindowPos(ImVec2(std::max(8.0f, ImGui::GetIO().DisplaySize.x - 408), 8),
-                          ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(400, 450), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (!ImGui::Begin("Contours", &view.open, ImGuiWindowFlags_NoSavedSettings)) {
-    ImGui::End();
-    return;
-  }
-  if (documents.empty()) {
-    ImGui::TextWrapped("The view file names no contour (contour: or curve:).");
-    ImGui::End();
+  if (!beginShapeWindow("Contours", &view.open, 450, documents.empty(),
+                        "The view file names no contour (contour: or curve:).")) {
     return;
   }
   view.document = std::min(view.document, documents.size() - 1);
-  if (ImGui::BeginCombo("contour", documents[view.document].path.filename().string().c_str())) {
-    for (std::size_t d = 0; d < documents.size(); ++d) {
-      if (ImGui::Selectable(documents[d].path.filename().string().c_str(), d == view.document)) {
-        view.document = d;
-        state.selected = state.dragging = -1;
-      }
-    }
-    ImGui::EndCombo();
-  }
+  if (chooseDocument("contour", documents, view.document)) state.selected = state.dragging = -1;
   CurveDocument& shown = documents[view.document];
   const CurveFile& file = shown.history.current();
   const CurveFileBlock block = file.blocks()[0];  // a copy: an edit replaces `file`
@@ -123,17 +105,7 @@ void drawContourPanel(ShapeWorkbench& workbench, ShapePanelState& state) {
   draw->AddPolyline(ringOnScreen.data(), static_cast<int>(ringOnScreen.size()), kRingColour,
                     ImDrawFlags_None, 1.0f);
   for (const ImVec2& p : ringOnScreen) draw->AddCircleFilled(p, 2.5f, kRingColour);
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const ImVec2 p = canvas.toScreen(rows[i].point[0], rows[i].point[1]);
-    draw->AddCircleFilled(p, 4.5f,
-                          static_cast<int>(i) == state.selected ? kSelectedColour : kPointColour);
-    if (rows[i].multiplicity > 1) {
-      // Built by appending: GCC 12 reports a false -Wrestrict on "x" + std::string.
-      std::string times = "x";
-      times += std::to_string(rows[i].multiplicity);
-      draw->AddText(ImVec2(p.x + 6, p.y - 16), kPointColour, times.c_str());
-    }
-  }
+  drawControlPoints(draw, canvas, rows, state.selected);
   draw->PopClipRect();
 
   const auto screenOf = [&](int i) {

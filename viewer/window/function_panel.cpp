@@ -33,18 +33,8 @@ void drawFunctionPanel(ShapeWorkbench& workbench, ShapePanelState& state) {
   ShapeWorkbench::EditorView& view = workbench.functionView;
   if (!view.open) return;
   std::vector<CurveDocument>& documents = workbench.functions();
-  // At the window's right, where the plant (in the middle) is least covered.
-  ImGui::SetNextWindowPos(ImVec2(std::max(8.0f, ImGui::GetIO().DisplaySize.x - 408), 8),
-                          ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(400, 430), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (!ImGui::Begin("Function curves", &view.open, ImGuiWindowFlags_NoSavedSettings)) {
-    ImGui::End();
-    return;
-  }
-  if (documents.empty()) {
-    ImGui::TextWrapped("The view file names no function (function: or function set:).");
-    ImGui::End();
+  if (!beginShapeWindow("Function curves", &view.open, 430, documents.empty(),
+                        "The view file names no function (function: or function set:).")) {
     return;
   }
   view.document = std::min(view.document, documents.size() - 1);
@@ -104,17 +94,7 @@ void drawFunctionPanel(ShapeWorkbench& workbench, ShapePanelState& state) {
   }
   draw->AddPolyline(line.data(), static_cast<int>(line.size()), kCurveColour, ImDrawFlags_None,
                     2.0f);
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const ImVec2 p = canvas.toScreen(rows[i].point[0], rows[i].point[1]);
-    draw->AddCircleFilled(p, 4.5f,
-                          static_cast<int>(i) == state.selected ? kSelectedColour : kPointColour);
-    if (rows[i].multiplicity > 1) {
-      // Built by appending: GCC 12 reports a false -Wrestrict on "x" + std::string.
-      std::string times = "x";
-      times += std::to_string(rows[i].multiplicity);
-      draw->AddText(ImVec2(p.x + 6, p.y - 16), kPointColour, times.c_str());
-    }
-  }
+  drawControlPoints(draw, canvas, rows, state.selected);
   draw->PopClipRect();
 
   const auto screenOf = [&](int i) {

@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
 
 namespace hirsute {
 
@@ -83,6 +86,61 @@ int pointUnderMouse(int count, ScreenOf&& screenOf) {
     }
   }
   return nearest;
+}
+
+// Opens a shape editor's window at the viewer's right, where the plant (in the middle) is least
+// covered. False when the window is collapsed, or when the view file names nothing for it
+// (`empty`; `nothing` says what it would name): the window is then ended already.
+inline bool beginShapeWindow(const char* title, bool* open, float height, bool empty,
+                             const char* nothing) {
+  ImGui::SetNextWindowPos(ImVec2(std::max(8.0f, ImGui::GetIO().DisplaySize.x - 408), 8),
+                          ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(400, height), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (!ImGui::Begin(title, open, ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::End();
+    return false;
+  }
+  if (empty) {
+    ImGui::TextWrapped("%s", nothing);
+    ImGui::End();
+    return false;
+  }
+  return true;
+}
+
+// The chooser of the file shown, by its name; true when another was chosen.
+template <typename Document>
+bool chooseDocument(const char* label, const std::vector<Document>& documents, std::size_t& shown) {
+  bool chosen = false;
+  if (ImGui::BeginCombo(label, documents[shown].path.filename().string().c_str())) {
+    for (std::size_t d = 0; d < documents.size(); ++d) {
+      if (ImGui::Selectable(documents[d].path.filename().string().c_str(), d == shown)) {
+        shown = d;
+        chosen = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  return chosen;
+}
+
+// A curve file's control points on the plot, the selected one marked, each repeated point with
+// its multiplicity.
+template <typename Row>
+void drawControlPoints(ImDrawList* draw, const PlotCanvas& canvas, const std::vector<Row>& rows,
+                       int selected) {
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ImVec2 p = canvas.toScreen(rows[i].point[0], rows[i].point[1]);
+    draw->AddCircleFilled(p, 4.5f,
+                          static_cast<int>(i) == selected ? kSelectedColour : kPointColour);
+    if (rows[i].multiplicity > 1) {
+      // Built by appending: GCC 12 reports a false -Wrestrict on "x" + std::string.
+      std::string times = "x";
+      times += std::to_string(rows[i].multiplicity);
+      draw->AddText(ImVec2(p.x + 6, p.y - 16), kPointColour, times.c_str());
+    }
+  }
 }
 
 }  // namespace hirsute

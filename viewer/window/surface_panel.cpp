@@ -47,30 +47,12 @@ void drawSurfacePanel(ShapeWorkbench& workbench, ShapePanelState& state) {
   ShapeWorkbench::EditorView& view = workbench.surfaceView;
   if (!view.open) return;
   std::vector<SurfaceDocument>& documents = workbench.surfaces();
-  // At the window's right, where the plant (in the middle) is least covered.
-  ImGui::SetNextWindowPos(ImVec2(std::max(8.0f, ImGui::GetIO().DisplaySize.x - 408), 8),
-                          ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(400, 470), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (!ImGui::Begin("Surfaces", &view.open, ImGuiWindowFlags_NoSavedSettings)) {
-    ImGui::End();
-    return;
-  }
-  if (documents.empty()) {
-    ImGui::TextWrapped("The view file names no bicubic surface (surface: with a .s file).");
-    ImGui::End();
+  if (!beginShapeWindow("Surfaces", &view.open, 470, documents.empty(),
+                        "The view file names no bicubic surface (surface: with a .s file).")) {
     return;
   }
   view.document = std::min(view.document, documents.size() - 1);
-  if (ImGui::BeginCombo("surface", documents[view.document].path.filename().string().c_str())) {
-    for (std::size_t d = 0; d < documents.size(); ++d) {
-      if (ImGui::Selectable(documents[d].path.filename().string().c_str(), d == view.document)) {
-        view.document = d;
-        state.selected = state.dragging = -1;
-      }
-    }
-    ImGui::EndCombo();
-  }
+  if (chooseDocument("surface", documents, view.document)) state.selected = state.dragging = -1;
   ImGui::SetNextItemWidth(160);
   if (ImGui::Combo("projection", &state.projection, kProjections, 3)) state.dragging = -1;
   const std::array<int, 2> axes = kAxes[static_cast<std::size_t>(state.projection)];
